@@ -1,0 +1,254 @@
+#include "cli.h"
+
+#include <tumble/errors.h>
+#include <tumble/io/atomic_file.h>
+#include <tumble/io/scene_file.h>
+#include <tumble/io/trajectory_csv.h>
+#include <tumble/world.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <ostream>
+
+#ifndef TUMBLE_VERSION
+#define TUMBLE_VERSION "unknown"
+#endif
+
+namespace tumble::cli {
+
+namespace {
+
+constexpr int kOk = 0;
+constexpr int kFailure = 1;
+constexpr int kInvalid = 2;
+
+const char* kHelp =
+    R"(Usage:
+  tumble [SCENE]                      open the editor, with SCENE or the default sample scene
+  tumble --headless SCENE [options]   simulate without a window
+  tumble --help | --version | --list-integrators
+
+Options for --headless:
+  --duration S        simulated seconds (overrides settings.duration)
+  --dt S              the step, seconds (overrides settings.dt)
+  --integrator NAME   overrides settings.integrator; see --list-integrators
+  --frame-rate HZ     recorded frames per second (overrides settings.frame_rate)
+  --out FILE          writes the trajectory; the format follows the extension: .csv
+  --save-scene FILE   writes the scene as run (options applied), normalised
+  --quiet             prints nothing but errors
+
+Exit status: 0 success; 2 invalid input (the message names the file and the field);
+1 any other failure, such as a state that became non-finite (the message names the
+body and the time). On failure no output file is written.
+
+A successful run prints key: value lines: bodies, integrator, dt, frames, steps,
+simulated_time, wall_seconds, energy_start, energy_end, forces_seconds,
+integrate_seconds and state_hash (the same scene and options give the same hash).
+)";
+
+struct Options {
+    std::string scene;
+    std::optional<double> duration, dt, frameRate;
+    std::optional<std::string> integrator;
+    std::string out, saveScene;
+    bool quiet = false;
+};
+
+struct UsageError {
+    std::string message;
+};
+
+double parseNumber(const std::string& flag, const std::string& text) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0') throw UsageError{flag + ": '" + text + "' is not a number"};
+    if (!std::isfinite(v)) throw UsageError{flag + ": must be a finite number"};
+    return v;
+}
+
+Options parse(const std::vector<std::string>& args) {
+    Options o;
+    for (size_t i = 0; i < args.size(); ++i) {
+        std::string a = args[i];
+        std::string value;
+        bool hasValue = false;
+        if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
+            value = a.substr(a.find('=') + 1);
+            a = a.substr(0, a.find('='));
+            hasValue = true;
+        }
+        auto next = [&]() -> std::string {
+            if (hasValue) return value;
+            if (i + 1 >= args.size()) throw UsageError{a + ": needs a value"};
+            return args[++i];
+        };
+        if (a == "--headless") continue;
+        if (a == "--quiet") o.quiet = true;
+        else if (a == "--duration") o.duration = parseNumber(a, next());
+        else if (a == "--dt") o.dt = parseNumber(a, next());
+        else if (a == "--frame-rate") o.frameRate = parseNumber(a, next());
+        else if (a == "--integrator") o.integrator = next();
+        else if (a == "--out") o.out = next();
+        else if (a == "--save-scene") o.saveScene = next();
+        else if (a.rfind("-", 0) == 0 && a.size() > 1) throw UsageError{"unknown option '" + a + "' (see --help)"};
+        else if (o.scene.empty()) o.scene = a;
+        else throw UsageError{"more than one scene given: '" + o.scene + "' and '" + a + "'"};
+    }
+    if (o.scene.empty()) throw UsageError{"--headless needs a scene file (see --help)"};
+    return o;
+}
+
+std::string extensionOf(const std::string& file) {
+    std::string ext = std::filesystem::path(file).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// The command-line flag that overrode a setting, so that a bad value names the flag.
+std::string flagFor(const std::string& path, const Options& o) {
+    static const std::map<std::string, std::string> flags = {{"settings.duration", "--duration"},
+                                                             {"settings.dt", "--dt"},
+                                                             {"settings.frame_rate", "--frame-rate"},
+                                                             {"settings.integrator", "--integrator"}};
+    auto it = flags.find(path);
+    if (it == flags.end()) return {};
+    const bool given = (it->second == "--duration" && o.duration) || (it->second == "--dt" && o.dt) ||
+                       (it->second == "--frame-rate" && o.frameRate) ||
+                       (it->second == "--integrator" && o.integrator);
+    return given ? it->second : std::string{};
+}
+
+std::string number(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+int headless(const Options& o, std::ostream& out, std::ostream& err) {
+    SceneDesc scene;
+    try {
+        scene = io::readSceneFile(o.scene);
+    } catch (const io::InputError& e) {
+        err << e.what() << "\n";
+        return kInvalid;
+    }
+    if (o.duration) scene.settings.duration = *o.duration;
+    if (o.dt) scene.settings.dt = *o.dt;
+    if (o.frameRate) scene.settings.frameRate = *o.frameRate;
+    if (o.integrator) scene.settings.integrator = *o.integrator;
+
+    const std::string ext = extensionOf(o.out);
+    if (!o.out.empty() && ext != ".csv") {
+        err << "tumble: --out: '" << o.out << "': the trajectory formats are .csv"
+            << (ext == ".json" || ext == ".gltf" || ext == ".glb" ? " (" + ext + " export is not built yet)" : "")
+            << "\n";
+        return kInvalid;
+    }
+
+    std::unique_ptr<World> world;
+    try {
+        world = std::make_unique<World>(scene);
+    } catch (const SceneError& e) {
+        const std::string flag = flagFor(e.path(), o);
+        if (!flag.empty()) err << "tumble: " << flag << ": " << e.message() << "\n";
+        else err << o.scene << ": " << e.what() << "\n";
+        return kInvalid;
+    }
+
+    std::unique_ptr<io::AtomicFile> trajectory;
+    try {
+        if (!o.out.empty()) {
+            trajectory = std::make_unique<io::AtomicFile>(o.out);
+            trajectory->stream() << io::kTrajectoryCsvHeader << "\n";
+        }
+    } catch (const std::exception& e) {
+        err << "tumble: --out: " << e.what() << "\n";
+        return kFailure;
+    }
+
+    const Energy before = energy(world->model(), world->state());
+    const double frameRate = world->model().settings.frameRate;
+    const auto t0 = std::chrono::steady_clock::now();
+    RunResult result;
+    try {
+        result = simulate(*world, [&](int k, const State& s) {
+            if (trajectory) io::writeCsvFrame(trajectory->stream(), world->model(), s, k / frameRate);
+        });
+    } catch (const SimulationError& e) {
+        err << "tumble: " << o.scene << ": " << e.what() << "\n";
+        return kFailure;
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    try {
+        if (trajectory) trajectory->commit();
+        if (!o.saveScene.empty()) io::writeSceneFile(scene, o.saveScene);
+    } catch (const std::exception& e) {
+        err << "tumble: " << e.what() << "\n";
+        return kFailure;
+    }
+
+    if (!o.quiet) {
+        const Model& m = world->model();
+        const Energy after = energy(m, world->state());
+        const Profile& p = world->profile();
+        out << "bodies: " << m.bodies.size() << "\n"
+            << "integrator: " << m.integrator->name << "\n"
+            << "dt: " << number(m.settings.dt) << "\n"
+            << "frames: " << result.frames << "\n"
+            << "steps: " << result.steps << "\n"
+            << "simulated_time: " << number(world->state().time) << "\n"
+            << "wall_seconds: " << wall << "\n"
+            << "energy_start: " << number(before.total()) << "\n"
+            << "energy_end: " << number(after.total()) << "\n"
+            << "forces_seconds: " << p.forces << "\n"
+            << "integrate_seconds: " << p.integrate << "\n"
+            << "state_hash: " << hashHex(hashState(world->state())) << "\n";
+    }
+    return kOk;
+}
+
+}  // namespace
+
+bool wantsCommandLine(const std::vector<std::string>& args) {
+    for (const std::string& a : args) {
+        if (a == "--headless" || a == "--help" || a == "-h" || a == "--version" || a == "--list-integrators") {
+            return true;
+        }
+    }
+    return false;
+}
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    for (const std::string& a : args) {
+        if (a == "--help" || a == "-h") {
+            out << kHelp;
+            return kOk;
+        }
+        if (a == "--version") {
+            out << "tumble " << TUMBLE_VERSION << "\n";
+            return kOk;
+        }
+        if (a == "--list-integrators") {
+            for (const IntegratorInfo& info : integrators()) {
+                out << info.name << (&info == &defaultIntegrator() ? " (default)" : "") << "\n    order "
+                    << info.order << ", " << info.forceEvaluations << " force evaluation"
+                    << (info.forceEvaluations > 1 ? "s" : "") << " per step: " << info.description << "\n";
+            }
+            return kOk;
+        }
+    }
+    try {
+        return headless(parse(args), out, err);
+    } catch (const UsageError& e) {
+        err << "tumble: " << e.message << "\n";
+        return kInvalid;
+    }
+}
+
+}  // namespace tumble::cli

@@ -1,0 +1,94 @@
+// The compiled, fixed part of a simulation: mass properties, materials and forces
+// of every body, resolved from a SceneDesc once. It never changes during a run.
+#pragma once
+
+#include <tumble/integrators.h>
+#include <tumble/math.h>
+#include <tumble/scene.h>
+#include <tumble/state.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace tumble {
+
+/// One applied force, torque or spring, ready to evaluate.
+struct ForceTerm {
+    int body = 0;
+    ForceType type = ForceType::Force;
+    Frame frame = Frame::World;
+    Vec3 vector = Vec3::Zero();
+    Vec3 arm = Vec3::Zero();          ///< body frame, from the centre of mass to the point
+    Vec3 anchor = Vec3::Zero();       ///< spring, world
+    double stiffness = 0.0;
+    double restLength = 0.0;
+    double damping = 0.0;
+    double start = -std::numeric_limits<double>::infinity();
+    double end = std::numeric_limits<double>::infinity();
+
+    bool activeAt(double t) const { return t >= start && t < end; }
+};
+
+/// The fixed data of one body. Mass and inertia are meaningful for dynamic bodies only;
+/// static and kinematic bodies have invMass = 0 and invInertia = 0.
+struct BodyModel {
+    std::string name;
+    Motion motion = Motion::Dynamic;
+    ShapeDesc shape;
+    double mass = 0.0;
+    double invMass = 0.0;
+    Mat3 inertia = Mat3::Zero();          ///< body axes, about the centre of mass
+    Mat3 invInertia = Mat3::Zero();
+    Vec3 principalMoments = Vec3::Zero(); ///< eigenvalues of inertia
+    Mat3 principalAxes = Mat3::Identity();///< body frame, columns are the principal axes
+    Vec3 centerOfMass = Vec3::Zero();     ///< body frame
+    double restitution = 0.5;
+    double friction = 0.5;
+    double linearDamping = 0.0;
+    double angularDamping = 0.0;
+    Vec3 kinematicVelocity = Vec3::Zero();         ///< kinematic bodies: constant, world
+    Vec3 kinematicAngularVelocity = Vec3::Zero();  ///< kinematic bodies: constant, world
+};
+
+struct Model {
+    Settings settings;
+    const IntegratorInfo* integrator = nullptr;
+    std::vector<BodyModel> bodies;
+    std::vector<ForceTerm> forces;   ///< grouped by body, in scene order
+    std::vector<int> dynamicBodies;  ///< indices; the only bodies forces act on
+    std::vector<int> kinematicBodies;
+    std::vector<double> forceSwitchTimes;  ///< sorted start and end times the stepper lands on
+};
+
+/// Checks every value of a scene; throws SceneError naming the first bad field.
+void validate(const SceneDesc& scene);
+
+/// Compiles a scene: validates it (throws SceneError naming the field) and resolves
+/// mass properties, materials and forces.
+Model compile(const SceneDesc& scene);
+
+/// The state at t = 0 that the scene describes.
+State initialState(const Model& model, const SceneDesc& scene);
+
+/// Velocity quantities derived from a body's state (the paper's v, R, I(t)⁻¹, ω).
+struct Derived {
+    Mat3 R;
+    Vec3 v;
+    Vec3 omega;
+    Mat3 invInertiaWorld;
+};
+Derived derive(const BodyModel& body, const BodyState& s);
+
+/// World pose of the body frame (not the centre of mass): what the CSV and the viewport show.
+Vec3 bodyFramePosition(const BodyModel& body, const BodyState& s);
+
+/// Kinetic, gravitational and spring energy of the whole state (J).
+struct Energy {
+    double kinetic = 0.0;
+    double potential = 0.0;
+    double total() const { return kinetic + potential; }
+};
+Energy energy(const Model& model, const State& state);
+
+}  // namespace tumble

@@ -1,0 +1,95 @@
+// The scene description: what the editor edits, undoes and saves, and what the
+// scene file holds. Plain values with defaults; World compiles it into a Model.
+#pragma once
+
+#include <tumble/math.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tumble {
+
+enum class Motion { Dynamic, Static, Kinematic };
+enum class ShapeType { Sphere, Box, Capsule, Cylinder, Plane, Mesh };
+enum class MeshCollision { ConvexHull, Triangles };
+enum class ForceType { Force, Torque, Spring };
+enum class Frame { World, Body };
+
+const char* toString(Motion m);
+const char* toString(ShapeType t);
+const char* toString(MeshCollision c);
+const char* toString(ForceType t);
+const char* toString(Frame f);
+
+/// A collision and mass shape in the body frame. Only the fields of `type` are used.
+/// The axis of a capsule or cylinder is the body's y axis.
+struct ShapeDesc {
+    ShapeType type = ShapeType::Sphere;
+    double radius = 0.5;                         ///< sphere, capsule, cylinder (m)
+    double halfHeight = 0.5;                     ///< capsule, cylinder: half the segment (m)
+    Vec3 halfExtents = Vec3(0.5, 0.5, 0.5);      ///< box (m)
+    Vec3 normal = Vec3(0, 1, 0);                 ///< plane, unit length after loading
+    double distance = 0.0;                       ///< plane: free side is n·p > distance (m)
+    std::string file;                            ///< mesh, relative to the scene file
+    Vec3 scale = Vec3(1, 1, 1);                  ///< mesh
+    MeshCollision collision = MeshCollision::ConvexHull;  ///< mesh
+
+    bool operator==(const ShapeDesc&) const = default;
+};
+
+/// A force, torque or spring acting on one body while start <= t < end.
+struct ForceDesc {
+    ForceType type = ForceType::Force;
+    Vec3 vector = Vec3::Zero();                  ///< force (N) or torque (N m)
+    std::optional<Vec3> point;                   ///< force, spring: body frame; default the centre of mass
+    Frame frame = Frame::World;                  ///< frame in which `vector` is given
+    Vec3 anchor = Vec3::Zero();                  ///< spring: fixed world point (m)
+    double stiffness = 0.0;                      ///< spring: N/m
+    double restLength = 0.0;                     ///< spring: m
+    double damping = 0.0;                        ///< spring: N s/m along the spring
+    std::optional<double> start;                 ///< s; absent: from the beginning
+    std::optional<double> end;                   ///< s; absent: to the end
+
+    bool operator==(const ForceDesc&) const = default;
+};
+
+struct BodyDesc {
+    std::string name;
+    Motion motion = Motion::Dynamic;
+    ShapeDesc shape;
+    std::optional<double> mass;                  ///< kg; exactly one of mass, density
+    std::optional<double> density;               ///< kg/m³
+    std::optional<Mat3> inertia;                 ///< about the centre of mass, body axes
+    std::optional<Vec3> centerOfMass;            ///< body frame
+    Vec3 position = Vec3::Zero();                ///< world position of the body frame origin
+    Quat orientation = Quat::Identity();         ///< body to world
+    Vec3 velocity = Vec3::Zero();                ///< world velocity of the centre of mass
+    Vec3 angularVelocity = Vec3::Zero();         ///< world frame, rad/s
+    double restitution = 0.5;
+    double friction = 0.5;
+    double linearDamping = 0.0;                  ///< 1/s
+    double angularDamping = 0.0;                 ///< 1/s
+    std::vector<ForceDesc> forces;
+
+    bool operator==(const BodyDesc& o) const;
+};
+
+struct Settings {
+    Vec3 gravity = Vec3(0, -9.81, 0);
+    double dt = 1.0 / 240.0;
+    double duration = 5.0;
+    std::string integrator;                      ///< empty: the engine's default
+    double frameRate = 60.0;
+
+    bool operator==(const Settings&) const = default;
+};
+
+struct SceneDesc {
+    Settings settings;
+    std::vector<BodyDesc> bodies;
+
+    bool operator==(const SceneDesc&) const = default;
+};
+
+}  // namespace tumble

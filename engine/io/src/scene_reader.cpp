@@ -1,0 +1,305 @@
+// Scene file reader. Syntax, types, missing and unknown keys are checked here, with the
+// path of the field; the values themselves are checked by tumble::validate, whose
+// SceneError carries the same kind of path.
+#include <tumble/errors.h>
+#include <tumble/io/scene_file.h>
+#include <tumble/model.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace tumble::io {
+
+using nlohmann::json;
+
+InputError::InputError(std::string file, std::string field, std::string message)
+    : std::runtime_error(file + ": " + (field.empty() ? "" : field + ": ") + message),
+      file_(std::move(file)), field_(std::move(field)), message_(std::move(message)) {}
+
+namespace {
+
+class Reader {
+public:
+    explicit Reader(std::string file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& path, const std::string& message) const {
+        throw InputError(file_, path, message);
+    }
+
+    const json& object(const json& j, const std::string& path) const {
+        if (!j.is_object()) fail(path, "must be an object");
+        return j;
+    }
+
+    // Refuses keys outside `allowed`, so a misspelt key is never silently ignored.
+    void onlyKeys(const json& j, const std::string& path, std::initializer_list<const char*> allowed) const {
+        for (const auto& [key, value] : j.items()) {
+            bool ok = false;
+            for (const char* a : allowed) ok = ok || key == a;
+            if (!ok) fail(join(path, key), "unknown key");
+        }
+    }
+
+    const json& require(const json& j, const std::string& path, const char* key) const {
+        auto it = j.find(key);
+        if (it == j.end()) fail(join(path, key), "is missing");
+        return *it;
+    }
+
+    double number(const json& j, const std::string& path) const {
+        if (!j.is_number()) fail(path, "must be a number");
+        const double v = j.get<double>();
+        if (!std::isfinite(v)) fail(path, "must be a finite number");
+        return v;
+    }
+
+    std::string string(const json& j, const std::string& path) const {
+        if (!j.is_string()) fail(path, "must be a string");
+        return j.get<std::string>();
+    }
+
+    template <int N>
+    Eigen::Matrix<double, N, 1> vector(const json& j, const std::string& path) const {
+        if (!j.is_array() || j.size() != N) fail(path, "must be an array of " + std::to_string(N) + " numbers");
+        Eigen::Matrix<double, N, 1> v;
+        for (int k = 0; k < N; ++k) v[k] = number(j[k], path + "[" + std::to_string(k) + "]");
+        return v;
+    }
+
+    Mat3 matrix(const json& j, const std::string& path) const {
+        if (!j.is_array() || j.size() != 3) fail(path, "must be 3 rows of 3 numbers");
+        Mat3 m;
+        for (int r = 0; r < 3; ++r) m.row(r) = vector<3>(j[r], path + "[" + std::to_string(r) + "]").transpose();
+        return m;
+    }
+
+    // Reads `key` into `out` when present.
+    template <typename F>
+    void optional(const json& j, const std::string& path, const char* key, F&& read) const {
+        auto it = j.find(key);
+        if (it != j.end()) read(*it, join(path, key));
+    }
+
+    static std::string join(const std::string& path, const std::string& key) {
+        return path.empty() ? key : path + "." + key;
+    }
+
+    const std::string& file() const { return file_; }
+
+private:
+    std::string file_;
+};
+
+template <typename E>
+E enumValue(const Reader& r, const json& j, const std::string& path, std::initializer_list<E> values) {
+    const std::string s = r.string(j, path);
+    std::string names;
+    for (E e : values) {
+        if (s == toString(e)) return e;
+        names += names.empty() ? "" : ", ";
+        names += toString(e);
+    }
+    r.fail(path, "'" + s + "' is not one of " + names);
+}
+
+Settings readSettings(const Reader& r, const json& j) {
+    const std::string p = "settings";
+    r.object(j, p);
+    r.onlyKeys(j, p, {"gravity", "dt", "duration", "integrator", "frame_rate"});
+    Settings s;
+    r.optional(j, p, "gravity", [&](const json& v, const std::string& f) { s.gravity = r.vector<3>(v, f); });
+    r.optional(j, p, "dt", [&](const json& v, const std::string& f) { s.dt = r.number(v, f); });
+    r.optional(j, p, "duration", [&](const json& v, const std::string& f) { s.duration = r.number(v, f); });
+    r.optional(j, p, "integrator", [&](const json& v, const std::string& f) { s.integrator = r.string(v, f); });
+    r.optional(j, p, "frame_rate", [&](const json& v, const std::string& f) { s.frameRate = r.number(v, f); });
+    return s;
+}
+
+ShapeDesc readShape(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    ShapeDesc s;
+    s.type = enumValue(r, r.require(j, p, "type"), p + ".type",
+                       {ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Cylinder,
+                        ShapeType::Plane, ShapeType::Mesh});
+    auto num = [&](const char* key) { return r.number(r.require(j, p, key), p + "." + key); };
+    switch (s.type) {
+    case ShapeType::Sphere:
+        r.onlyKeys(j, p, {"type", "radius"});
+        s.radius = num("radius");
+        break;
+    case ShapeType::Box:
+        r.onlyKeys(j, p, {"type", "half_extents"});
+        s.halfExtents = r.vector<3>(r.require(j, p, "half_extents"), p + ".half_extents");
+        break;
+    case ShapeType::Capsule:
+    case ShapeType::Cylinder:
+        r.onlyKeys(j, p, {"type", "radius", "half_height"});
+        s.radius = num("radius");
+        s.halfHeight = num("half_height");
+        break;
+    case ShapeType::Plane:
+        r.onlyKeys(j, p, {"type", "normal", "distance"});
+        s.normal = r.vector<3>(r.require(j, p, "normal"), p + ".normal");
+        r.optional(j, p, "distance", [&](const json& v, const std::string& f) { s.distance = r.number(v, f); });
+        if (s.normal.norm() > 0.0 && s.normal.allFinite()) s.normal.normalize();
+        break;
+    case ShapeType::Mesh:
+        r.onlyKeys(j, p, {"type", "file", "scale", "collision"});
+        s.file = r.string(r.require(j, p, "file"), p + ".file");
+        r.optional(j, p, "scale", [&](const json& v, const std::string& f) { s.scale = r.vector<3>(v, f); });
+        r.optional(j, p, "collision", [&](const json& v, const std::string& f) {
+            s.collision = enumValue(r, v, f, {MeshCollision::ConvexHull, MeshCollision::Triangles});
+        });
+        break;
+    }
+    return s;
+}
+
+ForceDesc readForce(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    ForceDesc f;
+    f.type = enumValue(r, r.require(j, p, "type"), p + ".type",
+                       {ForceType::Force, ForceType::Torque, ForceType::Spring});
+    auto frame = [&](const json& v, const std::string& path) {
+        f.frame = enumValue(r, v, path, {Frame::World, Frame::Body});
+    };
+    auto point = [&](const json& v, const std::string& path) { f.point = r.vector<3>(v, path); };
+    auto num = [&](double& out) { return [&](const json& v, const std::string& path) { out = r.number(v, path); }; };
+    switch (f.type) {
+    case ForceType::Force:
+        r.onlyKeys(j, p, {"type", "vector", "point", "frame", "start", "end"});
+        f.vector = r.vector<3>(r.require(j, p, "vector"), p + ".vector");
+        r.optional(j, p, "point", point);
+        r.optional(j, p, "frame", frame);
+        break;
+    case ForceType::Torque:
+        r.onlyKeys(j, p, {"type", "vector", "frame", "start", "end"});
+        f.vector = r.vector<3>(r.require(j, p, "vector"), p + ".vector");
+        r.optional(j, p, "frame", frame);
+        break;
+    case ForceType::Spring:
+        r.onlyKeys(j, p, {"type", "anchor", "point", "stiffness", "rest_length", "damping", "start", "end"});
+        f.anchor = r.vector<3>(r.require(j, p, "anchor"), p + ".anchor");
+        r.optional(j, p, "point", point);
+        f.stiffness = r.number(r.require(j, p, "stiffness"), p + ".stiffness");
+        r.optional(j, p, "rest_length", num(f.restLength));
+        r.optional(j, p, "damping", num(f.damping));
+        break;
+    }
+    r.optional(j, p, "start", [&](const json& v, const std::string& path) { f.start = r.number(v, path); });
+    r.optional(j, p, "end", [&](const json& v, const std::string& path) { f.end = r.number(v, path); });
+    return f;
+}
+
+BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    r.onlyKeys(j, p, {"name", "motion", "shape", "mass", "density", "inertia", "center_of_mass", "position",
+                      "orientation", "velocity", "angular_velocity", "restitution", "friction",
+                      "linear_damping", "angular_damping", "forces"});
+    BodyDesc b;
+    b.name = r.string(r.require(j, p, "name"), p + ".name");
+    r.optional(j, p, "motion", [&](const json& v, const std::string& f) {
+        b.motion = enumValue(r, v, f, {Motion::Dynamic, Motion::Static, Motion::Kinematic});
+    });
+    b.shape = readShape(r, r.require(j, p, "shape"), p + ".shape");
+    auto vec = [&](Vec3& out) { return [&](const json& v, const std::string& f) { out = r.vector<3>(v, f); }; };
+    auto num = [&](double& out) { return [&](const json& v, const std::string& f) { out = r.number(v, f); }; };
+    r.optional(j, p, "mass", [&](const json& v, const std::string& f) { b.mass = r.number(v, f); });
+    r.optional(j, p, "density", [&](const json& v, const std::string& f) { b.density = r.number(v, f); });
+    r.optional(j, p, "inertia", [&](const json& v, const std::string& f) { b.inertia = r.matrix(v, f); });
+    r.optional(j, p, "center_of_mass", [&](const json& v, const std::string& f) { b.centerOfMass = r.vector<3>(v, f); });
+    r.optional(j, p, "position", vec(b.position));
+    r.optional(j, p, "orientation", [&](const json& v, const std::string& f) {
+        const Eigen::Vector4d q = r.vector<4>(v, f);
+        if (!(q.norm() > 1e-12)) r.fail(f, "must not be the zero quaternion");
+        b.orientation = Quat(q[0], q[1], q[2], q[3]).normalized();
+    });
+    r.optional(j, p, "velocity", vec(b.velocity));
+    r.optional(j, p, "angular_velocity", vec(b.angularVelocity));
+    r.optional(j, p, "restitution", num(b.restitution));
+    r.optional(j, p, "friction", num(b.friction));
+    r.optional(j, p, "linear_damping", num(b.linearDamping));
+    r.optional(j, p, "angular_damping", num(b.angularDamping));
+    r.optional(j, p, "forces", [&](const json& v, const std::string& f) {
+        if (!v.is_array()) r.fail(f, "must be an array");
+        for (size_t k = 0; k < v.size(); ++k) b.forces.push_back(readForce(r, v[k], f + "[" + std::to_string(k) + "]"));
+    });
+    return b;
+}
+
+// Parses JSON, refusing duplicate keys (the library would keep the last one silently).
+json parseJson(std::string_view text, const Reader& r) {
+    std::vector<std::set<std::string>> keys;
+    std::string duplicate;
+    auto callback = [&](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start) keys.emplace_back();
+        if (event == json::parse_event_t::object_end) keys.pop_back();
+        if (event == json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second &&
+            duplicate.empty()) {
+            duplicate = parsed.get<std::string>();
+        }
+        return true;
+    };
+    json j;
+    try {
+        j = json::parse(text.begin(), text.end(), callback);
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        const auto close = what.find("] ");
+        if (close != std::string::npos) what = what.substr(close + 2);
+        r.fail("", "malformed JSON: " + what);
+    }
+    if (!duplicate.empty()) r.fail("", "malformed JSON: the key '" + duplicate + "' appears twice in one object");
+    return j;
+}
+
+}  // namespace
+
+SceneDesc parseScene(std::string_view text, const std::string& fileName) {
+    const Reader r(fileName);
+    const json j = parseJson(text, r);
+    r.object(j, "(top level)");
+    r.onlyKeys(j, "", {"format", "version", "settings", "bodies"});
+    if (r.string(r.require(j, "", "format"), "format") != "tumble-scene") {
+        r.fail("format", "must be \"tumble-scene\"");
+    }
+    const json& version = r.require(j, "", "version");
+    if (!version.is_number_integer()) r.fail("version", "must be an integer");
+    if (version.get<long long>() != kSceneVersion) {
+        r.fail("version", "version " + version.dump() + " is not one this build reads (it reads " +
+                              std::to_string(kSceneVersion) + ")");
+    }
+    SceneDesc scene;
+    if (j.contains("settings")) scene.settings = readSettings(r, j["settings"]);
+    const json& bodies = r.require(j, "", "bodies");
+    if (!bodies.is_array()) r.fail("bodies", "must be an array");
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        scene.bodies.push_back(readBody(r, bodies[i], "bodies[" + std::to_string(i) + "]"));
+    }
+    try {
+        validate(scene);
+    } catch (const SceneError& e) {
+        throw InputError(fileName, e.path(), e.message());
+    }
+    return scene;
+}
+
+SceneDesc readSceneFile(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw InputError(name, "", "is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name, "", "cannot be read (missing, or no permission)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(name, "", "could not be read to the end");
+    return parseScene(text.str(), name);
+}
+
+}  // namespace tumble::io

@@ -1,0 +1,263 @@
+// SceneDesc -> Model: every semantic check on a scene, then the resolution of mass
+// properties, materials and forces. The scene reader checks syntax and types; the
+// checks here also guard scenes built in code or by the editor.
+#include <tumble/errors.h>
+#include <tumble/mass.h>
+#include <tumble/model.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+
+namespace tumble {
+
+namespace {
+
+std::string at(int i) { return "bodies[" + std::to_string(i) + "]"; }
+
+void requireFinite(double v, const std::string& path) {
+    if (!std::isfinite(v)) throw SceneError(path, "must be a finite number");
+}
+
+void requireFinite(const Vec3& v, const std::string& path) {
+    if (!v.allFinite()) throw SceneError(path, "must be finite numbers");
+}
+
+void requirePositive(double v, const std::string& path) {
+    requireFinite(v, path);
+    if (!(v > 0.0)) throw SceneError(path, "must be greater than 0");
+}
+
+void requireNonNegative(double v, const std::string& path) {
+    requireFinite(v, path);
+    if (v < 0.0) throw SceneError(path, "must be 0 or greater");
+}
+
+void validateSettings(const Settings& s) {
+    requireFinite(s.gravity, "settings.gravity");
+    requirePositive(s.dt, "settings.dt");
+    requireNonNegative(s.duration, "settings.duration");
+    requirePositive(s.frameRate, "settings.frame_rate");
+    if (s.duration * s.frameRate > 1e8) {
+        throw SceneError("settings.duration", "with this frame_rate gives more than 10^8 frames");
+    }
+    if (!s.integrator.empty() && !findIntegrator(s.integrator)) {
+        throw SceneError("settings.integrator",
+                         "unknown integrator '" + s.integrator + "' (see --list-integrators)");
+    }
+}
+
+void validateShape(const BodyDesc& b, const std::string& path) {
+    const ShapeDesc& s = b.shape;
+    switch (s.type) {
+    case ShapeType::Sphere: requirePositive(s.radius, path + ".radius"); break;
+    case ShapeType::Box:
+        for (int k = 0; k < 3; ++k) {
+            requirePositive(s.halfExtents[k], path + ".half_extents[" + std::to_string(k) + "]");
+        }
+        break;
+    case ShapeType::Capsule:
+    case ShapeType::Cylinder:
+        requirePositive(s.radius, path + ".radius");
+        requirePositive(s.halfHeight, path + ".half_height");
+        break;
+    case ShapeType::Plane:
+        requireFinite(s.normal, path + ".normal");
+        requireFinite(s.distance, path + ".distance");
+        if (!(s.normal.norm() > 1e-12)) throw SceneError(path + ".normal", "must not be zero");
+        if (b.motion != Motion::Static) {
+            throw SceneError(path + ".type", "a plane must belong to a static body");
+        }
+        break;
+    case ShapeType::Mesh:
+        if (s.file.empty()) throw SceneError(path + ".file", "must name a mesh file");
+        for (int k = 0; k < 3; ++k) {
+            requirePositive(s.scale[k], path + ".scale[" + std::to_string(k) + "]");
+        }
+        break;
+    }
+}
+
+void validateForce(const ForceDesc& f, const std::string& path) {
+    requireFinite(f.vector, path + ".vector");
+    if (f.point) requireFinite(*f.point, path + ".point");
+    if (f.type == ForceType::Spring) {
+        requireFinite(f.anchor, path + ".anchor");
+        requireNonNegative(f.stiffness, path + ".stiffness");
+        requireNonNegative(f.restLength, path + ".rest_length");
+        requireNonNegative(f.damping, path + ".damping");
+    }
+    if (f.start) requireFinite(*f.start, path + ".start");
+    if (f.end) requireFinite(*f.end, path + ".end");
+    if (f.start && f.end && !(*f.end > *f.start)) {
+        throw SceneError(path + ".end", "must be later than start");
+    }
+}
+
+void validateBody(const BodyDesc& b, int i) {
+    const std::string p = at(i);
+    if (b.name.empty()) throw SceneError(p + ".name", "must not be empty");
+    validateShape(b, p + ".shape");
+    const bool dynamic = b.motion == Motion::Dynamic;
+    if (dynamic) {
+        if (b.mass && b.density) throw SceneError(p, "give mass or density, not both");
+        if (!b.mass && !b.density) throw SceneError(p, "a dynamic body needs mass or density");
+        if (b.mass) requirePositive(*b.mass, p + ".mass");
+        if (b.density) requirePositive(*b.density, p + ".density");
+    } else {
+        const char* key = b.mass ? ".mass" : b.density ? ".density" : b.inertia ? ".inertia" : nullptr;
+        if (key) {
+            throw SceneError(p + key, std::string("a ") + toString(b.motion) +
+                                          " body has no mass properties; remove it");
+        }
+    }
+    if (b.inertia) {
+        const std::string problem = inertiaProblem(*b.inertia);
+        if (!problem.empty()) throw SceneError(p + ".inertia", problem);
+    }
+    if (b.centerOfMass) requireFinite(*b.centerOfMass, p + ".center_of_mass");
+    requireFinite(b.position, p + ".position");
+    if (!b.orientation.coeffs().allFinite()) {
+        throw SceneError(p + ".orientation", "must be finite numbers");
+    }
+    if (!(b.orientation.norm() > 1e-12)) {
+        throw SceneError(p + ".orientation", "must not be the zero quaternion");
+    }
+    requireFinite(b.velocity, p + ".velocity");
+    requireFinite(b.angularVelocity, p + ".angular_velocity");
+    if (b.motion == Motion::Static && (b.velocity != Vec3::Zero() || b.angularVelocity != Vec3::Zero())) {
+        throw SceneError(p + (b.velocity != Vec3::Zero() ? ".velocity" : ".angular_velocity"),
+                         "a static body cannot move; make it kinematic");
+    }
+    requireNonNegative(b.restitution, p + ".restitution");
+    if (b.restitution > 1.0) throw SceneError(p + ".restitution", "must be between 0 and 1");
+    requireNonNegative(b.friction, p + ".friction");
+    requireNonNegative(b.linearDamping, p + ".linear_damping");
+    requireNonNegative(b.angularDamping, p + ".angular_damping");
+    if (!b.forces.empty() && !dynamic) {
+        throw SceneError(p + ".forces", "forces act on dynamic bodies only");
+    }
+    for (size_t k = 0; k < b.forces.size(); ++k) {
+        validateForce(b.forces[k], p + ".forces[" + std::to_string(k) + "]");
+    }
+}
+
+MassProperties massPropertiesOf(const BodyDesc& b, int i) {
+    if (b.shape.type == ShapeType::Mesh) {
+        throw SceneError(at(i) + ".shape.type",
+                         "mesh bodies cannot be simulated yet: the mesh importer is not built");
+    }
+    const double mass = b.mass ? *b.mass : *b.density * shapeVolume(b.shape);
+    MassProperties mp = primitiveMassProperties(b.shape, mass);
+    if (b.inertia) mp.inertia = *b.inertia;
+    if (b.centerOfMass) mp.centerOfMass = *b.centerOfMass;
+    return mp;
+}
+
+}  // namespace
+
+void validate(const SceneDesc& scene) {
+    validateSettings(scene.settings);
+    std::set<std::string> names;
+    for (size_t i = 0; i < scene.bodies.size(); ++i) {
+        validateBody(scene.bodies[i], static_cast<int>(i));
+        if (!names.insert(scene.bodies[i].name).second) {
+            throw SceneError(at(static_cast<int>(i)) + ".name",
+                             "'" + scene.bodies[i].name + "' is already the name of another body");
+        }
+    }
+}
+
+Model compile(const SceneDesc& scene) {
+    validate(scene);
+
+    Model m;
+    m.settings = scene.settings;
+    m.integrator = scene.settings.integrator.empty() ? &defaultIntegrator()
+                                                     : findIntegrator(scene.settings.integrator);
+    m.bodies.reserve(scene.bodies.size());
+    for (size_t i = 0; i < scene.bodies.size(); ++i) {
+        const BodyDesc& d = scene.bodies[i];
+        const int index = static_cast<int>(i);
+        BodyModel b;
+        b.name = d.name;
+        b.motion = d.motion;
+        b.shape = d.shape;
+        if (b.shape.type == ShapeType::Plane) b.shape.normal.normalize();
+        b.restitution = d.restitution;
+        b.friction = d.friction;
+        b.linearDamping = d.linearDamping;
+        b.angularDamping = d.angularDamping;
+        if (d.centerOfMass) b.centerOfMass = *d.centerOfMass;
+        switch (d.motion) {
+        case Motion::Dynamic: {
+            const MassProperties mp = massPropertiesOf(d, index);
+            b.mass = mp.mass;
+            b.invMass = 1.0 / mp.mass;
+            b.inertia = mp.inertia;
+            b.invInertia = mp.inertia.inverse();
+            b.centerOfMass = mp.centerOfMass;
+            const Eigen::SelfAdjointEigenSolver<Mat3> eig(mp.inertia);
+            b.principalMoments = eig.eigenvalues();
+            b.principalAxes = eig.eigenvectors();
+            m.dynamicBodies.push_back(index);
+            break;
+        }
+        case Motion::Kinematic:
+            b.kinematicVelocity = d.velocity;
+            b.kinematicAngularVelocity = d.angularVelocity;
+            m.kinematicBodies.push_back(index);
+            break;
+        case Motion::Static: break;
+        }
+        for (const ForceDesc& f : d.forces) {
+            ForceTerm t;
+            t.body = index;
+            t.type = f.type;
+            t.frame = f.frame;
+            t.vector = f.vector;
+            if (f.point) t.arm = *f.point - b.centerOfMass;
+            t.anchor = f.anchor;
+            t.stiffness = f.stiffness;
+            t.restLength = f.restLength;
+            t.damping = f.damping;
+            if (f.start) {
+                t.start = *f.start;
+                m.forceSwitchTimes.push_back(*f.start);
+            }
+            if (f.end) {
+                t.end = *f.end;
+                m.forceSwitchTimes.push_back(*f.end);
+            }
+            m.forces.push_back(t);
+        }
+        m.bodies.push_back(std::move(b));
+    }
+    std::sort(m.forceSwitchTimes.begin(), m.forceSwitchTimes.end());
+    m.forceSwitchTimes.erase(std::unique(m.forceSwitchTimes.begin(), m.forceSwitchTimes.end()),
+                             m.forceSwitchTimes.end());
+    return m;
+}
+
+State initialState(const Model& model, const SceneDesc& scene) {
+    State s;
+    s.bodies.resize(model.bodies.size());
+    for (size_t i = 0; i < model.bodies.size(); ++i) {
+        const BodyModel& b = model.bodies[i];
+        const BodyDesc& d = scene.bodies[i];
+        BodyState& st = s.bodies[i];
+        st.q = d.orientation.normalized();
+        st.x = d.position + st.q * b.centerOfMass;
+        if (b.motion == Motion::Dynamic) {
+            st.P = b.mass * d.velocity;
+            const Mat3 R = st.q.toRotationMatrix();
+            st.L = R * b.inertia * R.transpose() * d.angularVelocity;
+        }
+    }
+    return s;
+}
+
+}  // namespace tumble

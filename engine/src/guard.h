@@ -1,0 +1,11 @@
+// Stage: guard. Stops a run whose state stopped being finite, naming the body.
+#pragma once
+
+#include <tumble/model.h>
+
+namespace tumble {
+
+/// Throws SimulationError for the first moving body with a non-finite x, q, P or L.
+void checkFinite(const Model& model, const State& state);
+
+}  // namespace tumble

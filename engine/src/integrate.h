@@ -1,0 +1,28 @@
+// Stage: integrate. Advances every dynamic and kinematic body by one step with the
+// model's integrator; static bodies are never touched. The integrators call the forces
+// stage as often as they need (1, 2 or 4 times a step).
+#pragma once
+
+#include "forces.h"
+
+#include <tumble/model.h>
+#include <tumble/world.h>
+
+#include <vector>
+
+namespace tumble {
+
+struct IntegrateScratch {
+    std::vector<Wrench> wrench;
+    std::vector<BodyState> start, stage;
+    struct Rate {
+        Vec3 x, P, L;
+        Eigen::Vector4d q;  // w, x, y, z
+    };
+    std::vector<Rate> rates[4];
+};
+
+void integrate(const Model& model, State& state, double h, IntegrateScratch& scratch,
+               Profile& profile);
+
+}  // namespace tumble

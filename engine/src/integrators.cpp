@@ -1,0 +1,33 @@
+#include <tumble/integrators.h>
+
+#include <array>
+
+namespace tumble {
+
+namespace {
+
+// The default comes first. Orders are the ones measured by tests/engine/tst_integrators.
+constexpr std::array<IntegratorInfo, 4> kIntegrators{{
+    {Integrator::Splitting, "splitting", 2, 2,
+     "symplectic splitting: velocity Verlet for translation, exact rotations about the "
+     "principal axes for rotation; keeps |L| exactly and the energy of a free body bounded"},
+    {Integrator::Rk4, "rk4", 4, 4, "classical fourth-order Runge-Kutta on (x, q, P, L)"},
+    {Integrator::SymplecticEuler, "symplectic-euler", 1, 1,
+     "semi-implicit Euler: momenta first, then pose with the new velocities"},
+    {Integrator::Euler, "euler", 1, 1, "explicit Euler on (x, q, P, L), the paper's simplest"},
+}};
+
+}  // namespace
+
+std::span<const IntegratorInfo> integrators() { return kIntegrators; }
+
+const IntegratorInfo& defaultIntegrator() { return kIntegrators[0]; }
+
+const IntegratorInfo* findIntegrator(std::string_view name) {
+    for (const IntegratorInfo& info : kIntegrators) {
+        if (name == info.name) return &info;
+    }
+    return nullptr;
+}
+
+}  // namespace tumble
