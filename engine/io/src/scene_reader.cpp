@@ -5,6 +5,8 @@
 #include <tumble/io/scene_file.h>
 #include <tumble/model.h>
 
+#include "unit_length.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -147,7 +149,7 @@ ShapeDesc readShape(const Reader& r, const json& j, const std::string& p) {
         r.onlyKeys(j, p, {"type", "normal", "distance"});
         s.normal = r.vector<3>(r.require(j, p, "normal"), p + ".normal");
         r.optional(j, p, "distance", [&](const json& v, const std::string& f) { s.distance = r.number(v, f); });
-        if (s.normal.norm() > 0.0 && s.normal.allFinite()) s.normal.normalize();
+        if (s.normal.norm() > 0.0 && s.normal.allFinite()) s.normal = unitLength(s.normal);
         break;
     case ShapeType::Mesh:
         r.onlyKeys(j, p, {"type", "file", "scale", "collision"});
@@ -218,7 +220,7 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     r.optional(j, p, "orientation", [&](const json& v, const std::string& f) {
         const Eigen::Vector4d q = r.vector<4>(v, f);
         if (!(q.norm() > 1e-12)) r.fail(f, "must not be the zero quaternion");
-        b.orientation = Quat(q[0], q[1], q[2], q[3]).normalized();
+        b.orientation = unitLength(Quat(q[0], q[1], q[2], q[3]));
     });
     r.optional(j, p, "velocity", vec(b.velocity));
     r.optional(j, p, "angular_velocity", vec(b.angularVelocity));
@@ -249,7 +251,7 @@ json parseJson(std::string_view text, const Reader& r) {
     json j;
     try {
         j = json::parse(text.begin(), text.end(), callback);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
         std::string what = e.what();
         const auto close = what.find("] ");
         if (close != std::string::npos) what = what.substr(close + 2);

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "unit_length.h"
+
 namespace tumble::io {
 
 using ojson = nlohmann::ordered_json;
@@ -25,7 +27,7 @@ ojson shapeJson(const ShapeDesc& s) {
         j["half_height"] = s.halfHeight;
         break;
     case ShapeType::Plane:
-        j["normal"] = vec(s.normal.normalized());
+        j["normal"] = vec(unitLength(s.normal));
         j["distance"] = s.distance;
         break;
     case ShapeType::Mesh:
@@ -76,7 +78,7 @@ ojson bodyJson(const BodyDesc& b) {
     }
     if (b.centerOfMass) j["center_of_mass"] = vec(*b.centerOfMass);
     j["position"] = vec(b.position);
-    const Quat q = b.orientation.normalized();
+    const Quat q = unitLength(b.orientation);
     j["orientation"] = ojson::array({q.w(), q.x(), q.y(), q.z()});
     j["velocity"] = vec(b.velocity);
     j["angular_velocity"] = vec(b.angularVelocity);
