@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Set up, build, and run Tumble or its tests on Debian 12.
+#
+#   ./dev.sh run [SCENE]   install what is missing, build, start the editor
+#   ./dev.sh test          install what is missing, build, run every test (under Xvfb)
+#   ./dev.sh build         install what is missing and build
+#
+# Each step is skipped when it has nothing to do, so a second run is quick. Set
+# BUILD_DIR to build elsewhere (default: build). Runs apt-get as root, or through sudo.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+BUILD_DIR=${BUILD_DIR:-build}
+PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config
+  qt6-base-dev qt6-base-dev-tools qt6-qpa-plugins libgl-dev fonts-dejavu-core
+  libeigen3-dev nlohmann-json3-dev
+  xvfb xauth
+)
+
+install_missing() {
+  local missing=() p
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "dev.sh: installing ${missing[*]}"
+  local sudo=()
+  [ "$(id -u)" -eq 0 ] || sudo=(sudo)
+  "${sudo[@]}" apt-get update -q
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  if [ ! -f "$BUILD_DIR/build.ninja" ]; then
+    cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+  fi
+  cmake --build "$BUILD_DIR" -j2
+}
+
+cmd=${1:-run}
+[ $# -gt 0 ] && shift
+case "$cmd" in
+  run)
+    install_missing
+    build
+    exec "$BUILD_DIR/app/tumble" "$@"
+    ;;
+  test)
+    install_missing
+    build
+    # The ui tests need a display; xvfb-run gives them one when there is none.
+    if [ -n "${DISPLAY:-}" ]; then
+      ctest --test-dir "$BUILD_DIR" --output-on-failure -j2 "$@"
+    else
+      xvfb-run -a -s "-screen 0 1280x1024x24" ctest --test-dir "$BUILD_DIR" --output-on-failure -j2 "$@"
+    fi
+    ;;
+  build)
+    install_missing
+    build
+    ;;
+  *)
+    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build" >&2
+    exit 2
+    ;;
+esac
