@@ -75,7 +75,9 @@ void MainWindow::showScene() {
         new QTreeWidgetItem(bodies_, {QString::fromStdString(b.name), toString(b.motion), toString(b.shape.type), mass});
     }
     const Settings& s = scene_.settings;
-    summary_->setText(tr("%n body(s); %1 s at a step of %2 s, %3 frames per second", nullptr, int(scene_.bodies.size()))
+    const int n = int(scene_.bodies.size());
+    summary_->setText((n == 1 ? tr("1 body") : tr("%1 bodies").arg(n)) +
+                      tr("; %1 s at a step of %2 s, %3 frames per second")
                           .arg(s.duration)
                           .arg(s.dt)
                           .arg(s.frameRate));
