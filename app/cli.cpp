@@ -170,6 +170,15 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         err << "tumble: --out: " << e.what() << "\n";
         return kFailure;
     }
+    // Opened before the run so that an unwritable path fails at once, and committed with the
+    // trajectory so that a failed run leaves neither file behind.
+    std::unique_ptr<io::AtomicFile> savedScene;
+    try {
+        if (!o.saveScene.empty()) savedScene = std::make_unique<io::AtomicFile>(o.saveScene);
+    } catch (const std::exception& e) {
+        err << "tumble: --save-scene: " << e.what() << "\n";
+        return kFailure;
+    }
 
     const Energy before = energy(world->model(), world->state());
     const double frameRate = world->model().settings.frameRate;
@@ -186,8 +195,9 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     try {
+        if (savedScene) savedScene->stream() << io::sceneToJson(scene);
         if (trajectory) trajectory->commit();
-        if (!o.saveScene.empty()) io::writeSceneFile(scene, o.saveScene);
+        if (savedScene) savedScene->commit();
     } catch (const std::exception& e) {
         err << "tumble: " << e.what() << "\n";
         return kFailure;

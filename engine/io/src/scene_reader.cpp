@@ -235,23 +235,56 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     return b;
 }
 
-// Parses JSON, refusing duplicate keys (the library would keep the last one silently).
+// Parses JSON, refusing duplicate keys (the library would keep the last one silently), and
+// naming the field of a number too large for a double (1e999), which the library refuses
+// without saying where.
 json parseJson(std::string_view text, const Reader& r) {
-    std::vector<std::set<std::string>> keys;
+    struct Level {
+        bool array = false;
+        long index = -1;              // array: the element being read
+        std::string key;              // object: the key being read
+        std::set<std::string> keys;   // object: the keys seen so far
+    };
+    std::vector<Level> levels;
     std::string duplicate;
+    // A new element of the innermost array begins.
+    auto element = [&] {
+        if (!levels.empty() && levels.back().array) ++levels.back().index;
+    };
     auto callback = [&](int, json::parse_event_t event, json& parsed) {
-        if (event == json::parse_event_t::object_start) keys.emplace_back();
-        if (event == json::parse_event_t::object_end) keys.pop_back();
-        if (event == json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second &&
-            duplicate.empty()) {
-            duplicate = parsed.get<std::string>();
+        switch (event) {
+        case json::parse_event_t::object_start: element(); levels.emplace_back(); break;
+        case json::parse_event_t::array_start: element(); levels.emplace_back().array = true; break;
+        case json::parse_event_t::object_end:
+        case json::parse_event_t::array_end: levels.pop_back(); break;
+        case json::parse_event_t::key: {
+            Level& l = levels.back();
+            l.key = parsed.get<std::string>();
+            if (!l.keys.insert(l.key).second && duplicate.empty()) duplicate = l.key;
+            break;
+        }
+        case json::parse_event_t::value: element(); break;
         }
         return true;
+    };
+    // The path of the value the parser was reading when it stopped: its element of the
+    // innermost array has not been counted yet.
+    auto where = [&] {
+        std::string path;
+        for (size_t i = 0; i < levels.size(); ++i) {
+            const Level& l = levels[i];
+            if (l.array) path += "[" + std::to_string(l.index + (i + 1 == levels.size() ? 1 : 0)) + "]";
+            else path = Reader::join(path, l.key);
+        }
+        return path.empty() ? std::string("(top level)") : path;
     };
     json j;
     try {
         j = json::parse(text.begin(), text.end(), callback);
-    } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
+    } catch (const json::out_of_range& e) {
+        if (e.id == 406) r.fail(where(), "must be a finite number");  // "number overflow parsing '1e999'"
+        r.fail("", std::string("malformed JSON: ") + e.what());
+    } catch (const json::exception& e) {
         std::string what = e.what();
         const auto close = what.find("] ");
         if (close != std::string::npos) what = what.substr(close + 2);

@@ -1,0 +1,482 @@
+// The headless command line of INTERFACES.md, run as the real executable in a fresh
+// folder: exit statuses, the key: value report, overrides, one-line errors naming the file
+// and field (or the flag), no output left behind on failure, and determinism.
+#include <tumble/integrators.h>
+#include <tumble/io/scene_file.h>
+#include <tumble/io/trajectory_csv.h>
+#include <tumble/world.h>
+
+#include <QtTest>
+
+#include <sstream>
+
+namespace {
+
+struct Run {
+    int code = -1;
+    QString out, err;
+};
+
+// A tumbling box on a spring, with an offset centre of mass and a static ground: 0.5 s at
+// 20 frames/s in steps of 0.005 s. Its orientation is not unit length; normalised once more
+// on saving and again on loading with Eigen's normalized(), it would drift by an ulp and
+// --save-scene would not reproduce the run.
+const char* const kBox = R"({
+  "format": "tumble-scene",
+  "version": 1,
+  "settings": {"gravity": [0, -9.81, 0], "dt": 0.005, "duration": 0.5, "frame_rate": 20},
+  "bodies": [
+    {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": -5}},
+    {"name": "box", "shape": {"type": "box", "half_extents": [0.5, 0.25, 0.1]}, "mass": 2,
+     "center_of_mass": [0.1, 0, 0], "position": [0, 1, 0], "orientation": [0.1, -0.8, -0.6, 0.5],
+     "velocity": [1, 0, 0], "angular_velocity": [0.3, 4, 0.1],
+     "forces": [{"type": "spring", "anchor": [0, 2, 0], "point": [0.4, 0.2, 0], "stiffness": 30,
+                 "rest_length": 0.5, "damping": 0.2}]}
+  ]
+}
+)";
+
+// A stiff spring that explicit Euler with this step cannot hold: the state overflows.
+const char* const kBlowUp = R"({
+  "format": "tumble-scene",
+  "version": 1,
+  "settings": {"gravity": [0, 0, 0], "dt": 0.01, "duration": 2, "integrator": "euler", "frame_rate": 10},
+  "bodies": [
+    {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1, "position": [1, 0, 0],
+     "forces": [{"type": "spring", "anchor": [0, 0, 0], "stiffness": 1e12}]}
+  ]
+}
+)";
+
+QStringList lines(const QString& text) {
+    QStringList l = text.split('\n');
+    if (!l.isEmpty() && l.last().isEmpty()) l.removeLast();
+    return l;
+}
+
+// The key: value lines of a successful run; an empty map when a line is not of that form.
+QMap<QString, QString> report(const QString& out) {
+    static const QRegularExpression line("^([a-z_]+): (\\S.*)$");
+    QMap<QString, QString> map;
+    for (const QString& l : lines(out)) {
+        const QRegularExpressionMatch m = line.match(l);
+        if (!m.hasMatch()) return {};
+        map.insert(m.captured(1), m.captured(2));
+    }
+    return map;
+}
+
+// The hash and the CSV of the same run done in this process, through the engine.
+struct Reference {
+    QString hash;
+    std::string csv;
+};
+
+Reference reference(const std::string& scenePath) {
+    tumble::World world(tumble::io::readSceneFile(scenePath));
+    std::ostringstream csv;
+    csv << tumble::io::kTrajectoryCsvHeader << "\n";
+    const double frameRate = world.model().settings.frameRate;
+    tumble::simulate(world, [&](int k, const tumble::State& s) {
+        tumble::io::writeCsvFrame(csv, world.model(), s, k / frameRate);
+    });
+    return {QString::fromStdString(tumble::hashHex(tumble::hashState(world.state()))), csv.str()};
+}
+
+}  // namespace
+
+// Runs the executable in the test's folder; fails the test when it crashes or hangs.
+#define RUN(result, ...)                 \
+    const Run result = run(__VA_ARGS__); \
+    if (QTest::currentTestFailed()) return
+
+class TestCli : public QObject {
+    Q_OBJECT
+
+    std::unique_ptr<QTemporaryDir> dir_;
+
+    Run run(const QStringList& args) {
+        QProcess p;
+        p.setWorkingDirectory(dir_->path());
+        p.start(TUMBLE_EXECUTABLE, args);
+        if (!p.waitForStarted(10000)) {
+            QTest::qFail("the executable did not start", __FILE__, __LINE__);
+            return {};
+        }
+        if (!p.waitForFinished(120000)) {
+            p.kill();
+            p.waitForFinished();
+            QTest::qFail("the executable did not finish in 120 s", __FILE__, __LINE__);
+            return {};
+        }
+        Run r;
+        r.out = QString::fromUtf8(p.readAllStandardOutput());
+        r.err = QString::fromUtf8(p.readAllStandardError());
+        if (p.exitStatus() != QProcess::NormalExit) {
+            QTest::qFail(qPrintable("the executable crashed: " + args.join(' ') + "\n" + r.err), __FILE__,
+                         __LINE__);
+            return {};
+        }
+        r.code = p.exitCode();
+        return r;
+    }
+
+    QString path(const QString& name) const { return dir_->filePath(name); }
+
+    void write(const QString& name, const QByteArray& text) {
+        QFile f(path(name));
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        QCOMPARE(f.write(text), text.size());
+    }
+
+    QByteArray read(const QString& name) const {
+        QFile f(path(name));
+        return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+    }
+
+    // Every entry of the folder, hidden ones and temporaries included.
+    QStringList entries() const {
+        return QDir(dir_->path())
+            .entryList(QDir::AllEntries | QDir::Hidden | QDir::System | QDir::NoDotAndDotDot, QDir::Name);
+    }
+
+private slots:
+    void init() {
+        dir_ = std::make_unique<QTemporaryDir>();
+        QVERIFY(dir_->isValid());
+        write("box.json", kBox);
+        write("blow.json", kBlowUp);
+    }
+
+    void cleanup() { dir_.reset(); }
+
+    void help() {
+        RUN(r, {"--help"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        QVERIFY(r.out.startsWith("Usage:"));
+        for (const char* flag : {"--headless", "--duration", "--dt", "--integrator", "--frame-rate", "--out",
+                                 "--save-scene", "--quiet", "--help", "--version", "--list-integrators"}) {
+            QVERIFY2(r.out.contains(flag), flag);
+        }
+    }
+
+    void version() {
+        RUN(r, {"--version"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        QVERIFY2(QRegularExpression("^tumble \\d+\\.\\d+\\.\\d+\\n$").match(r.out).hasMatch(),
+                 qPrintable(r.out));
+    }
+
+    void listIntegrators() {
+        RUN(r, {"--list-integrators"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        const QStringList all = lines(r.out);
+        QCOMPARE(r.out.count("(default)"), 1);
+        for (const tumble::IntegratorInfo& info : tumble::integrators()) {
+            const QString name = info.name;
+            const bool isDefault = &info == &tumble::defaultIntegrator();
+            const QString expected = isDefault ? name + " (default)" : name;
+            QVERIFY2(all.contains(expected), qPrintable("no line '" + expected + "' in\n" + r.out));
+        }
+    }
+
+    void headlessRun() {
+        RUN(r, {"--headless", "box.json"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        const QMap<QString, QString> kv = report(r.out);
+        QVERIFY2(!kv.isEmpty(), qPrintable("not key: value lines:\n" + r.out));
+        for (const char* key : {"bodies", "steps", "simulated_time", "wall_seconds", "state_hash"}) {
+            QVERIFY2(kv.contains(key), key);
+        }
+        QCOMPARE(kv["bodies"], QString("2"));
+        QCOMPARE(kv["steps"], QString("100"));  // 10 frame intervals of 0.05 s in steps of 0.005 s
+        QCOMPARE(kv["simulated_time"].toDouble(), 0.5);
+        bool ok = false;
+        QVERIFY(kv["wall_seconds"].toDouble(&ok) >= 0.0 && ok);
+        QVERIFY2(QRegularExpression("^[0-9a-f]{16}$").match(kv["state_hash"]).hasMatch(),
+                 qPrintable(kv["state_hash"]));
+        QCOMPARE(kv["state_hash"], reference(path("box.json").toStdString()).hash);
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // wrote nothing
+    }
+
+    void quiet() {
+        RUN(r, {"--headless", "box.json", "--quiet"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, QString());
+        RUN(withOut, {"--headless", "--quiet", "--out", "traj.csv", "box.json"});
+        QCOMPARE(withOut.code, 0);
+        QCOMPARE(withOut.out, QString());
+        QCOMPARE(withOut.err, QString());
+        QCOMPARE(lines(QString::fromUtf8(read("traj.csv"))).size(), 1 + 2 * 11);
+    }
+
+    void outCsv() {
+        RUN(r, {"--headless", "box.json", "--out", "traj.csv"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        const QByteArray csv = read("traj.csv");
+        const QStringList rows = lines(QString::fromUtf8(csv));
+        QCOMPARE(rows.value(0), QString("time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz"));
+        QCOMPARE(rows.size(), 1 + 2 * 11);  // header, 2 bodies x 11 frames
+        QCOMPARE(csv.toStdString(), reference(path("box.json").toStdString()).csv);
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json", "traj.csv"}));  // no temporary left
+    }
+
+    void saveScene() {
+        RUN(r, {"--headless", "box.json", "--duration", "0.3", "--save-scene", "saved.json"});
+        QCOMPARE(r.code, 0);
+        const tumble::SceneDesc saved = tumble::io::readSceneFile(path("saved.json").toStdString());
+        QCOMPARE(saved.settings.duration, 0.3);                               // as run, the override applied
+        QVERIFY(std::abs(saved.bodies[1].orientation.norm() - 1.0) < 1e-15);  // normalised
+        RUN(again, {"--headless", "saved.json", "--save-scene", "saved-again.json"});
+        QCOMPARE(again.code, 0);
+        QCOMPARE(report(again.out).value("state_hash"), report(r.out).value("state_hash"));
+        QVERIFY(!report(r.out).value("state_hash").isEmpty());
+        QCOMPARE(read("saved-again.json"), read("saved.json"));
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json", "saved-again.json", "saved.json"}));
+    }
+
+    void overrides_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<int>("frames");
+        QTest::addColumn<int>("steps");
+        QTest::addColumn<double>("time");
+        QTest::addColumn<QString>("integrator");
+        const QString def = tumble::defaultIntegrator().name;
+        QTest::newRow("none") << QStringList() << 11 << 100 << 0.5 << def;
+        QTest::newRow("duration 1, dt 0.01, frame rate 10")
+            << QStringList({"--duration", "1", "--dt", "0.01", "--frame-rate", "10"}) << 11 << 100 << 1.0
+            << def;
+        QTest::newRow("duration 2") << QStringList({"--duration", "2"}) << 41 << 400 << 2.0 << def;
+        QTest::newRow("duration 0") << QStringList({"--duration", "0"}) << 1 << 0 << 0.0 << def;
+        // 0.05 s frame intervals need 3 steps of at most 0.02 s each.
+        QTest::newRow("dt 0.02") << QStringList({"--dt", "0.02"}) << 11 << 30 << 0.5 << def;
+        QTest::newRow("dt=0.01") << QStringList({"--dt=0.01"}) << 11 << 50 << 0.5 << def;
+        QTest::newRow("frame rate 4") << QStringList({"--frame-rate", "4"}) << 3 << 100 << 0.5 << def;
+        QTest::newRow("integrator rk4") << QStringList({"--integrator", "rk4"}) << 11 << 100 << 0.5 << "rk4";
+        QTest::newRow("integrator euler, dt 0.05")
+            << QStringList({"--integrator", "euler", "--dt", "0.05"}) << 11 << 10 << 0.5 << "euler";
+    }
+
+    void overrides() {
+        QFETCH(QStringList, args);
+        QFETCH(int, frames);
+        QFETCH(int, steps);
+        QFETCH(double, time);
+        QFETCH(QString, integrator);
+        RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv"}) + args);
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        const QMap<QString, QString> kv = report(r.out);
+        QCOMPARE(kv.value("steps"), QString::number(steps));
+        QCOMPARE(kv.value("frames"), QString::number(frames));
+        QCOMPARE(kv.value("simulated_time").toDouble(), time);
+        QCOMPARE(kv.value("integrator"), integrator);
+        QCOMPARE(lines(QString::fromUtf8(read("traj.csv"))).size(), 1 + 2 * frames);
+    }
+
+    // Each integrator gives its own result, and the same one on every run.
+    void integratorOverrideChangesResult() {
+        QSet<QString> hashes;
+        for (const tumble::IntegratorInfo& info : tumble::integrators()) {
+            RUN(r, {"--headless", "box.json", "--integrator", info.name});
+            QCOMPARE(r.code, 0);
+            const QString hash = report(r.out).value("state_hash");
+            QVERIFY(!hash.isEmpty());
+            QVERIFY2(!hashes.contains(hash), info.name);
+            hashes.insert(hash);
+        }
+    }
+
+    void badOverride_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("dt 0") << QStringList({"--dt", "0"}) << "tumble: --dt: must be greater than 0";
+        QTest::newRow("dt -0.1") << QStringList({"--dt", "-0.1"}) << "tumble: --dt: must be greater than 0";
+        QTest::newRow("dt abc") << QStringList({"--dt", "abc"}) << "tumble: --dt: 'abc' is not a number";
+        QTest::newRow("dt 0.01x") << QStringList({"--dt", "0.01x"})
+                                  << "tumble: --dt: '0.01x' is not a number";
+        QTest::newRow("dt empty") << QStringList({"--dt="}) << "tumble: --dt: '' is not a number";
+        QTest::newRow("dt inf") << QStringList({"--dt", "inf"}) << "tumble: --dt: must be a finite number";
+        QTest::newRow("dt nan") << QStringList({"--dt", "nan"}) << "tumble: --dt: must be a finite number";
+        QTest::newRow("dt without value") << QStringList({"--dt"}) << "tumble: --dt: needs a value";
+        QTest::newRow("duration -1") << QStringList({"--duration", "-1"})
+                                     << "tumble: --duration: must be 0 or greater";
+        QTest::newRow("frame rate 0")
+            << QStringList({"--frame-rate", "0"}) << "tumble: --frame-rate: must be greater than 0";
+        QTest::newRow("integrator nope")
+            << QStringList({"--integrator", "nope"})
+            << "tumble: --integrator: unknown integrator 'nope' (see --list-integrators)";
+    }
+
+    void badOverride() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv", "--save-scene", "saved.json"}) +
+                   args);
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    void invalidScene_data() {
+        QTest::addColumn<QString>("scene");    // the file given on the command line
+        QTest::addColumn<QByteArray>("text");  // written to bad.json
+        QTest::addColumn<QString>("message");
+        const QByteArray box = kBox;
+        auto broken = [&](const char* from, const char* to) {
+            QByteArray t = box;
+            return t.replace(from, to);
+        };
+        QTest::newRow("radius") << "bad.json"
+                                << broken(R"("half_extents": [0.5, 0.25, 0.1])",
+                                          R"("half_extents": [0.5, 0, 0.1])")
+                                << "bad.json: bodies[1].shape.half_extents[1]: must be greater than 0";
+        QTest::newRow("mass") << "bad.json" << broken(R"("mass": 2)", R"("mass": -2)")
+                              << "bad.json: bodies[1].mass: must be greater than 0";
+        QTest::newRow("1e999") << "bad.json" << broken(R"("mass": 2)", R"("mass": 2e999)")
+                               << "bad.json: bodies[1].mass: must be a finite number";
+        QTest::newRow("missing key") << "bad.json" << broken(R"("format": "tumble-scene",)", "")
+                                     << "bad.json: format: is missing";
+        QTest::newRow("unknown key") << "bad.json"
+                                     << broken(R"("mass": 2,)", R"("mass": 2, "colour": "red",)")
+                                     << "bad.json: bodies[1].colour: unknown key";
+        QTest::newRow("version 2") << "bad.json" << broken(R"("version": 1)", R"("version": 2)")
+                                   << "bad.json: version: version 2 is not one this build reads (it reads 1)";
+        QTest::newRow("truncated")
+            << "bad.json" << QByteArray(R"({"format": "tumble-scene",)")
+            << "bad.json: malformed JSON: parse error at line 1, column 27: syntax error "
+               "while parsing object key - unexpected end of input; expected string literal";
+        QTest::newRow("missing file")
+            << "nope.json" << QByteArray() << "nope.json: cannot be read (missing, or no permission)";
+        QTest::newRow("directory") << "folder.json" << QByteArray()
+                                   << "folder.json: is a directory, not a scene file";
+    }
+
+    void invalidScene() {
+        QFETCH(QString, scene);
+        QFETCH(QByteArray, text);
+        QFETCH(QString, message);
+        if (scene == "bad.json") write("bad.json", text);
+        if (scene == "folder.json") QVERIFY(QDir(dir_->path()).mkdir("folder.json"));
+        const QStringList before = entries();
+        RUN(r, {"--headless", scene, "--out", "traj.csv", "--save-scene", "saved.json"});
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");  // exactly one line: FILE: FIELD: MESSAGE
+        QCOMPARE(entries(), before);      // no output, no temporary
+    }
+
+    void nonFiniteState() {
+        RUN(r, {"--headless", "blow.json", "--out", "traj.csv", "--save-scene", "saved.json"});
+        QCOMPARE(r.code, 1);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(lines(r.err).size(), 1);
+        const QRegularExpressionMatch m =
+            QRegularExpression(
+                "^tumble: blow\\.json: body 'ball' \\(bodies\\[0\\]\\) became non-finite at t = "
+                "([0-9.e+-]+) s")
+                .match(r.err);
+        QVERIFY2(m.hasMatch(), qPrintable(r.err));
+        const double t = m.captured(1).toDouble();
+        QVERIFY2(t > 0.0 && t <= 2.0, qPrintable(m.captured(1)));
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // no partial CSV, no temporary
+    }
+
+    void usageErrors_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("unknown option") << QStringList({"--headless", "box.json", "--bogus"})
+                                        << "tumble: unknown option '--bogus' (see --help)";
+        QTest::newRow("unknown short option")
+            << QStringList({"--headless", "-x", "box.json"}) << "tumble: unknown option '-x' (see --help)";
+        QTest::newRow("missing scene")
+            << QStringList({"--headless"}) << "tumble: --headless needs a scene file (see --help)";
+        QTest::newRow("missing scene with options") << QStringList({"--headless", "--out", "traj.csv"})
+                                                    << "tumble: --headless needs a scene file (see --help)";
+        QTest::newRow("two scenes") << QStringList({"--headless", "box.json", "blow.json"})
+                                    << "tumble: more than one scene given: 'box.json' and 'blow.json'";
+        QTest::newRow("out without value")
+            << QStringList({"--headless", "box.json", "--out"}) << "tumble: --out: needs a value";
+    }
+
+    void usageErrors() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        RUN(r, args);
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    // Refused before simulating: the scene given would otherwise fail with status 1.
+    void outExtension_data() {
+        QTest::addColumn<QString>("out");
+        QTest::newRow("txt") << "traj.txt";
+        QTest::newRow("none") << "traj";
+        QTest::newRow("csv.bak") << "traj.csv.bak";
+    }
+
+    void outExtension() {
+        QFETCH(QString, out);
+        RUN(r, {"--headless", "blow.json", "--out", out});
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(lines(r.err).size(), 1);
+        QVERIFY2(r.err.startsWith("tumble: --out: '" + out + "': "), qPrintable(r.err));
+        QVERIFY2(r.err.contains(".csv"), qPrintable(r.err));  // says what is accepted
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    // An output that cannot be written fails before the run (the scene given would otherwise
+    // fail with another message) and leaves the other output unwritten.
+    void unwritableOutput_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("out")
+            << QStringList({"--out", "nodir/traj.csv", "--save-scene", "saved.json"})
+            << "tumble: --out: nodir/traj.csv: cannot be written (no such folder, or no permission)";
+        QTest::newRow("save-scene")
+            << QStringList({"--out", "traj.csv", "--save-scene", "nodir/saved.json"})
+            << "tumble: --save-scene: nodir/saved.json: cannot be written (no such folder, "
+               "or no permission)";
+    }
+
+    void unwritableOutput() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        RUN(r, QStringList({"--headless", "blow.json"}) + args);
+        QCOMPARE(r.code, 1);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    void outExtensionIgnoresCase() {
+        RUN(r, {"--headless", "box.json", "--out", "TRAJ.CSV"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(lines(QString::fromUtf8(read("TRAJ.CSV"))).size(), 1 + 2 * 11);
+    }
+
+    void deterministic() {
+        RUN(a, {"--headless", "box.json", "--out", "a.csv"});
+        RUN(b, {"--headless", "box.json", "--out", "b.csv"});
+        QCOMPARE(a.code, 0);
+        QCOMPARE(b.code, 0);
+        const QString hash = report(a.out).value("state_hash");
+        QVERIFY(!hash.isEmpty());
+        QCOMPARE(report(b.out).value("state_hash"), hash);
+        QVERIFY(!read("a.csv").isEmpty());
+        QCOMPARE(read("b.csv"), read("a.csv"));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestCli)
+#include "tst_cli.moc"

@@ -1,0 +1,583 @@
+// Scene files: a round trip through every field, the sample scenes, and one refusal with
+// the file and the field for every class of bad input.
+#include <tumble/io/scene_file.h>
+#include <tumble/world.h>
+
+#include <QtTest>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+
+using namespace tumble;
+using tumble::io::InputError;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A valid scene to break one thing at a time. Every text replaced below occurs once.
+const char* const kBase = R"({
+  "format": "tumble-scene",
+  "version": 1,
+  "settings": {"gravity": [0, -9.81, 0], "dt": 0.01, "duration": 1, "integrator": "rk4", "frame_rate": 30},
+  "bodies": [
+    {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}},
+    {"name": "ball", "shape": {"type": "sphere", "radius": 0.5}, "mass": 1,
+     "position": [0, 2, 0], "orientation": [1, 0, 0, 0], "restitution": 0.5, "friction": 0.4,
+     "linear_damping": 0.1, "angular_damping": 0.2,
+     "forces": [{"type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1}]},
+    {"name": "crate", "shape": {"type": "box", "half_extents": [0.5, 0.25, 0.5]}, "density": 1000}
+  ]
+}
+)";
+
+std::string readBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+QStringList filesIn(const QString& dir) {
+    return QDir(dir).entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
+}
+
+Mat3 mat(double a, double b, double c, double d, double e, double f, double g, double h, double i) {
+    Mat3 m;
+    m << a, b, c, d, e, f, g, h, i;
+    return m;
+}
+
+// A scene that sets every field of the format to something other than its default.
+SceneDesc everyField() {
+    SceneDesc s;
+    s.settings.gravity = Vec3(0.5, -3.7, 1.25);
+    s.settings.dt = 0.002;
+    s.settings.duration = 2.5;
+    s.settings.integrator = "symplectic-euler";
+    s.settings.frameRate = 50;
+
+    BodyDesc ground;
+    ground.name = "ground";
+    ground.motion = Motion::Static;
+    ground.shape.type = ShapeType::Plane;
+    ground.shape.normal = Vec3(1, 2, 2) / 3.0;
+    ground.shape.distance = -0.25;
+    ground.restitution = 0.9;
+    ground.friction = 0.8;
+    s.bodies.push_back(ground);
+
+    BodyDesc ball;
+    ball.name = "ball, \"the\" first";
+    ball.shape.type = ShapeType::Sphere;
+    ball.shape.radius = 0.3;
+    ball.mass = 2.5;
+    ball.position = Vec3(0.1, 2, -0.3);
+    ball.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+    ball.velocity = Vec3(1, 2, 3);
+    ball.angularVelocity = Vec3(-0.5, 0.25, 4);
+    ball.restitution = 0.25;
+    ball.friction = 1.5;
+    ball.linearDamping = 0.1;
+    ball.angularDamping = 0.05;
+    ForceDesc push;
+    push.type = ForceType::Force;
+    push.vector = Vec3(1, 0, -2);
+    push.point = Vec3(0, 0.3, 0);
+    push.frame = Frame::Body;
+    push.start = 0.5;
+    push.end = 1.5;
+    ball.forces.push_back(push);
+    ForceDesc thrust;  // at the centre of mass, world frame, always
+    thrust.type = ForceType::Force;
+    thrust.vector = Vec3(0, 3, 0);
+    ball.forces.push_back(thrust);
+    ForceDesc twist;
+    twist.type = ForceType::Torque;
+    twist.vector = Vec3(0, 0, 0.125);
+    twist.frame = Frame::World;
+    twist.start = 1.0;
+    ball.forces.push_back(twist);
+    ForceDesc spring;
+    spring.type = ForceType::Spring;
+    spring.anchor = Vec3(0, 4, 0);
+    spring.point = Vec3(0.1, 0.2, 0);
+    spring.stiffness = 40;
+    spring.restLength = 1.25;
+    spring.damping = 0.75;
+    spring.end = 2.0;
+    ball.forces.push_back(spring);
+    s.bodies.push_back(ball);
+
+    BodyDesc crate;
+    crate.name = "crate";
+    crate.shape.type = ShapeType::Box;
+    crate.shape.halfExtents = Vec3(0.5, 0.25, 0.125);
+    crate.density = 750;
+    crate.inertia = mat(2, 0.1, 0, 0.1, 3, -0.2, 0, -0.2, 4);
+    crate.centerOfMass = Vec3(0.01, -0.02, 0.03);
+    crate.position = Vec3(3, 1, 0);
+    s.bodies.push_back(crate);
+
+    BodyDesc pill;
+    pill.name = "pill";
+    pill.motion = Motion::Kinematic;
+    pill.shape.type = ShapeType::Capsule;
+    pill.shape.radius = 0.2;
+    pill.shape.halfHeight = 0.6;
+    pill.position = Vec3(-2, 1, 0);
+    pill.orientation = Quat(0.5, -0.5, 0.5, 0.5);
+    pill.velocity = Vec3(0.5, 0, 0);
+    pill.angularVelocity = Vec3(0, 1, 0);
+    s.bodies.push_back(pill);
+
+    BodyDesc can;
+    can.name = "can";
+    can.shape.type = ShapeType::Cylinder;
+    can.shape.radius = 0.1;
+    can.shape.halfHeight = 0.2;
+    can.mass = 0.33;
+    can.inertia = mat(0.01, 0, 0, 0, 0.002, 0, 0, 0, 0.01);
+    s.bodies.push_back(can);
+
+    BodyDesc bunny;
+    bunny.name = "bunny";
+    bunny.shape.type = ShapeType::Mesh;
+    bunny.shape.file = "meshes/bunny.obj";
+    bunny.shape.scale = Vec3(1, 2, 0.5);
+    bunny.shape.collision = MeshCollision::Triangles;
+    bunny.density = 500;
+    s.bodies.push_back(bunny);
+
+    BodyDesc post;
+    post.name = "post";
+    post.motion = Motion::Static;
+    post.shape.type = ShapeType::Box;
+    post.shape.halfExtents = Vec3(0.1, 1, 0.1);
+    post.position = Vec3(0, 1, 5);
+    s.bodies.push_back(post);
+    return s;
+}
+
+}  // namespace
+
+class TestSceneFile : public QObject {
+    Q_OBJECT
+
+private slots:
+    void roundTripInMemory() {
+        const SceneDesc scene = everyField();
+        const std::string text = io::sceneToJson(scene);
+        const SceneDesc back = io::parseScene(text, "every.json");
+        QVERIFY(back == scene);
+        // The comparison is not vacuous: one changed field makes it fail.
+        SceneDesc other = back;
+        other.bodies[2].inertia->coeffRef(0, 1) = 0.2;
+        other.bodies[2].inertia->coeffRef(1, 0) = 0.2;
+        QVERIFY(!(other == scene));
+        QCOMPARE(io::sceneToJson(back), text);
+    }
+
+    // Optional fields stay absent rather than becoming explicit defaults.
+    void absentOptionalsStayAbsent() {
+        SceneDesc scene = everyField();
+        scene.settings.integrator.clear();
+        const SceneDesc back = io::parseScene(io::sceneToJson(scene), "every.json");
+        QVERIFY(back.settings.integrator.empty());
+        QVERIFY(!back.bodies[1].forces[1].point);
+        QVERIFY(!back.bodies[1].forces[1].start);
+        QVERIFY(!back.bodies[1].forces[1].end);
+        QVERIFY(!back.bodies[1].inertia);
+        QVERIFY(!back.bodies[1].centerOfMass);
+        QVERIFY(!back.bodies[1].density);
+        QVERIFY(!back.bodies[6].mass);
+        QVERIFY(back == scene);
+    }
+
+    void roundTripThroughFiles() {
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        const fs::path first = fs::path(dir.path().toStdString()) / "first.json";
+        const fs::path second = fs::path(dir.path().toStdString()) / "second.json";
+        const SceneDesc scene = everyField();
+        io::writeSceneFile(scene, first);
+        QCOMPARE(readBytes(first), io::sceneToJson(scene));
+        const SceneDesc loaded = io::readSceneFile(first);
+        QVERIFY(loaded == scene);
+        io::writeSceneFile(loaded, second);
+        QCOMPARE(readBytes(second), readBytes(first));
+        // Overwriting an existing file works too, and leaves no temporary behind.
+        io::writeSceneFile(loaded, first);
+        QCOMPARE(readBytes(first), readBytes(second));
+        QCOMPARE(filesIn(dir.path()), QStringList({"first.json", "second.json"}));
+    }
+
+    void writingIntoAMissingFolderFails() {
+        QTemporaryDir dir;
+        const fs::path path = fs::path(dir.path().toStdString()) / "no-such-folder" / "x.json";
+        QVERIFY_THROWS_EXCEPTION(std::runtime_error, io::writeSceneFile(everyField(), path));
+        QVERIFY(!fs::exists(path));
+    }
+
+    void sampleScenes_data() {
+        QTest::addColumn<QString>("file");
+        const QStringList files = QDir(TUMBLE_SCENES_DIR).entryList({"*.json"}, QDir::Files, QDir::Name);
+        QVERIFY(!files.isEmpty());
+        for (const QString& f : files) QTest::newRow(qPrintable(f)) << QString(TUMBLE_SCENES_DIR "/" + f);
+    }
+
+    void sampleScenes() {
+        QFETCH(QString, file);
+        SceneDesc scene;
+        try {
+            scene = io::readSceneFile(file.toStdString());
+        } catch (const InputError& e) {
+            QFAIL(e.what());
+        }
+        QVERIFY(!scene.bodies.empty());
+        const World world(scene);  // compiles: every value is in range for the engine too
+        QCOMPARE(world.model().bodies.size(), scene.bodies.size());
+        QVERIFY(io::parseScene(io::sceneToJson(scene), "again.json") == scene);
+    }
+
+    void badInput_data() {
+        QTest::addColumn<QString>("from");  // empty: `to` is the whole text
+        QTest::addColumn<QString>("to");
+        QTest::addColumn<QString>("field");
+        QTest::addColumn<QString>("message");  // the whole what()
+        const QString base = kBase;
+        auto row = [](const char* name, const QString& from, const QString& to, const char* field,
+                      const char* message) {
+            QTest::newRow(name) << from << to << QString(field) << QString(message);
+        };
+
+        // Syntax.
+        row("truncated", "", base.left(base.indexOf("\"bodies\"")), "",
+            "drop.json: malformed JSON: parse error at line 5, column 3: "
+            "syntax error while parsing object key - unexpected end of input; expected string literal");
+        row("trailing comma", R"("frame_rate": 30})", R"("frame_rate": 30,})", "",
+            "drop.json: malformed JSON: parse error at line 4, column 107: "
+            "syntax error while parsing object key - unexpected '}'; expected string literal");
+        row("empty file", "", "", "",
+            "drop.json: malformed JSON: parse error at line 1, column 1: syntax error while parsing value - "
+            "unexpected end of input; expected '[', '{', or a literal");
+        row("NaN literal", R"("mass": 1,)", R"("mass": NaN,)", "",
+            "drop.json: malformed JSON: parse error at line 7, column 74: syntax error while parsing value - "
+            "invalid literal; last read: '\"mass\": N'");
+        row("duplicate key at top", R"("version": 1,)", R"("version": 1, "version": 1,)", "",
+            "drop.json: malformed JSON: the key 'version' appears twice in one object");
+        row("duplicate key in body", R"("mass": 1,)", R"("mass": 1, "mass": 2,)", "",
+            "drop.json: malformed JSON: the key 'mass' appears twice in one object");
+        row("top level array", "", "[" + base + "]", "(top level)",
+            "drop.json: (top level): must be an object");
+        row("top level number", "", "42", "(top level)", "drop.json: (top level): must be an object");
+
+        // Missing keys.
+        row("missing format", "\"format\": \"tumble-scene\",", "", "format", "drop.json: format: is missing");
+        row("missing version", "\"version\": 1,", "", "version", "drop.json: version: is missing");
+        row("missing bodies", "", base.left(base.indexOf(",\n  \"bodies\"")) + "\n}\n", "bodies",
+            "drop.json: bodies: is missing");
+        row("missing name", R"("name": "ball", )", "", "bodies[1].name",
+            "drop.json: bodies[1].name: is missing");
+        row("missing shape", R"("shape": {"type": "sphere", "radius": 0.5}, )", "", "bodies[1].shape",
+            "drop.json: bodies[1].shape: is missing");
+        row("missing shape.type", R"({"type": "sphere", "radius": 0.5})", R"({"radius": 0.5})",
+            "bodies[1].shape.type", "drop.json: bodies[1].shape.type: is missing");
+        row("missing radius", R"({"type": "sphere", "radius": 0.5})", R"({"type": "sphere"})",
+            "bodies[1].shape.radius", "drop.json: bodies[1].shape.radius: is missing");
+        row("missing half_extents", R"(, "half_extents": [0.5, 0.25, 0.5])", "",
+            "bodies[2].shape.half_extents", "drop.json: bodies[2].shape.half_extents: is missing");
+        row("missing plane normal", R"("normal": [0, 1, 0], )", "", "bodies[0].shape.normal",
+            "drop.json: bodies[0].shape.normal: is missing");
+        row("missing spring stiffness", R"(, "stiffness": 10)", "", "bodies[1].forces[0].stiffness",
+            "drop.json: bodies[1].forces[0].stiffness: is missing");
+
+        // Unknown keys.
+        row("unknown key at top", R"("version": 1,)", R"("version": 1, "author": "me",)", "author",
+            "drop.json: author: unknown key");
+        row("unknown key in settings", R"("dt": 0.01,)", R"("dt": 0.01, "timestep": 0.01,)",
+            "settings.timestep", "drop.json: settings.timestep: unknown key");
+        row("unknown key in body", R"("mass": 1,)", R"("mass": 1, "colour": "red",)", "bodies[1].colour",
+            "drop.json: bodies[1].colour: unknown key");
+        row("radius in a box", R"("half_extents": [0.5, 0.25, 0.5])",
+            R"("half_extents": [0.5, 0.25, 0.5], "radius": 0.5)", "bodies[2].shape.radius",
+            "drop.json: bodies[2].shape.radius: unknown key");
+        row("vector in a spring", R"("stiffness": 10,)", R"("stiffness": 10, "vector": [1, 0, 0],)",
+            "bodies[1].forces[0].vector", "drop.json: bodies[1].forces[0].vector: unknown key");
+
+        // Types.
+        row("string for a number", R"("mass": 1,)", R"("mass": "1",)", "bodies[1].mass",
+            "drop.json: bodies[1].mass: must be a number");
+        row("bool for a number", R"("radius": 0.5)", R"("radius": true)", "bodies[1].shape.radius",
+            "drop.json: bodies[1].shape.radius: must be a number");
+        row("null for a number", R"("dt": 0.01)", R"("dt": null)", "settings.dt",
+            "drop.json: settings.dt: must be a number");
+        row("2-element vector", R"("anchor": [0, 3, 0])", R"("anchor": [0, 3])", "bodies[1].forces[0].anchor",
+            "drop.json: bodies[1].forces[0].anchor: must be an array of 3 numbers");
+        row("string in a vector", R"("position": [0, 2, 0])", R"("position": [0, "2", 0])",
+            "bodies[1].position[1]", "drop.json: bodies[1].position[1]: must be a number");
+        row("3-element quaternion", R"("orientation": [1, 0, 0, 0])", R"("orientation": [1, 0, 0])",
+            "bodies[1].orientation", "drop.json: bodies[1].orientation: must be an array of 4 numbers");
+        row("inertia 2x2", R"("mass": 1,)", R"("mass": 1, "inertia": [[1, 0], [0, 1]],)", "bodies[1].inertia",
+            "drop.json: bodies[1].inertia: must be 3 rows of 3 numbers");
+        row("inertia short row", R"("mass": 1,)", R"("mass": 1, "inertia": [[1, 0, 0], [0, 1, 0], [0, 1]],)",
+            "bodies[1].inertia[2]", "drop.json: bodies[1].inertia[2]: must be an array of 3 numbers");
+        row("inertia flat", R"("mass": 1,)", R"("mass": 1, "inertia": [1, 1, 1],)", "bodies[1].inertia[0]",
+            "drop.json: bodies[1].inertia[0]: must be an array of 3 numbers");
+        row("name a number", R"("name": "crate")", R"("name": 7)", "bodies[2].name",
+            "drop.json: bodies[2].name: must be a string");
+        row("bodies an object", "",
+            QString(base).replace(R"("bodies": [)", R"("bodies": {"b": [)").replace("\n  ]\n}", "\n  ]}\n}"),
+            "bodies", "drop.json: bodies: must be an array");
+        row("body a string", R"("bodies": [)", R"("bodies": ["ball",)", "bodies[0]",
+            "drop.json: bodies[0]: must be an object");
+        row("forces an object",
+            R"("forces": [{"type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1}])",
+            R"("forces": {})", "bodies[1].forces", "drop.json: bodies[1].forces: must be an array");
+        row("unknown motion", R"("motion": "static")", R"("motion": "frozen")", "bodies[0].motion",
+            "drop.json: bodies[0].motion: 'frozen' is not one of dynamic, static, kinematic");
+
+        // Numbers a double cannot hold: the JSON library refuses them; so must the reader.
+        row("1e999", R"("mass": 1,)", R"("mass": 1e999,)", "bodies[1].mass",
+            "drop.json: bodies[1].mass: must be a finite number");
+        row("-1e999 in a vector", R"("position": [0, 2, 0])", R"("position": [0, -1e999, 0])",
+            "bodies[1].position[1]", "drop.json: bodies[1].position[1]: must be a finite number");
+        row("1e999 in settings", R"("duration": 1,)", R"("duration": 1e999,)", "settings.duration",
+            "drop.json: settings.duration: must be a finite number");
+        row("1e999 in inertia", R"("mass": 1,)",
+            R"("mass": 1, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1e999]],)", "bodies[1].inertia[2][2]",
+            "drop.json: bodies[1].inertia[2][2]: must be a finite number");
+
+        // Mass.
+        row("zero mass", R"("mass": 1,)", R"("mass": 0,)", "bodies[1].mass",
+            "drop.json: bodies[1].mass: must be greater than 0");
+        row("negative mass", R"("mass": 1,)", R"("mass": -2,)", "bodies[1].mass",
+            "drop.json: bodies[1].mass: must be greater than 0");
+        row("negative density", R"("density": 1000)", R"("density": -1000)", "bodies[2].density",
+            "drop.json: bodies[2].density: must be greater than 0");
+        row("mass and density", R"("mass": 1,)", R"("mass": 1, "density": 1000,)", "bodies[1]",
+            "drop.json: bodies[1]: give mass or density, not both");
+        row("neither mass nor density", R"(, "density": 1000)", "", "bodies[2]",
+            "drop.json: bodies[2]: a dynamic body needs mass or density");
+        row("mass on a static body", R"("motion": "static",)", R"("motion": "static", "mass": 1,)",
+            "bodies[0].mass", "drop.json: bodies[0].mass: a static body has no mass properties; remove it");
+        row("inertia not symmetric", R"("mass": 1,)",
+            R"("mass": 1, "inertia": [[1, 0.1, 0], [0, 1, 0], [0, 0, 1]],)", "bodies[1].inertia",
+            "drop.json: bodies[1].inertia: must be symmetric");
+        row("inertia not positive definite", R"("mass": 1,)",
+            R"("mass": 1, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, -1]],)", "bodies[1].inertia",
+            "drop.json: bodies[1].inertia: must be positive definite");
+        row("inertia singular", R"("mass": 1,)",
+            R"("mass": 1, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 0]],)", "bodies[1].inertia",
+            "drop.json: bodies[1].inertia: must be positive definite");
+        row("inertia triangle inequality", R"("mass": 1,)",
+            R"("mass": 1, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 3]],)", "bodies[1].inertia",
+            "drop.json: bodies[1].inertia: principal moments break the triangle inequality "
+            "(no mass distribution has them)");
+
+        // Body values.
+        row("zero radius", R"("radius": 0.5)", R"("radius": 0)", "bodies[1].shape.radius",
+            "drop.json: bodies[1].shape.radius: must be greater than 0");
+        row("negative half extent", R"([0.5, 0.25, 0.5])", R"([0.5, -0.25, 0.5])",
+            "bodies[2].shape.half_extents[1]",
+            "drop.json: bodies[2].shape.half_extents[1]: must be greater than 0");
+        row("zero quaternion", R"("orientation": [1, 0, 0, 0])", R"("orientation": [0, 0, 0, 0])",
+            "bodies[1].orientation", "drop.json: bodies[1].orientation: must not be the zero quaternion");
+        row("zero plane normal", R"("normal": [0, 1, 0])", R"("normal": [0, 0, 0])", "bodies[0].shape.normal",
+            "drop.json: bodies[0].shape.normal: must not be zero");
+        row("duplicate names", R"("name": "crate")", R"("name": "ball")", "bodies[2].name",
+            "drop.json: bodies[2].name: 'ball' is already the name of another body");
+        row("empty name", R"("name": "crate")", R"("name": "")", "bodies[2].name",
+            "drop.json: bodies[2].name: must not be empty");
+        row("restitution 1.5", R"("restitution": 0.5)", R"("restitution": 1.5)", "bodies[1].restitution",
+            "drop.json: bodies[1].restitution: must be between 0 and 1");
+        row("restitution -0.1", R"("restitution": 0.5)", R"("restitution": -0.1)", "bodies[1].restitution",
+            "drop.json: bodies[1].restitution: must be 0 or greater");
+        row("negative friction", R"("friction": 0.4)", R"("friction": -0.4)", "bodies[1].friction",
+            "drop.json: bodies[1].friction: must be 0 or greater");
+        row("negative linear damping", R"("linear_damping": 0.1)", R"("linear_damping": -0.1)",
+            "bodies[1].linear_damping", "drop.json: bodies[1].linear_damping: must be 0 or greater");
+        row("negative angular damping", R"("angular_damping": 0.2)", R"("angular_damping": -0.2)",
+            "bodies[1].angular_damping", "drop.json: bodies[1].angular_damping: must be 0 or greater");
+        row("static body moving", R"("motion": "static",)", R"("motion": "static", "velocity": [1, 0, 0],)",
+            "bodies[0].velocity",
+            "drop.json: bodies[0].velocity: a static body cannot move; make it kinematic");
+
+        // Settings.
+        row("dt 0", R"("dt": 0.01)", R"("dt": 0)", "settings.dt",
+            "drop.json: settings.dt: must be greater than 0");
+        row("negative duration", R"("duration": 1,)", R"("duration": -1,)", "settings.duration",
+            "drop.json: settings.duration: must be 0 or greater");
+        row("frame_rate 0", R"("frame_rate": 30)", R"("frame_rate": 0)", "settings.frame_rate",
+            "drop.json: settings.frame_rate: must be greater than 0");
+        row("unknown integrator", R"("integrator": "rk4")", R"("integrator": "leapfrog")",
+            "settings.integrator",
+            "drop.json: settings.integrator: unknown integrator 'leapfrog' (see --list-integrators)");
+        row("settings an array",
+            R"("settings": {"gravity": [0, -9.81, 0], "dt": 0.01, "duration": 1, "integrator": "rk4", "frame_rate": 30})",
+            R"("settings": [])", "settings", "drop.json: settings: must be an object");
+
+        // Format and version.
+        row("version 2", R"("version": 1,)", R"("version": 2,)", "version",
+            "drop.json: version: version 2 is not one this build reads (it reads 1)");
+        row("version 1.0", R"("version": 1,)", R"("version": 1.0,)", "version",
+            "drop.json: version: must be an integer");
+        row("version a string", R"("version": 1,)", R"("version": "1",)", "version",
+            "drop.json: version: must be an integer");
+        row("wrong format", R"("tumble-scene")", R"("tumble-project")", "format",
+            "drop.json: format: must be \"tumble-scene\"");
+
+        // Shapes and forces.
+        row("unknown shape type", R"("type": "sphere")", R"("type": "cone")", "bodies[1].shape.type",
+            "drop.json: bodies[1].shape.type: 'cone' is not one of sphere, box, capsule, cylinder, plane, "
+            "mesh");
+        row("plane on a dynamic body", R"("motion": "static", )", "", "bodies[0].shape.type",
+            "drop.json: bodies[0].shape.type: a plane must belong to a static body");
+        row("plane on a kinematic body", R"("motion": "static")", R"("motion": "kinematic")",
+            "bodies[0].shape.type", "drop.json: bodies[0].shape.type: a plane must belong to a static body");
+        row("force on a static body", R"("motion": "static",)",
+            R"("motion": "static", "forces": [{"type": "torque", "vector": [0, 1, 0]}],)", "bodies[0].forces",
+            "drop.json: bodies[0].forces: forces act on dynamic bodies only");
+        row("negative stiffness", R"("stiffness": 10)", R"("stiffness": -10)",
+            "bodies[1].forces[0].stiffness",
+            "drop.json: bodies[1].forces[0].stiffness: must be 0 or greater");
+        row("end before start", R"("start": 0, "end": 1)", R"("start": 0.5, "end": 0.25)",
+            "bodies[1].forces[0].end", "drop.json: bodies[1].forces[0].end: must be later than start");
+        row("end equal to start", R"("start": 0, "end": 1)", R"("start": 0.5, "end": 0.5)",
+            "bodies[1].forces[0].end", "drop.json: bodies[1].forces[0].end: must be later than start");
+        row("unknown force type", R"("type": "spring")", R"("type": "magnet")", "bodies[1].forces[0].type",
+            "drop.json: bodies[1].forces[0].type: 'magnet' is not one of force, torque, spring");
+        row("unknown frame",
+            R"("type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1)",
+            R"("type": "torque", "vector": [0, 1, 0], "frame": "local")", "bodies[1].forces[0].frame",
+            "drop.json: bodies[1].forces[0].frame: 'local' is not one of world, body");
+    }
+
+    void badInput() {
+        QFETCH(QString, from);
+        QFETCH(QString, to);
+        QFETCH(QString, field);
+        QFETCH(QString, message);
+        QString text = to;
+        if (!from.isEmpty()) {
+            text = kBase;
+            QCOMPARE(text.count(from), 1);  // the row breaks exactly what it means to
+            text.replace(from, to);
+        }
+        try {
+            io::parseScene(text.toStdString(), "drop.json");
+            QFAIL("no error for this input");
+        } catch (const InputError& e) {
+            QCOMPARE(QString::fromStdString(e.what()), message);
+            QCOMPARE(QString::fromStdString(e.file()), QString("drop.json"));
+            QCOMPARE(QString::fromStdString(e.field()), field);
+        }
+    }
+
+    // The text each row of badInput starts from is itself valid.
+    void baseIsValid() {
+        const SceneDesc scene = io::parseScene(kBase, "drop.json");
+        QCOMPARE(scene.bodies.size(), size_t(3));
+        QCOMPARE(scene.settings.integrator, std::string("rk4"));
+        QCOMPARE(scene.bodies[1].forces.size(), size_t(1));
+    }
+
+    // A file read from disk is named as given, in every message.
+    void badFileNamesTheFile() {
+        QTemporaryDir dir;
+        const fs::path path = fs::path(dir.path().toStdString()) / "drop.json";
+        std::ofstream(path) << QString(kBase).replace(R"("radius": 0.5)", R"("radius": -1)").toStdString();
+        try {
+            io::readSceneFile(path);
+            QFAIL("no error");
+        } catch (const InputError& e) {
+            QCOMPARE(e.what(), path.string() + ": bodies[1].shape.radius: must be greater than 0");
+            QCOMPARE(e.file(), path.string());
+        }
+    }
+
+    void unreadableFiles_data() {
+        QTest::addColumn<QString>("name");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("missing") << "nope.json"
+                                 << "cannot be read (missing, or no permission)";
+        QTest::newRow("directory") << "folder.json"
+                                   << "is a directory, not a scene file";
+    }
+
+    void unreadableFiles() {
+        QFETCH(QString, name);
+        QFETCH(QString, message);
+        QTemporaryDir dir;
+        QVERIFY(QDir(dir.path()).mkdir("folder.json"));
+        const fs::path path = fs::path(dir.path().toStdString()) / name.toStdString();
+        try {
+            io::readSceneFile(path);
+            QFAIL("no error");
+        } catch (const InputError& e) {
+            QCOMPARE(QString::fromStdString(e.what()),
+                     QString::fromStdString(path.string()) + ": " + message);
+            QCOMPARE(e.file(), path.string());
+            QVERIFY(e.field().empty());
+        }
+    }
+
+    void normalisesOnLoad() {
+        QString text = kBase;
+        text.replace(R"("orientation": [1, 0, 0, 0])", R"("orientation": [2, 2, 2, 2])");
+        text.replace(R"("normal": [0, 1, 0])", R"("normal": [0, 3, 4])");
+        SceneDesc scene = io::parseScene(text.toStdString(), "drop.json");
+        QCOMPARE(scene.bodies[1].orientation.coeffs(), Quat(0.5, 0.5, 0.5, 0.5).coeffs());
+        QVERIFY(std::abs(scene.bodies[0].shape.normal.norm() - 1.0) < 1e-15);
+        QVERIFY((scene.bodies[0].shape.normal - Vec3(0, 0.6, 0.8)).norm() < 1e-15);
+
+        // A general one: unit length, same direction.
+        text = kBase;
+        text.replace(R"("orientation": [1, 0, 0, 0])", R"("orientation": [0.3, -1.7, 2.9, 0.05])");
+        scene = io::parseScene(text.toStdString(), "drop.json");
+        const Quat& q = scene.bodies[1].orientation;
+        QVERIFY(std::abs(q.norm() - 1.0) < 1e-15);
+        const Eigen::Vector4d raw(-1.7, 2.9, 0.05, 0.3);  // x, y, z, w: Eigen's coefficient order
+        const Eigen::Vector4d cs = q.coeffs();
+        QVERIFY((cs - raw / raw.norm()).norm() < 1e-15);
+        // Written out as loaded: unit.
+        const SceneDesc again = io::parseScene(io::sceneToJson(scene), "again.json");
+        QVERIFY(again == scene);
+    }
+
+    // Load -> save -> load changes nothing, bit for bit, whatever the orientation and plane
+    // normal: otherwise a scene saved by --save-scene or the editor would not reproduce the
+    // run it came from.
+    void normalisationIsStable() {
+        std::mt19937_64 random(12345);
+        std::normal_distribution<double> gauss;
+        for (int trial = 0; trial < 3000; ++trial) {
+            const double scale = std::pow(10.0, trial % 7 - 3);
+            char text[1024];
+            std::snprintf(text, sizeof text,
+                          R"({"format": "tumble-scene", "version": 1, "bodies": [
+                             {"name": "p", "motion": "static", "shape": {"type": "plane", "normal": [%.17g, %.17g, %.17g]}},
+                             {"name": "b", "mass": 1, "shape": {"type": "sphere", "radius": 1},
+                              "orientation": [%.17g, %.17g, %.17g, %.17g]}]})",
+                          scale * gauss(random), scale * gauss(random), scale * gauss(random),
+                          scale * gauss(random), scale * gauss(random), scale * gauss(random),
+                          scale * gauss(random));
+            const SceneDesc first = io::parseScene(text, "random.json");
+            const std::string saved = io::sceneToJson(first);
+            const SceneDesc second = io::parseScene(saved, "random.json");
+            if (!(second == first)) QFAIL(qPrintable(QString("load-save-load changed the scene:\n") + text));
+            QCOMPARE(io::sceneToJson(second), saved);
+            QVERIFY(std::abs(first.bodies[1].orientation.norm() - 1.0) < 1e-15);
+            QVERIFY(std::abs(first.bodies[0].shape.normal.norm() - 1.0) < 1e-15);
+            // The engine starts from the same state either way.
+            QCOMPARE(hashState(World(second).state()), hashState(World(first).state()));
+        }
+    }
+};
+
+QTEST_APPLESS_MAIN(TestSceneFile)
+#include "tst_scene_file.moc"
