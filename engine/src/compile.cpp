@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <string>
 
@@ -17,6 +18,12 @@ namespace tumble {
 namespace {
 
 std::string at(int i) { return "bodies[" + std::to_string(i) + "]"; }
+
+std::string shortNumber(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+}
 
 void requireFinite(double v, const std::string& path) {
     if (!std::isfinite(v)) throw SceneError(path, "must be a finite number");
@@ -67,7 +74,7 @@ void validateShape(const BodyDesc& b, const std::string& path) {
     case ShapeType::Plane:
         requireFinite(s.normal, path + ".normal");
         requireFinite(s.distance, path + ".distance");
-        if (!(s.normal.norm() > 1e-12)) throw SceneError(path + ".normal", "must not be zero");
+        if (!(s.normal.stableNorm() > 1e-12)) throw SceneError(path + ".normal", "must not be zero");
         if (b.motion != Motion::Static) {
             throw SceneError(path + ".type", "a plane must belong to a static body");
         }
@@ -97,6 +104,8 @@ void validateForce(const ForceDesc& f, const std::string& path) {
     }
 }
 
+MassProperties massPropertiesOf(const BodyDesc& b, int i);
+
 void validateBody(const BodyDesc& b, int i) {
     const std::string p = at(i);
     if (b.name.empty()) throw SceneError(p + ".name", "must not be empty");
@@ -123,7 +132,7 @@ void validateBody(const BodyDesc& b, int i) {
     if (!b.orientation.coeffs().allFinite()) {
         throw SceneError(p + ".orientation", "must be finite numbers");
     }
-    if (!(b.orientation.norm() > 1e-12)) {
+    if (!(b.orientation.coeffs().stableNorm() > 1e-12)) {
         throw SceneError(p + ".orientation", "must not be the zero quaternion");
     }
     requireFinite(b.velocity, p + ".velocity");
@@ -143,6 +152,7 @@ void validateBody(const BodyDesc& b, int i) {
     for (size_t k = 0; k < b.forces.size(); ++k) {
         validateForce(b.forces[k], p + ".forces[" + std::to_string(k) + "]");
     }
+    if (dynamic && b.shape.type != ShapeType::Mesh) massPropertiesOf(b, i);  // throws if unusable
 }
 
 MassProperties massPropertiesOf(const BodyDesc& b, int i) {
@@ -154,6 +164,18 @@ MassProperties massPropertiesOf(const BodyDesc& b, int i) {
     MassProperties mp = primitiveMassProperties(b.shape, mass);
     if (b.inertia) mp.inertia = *b.inertia;
     if (b.centerOfMass) mp.centerOfMass = *b.centerOfMass;
+    // Each input can be finite and positive while their product over- or underflows
+    // (a radius of 1e300, a density of 1e-300): refuse the body rather than simulate NaN.
+    const std::string field = at(i) + (b.mass ? ".mass" : ".density");
+    if (!std::isfinite(mp.mass) || !(mp.mass > 0.0)) {
+        throw SceneError(field, "with this shape gives a mass of " + shortNumber(mp.mass) +
+                                    " kg, which is not a usable finite positive number");
+    }
+    if (!b.inertia && !inertiaProblem(mp.inertia).empty()) {
+        throw SceneError(field, "with this shape gives an inertia tensor that is not finite and "
+                                "positive definite (largest entry " +
+                                    shortNumber(mp.inertia.cwiseAbs().maxCoeff()) + " kg m^2)");
+    }
     return mp;
 }
 
@@ -186,7 +208,7 @@ Model compile(const SceneDesc& scene) {
         b.name = d.name;
         b.motion = d.motion;
         b.shape = d.shape;
-        if (b.shape.type == ShapeType::Plane) b.shape.normal.normalize();
+        if (b.shape.type == ShapeType::Plane) b.shape.normal.stableNormalize();
         b.restitution = d.restitution;
         b.friction = d.friction;
         b.linearDamping = d.linearDamping;
@@ -250,6 +272,7 @@ State initialState(const Model& model, const SceneDesc& scene) {
         const BodyDesc& d = scene.bodies[i];
         BodyState& st = s.bodies[i];
         st.q = d.orientation.normalized();
+        if (!st.q.coeffs().allFinite()) st.q.coeffs() = d.orientation.coeffs().stableNormalized();
         st.x = d.position + st.q * b.centerOfMass;
         if (b.motion == Motion::Dynamic) {
             st.P = b.mass * d.velocity;

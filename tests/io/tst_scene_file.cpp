@@ -451,6 +451,18 @@ private slots:
             "bodies[1].forces[0].end", "drop.json: bodies[1].forces[0].end: must be later than start");
         row("unknown force type", R"("type": "spring")", R"("type": "magnet")", "bodies[1].forces[0].type",
             "drop.json: bodies[1].forces[0].type: 'magnet' is not one of force, torque, spring");
+        // Each number is in range but the mass or inertia computed from them is not.
+        row("mass overflows", R"("radius": 0.5)", R"("radius": 1e160)", "bodies[1].mass",
+            "drop.json: bodies[1].mass: with this shape gives an inertia tensor that is not finite and "
+            "positive definite (largest entry inf kg m^2)");
+        row("volume overflows", R"("half_extents": [0.5, 0.25, 0.5])", R"("half_extents": [1e200, 1e200, 1e200])",
+            "bodies[2].density",
+            "drop.json: bodies[2].density: with this shape gives a mass of inf kg, which is not a usable "
+            "finite positive number");
+        row("volume underflows", R"("half_extents": [0.5, 0.25, 0.5])",
+            R"("half_extents": [1e-120, 1e-120, 1e-120])", "bodies[2].density",
+            "drop.json: bodies[2].density: with this shape gives a mass of 0 kg, which is not a usable "
+            "finite positive number");
         row("unknown frame",
             R"("type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1)",
             R"("type": "torque", "vector": [0, 1, 0], "frame": "local")", "bodies[1].forces[0].frame",
@@ -534,6 +546,15 @@ private slots:
         QCOMPARE(scene.bodies[1].orientation.coeffs(), Quat(0.5, 0.5, 0.5, 0.5).coeffs());
         QVERIFY(std::abs(scene.bodies[0].shape.normal.norm() - 1.0) < 1e-15);
         QVERIFY((scene.bodies[0].shape.normal - Vec3(0, 0.6, 0.8)).norm() < 1e-15);
+
+        // Components whose squares overflow keep their direction.
+        text = kBase;
+        text.replace(R"("orientation": [1, 0, 0, 0])", R"("orientation": [1e200, 1e200, 0, 0])");
+        text.replace(R"("normal": [0, 1, 0])", R"("normal": [0, 3e300, 4e300])");
+        scene = io::parseScene(text.toStdString(), "drop.json");
+        QVERIFY((scene.bodies[1].orientation.coeffs() - Eigen::Vector4d(std::sqrt(0.5), 0, 0, std::sqrt(0.5))).norm() < 1e-15);
+        QVERIFY((scene.bodies[0].shape.normal - Vec3(0, 0.6, 0.8)).norm() < 1e-15);
+        QVERIFY(World(scene).state().bodies[1].q.coeffs().allFinite());
 
         // A general one: unit length, same direction.
         text = kBase;

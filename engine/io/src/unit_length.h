@@ -9,10 +9,18 @@
 
 namespace tumble::io {
 
+// Components so large that the squared norm overflows (1e200) are scaled down first, so the
+// direction survives instead of collapsing to zero.
 template <typename T>
 T unitLength(const T& v) {
     const double n = v.norm();
     if (std::abs(n - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon()) return v;
+    if (!std::isfinite(n)) {
+        T scaled = v;
+        if constexpr (requires { scaled.coeffs(); }) scaled.coeffs().stableNormalize();
+        else scaled.stableNormalize();
+        return scaled;
+    }
     return v.normalized();
 }
 
