@@ -106,6 +106,21 @@ void validateForce(const ForceDesc& f, const std::string& path) {
 
 MassProperties massPropertiesOf(const BodyDesc& b, int i);
 
+// The collision shape of a primitive; mesh shapes are built from their loaded geometry.
+collision::Shape colliderOf(const ShapeDesc& s, int i) {
+    using collision::Shape;
+    switch (s.type) {
+    case ShapeType::Sphere: return Shape::sphere(s.radius);
+    case ShapeType::Box: return Shape::box(s.halfExtents);
+    case ShapeType::Capsule: return Shape::capsule(s.radius, s.halfHeight);
+    case ShapeType::Cylinder: return Shape::cylinder(s.radius, s.halfHeight);
+    case ShapeType::Plane: return Shape::plane(s.normal.stableNormalized(), s.distance);
+    case ShapeType::Mesh: break;
+    }
+    throw SceneError(at(i) + ".shape.type",
+                     "mesh bodies cannot be simulated yet: the mesh importer is not built");
+}
+
 void validateBody(const BodyDesc& b, int i) {
     const std::string p = at(i);
     if (b.name.empty()) throw SceneError(p + ".name", "must not be empty");
@@ -209,6 +224,7 @@ Model compile(const SceneDesc& scene) {
         b.motion = d.motion;
         b.shape = d.shape;
         if (b.shape.type == ShapeType::Plane) b.shape.normal.stableNormalize();
+        b.collider = colliderOf(d.shape, index);
         b.restitution = d.restitution;
         b.friction = d.friction;
         b.linearDamping = d.linearDamping;

@@ -2,6 +2,7 @@
 // of every body, resolved from a SceneDesc once. It never changes during a run.
 #pragma once
 
+#include <tumble/collision.h>
 #include <tumble/integrators.h>
 #include <tumble/math.h>
 #include <tumble/scene.h>
@@ -36,6 +37,7 @@ struct BodyModel {
     std::string name;
     Motion motion = Motion::Dynamic;
     ShapeDesc shape;
+    collision::Shape collider;            ///< the shape as the collision stages see it
     double mass = 0.0;
     double invMass = 0.0;
     Mat3 inertia = Mat3::Zero();          ///< body axes, about the centre of mass
@@ -59,6 +61,9 @@ struct Model {
     std::vector<int> dynamicBodies;  ///< indices; the only bodies forces act on
     std::vector<int> kinematicBodies;
     std::vector<double> forceSwitchTimes;  ///< sorted start and end times the stepper lands on
+    /// Things the user should know that are not errors, e.g. "bodies[3] (rock): the mesh is
+    /// not closed; mass properties come from its convex hull". The CLI prints them.
+    std::vector<std::string> notes;
 };
 
 /// Checks every value of a scene; throws SceneError naming the first bad field.

@@ -1,0 +1,129 @@
+// Collision geometry and contacts: the shapes the collision stages work on, their world
+// bounds, and the contact manifolds they produce. Conventions, used by every stage:
+// - A Pose places the body frame (not the centre of mass) in the world: w = R l + p.
+// - A manifold's normal is a unit world vector that points out of body B towards body A
+//   (the paper's n, "out of B"): moving A along +normal separates the pair.
+// - depth > 0 when the shapes overlap; a point with depth in (-margin, 0] is a near
+//   contact reported because the caller asked for a margin (speculative contact).
+// - A contact point's position is midway between the two surfaces along the normal.
+#pragma once
+
+#include <tumble/math.h>
+#include <tumble/scene.h>
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace tumble::collision {
+
+struct Pose {
+    Mat3 R = Mat3::Identity();
+    Vec3 p = Vec3::Zero();
+
+    Vec3 toWorld(const Vec3& local) const { return R * local + p; }
+    Vec3 toLocal(const Vec3& world) const { return R.transpose() * (world - p); }
+    Vec3 directionToWorld(const Vec3& local) const { return R * local; }
+    Vec3 directionToLocal(const Vec3& world) const { return R.transpose() * world; }
+};
+
+/// Axis-aligned box; empty (min > max) by default.
+struct Aabb {
+    Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 max = Vec3::Constant(-std::numeric_limits<double>::infinity());
+
+    bool empty() const { return (min.array() > max.array()).any(); }
+    bool overlaps(const Aabb& o) const {
+        return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all();
+    }
+    bool contains(const Vec3& q) const {
+        return (min.array() <= q.array()).all() && (q.array() <= max.array()).all();
+    }
+    void add(const Vec3& q) {
+        min = min.cwiseMin(q);
+        max = max.cwiseMax(q);
+    }
+    void add(const Aabb& o) {
+        min = min.cwiseMin(o.min);
+        max = max.cwiseMax(o.max);
+    }
+    Aabb inflated(double m) const { return {min.array() - m, max.array() + m}; }
+    Vec3 center() const { return 0.5 * (min + max); }
+    Vec3 extent() const { return max - min; }
+};
+
+/// A convex polyhedron in the body frame, as qhull builds it with coplanar facets merged.
+struct ConvexHull {
+    struct Face {
+        Vec3 normal;               ///< outward unit normal
+        double offset = 0.0;       ///< normal·p == offset on the face, < offset inside
+        std::vector<int> vertices; ///< counter-clockwise seen from outside
+    };
+    std::vector<Vec3> vertices;
+    std::vector<Face> faces;
+    std::vector<std::array<int, 2>> edges;  ///< each undirected edge once
+    Vec3 interiorPoint = Vec3::Zero();      ///< strictly inside (the mean of the vertices)
+};
+
+class TriangleBvh;  // engine internal: a bounding-volume hierarchy over a mesh's triangles
+
+/// A triangle mesh used as it is, concave allowed, in the body frame (already scaled).
+struct MeshShape {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+    bool closed = false;                        ///< bounds a solid: ray parity is meaningful
+    std::shared_ptr<const TriangleBvh> bvh;
+};
+
+enum class Kind { Sphere, Box, Capsule, Cylinder, Plane, Hull, Mesh };
+const char* toString(Kind k);
+
+/// A collision shape in the body frame. Only the fields of `kind` are used. The axis of a
+/// capsule or cylinder is y; a plane's free side is normal·p > distance.
+struct Shape {
+    Kind kind = Kind::Sphere;
+    double radius = 0.0;
+    double halfHeight = 0.0;
+    Vec3 halfExtents = Vec3::Zero();
+    Vec3 normal = Vec3(0, 1, 0);
+    double distance = 0.0;
+    std::shared_ptr<const ConvexHull> hull;
+    std::shared_ptr<const MeshShape> mesh;
+
+    static Shape sphere(double r);
+    static Shape box(const Vec3& halfExtents);
+    static Shape capsule(double r, double halfHeight);
+    static Shape cylinder(double r, double halfHeight);
+    static Shape plane(const Vec3& unitNormal, double distance);
+};
+
+/// World bounds of a shape at a pose; a plane's bounds are infinite.
+Aabb bounds(const Shape& shape, const Pose& pose);
+
+/// The largest distance from the body origin to a point of the shape (infinite for a plane).
+double boundingRadius(const Shape& shape);
+
+struct ContactPoint {
+    Vec3 position = Vec3::Zero();  ///< world, midway between the surfaces
+    double depth = 0.0;            ///< > 0 when overlapping
+    std::uint32_t feature = 0;     ///< identifies the pair of features, stable while they touch
+};
+
+/// Up to four contact points sharing one normal.
+struct Manifold {
+    static constexpr int kMaxPoints = 4;
+    int bodyA = -1;
+    int bodyB = -1;
+    Vec3 normal = Vec3(0, 1, 0);   ///< out of B towards A
+    std::array<ContactPoint, kMaxPoints> points{};
+    int count = 0;
+
+    void add(const Vec3& position, double depth, std::uint32_t feature = 0) {
+        if (count < kMaxPoints) points[count++] = {position, depth, feature};
+    }
+    double maxDepth() const;
+};
+
+}  // namespace tumble::collision

@@ -1,0 +1,122 @@
+// Shape factories, world bounds and bounding radii.
+#include <tumble/collision.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble::collision {
+
+const char* toString(Kind k) {
+    switch (k) {
+    case Kind::Sphere: return "sphere";
+    case Kind::Box: return "box";
+    case Kind::Capsule: return "capsule";
+    case Kind::Cylinder: return "cylinder";
+    case Kind::Plane: return "plane";
+    case Kind::Hull: return "convex-hull";
+    case Kind::Mesh: return "triangles";
+    }
+    return "?";
+}
+
+Shape Shape::sphere(double r) {
+    Shape s;
+    s.kind = Kind::Sphere;
+    s.radius = r;
+    return s;
+}
+
+Shape Shape::box(const Vec3& h) {
+    Shape s;
+    s.kind = Kind::Box;
+    s.halfExtents = h;
+    return s;
+}
+
+Shape Shape::capsule(double r, double h) {
+    Shape s;
+    s.kind = Kind::Capsule;
+    s.radius = r;
+    s.halfHeight = h;
+    return s;
+}
+
+Shape Shape::cylinder(double r, double h) {
+    Shape s;
+    s.kind = Kind::Cylinder;
+    s.radius = r;
+    s.halfHeight = h;
+    return s;
+}
+
+Shape Shape::plane(const Vec3& n, double d) {
+    Shape s;
+    s.kind = Kind::Plane;
+    s.normal = n;
+    s.distance = d;
+    return s;
+}
+
+namespace {
+
+Aabb pointsBounds(const std::vector<Vec3>& points, const Pose& pose) {
+    Aabb box;
+    for (const Vec3& v : points) box.add(pose.toWorld(v));
+    return box;
+}
+
+}  // namespace
+
+Aabb bounds(const Shape& s, const Pose& pose) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const Vec3 c = pose.p;
+    switch (s.kind) {
+    case Kind::Sphere: return {c.array() - s.radius, c.array() + s.radius};
+    case Kind::Box: {
+        // Half extent along each world axis: |R| h.
+        const Vec3 e = pose.R.cwiseAbs() * s.halfExtents;
+        return {c - e, c + e};
+    }
+    case Kind::Capsule: {
+        const Vec3 axis = pose.R.col(1).cwiseAbs() * s.halfHeight;
+        return {c.array() - axis.array() - s.radius, c.array() + axis.array() + s.radius};
+    }
+    case Kind::Cylinder: {
+        // The rim of a disc of radius r with unit axis a reaches r sqrt(1 - a_i²) along axis i.
+        const Vec3 a = pose.R.col(1);
+        const Vec3 rim = s.radius * (Vec3::Ones() - a.cwiseProduct(a)).cwiseMax(0.0).cwiseSqrt();
+        const Vec3 e = a.cwiseAbs() * s.halfHeight + rim;
+        return {c - e, c + e};
+    }
+    case Kind::Plane: return {Vec3::Constant(-inf), Vec3::Constant(inf)};
+    case Kind::Hull: return pointsBounds(s.hull->vertices, pose);
+    case Kind::Mesh: return pointsBounds(s.mesh->vertices, pose);
+    }
+    return {};
+}
+
+double boundingRadius(const Shape& s) {
+    auto farthest = [](const std::vector<Vec3>& points) {
+        double r2 = 0.0;
+        for (const Vec3& v : points) r2 = std::max(r2, v.squaredNorm());
+        return std::sqrt(r2);
+    };
+    switch (s.kind) {
+    case Kind::Sphere: return s.radius;
+    case Kind::Box: return s.halfExtents.norm();
+    case Kind::Capsule: return s.halfHeight + s.radius;
+    case Kind::Cylinder: return std::hypot(s.halfHeight, s.radius);
+    case Kind::Plane: return std::numeric_limits<double>::infinity();
+    case Kind::Hull: return farthest(s.hull->vertices);
+    case Kind::Mesh: return farthest(s.mesh->vertices);
+    }
+    return 0.0;
+}
+
+double Manifold::maxDepth() const {
+    double d = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < count; ++i) d = std::max(d, points[i].depth);
+    return d;
+}
+
+}  // namespace tumble::collision
