@@ -1,0 +1,61 @@
+// GJK distance and EPA penetration between convex shapes in world coordinates.
+// A shape is seen as a core (point, segment, box, cylinder, hull, triangle) swept by a
+// sphere of `radius`: spheres and capsules are a point / segment plus a radius. GJK runs on
+// the cores and the radii are subtracted afterwards, which is exact for round shapes; EPA
+// only runs when the cores themselves overlap.
+#pragma once
+
+#include <tumble/collision.h>
+
+#include <array>
+
+namespace tumble::collision {
+
+/// A convex shape as GJK sees it: a core (point, segment, box, cylinder, hull, triangle) plus
+/// a radius (sphere = point + r, capsule = segment + r). Works in world coordinates.
+struct ConvexProxy {
+    enum class Core { Point, Segment, Box, Cylinder, Hull, Triangle };
+    Core core = Core::Point;
+    Pose pose;                      ///< places the core (identity for a triangle)
+    double radius = 0.0;            ///< rounding added around the core
+    Vec3 halfExtents = Vec3::Zero();///< Box: half extents; Segment: y = half length;
+                                    ///< Cylinder: x = radius, y = half height
+    const ConvexHull* hull = nullptr;  ///< Hull core, in the pose's frame (not owned)
+    std::array<Vec3, 3> triangle{};    ///< Triangle core, world points
+
+    /// The farthest point of the core along `dir` (world); any unit or non-unit direction.
+    Vec3 support(const Vec3& dir) const;
+    /// A point strictly inside the core (or on it for point/segment/triangle).
+    Vec3 center() const;
+    /// An upper bound of the core's extent from center() (for relative tolerances).
+    double size() const;
+};
+
+ConvexProxy proxyOf(const Shape& s, const Pose& pose);                  // Sphere, Box, Capsule, Cylinder, Hull
+ConvexProxy triangleProxy(const Vec3& a, const Vec3& b, const Vec3& c);  // world points
+
+/// Closest points on the FULL shapes (radius included); distance <= 0 / overlap when touching.
+/// When the cores overlap, distance is 0 and the points are not meaningful (use penetration).
+struct Distance {
+    double distance = 0.0;
+    Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
+    bool overlap = false;
+};
+Distance gjkDistance(const ConvexProxy& a, const ConvexProxy& b);
+
+/// Distance between the CORES only (radii ignored): the building block of the above.
+Distance gjkCoreDistance(const ConvexProxy& a, const ConvexProxy& b);
+
+/// normal out of B towards A; depth > 0 overlapping, negative = separation (when within margin).
+/// pointA / pointB: the deepest points of A and B along the normal (on their surfaces).
+struct Penetration {
+    bool hit = false;
+    Vec3 normal = Vec3(0, 1, 0);
+    double depth = 0.0;
+    Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
+};
+/// GJK, then EPA when the cores overlap. hit is false when the shapes are farther apart
+/// than `margin`.
+Penetration penetration(const ConvexProxy& a, const ConvexProxy& b, double margin);
+
+}  // namespace tumble::collision
