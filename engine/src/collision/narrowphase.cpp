@@ -1,0 +1,54 @@
+// The pair dispatcher: one routine per unordered pair of kinds, written for one order; the
+// other order swaps the arguments and flips the normals of what it produced.
+#include "collision/narrowphase.h"
+
+#include "collision/convex.h"
+#include "collision/mesh_pairs.h"
+
+namespace tumble::collision {
+
+namespace {
+
+using Routine = void (*)(const Shape&, const Pose&, const Shape&, const Pose&, double, std::vector<Manifold>&);
+
+bool isConvex(Kind k) { return k != Kind::Plane && k != Kind::Mesh; }
+
+// The routine for (a, b) in this order, or nullptr when it is written for (b, a).
+Routine routineFor(Kind a, Kind b) {
+    auto is = [&](Kind x, Kind y) { return a == x && b == y; };
+    if (is(Kind::Sphere, Kind::Sphere)) return sphereSphere;
+    if (is(Kind::Sphere, Kind::Capsule)) return sphereCapsule;
+    if (is(Kind::Sphere, Kind::Box)) return sphereBox;
+    if (is(Kind::Capsule, Kind::Capsule)) return capsuleCapsule;
+    if (is(Kind::Capsule, Kind::Box)) return capsuleBox;
+    if (is(Kind::Box, Kind::Box)) return boxBox;
+    if (isConvex(a) && b == Kind::Plane) return convexPlane;
+    if (is(Kind::Mesh, Kind::Plane)) return collideMeshPlane;
+    if (is(Kind::Mesh, Kind::Mesh)) return collideMeshMesh;
+    if (isConvex(a) && b == Kind::Mesh) return collideConvexMesh;
+    if (isConvex(a) && isConvex(b)) {
+        // Pairs with a dedicated routine in the other order are swapped, not sent here.
+        const bool dedicatedOtherWay = (is(Kind::Capsule, Kind::Sphere) || is(Kind::Box, Kind::Sphere) ||
+                                        is(Kind::Box, Kind::Capsule));
+        return dedicatedOtherWay ? nullptr : collideConvex;
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
+             std::vector<Manifold>& out) {
+    if (a.kind == Kind::Plane && b.kind == Kind::Plane) return;
+    if (Routine r = routineFor(a.kind, b.kind)) {
+        r(a, pa, b, pb, margin, out);
+        return;
+    }
+    if (Routine r = routineFor(b.kind, a.kind)) {
+        const size_t first = out.size();
+        r(b, pb, a, pa, margin, out);
+        for (size_t i = first; i < out.size(); ++i) out[i].normal = -out[i].normal;
+    }
+}
+
+}  // namespace tumble::collision
