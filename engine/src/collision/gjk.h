@@ -28,14 +28,17 @@ struct ConvexProxy {
     /// A point strictly inside the core (or on it for point/segment/triangle).
     Vec3 center() const;
     /// An upper bound of the core's extent from center() (for relative tolerances).
-    double size() const;
+    double size() const { return extent; }
+
+    double extent = 0.0;  ///< set by proxyOf / triangleProxy
 };
 
 ConvexProxy proxyOf(const Shape& s, const Pose& pose);                  // Sphere, Box, Capsule, Cylinder, Hull
 ConvexProxy triangleProxy(const Vec3& a, const Vec3& b, const Vec3& c);  // world points
 
 /// Closest points on the FULL shapes (radius included); distance <= 0 / overlap when touching.
-/// When the cores overlap, distance is 0 and the points are not meaningful (use penetration).
+/// When the shapes overlap, distance is minus the penetration depth (through EPA when the
+/// cores overlap) and the points are the deepest points of each shape.
 struct Distance {
     double distance = 0.0;
     Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
@@ -57,5 +60,22 @@ struct Penetration {
 /// GJK, then EPA when the cores overlap. hit is false when the shapes are farther apart
 /// than `margin`.
 Penetration penetration(const ConvexProxy& a, const ConvexProxy& b, double margin);
+
+namespace detail {
+/// One vertex of a GJK / EPA simplex, relative to a reference point (for precision far
+/// from the world origin): w = a - b, a and b support points of the two cores.
+struct SimplexVertex {
+    Vec3 w, a, b;
+};
+/// Support point of the cores' Minkowski difference A - B along dir, relative to `origin`.
+SimplexVertex supportVertex(const ConvexProxy& a, const ConvexProxy& b, const Vec3& dir, const Vec3& origin);
+/// EPA from a GJK simplex (1 to 4 vertices) that contains the origin. Returns the core
+/// penetration (normal out of B towards A, depth of the cores >= ~0, core points relative
+/// to `origin`), radii not applied.
+Penetration epa(const ConvexProxy& a, const ConvexProxy& b, const SimplexVertex* simplex, int count,
+                const Vec3& origin, double scale);
+/// Closest point to the origin on the triangle (a, b, c): barycentric weights.
+std::array<double, 3> closestOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c);
+}  // namespace detail
 
 }  // namespace tumble::collision

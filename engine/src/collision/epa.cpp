@@ -1,0 +1,198 @@
+// EPA (expanding polytope, van den Bergen): penetration depth and normal of two
+// overlapping cores. Starts from GJK's final simplex, grown to a tetrahedron around the
+// origin, then repeatedly pushes out the face nearest the origin by the support point along
+// its normal until the support gains no more than a relative tolerance on that face.
+//
+// When the Minkowski difference is flat (a triangle core against a point, two crossing
+// segments...) no tetrahedron exists: the cores touch with zero depth, and the normal is
+// the flat set's own normal, oriented by the triangle's face (mesh side) or the centres.
+#include "collision/gjk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace tumble::collision::detail {
+
+namespace {
+
+constexpr double kGrowTol = 1e-9;   // a point must leave the simplex's span by this × scale
+constexpr double kDoneTol = 1e-10;  // support gains less than this × scale: done
+constexpr int kMaxIterations = 128;
+
+struct Face {
+    int v[3];
+    Vec3 n;
+    double dist;
+    bool alive;
+};
+
+Vec3 anyPerp(const Vec3& d) {
+    const Vec3 axis = std::abs(d.x()) < 0.57 ? Vec3(1, 0, 0) : (std::abs(d.y()) < 0.57 ? Vec3(0, 1, 0) : Vec3(0, 0, 1));
+    return d.cross(axis).normalized();
+}
+
+// A contact of flat cores: zero core depth, points by the weights of the origin in the
+// simplex, normal given.
+Penetration flatResult(const std::vector<SimplexVertex>& s, const Vec3& normal) {
+    Penetration p;
+    p.normal = normal;
+    p.depth = 0.0;
+    if (s.size() >= 3) {
+        const auto l = closestOnTriangle(s[0].w, s[1].w, s[2].w);
+        for (int i = 0; i < 3; ++i) {
+            p.pointA += l[i] * s[i].a;
+            p.pointB += l[i] * s[i].b;
+        }
+    } else if (s.size() == 2) {
+        const Vec3 d = s[1].w - s[0].w;
+        const double t = d.squaredNorm() > 0 ? std::clamp(-s[0].w.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+        p.pointA = (1 - t) * s[0].a + t * s[1].a;
+        p.pointB = (1 - t) * s[0].b + t * s[1].b;
+    } else {
+        p.pointA = s[0].a;
+        p.pointB = s[0].b;
+    }
+    return p;
+}
+
+Vec3 triangleNormal(const ConvexProxy& p) {
+    const auto& t = p.triangle;
+    return (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+}
+
+// Orientation of a normal that the flat geometry leaves free: the mesh triangle's front,
+// else from B's centre towards A's.
+Vec3 orient(const Vec3& n, const ConvexProxy& a, const ConvexProxy& b) {
+    if (b.core == ConvexProxy::Core::Triangle) return triangleNormal(b).dot(n) >= 0 ? n : -n;
+    if (a.core == ConvexProxy::Core::Triangle) return triangleNormal(a).dot(n) <= 0 ? n : -n;
+    return (a.center() - b.center()).dot(n) >= 0 ? n : -n;
+}
+
+}  // namespace
+
+Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex* simplex, int count,
+                const Vec3& origin, double scale) {
+    std::vector<SimplexVertex> v;
+    v.reserve(kMaxIterations + 8);
+    for (int i = 0; i < count; ++i) {
+        bool dup = false;
+        for (const auto& u : v) dup = dup || u.w == simplex[i].w;
+        if (!dup) v.push_back(simplex[i]);
+    }
+    const double tolPt = kGrowTol * scale;
+    auto support = [&](const Vec3& d) { return supportVertex(A, B, d, origin); };
+
+    // Grow the simplex to a tetrahedron; a direction that finds nothing new means the
+    // Minkowski difference is flat along it.
+    if (v.size() == 1) {
+        for (const Vec3& d : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+            const SimplexVertex w = support(d);
+            if ((w.w - v[0].w).norm() > tolPt) {
+                v.push_back(w);
+                break;
+            }
+        }
+        if (v.size() == 1) {
+            const Vec3 c = A.center() - B.center();
+            return flatResult(v, c.squaredNorm() > 0 ? c.normalized() : Vec3(0, 1, 0));
+        }
+    }
+    if (v.size() == 2) {
+        const Vec3 d = (v[1].w - v[0].w).normalized();
+        const Vec3 e1 = anyPerp(d), e2 = d.cross(e1);
+        for (const Vec3& dir : {e1, Vec3(-e1), e2, Vec3(-e2), Vec3(e1 + e2), Vec3(-e1 - e2)}) {
+            const SimplexVertex w = support(dir);
+            if ((w.w - v[0].w).cross(d).norm() > tolPt) {
+                v.push_back(w);
+                break;
+            }
+        }
+        if (v.size() == 2) {
+            const Vec3 c = A.center() - B.center();
+            const Vec3 perp = c - c.dot(d) * d;
+            return flatResult(v, perp.squaredNorm() > 1e-24 * c.squaredNorm() && perp.squaredNorm() > 0
+                                     ? perp.normalized()
+                                     : orient(e1, A, B));
+        }
+    }
+    if (v.size() == 3) {
+        const Vec3 n = (v[1].w - v[0].w).cross(v[2].w - v[0].w).normalized();
+        const SimplexVertex wp = support(n), wm = support(-n);
+        const double hp = (wp.w - v[0].w).dot(n), hm = -(wm.w - v[0].w).dot(n);
+        if (std::max(hp, hm) <= tolPt) return flatResult(v, orient(n, A, B));
+        v.push_back(hp >= hm ? wp : wm);
+    }
+
+    // The tetrahedron, faces wound outwards as seen from its centroid.
+    const Vec3 inner = 0.25 * (v[0].w + v[1].w + v[2].w + v[3].w);
+    std::vector<Face> faces;
+    faces.reserve(4 + 2 * kMaxIterations * 3);
+    auto makeFace = [&](int i, int j, int k) {
+        Vec3 n = (v[j].w - v[i].w).cross(v[k].w - v[i].w);
+        const double len = n.norm();
+        Face f{{i, j, k}, Vec3::Zero(), std::numeric_limits<double>::infinity(), true};
+        if (len > 0) {
+            f.n = n / len;
+            f.dist = f.n.dot(v[i].w);
+        }
+        return f;
+    };
+    for (const auto& t : {std::array<int, 3>{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}) {
+        Face f = makeFace(t[0], t[1], t[2]);
+        if (f.n.dot(v[t[0]].w - inner) < 0) f = makeFace(t[0], t[2], t[1]);
+        faces.push_back(f);
+    }
+
+    const double doneTol = kDoneTol * scale;
+    int best = 0;
+    std::vector<std::array<int, 2>> horizon;
+    for (int iter = 0; iter < kMaxIterations; ++iter) {
+        best = -1;
+        for (int i = 0; i < static_cast<int>(faces.size()); ++i)
+            if (faces[i].alive && (best < 0 || faces[i].dist < faces[best].dist)) best = i;
+        const Face f = faces[best];
+        const SimplexVertex w = support(f.n);
+        if (f.n.dot(w.w) - f.dist <= doneTol) break;
+        const int index = static_cast<int>(v.size());
+        v.push_back(w);
+        horizon.clear();
+        for (Face& g : faces) {
+            if (!g.alive || g.n.dot(w.w - v[g.v[0]].w) <= 0.0) continue;
+            g.alive = false;
+            for (int e = 0; e < 3; ++e) {
+                const int i = g.v[e], j = g.v[(e + 1) % 3];
+                auto twin = std::find(horizon.begin(), horizon.end(), std::array<int, 2>{j, i});
+                if (twin != horizon.end()) horizon.erase(twin);
+                else horizon.push_back({i, j});
+            }
+        }
+        bool broken = false;
+        for (const auto& e : horizon) {
+            const Face g = makeFace(e[0], e[1], index);
+            broken = broken || g.dist < f.dist - doneTol;
+            faces.push_back(g);
+        }
+        if (broken) {
+            // Rounding made the polytope non-convex: the last face is the best answer we have.
+            for (auto& g : faces) g.alive = false;
+            faces[best].alive = true;
+            break;
+        }
+    }
+
+    const Face& f = faces[best];
+    const Vec3 q = f.n * f.dist;  // the origin's projection on the nearest face
+    const auto l = closestOnTriangle(v[f.v[0]].w - q, v[f.v[1]].w - q, v[f.v[2]].w - q);
+    Penetration p;
+    p.normal = -f.n;
+    p.depth = f.dist;
+    for (int i = 0; i < 3; ++i) {
+        p.pointA += l[i] * v[f.v[i]].a;
+        p.pointB += l[i] * v[f.v[i]].b;
+    }
+    return p;
+}
+
+}  // namespace tumble::collision::detail
