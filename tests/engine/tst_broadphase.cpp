@@ -1,0 +1,300 @@
+// Broadphase: on many random scenes and through histories of updates (small motion,
+// teleports, bodies falling asleep and waking, changing counts), the pairs must be exactly
+// the brute-force set, sorted, without duplicates and without a static-static pair. The
+// brute force itself is checked on a hand-made scene, and the dynamic tree's invariants
+// under random insertions and removals.
+#include "collision/broadphase.h"
+
+#include <QtTest>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace tumble;
+using namespace tumble::collision;
+
+namespace {
+
+using Pairs = std::vector<std::pair<int, int>>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct SceneKind {
+    int n;
+    bool clustered;
+    bool grid;          // corners on an integer grid: exact touching (min == max) is common
+    double staticShare;
+    int unbounded;      // planes and half-spaces among the bodies
+};
+
+struct Scene {
+    std::vector<Aabb> bounds;
+    std::vector<std::uint8_t> moving;
+};
+
+class Generator {
+public:
+    explicit Generator(unsigned seed) : rng_(seed) {}
+
+    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
+    int integer(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng_); }
+    bool chance(double p) { return uniform(0.0, 1.0) < p; }
+
+    Aabb randomBox(const SceneKind& k, double side, const std::vector<Vec3>& clusters) {
+        Vec3 c;
+        if (k.clustered) {
+            const Vec3& centre = clusters[integer(0, static_cast<int>(clusters.size()) - 1)];
+            std::normal_distribution<double> g(0.0, 0.05 * side);
+            c = centre + Vec3(g(rng_), g(rng_), g(rng_));
+        } else {
+            c = Vec3(uniform(0, side), uniform(0, side), uniform(0, side));
+        }
+        // Mostly unit-sized, some points, some flat, some large.
+        Vec3 h(uniform(0.1, 1.0), uniform(0.1, 1.0), uniform(0.1, 1.0));
+        const double r = uniform(0.0, 1.0);
+        if (r < 0.05) h.setZero();
+        else if (r < 0.1) h[integer(0, 2)] = 0.0;
+        else if (r < 0.13) h *= 10.0;
+        Aabb b{c - h, c + h};
+        if (k.grid) {
+            b.min = b.min.array().floor();
+            b.max = b.max.array().ceil();
+            if (r < 0.05) b.max = b.min;  // a point on the grid
+        }
+        return b;
+    }
+
+    Aabb unboundedBox() {
+        Aabb b{Vec3::Constant(-kInf), Vec3::Constant(kInf)};
+        const int r = integer(0, 2);
+        if (r == 1) b.max.y() = uniform(-1.0, 5.0);  // a half-space below some height
+        if (r == 2) b.min.x() = uniform(-1.0, 5.0);
+        return b;
+    }
+
+    Scene scene(const SceneKind& k) {
+        const double side = 2.0 * std::cbrt(std::max(1, k.n));  // about 8 volume per body
+        std::vector<Vec3> clusters;
+        for (int c = 0; c < 4; ++c)
+            clusters.emplace_back(uniform(0, side), uniform(0, side), uniform(0, side));
+        Scene s;
+        for (int i = 0; i < k.n; ++i) {
+            s.bounds.push_back(randomBox(k, side, clusters));
+            s.moving.push_back(chance(k.staticShare) ? 0 : 1);
+        }
+        for (int u = 0; u < k.unbounded && k.n > 0; ++u) {
+            const int i = integer(0, k.n - 1);
+            s.bounds[i] = unboundedBox();
+        }
+        if (k.n > 3) s.bounds[integer(0, k.n - 1)] = Aabb{};  // an empty box pairs with nothing
+        return s;
+    }
+
+    void step(Scene& s, const SceneKind& k, double size) {
+        for (std::size_t i = 0; i < s.bounds.size(); ++i) {
+            if (!s.moving[i]) continue;
+            Aabb& b = s.bounds[i];
+            if (!b.min.allFinite() || !b.max.allFinite() || b.empty()) continue;
+            Vec3 d(uniform(-size, size), uniform(-size, size), uniform(-size, size));
+            if (chance(0.01)) d *= 1000.0;  // teleported far away
+            if (k.grid) d = d.array().round();
+            b.min += d;
+            b.max += d;
+        }
+    }
+
+private:
+    std::mt19937 rng_;
+};
+
+bool sortedUnique(const Pairs& p) {
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        if (p[k].first >= p[k].second) return false;
+        if (k > 0 && !(p[k - 1] < p[k])) return false;
+    }
+    return true;
+}
+
+bool noStaticPair(const Pairs& p, const std::vector<std::uint8_t>& moving) {
+    for (const auto& [i, j] : p)
+        if (!moving[i] && !moving[j]) return false;
+    return true;
+}
+
+}  // namespace
+
+class TestBroadphase : public QObject {
+    Q_OBJECT
+
+private slots:
+    void bruteForceOnHandScene() {
+        // 0 and 1 touch on a face; 2 overlaps 1 only; 3 is static and overlaps 0; 4 is a
+        // static plane (infinite box); 5 is static and overlaps 3 (never reported).
+        const std::vector<Aabb> b = {
+            {Vec3(0, 0, 0), Vec3(1, 1, 1)},   {Vec3(1, 0, 0), Vec3(2, 1, 1)},
+            {Vec3(1.5, 0.5, 0.5), Vec3(3, 3, 3)}, {Vec3(-0.5, -0.5, -0.5), Vec3(0.1, 0.1, 0.1)},
+            {Vec3::Constant(-kInf), Vec3::Constant(kInf)},
+            {Vec3(-1, -1, -1), Vec3(-0.2, -0.2, -0.2)}};
+        const std::vector<std::uint8_t> moving = {1, 1, 1, 0, 0, 0};
+        const Pairs expected = {{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 4}, {2, 4}};
+        QCOMPARE(bruteForcePairs(b, moving), expected);
+        Broadphase bp;
+        bp.update(b, moving);
+        QCOMPARE(bp.pairs(), expected);
+    }
+
+    void mismatchedSizesThrow() {
+        Broadphase bp;
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, bp.update({Aabb{}}, {}));
+    }
+
+    void randomScenesMatchBruteForce_data() {
+        QTest::addColumn<int>("n");
+        QTest::addColumn<bool>("clustered");
+        QTest::addColumn<bool>("grid");
+        QTest::addColumn<double>("staticShare");
+        QTest::addColumn<int>("unbounded");
+        QTest::newRow("empty") << 0 << false << false << 0.0 << 0;
+        QTest::newRow("one") << 1 << false << false << 0.0 << 0;
+        QTest::newRow("few") << 5 << true << false << 0.4 << 1;
+        QTest::newRow("spread") << 400 << false << false << 0.3 << 0;
+        QTest::newRow("clustered") << 400 << true << false << 0.3 << 2;
+        QTest::newRow("grid touching") << 400 << false << true << 0.3 << 1;
+        QTest::newRow("grid clustered") << 300 << true << true << 0.5 << 3;
+        QTest::newRow("all static") << 200 << true << false << 1.0 << 2;
+        QTest::newRow("all moving") << 1000 << false << false << 0.0 << 1;
+        QTest::newRow("mostly static") << 1000 << true << false << 0.9 << 2;
+    }
+
+    void randomScenesMatchBruteForce() {
+        QFETCH(int, n);
+        QFETCH(bool, clustered);
+        QFETCH(bool, grid);
+        QFETCH(double, staticShare);
+        QFETCH(int, unbounded);
+        const SceneKind kind{n, clustered, grid, staticShare, unbounded};
+        for (unsigned seed = 1; seed <= 3; ++seed) {
+            Generator gen(seed * 7919u + static_cast<unsigned>(n));
+            Scene s = gen.scene(kind);
+            Broadphase bp;
+            for (int step = 0; step < 25; ++step) {
+                bp.update(s.bounds, s.moving);
+                const Pairs expected = bruteForcePairs(s.bounds, s.moving);
+                QCOMPARE(bp.pairs(), expected);
+                QVERIFY(sortedUnique(bp.pairs()));
+                QVERIFY(noStaticPair(bp.pairs(), s.moving));
+                QVERIFY(bp.movingTree().valid());
+                QVERIFY(bp.staticTree().valid());
+                gen.step(s, kind, grid ? 1.0 : 0.05);
+                // Bodies fall asleep and wake up now and then.
+                if (n > 0 && step % 5 == 4) {
+                    for (int k = 0; k < std::max(1, n / 20); ++k) {
+                        const int i = gen.integer(0, n - 1);
+                        s.moving[i] = s.moving[i] ? 0 : 1;
+                    }
+                }
+            }
+        }
+    }
+
+    void expectedPairsArePresent() {
+        // A guard on the brute force as reference: a non-trivial number of pairs of every
+        // sort appears in a dense scene, so the comparisons above are not vacuous.
+        Generator gen(42);
+        const Scene s = gen.scene({600, true, true, 0.4, 2});
+        int movingMoving = 0, movingStatic = 0;
+        for (const auto& [i, j] : bruteForcePairs(s.bounds, s.moving))
+            (s.moving[i] && s.moving[j] ? movingMoving : movingStatic)++;
+        QVERIFY(movingMoving > 100);
+        QVERIFY(movingStatic > 100);
+    }
+
+    void changingBodyCountStartsAfresh() {
+        Generator gen(5);
+        const SceneKind kind{300, false, false, 0.2, 1};
+        Broadphase bp;
+        for (int round = 0; round < 6; ++round) {
+            const SceneKind k{kind.n + 37 * round * (round % 2 ? -1 : 1), false, round % 2 == 1, 0.2, 1};
+            const Scene s = gen.scene(k);
+            bp.update(s.bounds, s.moving);
+            QCOMPARE(bp.pairs(), bruteForcePairs(s.bounds, s.moving));
+        }
+    }
+
+    void historyDoesNotChangeTheResult() {
+        // Two broadphases reach the same final scene along different paths.
+        Generator gen(11);
+        const SceneKind kind{500, true, false, 0.3, 1};
+        Scene s = gen.scene(kind);
+        Broadphase a;
+        for (int step = 0; step < 20; ++step) {
+            a.update(s.bounds, s.moving);
+            gen.step(s, kind, 0.2);
+        }
+        Broadphase b;
+        b.update(s.bounds, s.moving);
+        a.update(s.bounds, s.moving);
+        QCOMPARE(a.pairs(), b.pairs());
+        QVERIFY(!a.pairs().empty());
+    }
+
+    void infiniteBoxesPairWithEveryMovingBody() {
+        // A static plane pairs with every moving body wherever it is, and with no static one.
+        Generator gen(3);
+        Scene s = gen.scene({200, false, false, 0.5, 0});
+        s.bounds[0] = {Vec3::Constant(-kInf), Vec3::Constant(kInf)};
+        s.moving[0] = 0;
+        s.bounds[1] = Aabb{};
+        s.moving[1] = 1;
+        s.bounds[2].min = Vec3::Constant(1e300);
+        s.bounds[2].max = Vec3::Constant(1e300);
+        s.moving[2] = 1;
+        Broadphase bp;
+        bp.update(s.bounds, s.moving);
+        std::vector<int> partners;
+        for (const auto& [i, j] : bp.pairs())
+            if (i == 0) partners.push_back(j);
+        std::vector<int> expected;
+        for (int j = 2; j < 200; ++j)
+            if (s.moving[j] && !s.bounds[j].empty()) expected.push_back(j);
+        QCOMPARE(partners, expected);
+    }
+
+    void treeStaysBalancedUnderChurn() {
+        Generator gen(17);
+        AabbTree tree;
+        std::vector<int> leafOf(2000, AabbTree::kNull);
+        std::vector<Aabb> box(2000);
+        const SceneKind kind{2000, false, false, 0.0, 0};
+        const std::vector<Vec3> noClusters;
+        for (int round = 0; round < 20000; ++round) {
+            const int i = gen.integer(0, 1999);
+            if (leafOf[i] != AabbTree::kNull) {
+                tree.remove(leafOf[i]);
+                leafOf[i] = AabbTree::kNull;
+            } else {
+                box[i] = gen.randomBox(kind, 25.0, noClusters);
+                leafOf[i] = tree.insert(box[i], i);
+            }
+        }
+        QVERIFY(tree.valid());
+        int leaves = 0;
+        for (int l : leafOf) leaves += l != AabbTree::kNull;
+        QCOMPARE(tree.leafCount(), leaves);
+        // AVL balance bounds the height by 1.44 log2(leaves + 2).
+        QVERIFY(tree.height() <= 1.45 * std::log2(leaves + 2.0) + 1);
+        for (int q = 0; q < 200; ++q) {
+            const Aabb probe = gen.randomBox(kind, 25.0, noClusters).inflated(1.0);
+            std::vector<int> found;
+            tree.query(probe, [&](int body) { found.push_back(body); });
+            std::sort(found.begin(), found.end());
+            std::vector<int> expected;
+            for (int i = 0; i < 2000; ++i)
+                if (leafOf[i] != AabbTree::kNull && box[i].overlaps(probe)) expected.push_back(i);
+            QCOMPARE(found, expected);
+        }
+    }
+};
+
+QTEST_APPLESS_MAIN(TestBroadphase)
+#include "tst_broadphase.moc"
