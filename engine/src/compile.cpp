@@ -5,12 +5,17 @@
 #include <tumble/mass.h>
 #include <tumble/model.h>
 
+#include "collision/bvh.h"
+#include "mesh/mesh_body.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 namespace tumble {
@@ -104,10 +109,50 @@ void validateForce(const ForceDesc& f, const std::string& path) {
     }
 }
 
-MassProperties massPropertiesOf(const BodyDesc& b, int i);
+MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared = nullptr);
 
-// The collision shape of a primitive; mesh shapes are built from their loaded geometry.
-collision::Shape colliderOf(const ShapeDesc& s, int i) {
+// A mesh body's geometry, cleaned, with what its collider and mass need. The mesh file is
+// read by the scene loader (tumble_io); a scene built in code must fill meshData itself.
+mesh::PreparedMesh prepareMeshBody(const BodyDesc& b, int i) {
+    const ShapeDesc& s = b.shape;
+    const std::string field = at(i) + ".shape.file";
+    if (!s.meshData) {
+        throw SceneError(field, "the mesh '" + s.file +
+                                    "' was never loaded (scenes read with io::readSceneFile load their "
+                                    "meshes; a scene built in code must set shape.meshData)");
+    }
+    mesh::PreparedMesh p;
+    try {
+        p = mesh::prepareMesh(*s.meshData, s.collision == MeshCollision::ConvexHull, b.motion == Motion::Dynamic);
+    } catch (const std::invalid_argument& e) {
+        throw SceneError(field, s.file + ": " + e.what());
+    }
+    if (p.surface.triangles.empty()) {
+        throw SceneError(field, s.file + ": has no triangles with an area (every one is degenerate)");
+    }
+    return p;
+}
+
+// Things worth telling the user about a mesh body: where its mass comes from, and what
+// cleaning changed.
+void noteMesh(const BodyDesc& b, int i, const mesh::PreparedMesh& p, std::vector<std::string>& notes) {
+    const std::string who = at(i) + " (" + b.name + "): ";
+    if (b.motion == Motion::Dynamic) {
+        notes.push_back(who + (p.closed ? "the mesh is closed; mass properties come from its surface"
+                                        : "the mesh is not closed; mass properties come from its convex hull"));
+    }
+    if (p.turnedOutward) notes.push_back(who + "the mesh's triangles face inwards; they were turned around");
+    if (p.stats.degenerateTriangles > 0 || p.stats.duplicateTriangles > 0) {
+        notes.push_back(who + std::to_string(p.stats.degenerateTriangles) + " degenerate and " +
+                        std::to_string(p.stats.duplicateTriangles) + " repeated triangles of the mesh were dropped");
+    }
+    if (b.shape.collision == MeshCollision::Triangles && !p.closed) {
+        notes.push_back(who + "the mesh is not closed; as collision \"triangles\" it is a surface with no inside");
+    }
+}
+
+// The collision shape of a body; mesh shapes are built from their prepared geometry.
+collision::Shape colliderOf(const ShapeDesc& s, int i, const mesh::PreparedMesh* prepared = nullptr) {
     using collision::Shape;
     switch (s.type) {
     case ShapeType::Sphere: return Shape::sphere(s.radius);
@@ -117,8 +162,25 @@ collision::Shape colliderOf(const ShapeDesc& s, int i) {
     case ShapeType::Plane: return Shape::plane(s.normal.stableNormalized(), s.distance);
     case ShapeType::Mesh: break;
     }
-    throw SceneError(at(i) + ".shape.type",
-                     "mesh bodies cannot be simulated yet: the mesh importer is not built");
+    if (!prepared) throw SceneError(at(i) + ".shape.file", "the mesh '" + s.file + "' was never loaded");
+    Shape shape;
+    if (s.collision == MeshCollision::ConvexHull) {
+        if (!prepared->hull) {
+            throw SceneError(at(i) + ".shape.file", s.file + ": has no convex hull: " + prepared->hullProblem +
+                                                        "; use \"collision\": \"triangles\" for a flat mesh");
+        }
+        shape.kind = collision::Kind::Hull;
+        shape.hull = prepared->hull;
+    } else {
+        auto m = std::make_shared<collision::MeshShape>();
+        m->vertices = prepared->surface.vertices;
+        m->triangles = prepared->surface.triangles;
+        m->closed = prepared->closed;
+        m->bvh = std::make_shared<const collision::TriangleBvh>(m->vertices, m->triangles);
+        shape.kind = collision::Kind::Mesh;
+        shape.mesh = std::move(m);
+    }
+    return shape;
 }
 
 void validateBody(const BodyDesc& b, int i) {
@@ -170,13 +232,38 @@ void validateBody(const BodyDesc& b, int i) {
     if (dynamic && b.shape.type != ShapeType::Mesh) massPropertiesOf(b, i);  // throws if unusable
 }
 
-MassProperties massPropertiesOf(const BodyDesc& b, int i) {
-    if (b.shape.type == ShapeType::Mesh) {
-        throw SceneError(at(i) + ".shape.type",
-                         "mesh bodies cannot be simulated yet: the mesh importer is not built");
+// A mesh body's mass properties, scaled from those of its solid at density 1.
+MassProperties meshBodyMassProperties(const BodyDesc& b, int i, const mesh::PreparedMesh& p) {
+    if (p.volume > 0.0) {
+        MassProperties mp = p.unitDensity;
+        const double factor = b.mass ? *b.mass / p.volume : *b.density;
+        mp.mass = b.mass ? *b.mass : *b.density * p.volume;
+        mp.inertia *= factor;
+        return mp;
     }
-    const double mass = b.mass ? *b.mass : *b.density * shapeVolume(b.shape);
-    MassProperties mp = primitiveMassProperties(b.shape, mass);
+    // A flat mesh has no volume: a mass alone is enough only with inertia and centre given.
+    const std::string why = b.shape.file + ": the mesh encloses no volume (" +
+                            (p.massFromHull && !p.hullProblem.empty() ? p.hullProblem
+                                                                      : std::string("it is flat")) + ")";
+    if (b.density) throw SceneError(at(i) + ".density", why + ", so a density gives it no mass");
+    if (!b.inertia || !b.centerOfMass) {
+        throw SceneError(at(i) + ".shape.file",
+                         why + ", so its centre of mass and inertia cannot be computed; give "
+                               "center_of_mass and inertia, or use a mesh with volume");
+    }
+    MassProperties mp;
+    mp.mass = *b.mass;
+    return mp;
+}
+
+MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared) {
+    MassProperties mp;
+    if (b.shape.type == ShapeType::Mesh) {
+        if (!prepared) throw SceneError(at(i) + ".shape.file", "the mesh '" + b.shape.file + "' was never loaded");
+        mp = meshBodyMassProperties(b, i, *prepared);
+    } else {
+        mp = primitiveMassProperties(b.shape, b.mass ? *b.mass : *b.density * shapeVolume(b.shape));
+    }
     if (b.inertia) mp.inertia = *b.inertia;
     if (b.centerOfMass) mp.centerOfMass = *b.centerOfMass;
     // Each input can be finite and positive while their product over- or underflows
@@ -224,7 +311,12 @@ Model compile(const SceneDesc& scene) {
         b.motion = d.motion;
         b.shape = d.shape;
         if (b.shape.type == ShapeType::Plane) b.shape.normal.stableNormalize();
-        b.collider = colliderOf(d.shape, index);
+        std::optional<mesh::PreparedMesh> prepared;
+        if (d.shape.type == ShapeType::Mesh) {
+            prepared = prepareMeshBody(d, index);
+            noteMesh(d, index, *prepared, m.notes);
+        }
+        b.collider = colliderOf(d.shape, index, prepared ? &*prepared : nullptr);
         b.restitution = d.restitution;
         b.friction = d.friction;
         b.linearDamping = d.linearDamping;
@@ -232,7 +324,7 @@ Model compile(const SceneDesc& scene) {
         if (d.centerOfMass) b.centerOfMass = *d.centerOfMass;
         switch (d.motion) {
         case Motion::Dynamic: {
-            const MassProperties mp = massPropertiesOf(d, index);
+            const MassProperties mp = massPropertiesOf(d, index, prepared ? &*prepared : nullptr);
             b.mass = mp.mass;
             b.invMass = 1.0 / mp.mass;
             b.inertia = mp.inertia;

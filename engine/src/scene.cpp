@@ -38,6 +38,12 @@ const char* toString(ForceType t) {
 
 const char* toString(Frame f) { return f == Frame::World ? "world" : "body"; }
 
+bool ShapeDesc::operator==(const ShapeDesc& o) const {
+    return type == o.type && radius == o.radius && halfHeight == o.halfHeight &&
+           halfExtents == o.halfExtents && normal == o.normal && distance == o.distance &&
+           file == o.file && scale == o.scale && collision == o.collision;
+}
+
 bool BodyDesc::operator==(const BodyDesc& o) const {
     // Eigen's quaternion has no operator==; compare its coefficients.
     return name == o.name && motion == o.motion && shape == o.shape && mass == o.mass &&

@@ -4,11 +4,14 @@
 
 #include <tumble/math.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace tumble {
+
+struct TriangleMesh;  // tumble/mass.h
 
 enum class Motion { Dynamic, Static, Kinematic };
 enum class ShapeType { Sphere, Box, Capsule, Cylinder, Plane, Mesh };
@@ -34,8 +37,13 @@ struct ShapeDesc {
     std::string file;                            ///< mesh, relative to the scene file
     Vec3 scale = Vec3(1, 1, 1);                  ///< mesh
     MeshCollision collision = MeshCollision::ConvexHull;  ///< mesh
+    /// Mesh: the triangles of `file` as read, scaled, in the body frame. Filled by the scene
+    /// loader (io::readSceneFile), or by code that builds a scene; never saved. compile()
+    /// refuses a mesh body without it. Shared, so copies of a scene are cheap.
+    std::shared_ptr<const TriangleMesh> meshData;
 
-    bool operator==(const ShapeDesc&) const = default;
+    /// Compares what the file holds: meshData follows from file and scale, so it is left out.
+    bool operator==(const ShapeDesc& o) const;
 };
 
 /// A force, torque or spring acting on one body while start <= t < end.

@@ -2,6 +2,7 @@
 // path of the field; the values themselves are checked by tumble::validate, whose
 // SceneError carries the same kind of path.
 #include <tumble/errors.h>
+#include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/model.h>
 
@@ -296,7 +297,8 @@ json parseJson(std::string_view text, const Reader& r) {
 
 }  // namespace
 
-SceneDesc parseScene(std::string_view text, const std::string& fileName) {
+SceneDesc parseScene(std::string_view text, const std::string& fileName,
+                     const std::optional<std::filesystem::path>& baseDir) {
     const Reader r(fileName);
     const json j = parseJson(text, r);
     r.object(j, "(top level)");
@@ -322,6 +324,8 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName) {
     } catch (const SceneError& e) {
         throw InputError(fileName, e.path(), e.message());
     }
+    // After validation, so that a mesh is read only with a usable file name and scale.
+    if (baseDir) loadSceneMeshes(scene, *baseDir, fileName);
     return scene;
 }
 
@@ -334,7 +338,7 @@ SceneDesc readSceneFile(const std::filesystem::path& path) {
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) throw InputError(name, "", "could not be read to the end");
-    return parseScene(text.str(), name);
+    return parseScene(text.str(), name, path.parent_path());
 }
 
 }  // namespace tumble::io

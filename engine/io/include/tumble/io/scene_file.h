@@ -5,6 +5,7 @@
 #include <tumble/scene.h>
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -27,14 +28,22 @@ private:
 /// The newest scene version this build reads and writes.
 inline constexpr int kSceneVersion = 1;
 
-/// Parses and validates scene text. `fileName` is used in messages only.
-SceneDesc parseScene(std::string_view text, const std::string& fileName);
+/// Parses and validates scene text. `fileName` is used in messages only. With `baseDir`,
+/// the mesh files of mesh bodies are read relative to it (shape.meshData, see
+/// loadSceneMeshes in tumble/io/mesh_import.h; pass "." for the current directory).
+/// Without it no mesh file is read: the scene can be inspected, edited and saved, but
+/// compile() refuses its mesh bodies until their meshes are loaded.
+SceneDesc parseScene(std::string_view text, const std::string& fileName,
+                     const std::optional<std::filesystem::path>& baseDir = std::nullopt);
 
-/// Reads and validates a scene file. Messages name the file as given.
+/// Reads and validates a scene file, and reads its mesh files relative to the scene
+/// file's folder. Messages name the file as given.
 SceneDesc readSceneFile(const std::filesystem::path& path);
 
 /// The scene as normalised JSON text: every setting and every body field written out,
-/// unit quaternions and plane normals, numbers that read back exactly.
+/// unit quaternions and plane normals, numbers that read back exactly. A mesh body's
+/// file is written as it is given (a path relative to the scene's folder stays relative);
+/// its loaded triangles (meshData) are never written.
 std::string sceneToJson(const SceneDesc& scene);
 
 /// Writes sceneToJson atomically (a temporary file beside it, then a rename).

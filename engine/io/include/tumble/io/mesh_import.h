@@ -1,0 +1,28 @@
+// Mesh files: any format assimp reads, as one triangle mesh in the body frame.
+#pragma once
+
+#include <tumble/io/scene_file.h>
+#include <tumble/mass.h>
+
+#include <filesystem>
+#include <string>
+
+namespace tumble::io {
+
+/// Reads every mesh of `file` (OBJ, STL ascii or binary, PLY, OFF, glTF 2, FBX, ... any
+/// format assimp reads) into one triangle mesh: node transforms applied, polygons
+/// triangulated, points and lines ignored, each vertex multiplied componentwise by `scale`.
+/// Triangles keep the file's winding (counter-clockwise seen from outside, by convention);
+/// no welding beyond exactly identical vertices (compile() cleans the mesh).
+/// Throws InputError(file, "", reason) when the file is missing or unreadable, assimp
+/// cannot read it (its own message is given), or it holds no triangles.
+TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale = Vec3(1, 1, 1));
+
+/// Fills shape.meshData of every mesh body of `scene` by reading its file relative to
+/// `baseDir` (absolute paths are taken as they are) with the body's scale; bodies with the
+/// same file and scale share one mesh. A failure throws InputError naming `sceneName`, the
+/// field and the mesh file as written, e.g. "drop.json: bodies[2].shape.file: meshes/rock.obj:
+/// cannot be read (missing, or no permission)".
+void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName);
+
+}  // namespace tumble::io
