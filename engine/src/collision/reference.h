@@ -85,16 +85,32 @@ Inside pointInConvex(const ConvexHull& hull, const Pose& pose, const Vec3& p);
 /// sequence of unit vectors; k = 0 is the first ray. Exposed so tests can aim at edges.
 Vec3 parityRayDirection(int k);
 
-/// Ray parity: is the world point p inside the closed mesh at pose? Rays are cast in the
-/// mesh frame along parityRayDirection(0), (1), ...; a ray is discarded when a crossing is
-/// within a relative tolerance of a triangle's edge or vertex, or the ray runs in the plane
-/// of a triangle it touches. Uses mesh.bvh when present, else every triangle. A point
-/// within rounding of the surface may be reported either way. `rays` (optional) receives
-/// the number of rays cast. The mesh must be closed (checked by the caller).
+/// Ray parity for a point in the mesh frame. Rays are cast along parityRayDirection(0),
+/// (1), ...; a ray is discarded when a crossing is within a tolerance of a triangle's edge
+/// or vertex (1e-9 of the triangle's height, or the rounding of the crossing if larger), or
+/// the ray runs in the plane of a triangle it meets. Uses mesh.bvh when present, else every
+/// triangle. Crossings closer than rounding to the origin are not counted, so a point on
+/// the surface may be reported either way. After kMaxParityRays discarded rays (the point
+/// sits on an edge) the last ray's count decides. The mesh must be closed.
+struct Parity {
+    bool inside = false;
+    int rays = 0;             ///< rays cast, >= 1
+    double nearestHit = 0.0;  ///< distance to the nearest crossing of the deciding ray
+                              ///< (infinite when none): the surface is at most that far
+};
+constexpr int kMaxParityRays = 32;
+Parity rayParity(const MeshShape& mesh, const Vec3& localPoint);
+
+/// Ray parity for a world point against the closed mesh at pose. `rays` (optional)
+/// receives the number of rays cast.
 bool pointInMesh(const MeshShape& mesh, const Pose& pose, const Vec3& p, int* rays = nullptr);
 
-/// Distance from p to the closest point of the triangles (all of them), and that point.
-double distanceToTriangles(const Polyhedron& mesh, const Vec3& p, Vec3& closest);
+/// The closest point to p of the triangle (a, b, c), degenerate triangles included.
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Distance from p to the closest point of the faces' polygons (all of them; a mesh's
+/// faces are its triangles), that point, and (optional) the face it lies on.
+double distanceToSurface(const Polyhedron& body, const Vec3& p, Vec3& closest, int* face = nullptr);
 
 /// An edge of one polyhedron piercing a face polygon of the other.
 struct EdgeFaceCrossing {
