@@ -1,0 +1,22 @@
+// The general convex pair: one GJK/EPA query for the normal and depth, then the facing
+// features clipped for a multi-point manifold (see clip.cpp).
+#include "collision/convex.h"
+
+#include "collision/clip.h"
+#include "collision/gjk.h"
+
+namespace tumble::collision {
+
+void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
+                   std::vector<Manifold>& out) {
+    const ConvexProxy A = proxyOf(a, pa);
+    const ConvexProxy B = proxyOf(b, pb);
+    const Penetration pen = penetration(A, B, margin);
+    if (!pen.hit) return;
+    std::vector<detail::Candidate> points;
+    Vec3 normal;
+    detail::contactPoints(A, B, pen, margin, normal, points);
+    detail::appendReduced(points, normal, out);
+}
+
+}  // namespace tumble::collision

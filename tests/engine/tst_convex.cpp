@@ -1,0 +1,326 @@
+// The general convex narrowphase (collideConvex) and convex against a triangle mesh
+// (collideConvexMesh): manifolds checked against the corners, rims and depths that the
+// geometry fixes in closed form.
+#include "collision/bvh.h"
+#include "collision/convex.h"
+#include "collision/gjk.h"
+#include "mesh/convex_hull.h"
+
+#include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <set>
+
+using namespace tumble;
+using namespace tumble::collision;
+
+namespace {
+
+Pose pose(const Vec3& p, const Quat& q = Quat::Identity()) {
+    Pose r;
+    r.R = q.normalized().toRotationMatrix();
+    r.p = p;
+    return r;
+}
+
+Quat about(const Vec3& axis, double angle) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
+
+Shape hullOf(const std::vector<Vec3>& points) {
+    Shape s;
+    s.kind = Kind::Hull;
+    s.hull = std::make_shared<ConvexHull>(mesh::convexHull(points));
+    return s;
+}
+
+// A triangular prism, its top face the plane y = top, wide enough to hold a unit box.
+Shape prism(double top) {
+    return hullOf({Vec3(-4, top, -3), Vec3(4, top, -3), Vec3(0, top, 5), Vec3(-4, top - 2, -3), Vec3(4, top - 2, -3),
+                   Vec3(0, top - 2, 5)});
+}
+
+Shape meshShape(std::vector<Vec3> v, std::vector<std::array<int, 3>> t, bool withBvh = true) {
+    auto m = std::make_shared<MeshShape>();
+    m->vertices = std::move(v);
+    m->triangles = std::move(t);
+    if (withBvh) m->bvh = std::make_shared<TriangleBvh>(m->vertices, m->triangles);
+    Shape s;
+    s.kind = Kind::Mesh;
+    s.mesh = m;
+    return s;
+}
+
+// A flat strip of 2n triangles in y = 0, x in [0, n], z in [-2, 2], faces up.
+Shape groundStrip(int n, bool withBvh = true) {
+    std::vector<Vec3> v;
+    std::vector<std::array<int, 3>> t;
+    for (int i = 0; i <= n; ++i) {
+        v.emplace_back(i, 0, -2);
+        v.emplace_back(i, 0, 2);
+    }
+    for (int i = 0; i < n; ++i) {
+        const int a = 2 * i, b = 2 * i + 1, c = 2 * i + 2, d = 2 * i + 3;
+        t.push_back({a, b, d});  // counter-clockwise seen from +y
+        t.push_back({a, d, c});
+    }
+    return meshShape(v, t, withBvh);
+}
+
+// Every expected point is matched by a contact point within tol, and the depths agree.
+bool hasPoints(const Manifold& m, const std::vector<Vec3>& expected, double depth, double tol) {
+    if (m.count != static_cast<int>(expected.size())) return false;
+    for (const Vec3& e : expected) {
+        bool found = false;
+        for (int i = 0; i < m.count; ++i)
+            found = found || ((m.points[i].position - e).norm() < tol && std::abs(m.points[i].depth - depth) < tol);
+        if (!found) return false;
+    }
+    return true;
+}
+
+std::set<std::uint32_t> ids(const Manifold& m) {
+    std::set<std::uint32_t> s;
+    for (int i = 0; i < m.count; ++i) s.insert(m.points[i].feature);
+    return s;
+}
+
+}  // namespace
+
+class TestConvex : public QObject {
+    Q_OBJECT
+
+private slots:
+    void boxOnBoxFaceToFace() {
+        const Shape top = Shape::box(Vec3(0.5, 0.5, 0.5)), floor = Shape::box(Vec3(2, 1, 2));
+        const double yaw = 0.4;
+        const Pose pa = pose(Vec3(0.1, 1.49, 0.2), about(Vec3::UnitY(), yaw));
+        std::vector<Manifold> out;
+        collideConvex(top, pa, floor, pose(Vec3::Zero()), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        const Manifold& m = out[0];
+        QVERIFY((m.normal - Vec3(0, 1, 0)).norm() < 1e-12);
+        std::vector<Vec3> corners;
+        for (double sx : {-0.5, 0.5})
+            for (double sz : {-0.5, 0.5}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.005, 0));
+        QVERIFY(hasPoints(m, corners, 0.01, 1e-12));
+        QCOMPARE(ids(m).size(), size_t(4));
+        // Nudged sideways the same features touch: the same ids.
+        std::vector<Manifold> moved;
+        collideConvex(top, pose(pa.p + Vec3(1e-3, 0, -1e-3), about(Vec3::UnitY(), yaw)), floor, pose(Vec3::Zero()), 0.0, moved);
+        QCOMPARE(moved.size(), size_t(1));
+        QVERIFY(ids(moved[0]) == ids(m));
+    }
+
+    void boxTiltedOnEdge() {
+        // Turned 30 degrees about z: one bottom edge 0.01 deep, the rest well above.
+        const double a = std::numbers::pi / 6;
+        const Pose pa = pose(Vec3::Zero(), about(Vec3::UnitZ(), a));
+        const Vec3 lowest = pa.toWorld(Vec3(-0.5, -0.5, 0));  // lowest corner (x<0 side goes down)
+        Pose placed = pa;
+        placed.p.y() = 1.0 - 0.01 - lowest.y();
+        std::vector<Manifold> out;
+        collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), placed, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.001, out);
+        QCOMPARE(out.size(), size_t(1));
+        std::vector<Vec3> edge{placed.toWorld(Vec3(-0.5, -0.5, -0.5)) + Vec3(0, 0.005, 0),
+                               placed.toWorld(Vec3(-0.5, -0.5, 0.5)) + Vec3(0, 0.005, 0)};
+        QVERIFY(hasPoints(out[0], edge, 0.01, 1e-12));
+    }
+
+    void boxOnHullFace() {
+        const Pose pa = pose(Vec3(0.3, 1.0 + 0.5 - 0.02, -0.4), about(Vec3::UnitY(), 1.1));
+        std::vector<Manifold> out;
+        collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), pa, prism(1.0), pose(Vec3::Zero()), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
+        std::vector<Vec3> corners;
+        for (double sx : {-0.5, 0.5})
+            for (double sz : {-0.5, 0.5}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.01, 0));
+        QVERIFY(hasPoints(out[0], corners, 0.02, 1e-12));
+        // The hull as A, the box as B: same contact, normal reversed.
+        out.clear();
+        collideConvex(prism(1.0), pose(Vec3::Zero()), Shape::box(Vec3(0.5, 0.5, 0.5)), pa, 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY((out[0].normal - Vec3(0, -1, 0)).norm() < 1e-12);
+        QVERIFY(hasPoints(out[0], corners, 0.02, 1e-12));
+    }
+
+    void hullOnHull() {
+        // A tetrahedron standing on a face (y = 0 in its frame) on the prism, 0.05 deep,
+        // placed far from the origin: three points at its base corners.
+        const Shape tet = hullOf({Vec3(-0.5, 0, -0.4), Vec3(0.5, 0, -0.4), Vec3(0, 0, 0.6), Vec3(0, 0.8, 0)});
+        const Vec3 far(1000, -2000, 500);
+        const Pose pa = pose(far + Vec3(0.5, 1.0 - 0.05, 0.5), about(Vec3::UnitY(), 0.3));
+        std::vector<Manifold> out;
+        collideConvex(tet, pa, prism(1.0), pose(far), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
+        std::vector<Vec3> corners;
+        for (const Vec3& c : {Vec3(-0.5, 0, -0.4), Vec3(0.5, 0, -0.4), Vec3(0, 0, 0.6)}) corners.push_back(pa.toWorld(c) + Vec3(0, 0.025, 0));
+        QVERIFY(hasPoints(out[0], corners, 0.05, 1e-9));
+    }
+
+    void cylinderOnItsCap() {
+        // Standing on a box: four points on the rim, all at the depth.
+        const Pose pc = pose(Vec3(0.2, 1.0 + 1.5 - 0.01, -0.1), about(Vec3::UnitY(), 0.25));
+        std::vector<Manifold> out;
+        collideConvex(Shape::cylinder(0.6, 1.5), pc, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        const Manifold& m = out[0];
+        QCOMPARE(m.count, 4);
+        QVERIFY((m.normal - Vec3(0, 1, 0)).norm() < 1e-9);
+        double area = 0.0;
+        for (int i = 0; i < 4; ++i) {
+            const Vec3 p = m.points[i].position;
+            QVERIFY(std::abs(std::hypot(p.x() - pc.p.x(), p.z() - pc.p.z()) - 0.6) < 1e-9);
+            QVERIFY(std::abs(p.y() - 0.995) < 1e-9);
+            QVERIFY(std::abs(m.points[i].depth - 0.01) < 1e-9);
+        }
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) area = std::max(area, (m.points[i].position - m.points[j].position).norm());
+        QVERIFY(area > 1.1);  // spread over the rim, not bunched
+        // A small box on the cylinder's cap: its four corners.
+        const Pose pb = pose(pc.p + Vec3(0.1, 1.5 + 0.2 - 0.03, 0), about(Vec3::UnitY(), 0.7));
+        out.clear();
+        collideConvex(Shape::box(Vec3(0.2, 0.2, 0.2)), pb, Shape::cylinder(0.6, 1.5), pc, 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        std::vector<Vec3> corners;
+        for (double sx : {-0.2, 0.2})
+            for (double sz : {-0.2, 0.2}) corners.push_back(pb.toWorld(Vec3(sx, -0.2, sz)) + Vec3(0, 0.015, 0));
+        QVERIFY(hasPoints(out[0], corners, 0.03, 1e-9));
+    }
+
+    void cylinderOnItsRim() {
+        // Tipped 20 degrees: only the lowest rim point is within the margin.
+        const Quat tilt = about(Vec3::UnitZ(), 20 * std::numbers::pi / 180);
+        Pose pc = pose(Vec3::Zero(), tilt);
+        const Vec3 lowest = pc.toWorld(Vec3(-0.6, -1.5, 0));
+        QVERIFY(lowest.y() < pc.toWorld(Vec3(0.6, -1.5, 0)).y());
+        pc.p = Vec3(0, 1.0 - 0.01 - lowest.y(), 0);
+        std::vector<Manifold> out;
+        collideConvex(Shape::cylinder(0.6, 1.5), pc, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.001, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY(hasPoints(out[0], {pc.toWorld(Vec3(-0.6, -1.5, 0)) + Vec3(0, 0.005, 0)}, 0.01, 1e-9));
+    }
+
+    void lyingRoundShapes() {
+        // A cylinder on its side and a capsule, each lying along x on a box: two points, at
+        // the ends of the line of contact.
+        const Quat alongX = about(Vec3::UnitZ(), std::numbers::pi / 2);
+        std::vector<Manifold> out;
+        collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX), Shape::box(Vec3(2, 1, 2)),
+                      pose(Vec3::Zero()), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY(hasPoints(out[0], {Vec3(-0.8, 0.99, 0.1), Vec3(0.8, 0.99, 0.1)}, 0.02, 1e-9));
+        out.clear();
+        collideConvex(Shape::capsule(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX), prism(1.0), pose(Vec3::Zero()),
+                      0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY(hasPoints(out[0], {Vec3(-0.8, 0.99, 0.1), Vec3(0.8, 0.99, 0.1)}, 0.02, 1e-9));
+        // Two cylinders lying side by side, parallel: the overlap of their lines. EPA on two
+        // curved cores stops at a support gain of 1e-10 of their size, so the normal is
+        // good to about the square root of that.
+        out.clear();
+        collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0.5, 0.6 - 0.01, 0), alongX), Shape::cylinder(0.3, 0.8),
+                      pose(Vec3(0, 0, 0), alongX), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-4);
+        QVERIFY(hasPoints(out[0], {Vec3(-0.3, 0.295, 0), Vec3(0.8, 0.295, 0)}, 0.01, 1e-4));
+    }
+
+    void singlePointsAndMargin() {
+        // A sphere on a hull face: one point; the depth and position in closed form.
+        std::vector<Manifold> out;
+        collideConvex(Shape::sphere(0.5), pose(Vec3(0.2, 1.45, 0.1)), prism(1.0), pose(Vec3::Zero()), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY(hasPoints(out[0], {Vec3(0.2, 0.975, 0.1)}, 0.05, 1e-12));
+        // Apart by 0.02: nothing with a margin of 0.01, a near contact with 0.05.
+        out.clear();
+        const Pose above = pose(Vec3(0.1, 1.0 + 0.5 + 0.02, 0.2));
+        collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), above, prism(1.0), pose(Vec3::Zero()), 0.01, out);
+        QVERIFY(out.empty());
+        collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), above, prism(1.0), pose(Vec3::Zero()), 0.05, out);
+        QCOMPARE(out.size(), size_t(1));
+        QCOMPARE(out[0].count, 4);
+        for (int i = 0; i < 4; ++i) QVERIFY(std::abs(out[0].points[i].depth + 0.02) < 1e-12);
+    }
+
+    void boxOnMeshAcrossTheDiagonal() {
+        // The box covers the shared diagonal of two triangles: one manifold, its 4 corners.
+        for (bool withBvh : {true, false}) {
+            const Pose pa = pose(Vec3(0.5, 0.5 - 0.01, 0.3), about(Vec3::UnitY(), 0.2));
+            std::vector<Manifold> out;
+            collideConvexMesh(Shape::box(Vec3(0.3, 0.5, 0.3)), pa, groundStrip(1, withBvh), pose(Vec3::Zero()), 0.0, out);
+            QCOMPARE(out.size(), size_t(1));
+            QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
+            std::vector<Vec3> corners;
+            for (double sx : {-0.3, 0.3})
+                for (double sz : {-0.3, 0.3}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.005, 0));
+            QVERIFY(hasPoints(out[0], corners, 0.01, 1e-12));
+        }
+    }
+
+    void noGhostAtInternalEdge() {
+        // A box sunk 0.05 into a flat strip, reaching 0.002 past the edge x = 2 onto the next
+        // triangle pair. Alone, that sliver's shortest way out is sideways across the edge...
+        const Shape box = Shape::box(Vec3(0.4, 0.4, 0.4));
+        const Pose pa = pose(Vec3(2.0 - 0.4 + 0.002, 0.4 - 0.05, 0.3));
+        const ConvexProxy sliver = triangleProxy(Vec3(2, 0, -2), Vec3(2, 0, 2), Vec3(3, 0, 2));
+        const Penetration raw = penetration(proxyOf(box, pa), sliver, 0.0);
+        QVERIFY(raw.hit && raw.normal.y() < 0.5);
+        // ... but on the mesh every contact pushes up.
+        std::vector<Manifold> out;
+        collideConvexMesh(box, pa, groundStrip(4), pose(Vec3::Zero()), 0.0, out);
+        QVERIFY(!out.empty());
+        for (const Manifold& m : out) {
+            QVERIFY((m.normal - Vec3(0, 1, 0)).norm() < 1e-12);
+            for (int i = 0; i < m.count; ++i) QVERIFY(std::abs(m.points[i].depth - 0.05) < 1e-12);
+        }
+        QCOMPARE(out.size(), size_t(1));
+        QCOMPARE(out[0].count, 4);
+    }
+
+    void outerEdgeKeepsItsNormal() {
+        // A unit cube as a closed mesh; a sphere against its top edge x = 1 from outside and
+        // above: the normal points from the edge to the centre, not up.
+        const std::vector<Vec3> v{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                                  Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+        const std::vector<std::array<int, 3>> t{{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                                {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+        const Shape cube = meshShape(v, t);
+        const Vec3 dir = Vec3(1, 1, 0).normalized();
+        const Vec3 centre = Vec3(1, 1, 0.5) + (0.3 - 0.01) * dir;
+        std::vector<Manifold> out;
+        collideConvexMesh(Shape::sphere(0.3), pose(centre), cube, pose(Vec3(0, 0, 0)), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY((out[0].normal - dir).norm() < 1e-9);
+        QVERIFY(std::abs(out[0].maxDepth() - 0.01) < 1e-9);
+        // A sphere resting on the top face: up, one point.
+        out.clear();
+        collideConvexMesh(Shape::sphere(0.3), pose(Vec3(0.4, 1.29, 0.6)), cube, pose(Vec3::Zero()), 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY(hasPoints(out[0], {Vec3(0.4, 0.995, 0.6)}, 0.01, 1e-12));
+        QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
+    }
+
+    void posedMesh() {
+        // The ground strip turned and moved: results move with it.
+        const Pose pm = pose(Vec3(5, -2, 7), about(Vec3(1, 2, 3), 0.8));
+        const Pose local = pose(Vec3(0.5, 0.5 - 0.01, 0.3), about(Vec3::UnitY(), 0.2));
+        Pose pa;
+        pa.R = pm.R * local.R;
+        pa.p = pm.toWorld(local.p);
+        std::vector<Manifold> out;
+        collideConvexMesh(Shape::box(Vec3(0.3, 0.5, 0.3)), pa, groundStrip(1), pm, 0.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY((out[0].normal - pm.R.col(1)).norm() < 1e-12);
+        std::vector<Vec3> corners;
+        for (double sx : {-0.3, 0.3})
+            for (double sz : {-0.3, 0.3}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + 0.005 * pm.R.col(1));
+        QVERIFY(hasPoints(out[0], corners, 0.01, 1e-12));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestConvex)
+#include "tst_convex.moc"
