@@ -110,6 +110,7 @@ void validateForce(const ForceDesc& f, const std::string& path) {
 }
 
 MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared = nullptr);
+MassProperties meshBodyMassProperties(const BodyDesc& b, int i, const mesh::PreparedMesh& p);
 
 // A mesh body's geometry, cleaned, with what its collider and mass need. The mesh file is
 // read by the scene loader (tumble_io); a scene built in code must fill meshData itself.
@@ -130,6 +131,8 @@ mesh::PreparedMesh prepareMeshBody(const BodyDesc& b, int i) {
     if (p.surface.triangles.empty()) {
         throw SceneError(field, s.file + ": has no triangles with an area (every one is degenerate)");
     }
+    // A missing volume is the first thing to report: it is what a density or inertia needs.
+    if (b.motion == Motion::Dynamic) meshBodyMassProperties(b, i, p);
     return p;
 }
 

@@ -6,8 +6,6 @@
 // anything qhull still refuses is reported with the first line of its own message.
 #include "mesh/convex_hull.h"
 
-#include <Eigen/Eigenvalues>
-
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
@@ -77,16 +75,23 @@ void checkSpansSpace(const std::vector<Vec3>& points) {
     const double size = (hi - lo).norm();
     if (!(size > 0.0)) throw HullError("all points coincide");
     if (!std::isfinite(size)) throw HullError("the points are too far apart to be represented");
-    // Thickness of the cloud along each principal direction of its spread.
-    const Vec3 mean = 0.5 * (lo + hi);
-    Mat3 spread = Mat3::Zero();
-    for (const Vec3& p : points) spread += (p - mean) * (p - mean).transpose();
-    const Eigen::SelfAdjointEigenSolver<Mat3> eig(spread);
-    Vec3 thickness = Vec3::Zero();
-    for (const Vec3& p : points) thickness = thickness.cwiseMax((eig.eigenvectors().transpose() * (p - mean)).cwiseAbs());
+    // A well-spread triangle of the cloud, as qhull picks its initial simplex: the plane of
+    // a flat cloud is then known to rounding, and so is its thickness off that plane.
     const double flat = 1e-10 * size;
-    if (thickness[1] <= flat) throw HullError("all points lie on one line");
-    if (thickness[0] <= flat) throw HullError("all points lie on one plane (the mesh is flat)");
+    const Vec3& a = *std::min_element(points.begin(), points.end(),
+                                      [](const Vec3& p, const Vec3& q) { return p.x() < q.x(); });
+    auto farthest = [&](auto&& distance) {
+        return *std::max_element(points.begin(), points.end(),
+                                 [&](const Vec3& p, const Vec3& q) { return distance(p) < distance(q); });
+    };
+    const Vec3 b = farthest([&](const Vec3& p) { return (p - a).norm(); });
+    const Vec3 axis = (b - a).normalized();
+    auto offLine = [&](const Vec3& p) { return (p - a - axis.dot(p - a) * axis).norm(); };
+    const Vec3 c = farthest(offLine);
+    if (offLine(c) <= flat) throw HullError("all points lie on one line");
+    const Vec3 normal = (b - a).cross(c - a).normalized();
+    auto offPlane = [&](const Vec3& p) { return std::abs(normal.dot(p - a)); };
+    if (offPlane(farthest(offPlane)) <= flat) throw HullError("all points lie on one plane (the mesh is flat)");
 }
 
 std::string firstLine(const std::string& text) {
