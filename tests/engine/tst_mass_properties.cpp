@@ -245,15 +245,15 @@ private slots:
         QVERIFY((bodyFramePosition(w.model().bodies[0], w.state().bodies[0]) - Vec3(1, 2, 3)).norm() < 1e-15);
     }
 
-    void meshBodiesAreRefusedUntilImported() {
+    void meshBodiesAreRefusedUntilLoaded() {
         BodyDesc b = test::sphereBody("m", 1, 1);
         b.shape.type = ShapeType::Mesh;
         b.shape.file = "bunny.obj";
         try {
             compile(test::sceneOf({b}));
-            QFAIL("a mesh body compiled without a mesh importer");
+            QFAIL("a mesh body compiled without its mesh loaded");
         } catch (const SceneError& e) {
-            QCOMPARE(QString::fromStdString(e.path()), QString("bodies[0].shape.type"));
+            QCOMPARE(QString::fromStdString(e.path()), QString("bodies[0].shape.file"));
         }
     }
 };
