@@ -159,6 +159,9 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         else err << o.scene << ": " << e.what() << "\n";
         return kInvalid;
     }
+    if (!o.quiet) {
+        for (const std::string& note : world->model().notes) err << "tumble: note: " << note << "\n";
+    }
 
     std::unique_ptr<io::AtomicFile> trajectory;
     try {
