@@ -1,0 +1,244 @@
+// Time of impact by conservative advancement (Mirtich 1996). At time s the shapes are
+// d apart with unit normal n (out of B towards A). Over the rest of the step no point of
+// A gets closer to B along n than the centres' relative displacement along n plus the arc
+// each body's rotation can sweep: every point of a body lies within r (its bound about the
+// centre of mass) of that centre, and slerp turns at a constant rate, so a point moves at
+// most theta * r beyond its centre over the whole step. Hence
+//     d(s + t) >= d(s) - t * mu,  mu = (dcB - dcA)·n + thetaA rA + thetaB rB,
+// and advancing by (d - tolerance/2) / mu can never step past a contact: thin or fast
+// bodies cannot tunnel. mu <= 0 means the pair only separates from here on.
+//
+// Pairs: convex shapes through GJK proxies; a plane through the lowest point of the other
+// shape along the plane's normal (for a mesh, its lowest vertex: a set and its hull are
+// equally far from a plane); a mesh per triangle, the triangles found by the BVH in the
+// bounds of the other shape's whole sweep; mesh against mesh per triangle pair, each
+// triangle of A querying B's BVH with its own swept bounds (costly for two large meshes
+// that move close together; exact and conservative all the same).
+#include "collision/toi.h"
+
+#include "collision/bvh.h"
+#include "collision/gjk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace tumble::collision {
+
+Pose Sweep::at(double s) const {
+    const Quat q = q0.slerp(s, q1).normalized();
+    Pose p;
+    p.R = q.toRotationMatrix();
+    p.p = (c0 + s * (c1 - c0)) - p.R * localCenter;
+    return p;
+}
+
+namespace {
+
+constexpr int kMaxIterations = 500;
+
+struct Probe {
+    double distance;
+    Vec3 normal, pointA, pointB;
+};
+
+double turn(const Sweep& s) { return s.q0.angularDistance(s.q1); }
+bool turns(const Sweep& s) { return turn(s) > 0.0; }
+
+// Conservative advancement over [0, sEnd]; bound(n, s) is mu for the normal n at time s.
+template <class DistanceAt, class Bound>
+std::optional<Impact> advance(DistanceAt&& distanceAt, Bound&& bound, double tol, double sEnd) {
+    double s = 0.0;
+    for (int iter = 0;; ++iter) {
+        const Probe p = distanceAt(s);
+        // At the iteration cap the current time is still safe (never past a contact).
+        if (p.distance <= tol || iter == kMaxIterations) return Impact{s, p.normal, 0.5 * (p.pointA + p.pointB)};
+        const double mu = bound(p.normal, s);
+        if (!(mu > 0.0)) return std::nullopt;
+        s += (p.distance - 0.5 * tol) / mu;
+        if (!(s <= sEnd)) return std::nullopt;
+    }
+}
+
+bool isConvex(Kind k) { return k != Kind::Plane && k != Kind::Mesh; }
+
+// Bound on the distance of any point of the shape from the centre of mass.
+double reach(const Shape& shape, const Sweep& sw) { return boundingRadius(shape) + sw.localCenter.norm(); }
+
+Probe probe(const ConvexProxy& a, const ConvexProxy& b) {
+    const Distance d = gjkDistance(a, b);
+    Vec3 n = d.pointA - d.pointB;
+    if (d.overlap || !(n.squaredNorm() > 0)) n = penetration(a, b, std::numeric_limits<double>::infinity()).normal;
+    else n.normalize();
+    return {d.distance, n, d.pointA, d.pointB};
+}
+
+// Linear part of mu plus the rotation arcs, for two bodies of reaches rA, rB.
+auto boundFor(const Sweep& sa, double rA, const Sweep& sb, double rB) {
+    const Vec3 rel = (sb.c1 - sb.c0) - (sa.c1 - sa.c0);
+    const double arcs = turn(sa) * rA + turn(sb) * rB;
+    return [rel, arcs](const Vec3& n, double) { return rel.dot(n) + arcs; };
+}
+
+// Bounding spheres about the centres of mass never come within tol: no impact. Their
+// centres' separation is linear in s, so its minimum over [0, 1] is a segment's distance.
+bool spheresMiss(const Sweep& sa, double rA, const Sweep& sb, double rB, double tol) {
+    const Vec3 d0 = sa.c0 - sb.c0, dd = (sa.c1 - sb.c1) - d0;
+    const double t = dd.squaredNorm() > 0 ? std::clamp(-d0.dot(dd) / dd.squaredNorm(), 0.0, 1.0) : 0.0;
+    return (d0 + t * dd).norm() - rA - rB > tol;
+}
+
+// The region of mesh-local space that a ball of radius r about the other body's centre
+// (sweep `so`) can reach over the step, as a box in the mesh's frame (sweep `sm`).
+Aabb sweptBoxInMesh(const Sweep& so, const Vec3& offsetLocal, double r, const Sweep& sm) {
+    Aabb box;
+    if (!turns(sm) && !turns(so)) {
+        const Mat3 Rm = sm.at(0).R;
+        const Mat3 Ro = so.at(0).R;
+        for (int k = 0; k < 2; ++k) {
+            const Vec3 c = (k ? so.c1 : so.c0) + Ro * offsetLocal - (k ? sm.c1 : sm.c0);
+            box.add(Rm.transpose() * c + sm.localCenter);
+        }
+        return box.inflated(r);
+    }
+    // Turning: the centre's separation is linear in s, largest at an end; any orientation.
+    const double far = std::max((so.c0 - sm.c0).norm(), (so.c1 - sm.c1).norm()) + offsetLocal.norm();
+    box.add(sm.localCenter);
+    return box.inflated(far + r);
+}
+
+std::shared_ptr<const TriangleBvh> bvhOf(const MeshShape& m) {
+    if (m.bvh) return m.bvh;
+    return std::make_shared<TriangleBvh>(m.vertices, m.triangles);
+}
+
+ConvexProxy triangleAt(const MeshShape& m, int tri, const Pose& pose) {
+    const auto& t = m.triangles[tri];
+    return triangleProxy(pose.toWorld(m.vertices[t[0]]), pose.toWorld(m.vertices[t[1]]), pose.toWorld(m.vertices[t[2]]));
+}
+
+// Centre (body frame) and radius of a triangle's bounding ball, and its reach about the
+// body's centre of mass.
+void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& centre, double& radius, double& reachCm) {
+    const auto& t = m.triangles[tri];
+    centre = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+    radius = 0.0;
+    reachCm = 0.0;
+    for (int k : t) {
+        radius = std::max(radius, (m.vertices[k] - centre).norm());
+        reachCm = std::max(reachCm, (m.vertices[k] - localCenter).norm());
+    }
+}
+
+std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tol) {
+    return advance([&](double s) { return probe(proxyOf(a, sa.at(s)), proxyOf(b, sb.at(s))); },
+                   boundFor(sa, reach(a, sa), sb, reach(b, sb)), tol, 1.0);
+}
+
+// A (convex or mesh) against the plane B.
+std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape& plane, const Sweep& sp, double tol) {
+    const double rA = reach(a, sa);
+    const double thetaP = turn(sp);
+    auto distanceAt = [&](double s) {
+        const Pose pa = sa.at(s), pp = sp.at(s);
+        const Vec3 n = pp.R * plane.normal;
+        const double offset = n.dot(pp.p) + plane.distance;
+        Vec3 low;
+        if (a.kind == Kind::Mesh) {
+            const auto& vs = a.mesh->vertices;
+            low = pa.toWorld(vs[0]);
+            for (const Vec3& v : vs) {
+                const Vec3 w = pa.toWorld(v);
+                if (w.dot(n) < low.dot(n)) low = w;
+            }
+        } else {
+            const ConvexProxy A = proxyOf(a, pa);
+            low = A.support(-n) - A.radius * n;
+        }
+        const double d = low.dot(n) - offset;
+        return Probe{d, n, low, low - d * n};
+    };
+    const Vec3 rel = (sp.c1 - sp.c0) - (sa.c1 - sa.c0);
+    const double armsLinear = rel.norm();
+    auto bound = [&](const Vec3& n, double s) {
+        double mu = rel.dot(n) + turn(sa) * rA;
+        // A turning plane: its points near A move by at most thetaP times their distance
+        // from the plane's centre, which stays below the centres' gap now plus what the rest
+        // of the step can add, plus A's reach.
+        if (thetaP > 0) {
+            const Vec3 gap = (sa.c0 + s * (sa.c1 - sa.c0)) - (sp.c0 + s * (sp.c1 - sp.c0));
+            mu += thetaP * (gap.norm() + armsLinear + rA);
+        }
+        return mu;
+    };
+    return advance(distanceAt, bound, tol, 1.0);
+}
+
+// A (convex) against the mesh B, triangle by triangle.
+std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, const Shape& mesh, const Sweep& sm, double tol) {
+    const MeshShape& m = *mesh.mesh;
+    const auto bvh = bvhOf(m);
+    const double rA = reach(a, sa);
+    const Aabb box = sweptBoxInMesh(sa, Vec3::Zero(), rA + tol, sm);
+    std::optional<Impact> best;
+    bvh->query(box, [&](int tri) {
+        Vec3 centre;
+        double radius, rT;
+        triangleBall(m, tri, sm.localCenter, centre, radius, rT);
+        const double sEnd = best ? best->s : 1.0;
+        auto hit = advance([&](double s) { return probe(proxyOf(a, sa.at(s)), triangleAt(m, tri, sm.at(s))); },
+                           boundFor(sa, rA, sm, rT), tol, sEnd);
+        if (hit && (!best || hit->s < best->s)) best = hit;
+    });
+    return best;
+}
+
+std::optional<Impact> meshMesh(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tol) {
+    const MeshShape& ma = *a.mesh;
+    const MeshShape& mb = *b.mesh;
+    const auto bvhB = bvhOf(mb);
+    std::optional<Impact> best;
+    for (int i = 0; i < static_cast<int>(ma.triangles.size()); ++i) {
+        Vec3 centre;
+        double radius, rTa;
+        triangleBall(ma, i, sa.localCenter, centre, radius, rTa);
+        // Without turning the triangle's ball centre moves with the centre of mass.
+        const Aabb box = turns(sa) ? sweptBoxInMesh(sa, Vec3::Zero(), rTa + tol, sb)
+                                   : sweptBoxInMesh(sa, centre - sa.localCenter, radius + tol, sb);
+        bvhB->query(box, [&](int j) {
+            Vec3 cb;
+            double rb, rTb;
+            triangleBall(mb, j, sb.localCenter, cb, rb, rTb);
+            const double sEnd = best ? best->s : 1.0;
+            auto hit = advance([&](double s) { return probe(triangleAt(ma, i, sa.at(s)), triangleAt(mb, j, sb.at(s))); },
+                               boundFor(sa, rTa, sb, rTb), tol, sEnd);
+            if (hit && (!best || hit->s < best->s)) best = hit;
+        });
+    }
+    return best;
+}
+
+std::optional<Impact> flipped(std::optional<Impact> i) {
+    if (i) i->normal = -i->normal;
+    return i;
+}
+
+}  // namespace
+
+std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tolerance) {
+    if (a.kind == Kind::Plane && b.kind == Kind::Plane) return std::nullopt;
+    // A tolerance of zero would only be reached in the limit; keep a rounding-level floor.
+    double scale = 0.0;
+    if (a.kind != Kind::Plane) scale += boundingRadius(a);
+    if (b.kind != Kind::Plane) scale += boundingRadius(b);
+    const double tol = std::max(tolerance, 1e-12 * scale);
+    if (b.kind == Kind::Plane) return againstPlane(a, sa, b, sb, tol);
+    if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, a, sa, tol));
+    if (spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol)) return std::nullopt;
+    if (isConvex(a.kind) && isConvex(b.kind)) return convexConvex(a, sa, b, sb, tol);
+    if (isConvex(a.kind)) return convexMesh(a, sa, b, sb, tol);
+    if (isConvex(b.kind)) return flipped(convexMesh(b, sb, a, sa, tol));
+    return meshMesh(a, sa, b, sb, tol);
+}
+
+}  // namespace tumble::collision
