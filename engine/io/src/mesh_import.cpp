@@ -34,9 +34,14 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
                            aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
     const aiScene* scene = importer.ReadFile(name, flags);
     if (!scene) {
-        std::string why = importer.GetErrorString();
-        if (why.empty()) why = "unknown error";
-        throw InputError(name, "", "cannot be read as a mesh: " + why);
+        const std::string why = importer.GetErrorString();
+        // assimp's validation refuses files without faces or meshes before we see them;
+        // say so in the words used for the files it does hand over.
+        if (why.find("no faces") != std::string::npos) {
+            throw InputError(name, "", "holds no triangles (no faces at all, only points or nothing)");
+        }
+        if (why.find("mNumMeshes is 0") != std::string::npos) throw InputError(name, "", "holds no mesh");
+        throw InputError(name, "", "cannot be read as a mesh: " + (why.empty() ? std::string("unknown error") : why));
     }
 
     TriangleMesh mesh;
