@@ -186,6 +186,17 @@ private slots:
                 QVERIFY(bp.movingTree().valid());
                 QVERIFY(bp.staticTree().valid());
                 gen.step(s, kind, grid ? 1.0 : 0.05);
+                // The editor moves a static body now and then.
+                if (n > 0 && step % 7 == 3) {
+                    for (int k = 0; k < std::max(1, n / 50); ++k) {
+                        const int i = gen.integer(0, n - 1);
+                        Aabb& b = s.bounds[i];
+                        if (s.moving[i] || b.empty() || !b.min.allFinite() || !b.max.allFinite()) continue;
+                        const Vec3 d = Vec3(gen.uniform(-3, 3), gen.uniform(-3, 3), gen.uniform(-3, 3)).array().round();
+                        b.min += d;
+                        b.max += d;
+                    }
+                }
                 // Bodies fall asleep and wake up now and then.
                 if (n > 0 && step % 5 == 4) {
                     for (int k = 0; k < std::max(1, n / 20); ++k) {
