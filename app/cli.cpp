@@ -47,8 +47,10 @@ Exit status: 0 success; 2 invalid input (the message names the file and the fiel
 body and the time). On failure no output file is written.
 
 A successful run prints key: value lines: bodies, integrator, dt, frames, steps,
-simulated_time, wall_seconds, energy_start, energy_end, forces_seconds,
-integrate_seconds and state_hash (the same scene and options give the same hash).
+simulated_time, wall_seconds, energy_start, energy_end, the time of each stage
+(forces_seconds, integrate_seconds, broadphase_seconds, narrowphase_seconds,
+toi_seconds), pairs, contact_points and impacts summed over the steps, and state_hash
+(the same scene and options give the same hash).
 )";
 
 struct Options {
@@ -221,6 +223,12 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "energy_end: " << number(after.total()) << "\n"
             << "forces_seconds: " << p.forces << "\n"
             << "integrate_seconds: " << p.integrate << "\n"
+            << "broadphase_seconds: " << p.broadphase << "\n"
+            << "narrowphase_seconds: " << p.narrowphase << "\n"
+            << "toi_seconds: " << p.timeOfImpact << "\n"
+            << "pairs: " << p.pairs << "\n"
+            << "contact_points: " << p.contactPoints << "\n"
+            << "impacts: " << p.impacts << "\n"
             << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }
     return kOk;

@@ -126,4 +126,14 @@ struct Manifold {
     double maxDepth() const;
 };
 
+/// A pair that came into contact during a step: first touch at `time` (s), found by the
+/// time-of-impact stage so that the response can act at the moment of impact.
+struct ImpactEvent {
+    int bodyA = -1;
+    int bodyB = -1;
+    double time = 0.0;
+    Vec3 normal = Vec3(0, 1, 0);   ///< out of B towards A, at the time of impact
+    Vec3 point = Vec3::Zero();     ///< world, at the time of impact
+};
+
 }  // namespace tumble::collision

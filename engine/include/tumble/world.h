@@ -1,6 +1,7 @@
 // The simulation: a Model, a State and the step that advances one by the other.
 #pragma once
 
+#include <tumble/collision.h>
 #include <tumble/model.h>
 #include <tumble/state.h>
 
@@ -13,8 +14,14 @@ namespace tumble {
 struct Profile {
     double forces = 0.0;
     double integrate = 0.0;
+    double broadphase = 0.0;
+    double narrowphase = 0.0;
+    double timeOfImpact = 0.0;
     long steps = 0;
     long forceEvaluations = 0;
+    long pairs = 0;          ///< broadphase pairs, summed over steps
+    long contactPoints = 0;  ///< narrowphase contact points, summed over steps
+    long impacts = 0;        ///< pairs that came into contact within a step
 };
 
 class World {
@@ -29,9 +36,14 @@ public:
     void setTime(double t) { state_.time = t; }
     const Profile& profile() const { return profile_; }
 
-    /// Advances the state by h seconds: forces -> integrate. Throws SimulationError when
-    /// a body's state becomes non-finite.
+    /// Advances the state by h seconds: forces -> integrate -> broadphase -> narrowphase ->
+    /// time of impact. Throws SimulationError when a body's state becomes non-finite.
     void step(double h);
+
+    /// The contact manifolds at the end of the last step (bodyA < bodyB).
+    const std::vector<collision::Manifold>& contacts() const;
+    /// The pairs that came into contact during the last step, with the time of first touch.
+    const std::vector<collision::ImpactEvent>& impacts() const;
 
 private:
     Model model_;

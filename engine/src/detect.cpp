@@ -1,0 +1,87 @@
+#include "detect.h"
+
+#include "collision/narrowphase.h"
+#include "collision/toi.h"
+
+#include <algorithm>
+
+namespace tumble {
+
+using namespace collision;
+
+bool needsContacts(const Model& model) {
+    int moving = 0;
+    for (const BodyModel& b : model.bodies) moving += b.motion != Motion::Static;
+    return model.bodies.size() >= 2 && moving > 0;
+}
+
+void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
+    out.resize(model.bodies.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const BodyState& s = state.bodies[i];
+        out[i].R = s.q.toRotationMatrix();
+        out[i].p = s.x - out[i].R * model.bodies[i].centerOfMass;
+    }
+}
+
+void findPairs(const Model& model, DetectScratch& s) {
+    const size_t n = model.bodies.size();
+    s.swept.resize(n);
+    s.moving.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const BodyModel& b = model.bodies[i];
+        s.moving[i] = b.motion != Motion::Static;
+        s.swept[i] = bounds(b.collider, s.end[i]);
+        if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
+    }
+    s.broadphase.update(s.swept, s.moving);
+}
+
+void findContacts(const Model& model, DetectScratch& s, double margin) {
+    s.contacts.clear();
+    for (const auto& [a, b] : s.broadphase.pairs()) {
+        const size_t first = s.contacts.size();
+        collide(model.bodies[a].collider, s.end[a], model.bodies[b].collider, s.end[b], margin, s.contacts);
+        for (size_t k = first; k < s.contacts.size(); ++k) {
+            s.contacts[k].bodyA = a;
+            s.contacts[k].bodyB = b;
+        }
+    }
+}
+
+namespace {
+
+Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& after) {
+    Sweep w;
+    w.c0 = before.x;
+    w.c1 = after.x;
+    w.q0 = before.q;
+    w.q1 = after.q;
+    w.localCenter = body.centerOfMass;
+    return w;
+}
+
+bool touching(const std::vector<Manifold>& contacts, int a, int b) {
+    return std::any_of(contacts.begin(), contacts.end(),
+                       [&](const Manifold& m) { return m.bodyA == a && m.bodyB == b && m.maxDepth() >= 0.0; });
+}
+
+}  // namespace
+
+void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
+                 DetectScratch& s) {
+    s.impacts.clear();
+    for (const auto& [a, b] : s.broadphase.pairs()) {
+        if (touching(s.previous, a, b)) continue;  // in contact already: no new impact
+        const BodyModel& A = model.bodies[a];
+        const BodyModel& B = model.bodies[b];
+        // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
+        const double size = std::min(boundingRadius(A.collider), boundingRadius(B.collider));
+        const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
+                                      sweepOf(B, before.bodies[b], after.bodies[b]), 1e-3 * size);
+        // s = 0: touching at the start already (the first step has no previous contacts).
+        if (hit && hit->s > 0.0) s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
+    }
+}
+
+}  // namespace tumble

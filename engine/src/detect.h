@@ -1,0 +1,46 @@
+// Stages: broadphase, narrowphase and time of impact. They run after the integrator on the
+// poses at the start and the end of the step, and leave the contacts at the end of the step
+// and the impacts within it for the response.
+#pragma once
+
+#include <tumble/collision.h>
+#include <tumble/model.h>
+#include <tumble/world.h>
+
+#include "collision/broadphase.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tumble {
+
+struct DetectScratch {
+    std::vector<collision::Pose> start;   // body poses at the start of the step
+    std::vector<collision::Pose> end;     // ... and at its end
+    std::vector<collision::Aabb> swept;   // world boxes covering the whole step
+    std::vector<std::uint8_t> moving;
+    collision::Broadphase broadphase;
+    std::vector<collision::Manifold> contacts;
+    std::vector<collision::Manifold> previous;  // last step's contacts: pairs already touching
+    std::vector<collision::ImpactEvent> impacts;
+};
+
+/// True when the model has two bodies that could ever touch (at least one not static);
+/// otherwise the contact stages are skipped entirely.
+bool needsContacts(const Model& model);
+
+/// World pose of each body's frame.
+void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out);
+
+/// Broadphase: pairs whose boxes, swept over the step, overlap.
+void findPairs(const Model& model, DetectScratch& s);
+
+/// Narrowphase: the manifolds of every pair at the end of the step.
+void findContacts(const Model& model, DetectScratch& s, double margin);
+
+/// Time of impact: for pairs that did not touch at the start of the step, the moment they
+/// first touch within it (t0 = time at the start, h = step).
+void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
+                 DetectScratch& s);
+
+}  // namespace tumble

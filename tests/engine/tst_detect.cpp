@@ -1,0 +1,116 @@
+// The detection stages inside World::step: which pairs reach the narrowphase, the contacts
+// at the end of a step, and the time of impact of a pair that crossed within a step.
+#include "scene_builders.h"
+
+#include <QtTest>
+
+#include <cmath>
+
+using namespace tumble;
+using namespace tumble::test;
+
+namespace {
+
+BodyDesc ground() {
+    BodyDesc b;
+    b.name = "ground";
+    b.motion = Motion::Static;
+    b.shape.type = ShapeType::Plane;
+    b.shape.normal = Vec3::UnitY();
+    return b;
+}
+
+BodyDesc plate(const std::string& name, const Vec3& position, const Vec3& halfExtents) {
+    BodyDesc b = boxBody(name, halfExtents, 1.0);
+    b.motion = Motion::Static;
+    b.mass.reset();
+    b.position = position;
+    return b;
+}
+
+}  // namespace
+
+class TestDetect : public QObject {
+    Q_OBJECT
+private slots:
+    void aLoneBodySkipsTheContactStages() {
+        World w(sceneOf({sphereBody("ball", 0.5, 1.0)}));
+        stepN(w, 10, 0.01);
+        QCOMPARE(w.profile().pairs, 0L);
+        QCOMPARE(w.profile().broadphase, 0.0);
+        QVERIFY(w.contacts().empty());
+    }
+
+    void staticBodiesNeverPair() {
+        // Two overlapping static boxes and a plane: nothing moves, nothing is ever tested.
+        World w(sceneOf({ground(), plate("a", Vec3(0, 0, 0), Vec3(1, 1, 1)),
+                         plate("b", Vec3(0.5, 0, 0), Vec3(1, 1, 1))}));
+        stepN(w, 5, 0.01);
+        QCOMPARE(w.profile().pairs, 0L);
+        QVERIFY(w.contacts().empty());
+    }
+
+    void restingSphereTouchesTheGround() {
+        // No gravity: a sphere sunk 1 mm into the ground stays there and touches it.
+        BodyDesc ball = sphereBody("ball", 0.5, 1.0);
+        ball.position = Vec3(0, 0.499, 0);
+        World w(sceneOf({ground(), ball}, Vec3::Zero()));
+        w.step(0.01);
+        QCOMPARE(w.contacts().size(), size_t(1));
+        const collision::Manifold& m = w.contacts()[0];
+        QCOMPARE(m.bodyA, 0);
+        QCOMPARE(m.bodyB, 1);
+        QVERIFY((m.normal + Vec3::UnitY()).norm() < 1e-12);  // out of the ball towards the ground
+        QVERIFY(std::abs(m.points[0].depth - 0.001) < 1e-12);
+        QVERIFY(w.impacts().empty());  // touching from the start: no new impact
+    }
+
+    void fallingSphereImpactTime() {
+        // Starts 0.1 m above the ground at 2 m/s downward, no gravity: touches at 0.05 s.
+        BodyDesc ball = sphereBody("ball", 0.5, 1.0);
+        ball.position = Vec3(0, 0.6, 0);
+        ball.velocity = Vec3(0, -2, 0);
+        World w(sceneOf({ground(), ball}, Vec3::Zero()));
+        int impacts = 0;
+        double when = -1.0;
+        for (int k = 0; k < 10; ++k) {
+            w.step(0.007);
+            for (const auto& e : w.impacts()) ++impacts, when = e.time;
+        }
+        QCOMPARE(impacts, 1);
+        QVERIFY2(std::abs(when - 0.05) < 1e-3 * 0.5 / 2.0 + 1e-9, qPrintable(QString::number(when, 'g', 17)));
+    }
+
+    void fastSmallSphereDoesNotTunnelThroughAThinPlate() {
+        // A 1 cm sphere at 200 m/s towards a 1 cm plate, default step 1/240 s: the sphere moves
+        // 0.83 m per step, so at the end of the crossing step it is far past the plate and the
+        // narrowphase sees nothing; the time-of-impact stage must still find the crossing.
+        const double dt = 1.0 / 240.0;
+        BodyDesc ball = sphereBody("bullet", 0.01, 0.005);
+        ball.position = Vec3(0, 0, 0);
+        ball.velocity = Vec3(200, 0, 0);
+        const double face = 1.5;  // the plate spans x = 1.5 .. 1.51
+        World w(sceneOf({plate("plate", Vec3(face + 0.005, 0, 0), Vec3(0.005, 1, 1)), ball}, Vec3::Zero()));
+        double when = -1.0;
+        int impacts = 0;
+        for (int k = 0; k < 4; ++k) {
+            w.step(dt);
+            QVERIFY(w.contacts().empty() || k == 1);  // the end poses never overlap the plate
+            for (const auto& e : w.impacts()) {
+                ++impacts;
+                when = e.time;
+                QCOMPARE(e.bodyA, 0);
+                QCOMPARE(e.bodyB, 1);
+                QVERIFY((e.normal - Vec3(1, 0, 0)).norm() < 1e-6);  // out of the bullet, towards the plate
+            }
+        }
+        QCOMPARE(impacts, 1);
+        const double touch = (face - 0.01) / 200.0;  // closed form: 7.45 ms, inside step 2
+        QVERIFY2(std::abs(when - touch) <= 1e-5 / 200.0 + 1e-12, qPrintable(QString::number(when, 'g', 17)));
+        // And without time of impact it would have been missed: no end pose is in contact.
+        QVERIFY(w.state().bodies[1].x.x() > face + 1.0);
+    }
+};
+
+QTEST_APPLESS_MAIN(TestDetect)
+#include "tst_detect.moc"
