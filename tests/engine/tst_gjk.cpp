@@ -95,6 +95,38 @@ double satDepth(const ConvexHull& ha, const Pose& pa, const ConvexHull& hb, cons
     return best;
 }
 
+
+// Support function of the full shapes' difference A - B: h(u) = max over A - B of u·x.
+double support(const ConvexProxy& a, const ConvexProxy& b, const Vec3& u) {
+    return u.dot(a.support(u)) - u.dot(b.support(-u)) + a.radius + b.radius;
+}
+
+// Minimum over unit vectors of f: the best of a Fibonacci sphere of directions, then a
+// pattern search about it with a shrinking step.
+template <class F> double minOverSphere(F&& f) {
+    const int n = 4000;
+    Vec3 best(0, 0, 1);
+    double fb = f(best);
+    for (int i = 0; i < n; ++i) {
+        const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1 - z * z);
+        const double t = i * std::numbers::pi * (3.0 - std::sqrt(5.0));
+        const Vec3 u(r * std::cos(t), r * std::sin(t), z);
+        const double fu = f(u);
+        if (fu < fb) fb = fu, best = u;
+    }
+    for (double step = 0.05; step > 1e-9;) {
+        const Vec3 e1 = best.unitOrthogonal(), e2 = best.cross(e1);
+        bool improved = false;
+        for (const Vec3& d : {e1, Vec3(-e1), e2, Vec3(-e2), Vec3(e1 + e2), Vec3(e1 - e2), Vec3(-e1 + e2), Vec3(-e1 - e2)}) {
+            const Vec3 u = (best + step * d).normalized();
+            const double fu = f(u);
+            if (fu < fb) fb = fu, best = u, improved = true;
+        }
+        if (!improved) step *= 0.5;
+    }
+    return fb;
+}
+
 }  // namespace
 
 class TestGjk : public QObject {
@@ -273,6 +305,60 @@ private slots:
         qInfo("random hulls: %d separated (worst distance error %.2e), %d overlapping (worst depth error %.2e)",
               separated, worstDist, overlapping, worstDepth);
         QVERIFY(separated > 50 && overlapping > 50);
+    }
+
+    void randomPairsOfAllKindsAgainstSupportFunction() {
+        // Every kind against every kind at random poses. With h the support function of the
+        // difference A - B, any direction u bounds the answer: distance >= -h(-u) when apart,
+        // depth <= h(u) when overlapping; the best direction found by search must not beat
+        // GJK / EPA, and their own normal must certify their answer.
+        std::mt19937 rng(777);
+        std::uniform_real_distribution<double> size(0.2, 1.2), u(-1.0, 1.0);
+        std::uniform_real_distribution<double> decade(-3.0, 3.0);
+        double k = 1.0;  // each trial at its own scale, from a millimetre to a kilometre
+        auto randomShape = [&](int kind) {
+            switch (kind) {
+            case 0: return Shape::sphere(k * size(rng));
+            case 1: return Shape::box(k * Vec3(size(rng), size(rng), size(rng)));
+            case 2: return Shape::capsule(k * size(rng), k * size(rng));
+            case 3: return Shape::cylinder(k * size(rng), k * size(rng));
+            default: return hullShape(randomHull(rng, 12, k));
+            }
+        };
+        int apart = 0, overlapping = 0;
+        double worst = 0.0;
+        for (int trial = 0; trial < 300; ++trial) {
+            k = std::pow(10.0, decade(rng));
+            const Vec3 far = Vec3(30, -20, 50) * k;
+            const Shape sa = randomShape(trial % 5), sb = randomShape((trial / 5) % 5);
+            const ConvexProxy a = proxyOf(sa, pose(far + Vec3(u(rng), u(rng), u(rng)) * 1.5 * k, randomRotation(rng)));
+            const ConvexProxy b = proxyOf(sb, pose(far + Vec3(u(rng), u(rng), u(rng)) * 1.5 * k, randomRotation(rng)));
+            const Distance d = gjkDistance(a, b);
+            const QString where = QString("trial %1 kinds %2 %3").arg(trial).arg(trial % 5).arg((trial / 5) % 5);
+            if (!d.overlap) {
+                // No direction may prove them farther apart than GJK says ...
+                const double best = -minOverSphere([&](const Vec3& v) { return support(a, b, -v); });
+                QVERIFY2(d.distance >= best - 1e-12 * k, qPrintable(where));
+                // ... and GJK's own direction proves its answer: the plane normal to the
+                // closest points' difference separates the shapes by that distance.
+                const Vec3 n = d.normal;
+                QVERIFY2((d.pointA - d.pointB - d.distance * n).norm() < 1e-9 * k, qPrintable(where));
+                QVERIFY2(-support(a, b, -n) >= d.distance - 1e-9 * k, qPrintable(where + QString(": %1 vs %2").arg(d.distance).arg(-support(a, b, -n))));
+                worst = std::max(worst, (d.distance + support(a, b, -n)) / k);
+                ++apart;
+            } else {
+                const Penetration p = penetration(a, b, 0.0);
+                const double best = minOverSphere([&](const Vec3& v) { return support(a, b, v); });
+                // No direction found by search is a shorter way out than EPA's ...
+                QVERIFY2(p.depth <= best + 1e-12 * k, qPrintable(where + QString(": %1 vs %2").arg(p.depth).arg(best)));
+                // ... and EPA's way out is as long as it says (the support along the normal).
+                QVERIFY2(std::abs(support(a, b, -p.normal) - p.depth) < 1e-9 * k, qPrintable(where + QString(": %1 vs %2").arg(p.depth, 0, 'g', 15).arg(support(a, b, -p.normal), 0, 'g', 15)));
+                worst = std::max(worst, std::abs(support(a, b, -p.normal) - p.depth) / k);
+                ++overlapping;
+            }
+        }
+        qInfo("all kinds: %d apart, %d overlapping, worst gap between the answer and its own certificate %.2e of the scale", apart, overlapping, worst);
+        QVERIFY(apart > 50 && overlapping > 50);
     }
 };
 

@@ -21,8 +21,12 @@ constexpr double kGrowTol = 1e-9;   // a point must leave the simplex's span by 
 constexpr double kDoneTol = 1e-10;  // support gains less than this × scale: done
 constexpr int kMaxIterations = 128;
 
+// A face of the polytope, wound counter-clockwise seen from outside. Edge e runs from
+// v[e] to v[(e + 1) % 3]; adj[e] is the face across it, where it is edge adjEdge[e].
 struct Face {
     int v[3];
+    int adj[3];
+    int adjEdge[3];
     Vec3 n;
     double dist;
     bool alive;
@@ -128,11 +132,11 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     // The tetrahedron, faces wound outwards as seen from its centroid.
     const Vec3 inner = 0.25 * (v[0].w + v[1].w + v[2].w + v[3].w);
     std::vector<Face> faces;
-    faces.reserve(4 + 2 * kMaxIterations * 3);
+    faces.reserve(4 + 8 * kMaxIterations);
     auto makeFace = [&](int i, int j, int k) {
         Vec3 n = (v[j].w - v[i].w).cross(v[k].w - v[i].w);
         const double len = n.norm();
-        Face f{{i, j, k}, Vec3::Zero(), std::numeric_limits<double>::infinity(), true};
+        Face f{{i, j, k}, {-1, -1, -1}, {0, 0, 0}, Vec3::Zero(), std::numeric_limits<double>::infinity(), true};
         if (len > 0) {
             f.n = n / len;
             f.dist = f.n.dot(v[i].w);
@@ -144,10 +148,50 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         if (f.n.dot(v[t[0]].w - inner) < 0) f = makeFace(t[0], t[2], t[1]);
         faces.push_back(f);
     }
+    // Edge a->b of one face meets edge b->a of another: link them.
+    auto link = [&](int fa, int ea, int fb, int eb) {
+        faces[fa].adj[ea] = fb, faces[fa].adjEdge[ea] = eb;
+        faces[fb].adj[eb] = fa, faces[fb].adjEdge[eb] = ea;
+    };
+    for (int fa = 0; fa < 4; ++fa)
+        for (int ea = 0; ea < 3; ++ea)
+            for (int fb = 0; fb < 4; ++fb)
+                for (int eb = 0; eb < 3; ++eb)
+                    if (faces[fa].v[ea] == faces[fb].v[(eb + 1) % 3] && faces[fa].v[(ea + 1) % 3] == faces[fb].v[eb])
+                        link(fa, ea, fb, eb);
+
+    // The silhouette of the polytope seen from w (van den Bergen): from the face being
+    // replaced, walk across edges into faces that see w, removing them; an edge into a face
+    // that does not see w is on the horizon. The walk keeps the removed region connected, so
+    // a sliver face whose normal rounding has turned cannot tear the surface.
+    struct HorizonEdge {
+        int face, edge;
+    };
+    std::vector<HorizonEdge> horizon;
+    std::vector<HorizonEdge> stack;
+    auto silhouette = [&](int start, const Vec3& w) {
+        faces[start].alive = false;
+        horizon.clear();
+        stack.clear();
+        for (int e = 2; e >= 0; --e) stack.push_back({faces[start].adj[e], faces[start].adjEdge[e]});
+        while (!stack.empty()) {
+            const HorizonEdge h = stack.back();
+            stack.pop_back();
+            Face& g = faces[h.face];
+            if (!g.alive) continue;
+            if (g.n.dot(w - v[g.v[0]].w) > 0.0) {
+                g.alive = false;
+                // Depth first, the next edge round first: the horizon comes out as a loop.
+                stack.push_back({g.adj[(h.edge + 2) % 3], g.adjEdge[(h.edge + 2) % 3]});
+                stack.push_back({g.adj[(h.edge + 1) % 3], g.adjEdge[(h.edge + 1) % 3]});
+            } else {
+                horizon.push_back(h);
+            }
+        }
+    };
 
     const double doneTol = kDoneTol * scale;
     int best = 0;
-    std::vector<std::array<int, 2>> horizon;
     for (int iter = 0; iter < kMaxIterations; ++iter) {
         best = -1;
         for (int i = 0; i < static_cast<int>(faces.size()); ++i)
@@ -157,27 +201,30 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         if (f.n.dot(w.w) - f.dist <= doneTol) break;
         const int index = static_cast<int>(v.size());
         v.push_back(w);
-        horizon.clear();
-        for (Face& g : faces) {
-            if (!g.alive || g.n.dot(w.w - v[g.v[0]].w) <= 0.0) continue;
-            g.alive = false;
-            for (int e = 0; e < 3; ++e) {
-                const int i = g.v[e], j = g.v[(e + 1) % 3];
-                auto twin = std::find(horizon.begin(), horizon.end(), std::array<int, 2>{j, i});
-                if (twin != horizon.end()) horizon.erase(twin);
-                else horizon.push_back({i, j});
-            }
+        silhouette(best, w.w);
+        // One new face on each horizon edge, wound like the face it replaces.
+        const int first = static_cast<int>(faces.size());
+        const int count = static_cast<int>(horizon.size());
+        bool broken = count < 3;
+        for (const HorizonEdge& h : horizon) {
+            const Face& g = faces[h.face];
+            const int a = g.v[(h.edge + 1) % 3], b = g.v[h.edge];
+            faces.push_back(makeFace(a, b, index));
+            const int nf = static_cast<int>(faces.size()) - 1;
+            link(nf, 0, h.face, h.edge);
+            broken = broken || faces[nf].dist < f.dist - doneTol;
         }
-        bool broken = false;
-        for (const auto& e : horizon) {
-            const Face g = makeFace(e[0], e[1], index);
-            broken = broken || g.dist < f.dist - doneTol;
-            faces.push_back(g);
+        // Side edges: b->w of one new face meets w->a of the face whose a is that b.
+        for (int i = 0; i < count && !broken; ++i) {
+            int match = -1;
+            for (int j = 0; j < count; ++j)
+                if (faces[first + j].v[0] == faces[first + i].v[1]) match = j;
+            if (match < 0) broken = true;
+            else link(first + i, 1, first + match, 2);
         }
         if (broken) {
             // Rounding made the polytope non-convex: the last face is the best answer we have.
-            for (auto& g : faces) g.alive = false;
-            faces[best].alive = true;
+            for (int i = first; i < static_cast<int>(faces.size()); ++i) faces[i].alive = false;
             break;
         }
     }

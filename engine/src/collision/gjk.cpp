@@ -106,6 +106,32 @@ Closest closestOnTriangle(detail::SimplexVertex* s, int& n) {
     }
     for (int i = 0; i < m; ++i) s[i] = kept[i];
     n = m;
+    if (m == 3) {
+        // Inside the triangle: v is the origin's projection on its plane. Weighting the
+        // vertices loses digits on a thin triangle (three support points close together on
+        // a curved rim); the normal from the two shorter edges keeps them.
+        int pivot = 0;  // the vertex opposite the longest edge
+        double longest = -1.0;
+        for (int i = 0; i < 3; ++i) {
+            const double e = (s[(i + 1) % 3].w - s[(i + 2) % 3].w).squaredNorm();
+            if (e > longest) longest = e, pivot = i;
+        }
+        const Vec3& p = s[pivot].w;
+        const Vec3 nrm = (s[(pivot + 1) % 3].w - p).cross(s[(pivot + 2) % 3].w - p);
+        const double nn = nrm.squaredNorm();
+        if (nn > 0) {
+            c.v = nrm * (nrm.dot(p) / nn);
+            // The weights of v itself, by signed areas, so the witness points agree with v.
+            double sum = 0.0;
+            double l[3];
+            for (int i = 0; i < 3; ++i) {
+                l[i] = std::max(0.0, nrm.dot((s[(i + 1) % 3].w - c.v).cross(s[(i + 2) % 3].w - c.v)));
+                sum += l[i];
+            }
+            if (sum > 0)
+                for (int i = 0; i < 3; ++i) c.lambda[i] = l[i] / sum;
+        }
+    }
     return c;
 }
 
@@ -351,6 +377,7 @@ Distance gjkCoreDistance(const ConvexProxy& a, const ConvexProxy& b) {
         return d;
     }
     d.distance = g.v.norm();
+    d.normal = g.v / d.distance;
     d.pointA = g.a + origin;
     d.pointB = g.b + origin;
     return d;
@@ -395,6 +422,7 @@ Distance gjkDistance(const ConvexProxy& a, const ConvexProxy& b) {
     const Penetration p = penetrationFrom(g, a, b, origin, scale);
     Distance d;
     d.distance = -p.depth;
+    d.normal = p.normal;
     d.pointA = p.pointA;
     d.pointB = p.pointB;
     d.overlap = d.distance <= 0.0;

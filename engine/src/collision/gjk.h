@@ -43,6 +43,9 @@ struct Distance {
     double distance = 0.0;
     Vec3 pointA = Vec3::Zero(), pointB = Vec3::Zero();
     bool overlap = false;
+    /// Unit, out of B towards A: the direction that separates the shapes fastest (the way
+    /// out when overlapping). More accurate than normalising pointA - pointB.
+    Vec3 normal = Vec3(0, 1, 0);
 };
 Distance gjkDistance(const ConvexProxy& a, const ConvexProxy& b);
 

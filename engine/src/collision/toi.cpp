@@ -67,10 +67,7 @@ double reach(const Shape& shape, const Sweep& sw) { return boundingRadius(shape)
 
 Probe probe(const ConvexProxy& a, const ConvexProxy& b) {
     const Distance d = gjkDistance(a, b);
-    Vec3 n = d.pointA - d.pointB;
-    if (d.overlap || !(n.squaredNorm() > 0)) n = penetration(a, b, std::numeric_limits<double>::infinity()).normal;
-    else n.normalize();
-    return {d.distance, n, d.pointA, d.pointB};
+    return {d.distance, d.normal, d.pointA, d.pointB};
 }
 
 // Linear part of mu plus the rotation arcs, for two bodies of reaches rA, rB.
