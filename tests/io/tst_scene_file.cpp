@@ -204,9 +204,14 @@ private slots:
         const fs::path first = fs::path(dir.path().toStdString()) / "first.json";
         const fs::path second = fs::path(dir.path().toStdString()) / "second.json";
         const SceneDesc scene = everyField();
+        // Reading a scene file reads its meshes too: give the bunny a (tetrahedral) mesh.
+        fs::create_directories(first.parent_path() / "meshes");
+        std::ofstream(first.parent_path() / "meshes" / "bunny.obj")
+            << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
         io::writeSceneFile(scene, first);
         QCOMPARE(readBytes(first), io::sceneToJson(scene));
         const SceneDesc loaded = io::readSceneFile(first);
+        QVERIFY(loaded.bodies[5].shape.meshData);
         QVERIFY(loaded == scene);
         io::writeSceneFile(loaded, second);
         QCOMPARE(readBytes(second), readBytes(first));
