@@ -17,8 +17,9 @@ namespace tumble::collision::detail {
 
 namespace {
 
-constexpr double kFaceAlign = 0.985;      // cos(~10 deg): a face this close to the normal is a contact face
-constexpr double kRefHysteresis = 0.005;  // A's face must beat B's by this to be the reference
+constexpr double kFaceAlign = 0.99996;    // cos(~0.5 deg): the normal is this face's (else an edge contact)
+constexpr double kSegmentAlign = 0.985;    // cos(~10 deg): two round segments lie side by side
+constexpr double kRefHysteresis = 1e-4;  // A's face must be this much better aligned (cosine, ~0.8 deg) to be the reference
 constexpr int kCapSides = 16;
 constexpr int kMaxClip = 2 * Feature::kMax + 2;
 
@@ -214,6 +215,53 @@ void clipAgainst(const Feature& ref, const Vec3& refNormal, const Feature& inc, 
 
 }  // namespace
 
+namespace {
+
+// The core segment of a capsule or the axis of a cylinder, and the radius around it.
+void coreSegment(const ConvexProxy& p, Vec3& c0, Vec3& c1, double& r) {
+    const Vec3 axis = p.pose.R.col(1) * p.halfExtents.y();
+    c0 = p.pose.p + axis;
+    c1 = p.pose.p - axis;
+    r = p.core == ConvexProxy::Core::Cylinder ? p.halfExtents.x() : p.radius;
+}
+
+// Two round segments (capsules, cylinder sides) side by side: A's core clipped to the end
+// planes of B's, each end's depth from the true distance between the cores.
+void segmentPair(const ConvexProxy& a, const ConvexProxy& b, const Vec3& n, double margin, std::uint32_t baseId,
+                 std::vector<Candidate>& out) {
+    Vec3 a0, a1, b0, b1;
+    double ra, rb;
+    coreSegment(a, a0, a1, ra);
+    coreSegment(b, b0, b1, rb);
+    Poly seg;
+    seg.n = 2;
+    seg.v[0] = a0, seg.v[1] = a1;
+    seg.tag[0] = 0, seg.tag[1] = 1;
+    const Vec3 u = b1 - b0;
+    clipSegment(seg, b0, u, 0x200u);
+    clipSegment(seg, b1, -u, 0x201u);
+    const double len2 = u.squaredNorm();
+    for (int i = 0; i < seg.n; ++i) {
+        const Vec3& c = seg.v[i];
+        const double t = len2 > 0 ? std::clamp((c - b0).dot(u) / len2, 0.0, 1.0) : 0.0;
+        const double depth = ra + rb - (c - (b0 + t * u)).norm();
+        if (depth > -margin) out.push_back({c - ra * n + 0.5 * depth * n, depth, mixId(baseId, seg.tag[i])});
+    }
+}
+
+// The clipped points can miss the deepest place: skewed segments are deepest between their
+// ends, a cap's 16-gon cuts off the rim, two nearly coplanar hull faces meet at an edge
+// within the face tolerance. Then the penetration's own point is kept as well.
+void keepDeepest(const Penetration& pen, std::uint32_t id, const ConvexProxy& a, const ConvexProxy& b,
+                 std::vector<Candidate>& out) {
+    double deepest = out[0].depth;
+    for (const Candidate& c : out) deepest = std::max(deepest, c.depth);
+    if (pen.depth > deepest + 1e-7 * (a.size() + b.size() + a.radius + b.radius))
+        out.push_back({0.5 * (pen.pointA + pen.pointB), pen.depth, id});
+}
+
+}  // namespace
+
 void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration& pen, double margin, Vec3& normal,
                    std::vector<Candidate>& out) {
     out.clear();
@@ -222,32 +270,35 @@ void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration
     const Feature fB = supportingFeature(b, n);
     const double alignA = fA.face && fB.count >= 2 ? fA.normal.dot(-n) : -2.0;
     const double alignB = fB.face && fA.count >= 2 ? fB.normal.dot(n) : -2.0;
+    const std::uint32_t single = mixId(mixId(0x54u, fA.id), fB.id);
     if (std::max(alignA, alignB) >= kFaceAlign) {
         const bool refOnB = alignB >= alignA - kRefHysteresis;
         const Feature& ref = refOnB ? fB : fA;
-        const Feature& inc = refOnB ? fA : fB;
-        const std::uint32_t base = mixId(mixId(refOnB ? 0x51u : 0x52u, ref.id), inc.id);
-        clipAgainst(ref, ref.normal, inc, margin, base, out);
-        if (!out.empty()) {
-            normal = refOnB ? ref.normal : Vec3(-ref.normal);
-            return;
+        // The incident feature is the one facing the reference face itself, not the
+        // normal: a round incident shape then gives its deepest points along that face.
+        const Feature inc = supportingFeature(refOnB ? a : b, -ref.normal);
+        if (inc.count >= 2) {
+            const std::uint32_t base = mixId(mixId(refOnB ? 0x51u : 0x52u, ref.id), inc.id);
+            clipAgainst(ref, ref.normal, inc, margin, base, out);
+            if (!out.empty()) {
+                keepDeepest(pen, single, a, b, out);
+                normal = refOnB ? ref.normal : Vec3(-ref.normal);
+                return;
+            }
         }
     } else if (fA.count == 2 && fB.count == 2) {
-        // Two segments (capsules, cylinder sides) lying side by side: B's segment is the
-        // reference, its end planes the side planes, the plane through it normal to n the face.
         const Vec3 uA = (fA.v[1] - fA.v[0]).normalized(), uB = (fB.v[1] - fB.v[0]).normalized();
-        if (std::abs(uA.dot(uB)) >= kFaceAlign && std::abs(uB.dot(n)) <= 0.17) {
-            Feature ref = fB;
-            ref.normal = n;
-            clipAgainst(ref, n, fA, margin, mixId(mixId(0x53u, fB.id), fA.id), out);
+        if (std::abs(uA.dot(uB)) >= kSegmentAlign && std::abs(uB.dot(n)) <= 0.17) {
+            segmentPair(a, b, n, margin, mixId(mixId(0x53u, fB.id), fA.id), out);
             if (!out.empty()) {
+                keepDeepest(pen, single, a, b, out);
                 normal = n;
                 return;
             }
         }
     }
     normal = n;
-    out.push_back({0.5 * (pen.pointA + pen.pointB), pen.depth, mixId(mixId(0x54u, fA.id), fB.id)});
+    out.push_back({0.5 * (pen.pointA + pen.pointB), pen.depth, single});
 }
 
 void appendReduced(const std::vector<Candidate>& c, const Vec3& normal, std::vector<Manifold>& out) {
