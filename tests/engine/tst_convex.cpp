@@ -27,7 +27,9 @@ Pose pose(const Vec3& p, const Quat& q = Quat::Identity()) {
     return r;
 }
 
-Quat about(const Vec3& axis, double angle) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
+Quat about(const Vec3& axis, double angle) {
+    return Quat(Eigen::AngleAxisd(angle, axis.normalized()));
+}
 
 Shape hullOf(const std::vector<Vec3>& points) {
     Shape s;
@@ -38,8 +40,8 @@ Shape hullOf(const std::vector<Vec3>& points) {
 
 // A triangular prism, its top face the plane y = top, wide enough to hold a unit box.
 Shape prism(double top) {
-    return hullOf({Vec3(-4, top, -3), Vec3(4, top, -3), Vec3(0, top, 5), Vec3(-4, top - 2, -3), Vec3(4, top - 2, -3),
-                   Vec3(0, top - 2, 5)});
+    return hullOf({Vec3(-4, top, -3), Vec3(4, top, -3), Vec3(0, top, 5), Vec3(-4, top - 2, -3),
+                   Vec3(4, top - 2, -3), Vec3(0, top - 2, 5)});
 }
 
 Shape meshShape(std::vector<Vec3> v, std::vector<std::array<int, 3>> t, bool withBvh = true) {
@@ -75,7 +77,8 @@ bool hasPoints(const Manifold& m, const std::vector<Vec3>& expected, double dept
     for (const Vec3& e : expected) {
         bool found = false;
         for (int i = 0; i < m.count; ++i)
-            found = found || ((m.points[i].position - e).norm() < tol && std::abs(m.points[i].depth - depth) < tol);
+            found = found ||
+                    ((m.points[i].position - e).norm() < tol && std::abs(m.points[i].depth - depth) < tol);
         if (!found) return false;
     }
     return true;
@@ -104,12 +107,14 @@ private slots:
         QVERIFY((m.normal - Vec3(0, 1, 0)).norm() < 1e-12);
         std::vector<Vec3> corners;
         for (double sx : {-0.5, 0.5})
-            for (double sz : {-0.5, 0.5}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.005, 0));
+            for (double sz : {-0.5, 0.5})
+                corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.005, 0));
         QVERIFY(hasPoints(m, corners, 0.01, 1e-12));
         QCOMPARE(ids(m).size(), size_t(4));
         // Nudged sideways the same features touch: the same ids.
         std::vector<Manifold> moved;
-        collideConvex(top, pose(pa.p + Vec3(1e-3, 0, -1e-3), about(Vec3::UnitY(), yaw)), floor, pose(Vec3::Zero()), 0.0, moved);
+        collideConvex(top, pose(pa.p + Vec3(1e-3, 0, -1e-3), about(Vec3::UnitY(), yaw)), floor,
+                      pose(Vec3::Zero()), 0.0, moved);
         QCOMPARE(moved.size(), size_t(1));
         QVERIFY(ids(moved[0]) == ids(m));
     }
@@ -122,7 +127,8 @@ private slots:
         Pose placed = pa;
         placed.p.y() = 1.0 - 0.01 - lowest.y();
         std::vector<Manifold> out;
-        collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), placed, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.001, out);
+        collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), placed, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()),
+                      0.001, out);
         QCOMPARE(out.size(), size_t(1));
         std::vector<Vec3> edge{placed.toWorld(Vec3(-0.5, -0.5, -0.5)) + Vec3(0, 0.005, 0),
                                placed.toWorld(Vec3(-0.5, -0.5, 0.5)) + Vec3(0, 0.005, 0)};
@@ -137,7 +143,8 @@ private slots:
         QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
         std::vector<Vec3> corners;
         for (double sx : {-0.5, 0.5})
-            for (double sz : {-0.5, 0.5}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.01, 0));
+            for (double sz : {-0.5, 0.5})
+                corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.01, 0));
         QVERIFY(hasPoints(out[0], corners, 0.02, 1e-12));
         // The hull as A, the box as B: same contact, normal reversed.
         out.clear();
@@ -158,7 +165,8 @@ private slots:
         QCOMPARE(out.size(), size_t(1));
         QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
         std::vector<Vec3> corners;
-        for (const Vec3& c : {Vec3(-0.5, 0, -0.4), Vec3(0.5, 0, -0.4), Vec3(0, 0, 0.6)}) corners.push_back(pa.toWorld(c) + Vec3(0, 0.025, 0));
+        for (const Vec3& c : {Vec3(-0.5, 0, -0.4), Vec3(0.5, 0, -0.4), Vec3(0, 0, 0.6)})
+            corners.push_back(pa.toWorld(c) + Vec3(0, 0.025, 0));
         QVERIFY(hasPoints(out[0], corners, 0.05, 1e-9));
     }
 
@@ -179,7 +187,8 @@ private slots:
             QVERIFY(std::abs(m.points[i].depth - 0.01) < 1e-9);
         }
         for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) area = std::max(area, (m.points[i].position - m.points[j].position).norm());
+            for (int j = 0; j < 4; ++j)
+                area = std::max(area, (m.points[i].position - m.points[j].position).norm());
         QVERIFY(area > 1.1);  // spread over the rim, not bunched
         // A small box on the cylinder's cap: its four corners.
         const Pose pb = pose(pc.p + Vec3(0.1, 1.5 + 0.2 - 0.03, 0), about(Vec3::UnitY(), 0.7));
@@ -188,7 +197,8 @@ private slots:
         QCOMPARE(out.size(), size_t(1));
         std::vector<Vec3> corners;
         for (double sx : {-0.2, 0.2})
-            for (double sz : {-0.2, 0.2}) corners.push_back(pb.toWorld(Vec3(sx, -0.2, sz)) + Vec3(0, 0.015, 0));
+            for (double sz : {-0.2, 0.2})
+                corners.push_back(pb.toWorld(Vec3(sx, -0.2, sz)) + Vec3(0, 0.015, 0));
         QVERIFY(hasPoints(out[0], corners, 0.03, 1e-9));
     }
 
@@ -200,7 +210,8 @@ private slots:
         QVERIFY(lowest.y() < pc.toWorld(Vec3(0.6, -1.5, 0)).y());
         pc.p = Vec3(0, 1.0 - 0.01 - lowest.y(), 0);
         std::vector<Manifold> out;
-        collideConvex(Shape::cylinder(0.6, 1.5), pc, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.001, out);
+        collideConvex(Shape::cylinder(0.6, 1.5), pc, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.001,
+                      out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY(hasPoints(out[0], {pc.toWorld(Vec3(-0.6, -1.5, 0)) + Vec3(0, 0.005, 0)}, 0.01, 1e-9));
     }
@@ -210,21 +221,21 @@ private slots:
         // the ends of the line of contact.
         const Quat alongX = about(Vec3::UnitZ(), std::numbers::pi / 2);
         std::vector<Manifold> out;
-        collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX), Shape::box(Vec3(2, 1, 2)),
-                      pose(Vec3::Zero()), 0.0, out);
+        collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX),
+                      Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY(hasPoints(out[0], {Vec3(-0.8, 0.99, 0.1), Vec3(0.8, 0.99, 0.1)}, 0.02, 1e-9));
         out.clear();
-        collideConvex(Shape::capsule(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX), prism(1.0), pose(Vec3::Zero()),
-                      0.0, out);
+        collideConvex(Shape::capsule(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX), prism(1.0),
+                      pose(Vec3::Zero()), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY(hasPoints(out[0], {Vec3(-0.8, 0.99, 0.1), Vec3(0.8, 0.99, 0.1)}, 0.02, 1e-9));
         // Two cylinders lying side by side, parallel: the overlap of their lines. EPA on two
         // curved cores stops at a support gain of 1e-10 of their size, so the normal is
         // good to about the square root of that.
         out.clear();
-        collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0.5, 0.6 - 0.01, 0), alongX), Shape::cylinder(0.3, 0.8),
-                      pose(Vec3(0, 0, 0), alongX), 0.0, out);
+        collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0.5, 0.6 - 0.01, 0), alongX),
+                      Shape::cylinder(0.3, 0.8), pose(Vec3(0, 0, 0), alongX), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-4);
         QVERIFY(hasPoints(out[0], {Vec3(-0.3, 0.295, 0), Vec3(0.8, 0.295, 0)}, 0.01, 1e-4));
@@ -233,7 +244,8 @@ private slots:
     void singlePointsAndMargin() {
         // A sphere on a hull face: one point; the depth and position in closed form.
         std::vector<Manifold> out;
-        collideConvex(Shape::sphere(0.5), pose(Vec3(0.2, 1.45, 0.1)), prism(1.0), pose(Vec3::Zero()), 0.0, out);
+        collideConvex(Shape::sphere(0.5), pose(Vec3(0.2, 1.45, 0.1)), prism(1.0), pose(Vec3::Zero()), 0.0,
+                      out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY(hasPoints(out[0], {Vec3(0.2, 0.975, 0.1)}, 0.05, 1e-12));
         // Apart by 0.02: nothing with a margin of 0.01, a near contact with 0.05.
@@ -252,12 +264,14 @@ private slots:
         for (bool withBvh : {true, false}) {
             const Pose pa = pose(Vec3(0.5, 0.5 - 0.01, 0.3), about(Vec3::UnitY(), 0.2));
             std::vector<Manifold> out;
-            collideConvexMesh(Shape::box(Vec3(0.3, 0.5, 0.3)), pa, groundStrip(1, withBvh), pose(Vec3::Zero()), 0.0, out);
+            collideConvexMesh(Shape::box(Vec3(0.3, 0.5, 0.3)), pa, groundStrip(1, withBvh),
+                              pose(Vec3::Zero()), 0.0, out);
             QCOMPARE(out.size(), size_t(1));
             QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
             std::vector<Vec3> corners;
             for (double sx : {-0.3, 0.3})
-                for (double sz : {-0.3, 0.3}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.005, 0));
+                for (double sz : {-0.3, 0.3})
+                    corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + Vec3(0, 0.005, 0));
             QVERIFY(hasPoints(out[0], corners, 0.01, 1e-12));
         }
     }
@@ -287,8 +301,9 @@ private slots:
         // above: the normal points from the edge to the centre, not up.
         const std::vector<Vec3> v{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
                                   Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
-        const std::vector<std::array<int, 3>> t{{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                                                {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+        const std::vector<std::array<int, 3>> t{{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
+                                                {0, 1, 5}, {0, 5, 4}, {3, 7, 6}, {3, 6, 2},
+                                                {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
         const Shape cube = meshShape(v, t);
         const Vec3 dir = Vec3(1, 1, 0).normalized();
         const Vec3 centre = Vec3(1, 1, 0.5) + (0.3 - 0.01) * dir;
@@ -318,7 +333,8 @@ private slots:
         QVERIFY((out[0].normal - pm.R.col(1)).norm() < 1e-12);
         std::vector<Vec3> corners;
         for (double sx : {-0.3, 0.3})
-            for (double sz : {-0.3, 0.3}) corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + 0.005 * pm.R.col(1));
+            for (double sz : {-0.3, 0.3})
+                corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + 0.005 * pm.R.col(1));
         QVERIFY(hasPoints(out[0], corners, 0.01, 1e-12));
     }
 
@@ -332,15 +348,15 @@ private slots:
         std::normal_distribution<double> g;
         auto randomShape = [&](int kind) {
             switch (kind) {
-            case 0: return Shape::sphere(size(rng));
-            case 1: return Shape::box(Vec3(size(rng), size(rng), size(rng)));
-            case 2: return Shape::capsule(size(rng), size(rng));
-            case 3: return Shape::cylinder(size(rng), size(rng));
-            default: {
-                std::vector<Vec3> pts;
-                for (int i = 0; i < 12; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-                return hullOf(pts);
-            }
+                case 0: return Shape::sphere(size(rng));
+                case 1: return Shape::box(Vec3(size(rng), size(rng), size(rng)));
+                case 2: return Shape::capsule(size(rng), size(rng));
+                case 3: return Shape::cylinder(size(rng), size(rng));
+                default: {
+                    std::vector<Vec3> pts;
+                    for (int i = 0; i < 12; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+                    return hullOf(pts);
+                }
             }
         };
         const double margin = 0.05;
@@ -360,7 +376,8 @@ private slots:
             multi += m.count > 1;
             QVERIFY(std::abs(m.normal.norm() - 1.0) < 1e-12 && m.normal.dot(p.normal) > 0.9999);
             QVERIFY(m.count >= 1 && m.count <= 4);
-            for (int i = 0; i < m.count; ++i) QVERIFY(m.points[i].position.allFinite() && m.points[i].depth > -margin);
+            for (int i = 0; i < m.count; ++i)
+                QVERIFY(m.points[i].position.allFinite() && m.points[i].depth > -margin);
             QVERIFY2(m.maxDepth() >= p.depth - 1e-6 && m.maxDepth() <= p.depth + 0.02,
                      qPrintable(QString("trial %1: %2 vs %3").arg(trial).arg(m.maxDepth()).arg(p.depth)));
         }

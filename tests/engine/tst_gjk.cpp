@@ -95,7 +95,6 @@ double satDepth(const ConvexHull& ha, const Pose& pa, const ConvexHull& hb, cons
     return best;
 }
 
-
 // Support function of the full shapes' difference A - B: h(u) = max over A - B of u·x.
 double support(const ConvexProxy& a, const ConvexProxy& b, const Vec3& u) {
     return u.dot(a.support(u)) - u.dot(b.support(-u)) + a.radius + b.radius;
@@ -103,7 +102,8 @@ double support(const ConvexProxy& a, const ConvexProxy& b, const Vec3& u) {
 
 // Minimum over unit vectors of f: the best of a Fibonacci sphere of directions, then a
 // pattern search about it with a shrinking step.
-template <class F> double minOverSphere(F&& f) {
+template <class F>
+double minOverSphere(F&& f) {
     const int n = 4000;
     Vec3 best(0, 0, 1);
     double fb = f(best);
@@ -117,7 +117,8 @@ template <class F> double minOverSphere(F&& f) {
     for (double step = 0.05; step > 1e-9;) {
         const Vec3 e1 = best.unitOrthogonal(), e2 = best.cross(e1);
         bool improved = false;
-        for (const Vec3& d : {e1, Vec3(-e1), e2, Vec3(-e2), Vec3(e1 + e2), Vec3(e1 - e2), Vec3(-e1 + e2), Vec3(-e1 - e2)}) {
+        for (const Vec3& d :
+             {e1, Vec3(-e1), e2, Vec3(-e2), Vec3(e1 + e2), Vec3(e1 - e2), Vec3(-e1 + e2), Vec3(-e1 - e2)}) {
             const Vec3 u = (best + step * d).normalized();
             const double fu = f(u);
             if (fu < fb) fb = fu, best = u, improved = true;
@@ -161,8 +162,9 @@ private slots:
         // B turned 45 degrees about z shows an edge at x0 - sqrt(2) to A's face at x = 1.
         const double x0 = 4.0;
         const ConvexProxy a = proxyOf(Shape::box(Vec3(1, 1, 1)), pose(Vec3(0, 0, 0)));
-        const ConvexProxy b = proxyOf(Shape::box(Vec3(1, 1, 0.5)),
-                                      pose(Vec3(x0, 0.2, 0.1), Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitZ()))));
+        const ConvexProxy b =
+            proxyOf(Shape::box(Vec3(1, 1, 0.5)),
+                    pose(Vec3(x0, 0.2, 0.1), Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitZ()))));
         const Distance d = gjkDistance(a, b);
         QVERIFY(std::abs(d.distance - (x0 - std::sqrt(2.0) - 1.0)) < 1e-12);
         QVERIFY(std::abs(d.pointA.x() - 1.0) < 1e-12);
@@ -206,7 +208,8 @@ private slots:
         QVERIFY(std::abs(p.depth - 0.4) < 1e-12);
         QVERIFY((p.normal - pb.R.col(0)).norm() < 1e-12);
         // A box inside a box: the y faces are nearest (0.7 against 1.5 along x).
-        const ConvexProxy inner = proxyOf(Shape::box(Vec3(0.5, 0.5, 0.5)), pose(pb.toWorld(Vec3(0, 0.8, 0)), Quat(pb.R)));
+        const ConvexProxy inner =
+            proxyOf(Shape::box(Vec3(0.5, 0.5, 0.5)), pose(pb.toWorld(Vec3(0, 0.8, 0)), Quat(pb.R)));
         const Penetration q = penetration(inner, b, 0.0);
         QVERIFY(std::abs(q.depth - 0.7) < 1e-12);
         QVERIFY((q.normal - pb.R.col(1)).norm() < 1e-12);
@@ -217,16 +220,19 @@ private slots:
         const Quat alongZ(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitX()));
         const ConvexProxy b = proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3::Zero(), alongZ));
         // Axes 0.8 apart: the cores stay apart, depth 1 - 0.8 along y.
-        const Penetration p = penetration(proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3(0.3, 0.8, -0.1), alongX)), b, 0.0);
+        const Penetration p =
+            penetration(proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3(0.3, 0.8, -0.1), alongX)), b, 0.0);
         QVERIFY(std::abs(p.depth - 0.2) < 1e-12);
         QVERIFY((p.normal - Vec3(0, 1, 0)).norm() < 1e-12);
         // Axes crossing: the difference of the cores is flat; depth is the sum of the radii
         // along the common normal, towards A's centre.
-        const Penetration q = penetration(proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3(0.3, 0, 0), alongX)), b, 0.0);
+        const Penetration q =
+            penetration(proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3(0.3, 0, 0), alongX)), b, 0.0);
         QVERIFY(std::abs(q.depth - 1.0) < 1e-12);
         QVERIFY(std::abs(std::abs(q.normal.y()) - 1.0) < 1e-12);
         // Axes crossing slightly below: the way out is down.
-        const Penetration r = penetration(proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3(0.3, -0.05, 0), alongX)), b, 0.0);
+        const Penetration r =
+            penetration(proxyOf(Shape::capsule(0.5, 2.0), pose(Vec3(0.3, -0.05, 0), alongX)), b, 0.0);
         QVERIFY(std::abs(r.depth - 0.95) < 1e-12);
         QVERIFY((r.normal - Vec3(0, -1, 0)).norm() < 1e-12);
     }
@@ -240,7 +246,9 @@ private slots:
         d = gjkDistance(proxyOf(Shape::sphere(0.5), pose(pc.toWorld(Vec3(0.6 * 3, 2 + 4, 0.8 * 3)))), c);
         QVERIFY(std::abs(d.distance - (std::hypot(2.0, 4.0) - 0.5)) < 1e-9);
         // Overlap with the cap from above: depth 0.3, normal the axis.
-        const Penetration p = penetration(proxyOf(Shape::box(Vec3(0.2, 0.2, 0.2)), pose(pc.toWorld(Vec3(0.1, 2.1, 0)), Quat(pc.R))), c, 0.0);
+        const Penetration p = penetration(
+            proxyOf(Shape::box(Vec3(0.2, 0.2, 0.2)), pose(pc.toWorld(Vec3(0.1, 2.1, 0)), Quat(pc.R))), c,
+            0.0);
         QVERIFY(std::abs(p.depth - 0.1) < 1e-9);
         QVERIFY((p.normal - pc.R.col(1)).norm() < 1e-7);
     }
@@ -252,9 +260,11 @@ private slots:
             const Vec3 far(7e3, -3e3, 1e4);
             const Quat q(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitZ()));
             const ConvexProxy a = proxyOf(Shape::box(Vec3(s, s, s)), pose(far));
-            const ConvexProxy b = proxyOf(Shape::box(Vec3(s, s, 0.5 * s)), pose(far + Vec3(4 * s, 0.2 * s, 0), q));
+            const ConvexProxy b =
+                proxyOf(Shape::box(Vec3(s, s, 0.5 * s)), pose(far + Vec3(4 * s, 0.2 * s, 0), q));
             const Distance d = gjkDistance(a, b);
-            QVERIFY2(std::abs(d.distance - s * (3 - std::sqrt(2.0))) < 1e-9 * s, qPrintable(QString::number(s)));
+            QVERIFY2(std::abs(d.distance - s * (3 - std::sqrt(2.0))) < 1e-9 * s,
+                     qPrintable(QString::number(s)));
             const ConvexProxy c = proxyOf(Shape::box(Vec3(s, s, s)), pose(far + Vec3(0.3 * s, 1.9 * s, 0)));
             const Penetration p = penetration(c, a, 0.0);
             QVERIFY(std::abs(p.depth - 0.1 * s) < 1e-9 * s);
@@ -284,17 +294,20 @@ private slots:
                 const int n = static_cast<int>(m.size());
                 for (int i = 0; i < n; ++i)
                     for (int j = i + 1; j < n; ++j)
-                        for (int k = j + 1; k < n; ++k) ref = std::min(ref, triangleDistance(m[i], m[j], m[k]));
+                        for (int k = j + 1; k < n; ++k)
+                            ref = std::min(ref, triangleDistance(m[i], m[j], m[k]));
                 QVERIFY(!d.overlap);
                 worstDist = std::max(worstDist, std::abs(d.distance - ref));
-                QVERIFY2(std::abs(d.distance - ref) < 1e-9, qPrintable(QString("trial %1: %2 vs %3").arg(trial).arg(d.distance).arg(ref)));
+                QVERIFY2(std::abs(d.distance - ref) < 1e-9,
+                         qPrintable(QString("trial %1: %2 vs %3").arg(trial).arg(d.distance).arg(ref)));
                 QVERIFY(std::abs((d.pointA - d.pointB).norm() - ref) < 1e-9);
                 ++separated;
             } else {
                 const Penetration p = penetration(a, b, 0.0);
                 QVERIFY(p.hit && d.overlap);
                 worstDepth = std::max(worstDepth, std::abs(p.depth - depth));
-                QVERIFY2(std::abs(p.depth - depth) < 1e-9, qPrintable(QString("trial %1: %2 vs %3").arg(trial).arg(p.depth).arg(depth)));
+                QVERIFY2(std::abs(p.depth - depth) < 1e-9,
+                         qPrintable(QString("trial %1: %2 vs %3").arg(trial).arg(p.depth).arg(depth)));
                 // Moving A out by the depth along the normal leaves the shapes touching.
                 Pose moved = pa;
                 moved.p += p.normal * (p.depth + 1e-7);
@@ -302,8 +315,9 @@ private slots:
                 ++overlapping;
             }
         }
-        qInfo("random hulls: %d separated (worst distance error %.2e), %d overlapping (worst depth error %.2e)",
-              separated, worstDist, overlapping, worstDepth);
+        qInfo(
+            "random hulls: %d separated (worst distance error %.2e), %d overlapping (worst depth error %.2e)",
+            separated, worstDist, overlapping, worstDepth);
         QVERIFY(separated > 50 && overlapping > 50);
     }
 
@@ -318,11 +332,11 @@ private slots:
         double k = 1.0;  // each trial at its own scale, from a millimetre to a kilometre
         auto randomShape = [&](int kind) {
             switch (kind) {
-            case 0: return Shape::sphere(k * size(rng));
-            case 1: return Shape::box(k * Vec3(size(rng), size(rng), size(rng)));
-            case 2: return Shape::capsule(k * size(rng), k * size(rng));
-            case 3: return Shape::cylinder(k * size(rng), k * size(rng));
-            default: return hullShape(randomHull(rng, 12, k));
+                case 0: return Shape::sphere(k * size(rng));
+                case 1: return Shape::box(k * Vec3(size(rng), size(rng), size(rng)));
+                case 2: return Shape::capsule(k * size(rng), k * size(rng));
+                case 3: return Shape::cylinder(k * size(rng), k * size(rng));
+                default: return hullShape(randomHull(rng, 12, k));
             }
         };
         int apart = 0, overlapping = 0;
@@ -331,10 +345,13 @@ private slots:
             k = std::pow(10.0, decade(rng));
             const Vec3 far = Vec3(30, -20, 50) * k;
             const Shape sa = randomShape(trial % 5), sb = randomShape((trial / 5) % 5);
-            const ConvexProxy a = proxyOf(sa, pose(far + Vec3(u(rng), u(rng), u(rng)) * 1.5 * k, randomRotation(rng)));
-            const ConvexProxy b = proxyOf(sb, pose(far + Vec3(u(rng), u(rng), u(rng)) * 1.5 * k, randomRotation(rng)));
+            const ConvexProxy a =
+                proxyOf(sa, pose(far + Vec3(u(rng), u(rng), u(rng)) * 1.5 * k, randomRotation(rng)));
+            const ConvexProxy b =
+                proxyOf(sb, pose(far + Vec3(u(rng), u(rng), u(rng)) * 1.5 * k, randomRotation(rng)));
             const Distance d = gjkDistance(a, b);
-            const QString where = QString("trial %1 kinds %2 %3").arg(trial).arg(trial % 5).arg((trial / 5) % 5);
+            const QString where =
+                QString("trial %1 kinds %2 %3").arg(trial).arg(trial % 5).arg((trial / 5) % 5);
             if (!d.overlap) {
                 // No direction may prove them farther apart than GJK says ...
                 const double best = -minOverSphere([&](const Vec3& v) { return support(a, b, -v); });
@@ -343,21 +360,29 @@ private slots:
                 // closest points' difference separates the shapes by that distance.
                 const Vec3 n = d.normal;
                 QVERIFY2((d.pointA - d.pointB - d.distance * n).norm() < 1e-9 * k, qPrintable(where));
-                QVERIFY2(-support(a, b, -n) >= d.distance - 1e-9 * k, qPrintable(where + QString(": %1 vs %2").arg(d.distance).arg(-support(a, b, -n))));
+                QVERIFY2(-support(a, b, -n) >= d.distance - 1e-9 * k,
+                         qPrintable(where + QString(": %1 vs %2").arg(d.distance).arg(-support(a, b, -n))));
                 worst = std::max(worst, (d.distance + support(a, b, -n)) / k);
                 ++apart;
             } else {
                 const Penetration p = penetration(a, b, 0.0);
                 const double best = minOverSphere([&](const Vec3& v) { return support(a, b, v); });
                 // No direction found by search is a shorter way out than EPA's ...
-                QVERIFY2(p.depth <= best + 1e-12 * k, qPrintable(where + QString(": %1 vs %2").arg(p.depth).arg(best)));
+                QVERIFY2(p.depth <= best + 1e-12 * k,
+                         qPrintable(where + QString(": %1 vs %2").arg(p.depth).arg(best)));
                 // ... and EPA's way out is as long as it says (the support along the normal).
-                QVERIFY2(std::abs(support(a, b, -p.normal) - p.depth) < 1e-9 * k, qPrintable(where + QString(": %1 vs %2").arg(p.depth, 0, 'g', 15).arg(support(a, b, -p.normal), 0, 'g', 15)));
+                QVERIFY2(std::abs(support(a, b, -p.normal) - p.depth) < 1e-9 * k,
+                         qPrintable(where + QString(": %1 vs %2")
+                                                .arg(p.depth, 0, 'g', 15)
+                                                .arg(support(a, b, -p.normal), 0, 'g', 15)));
                 worst = std::max(worst, std::abs(support(a, b, -p.normal) - p.depth) / k);
                 ++overlapping;
             }
         }
-        qInfo("all kinds: %d apart, %d overlapping, worst gap between the answer and its own certificate %.2e of the scale", apart, overlapping, worst);
+        qInfo(
+            "all kinds: %d apart, %d overlapping, worst gap between the answer and its own certificate %.2e "
+            "of the scale",
+            apart, overlapping, worst);
         QVERIFY(apart > 50 && overlapping > 50);
     }
 };

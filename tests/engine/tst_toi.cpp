@@ -17,7 +17,9 @@ using namespace tumble::collision;
 
 namespace {
 
-Quat about(const Vec3& axis, double angle) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
+Quat about(const Vec3& axis, double angle) {
+    return Quat(Eigen::AngleAxisd(angle, axis.normalized()));
+}
 
 Sweep still(const Vec3& c, const Quat& q = Quat::Identity()) {
     Sweep s;
@@ -26,7 +28,8 @@ Sweep still(const Vec3& c, const Quat& q = Quat::Identity()) {
     return s;
 }
 
-Sweep moving(const Vec3& c0, const Vec3& c1, const Quat& q0 = Quat::Identity(), const Quat& q1 = Quat::Identity()) {
+Sweep moving(const Vec3& c0, const Vec3& c1, const Quat& q0 = Quat::Identity(),
+             const Quat& q1 = Quat::Identity()) {
     Sweep s;
     s.c0 = c0;
     s.c1 = c1;
@@ -50,13 +53,24 @@ Shape meshShape(std::vector<Vec3> v, std::vector<std::array<int, 3>> t) {
 Shape cubeMesh(double h) {
     std::vector<Vec3> v;
     for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
-    return meshShape(v, {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                         {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}});
+    return meshShape(v, {{0, 2, 3},
+                         {0, 3, 1},
+                         {4, 5, 7},
+                         {4, 7, 6},
+                         {0, 1, 5},
+                         {0, 5, 4},
+                         {2, 6, 7},
+                         {2, 7, 3},
+                         {0, 4, 6},
+                         {0, 6, 2},
+                         {1, 3, 7},
+                         {1, 7, 5}});
 }
 
 // A flat square of two triangles in y = 0, side 2h, faces up.
 Shape groundMesh(double h) {
-    return meshShape({Vec3(-h, 0, -h), Vec3(-h, 0, h), Vec3(h, 0, h), Vec3(h, 0, -h)}, {{0, 1, 2}, {0, 2, 3}});
+    return meshShape({Vec3(-h, 0, -h), Vec3(-h, 0, h), Vec3(h, 0, h), Vec3(h, 0, -h)},
+                     {{0, 1, 2}, {0, 2, 3}});
 }
 
 double distanceAt(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double s) {
@@ -103,8 +117,8 @@ private slots:
         // below): a discrete test sees nothing.
         const double dt = 1.0 / 240, w = 50.0, v = 50.0, tol = 1e-4;
         const Shape blade = Shape::box(Vec3(0.5, 0.005, 0.5)), plate = Shape::box(Vec3(2, 0.005, 2));
-        const Sweep sa = moving(Vec3(0.1, 0.1, 0), Vec3(0.1, 0.1 - v * dt, 0), about(Vec3::UnitZ(), -0.5 * w * dt),
-                                about(Vec3::UnitZ(), 0.5 * w * dt));
+        const Sweep sa = moving(Vec3(0.1, 0.1, 0), Vec3(0.1, 0.1 - v * dt, 0),
+                                about(Vec3::UnitZ(), -0.5 * w * dt), about(Vec3::UnitZ(), 0.5 * w * dt));
         const Sweep sb = still(Vec3::Zero());
         QVERIFY(distanceAt(blade, sa, plate, sb, 0.0) > 0.0);
         QVERIFY(distanceAt(blade, sa, plate, sb, 1.0) > 0.0);
@@ -115,8 +129,8 @@ private slots:
         for (int i = 0; i < 2000; ++i) QVERIFY(distanceAt(blade, sa, plate, sb, hit->s * i / 2000.0) > 0.0);
         QVERIFY(hit->normal.y() > 0.99);
         // The same with the blade turning about the other horizontal axis.
-        const Sweep sc = moving(Vec3(0.1, 0.1, 0), Vec3(0.1, 0.1 - v * dt, 0), about(Vec3::UnitX(), -0.5 * w * dt),
-                                about(Vec3::UnitX(), 0.5 * w * dt));
+        const Sweep sc = moving(Vec3(0.1, 0.1, 0), Vec3(0.1, 0.1 - v * dt, 0),
+                                about(Vec3::UnitX(), -0.5 * w * dt), about(Vec3::UnitX(), 0.5 * w * dt));
         const auto hit2 = timeOfImpact(blade, sc, plate, sb, tol);
         QVERIFY(hit2.has_value());
         QVERIFY(distanceAt(blade, sc, plate, sb, hit2->s) <= tol);
@@ -150,7 +164,8 @@ private slots:
         // A 2 x 0.2 x 0.2 box, centre held 0.5 above the ground, turning 1 rad about z over the
         // step: its lowest corner reaches the ground when sin(t) + 0.1 cos(t) = 0.5.
         const Shape bar = Shape::box(Vec3(1, 0.1, 0.1)), ground = Shape::plane(Vec3(0, 1, 0), 0.0);
-        const Sweep sa = moving(Vec3(0, 0.5, 0), Vec3(0, 0.5, 0), Quat::Identity(), about(Vec3::UnitZ(), 1.0));
+        const Sweep sa =
+            moving(Vec3(0, 0.5, 0), Vec3(0, 0.5, 0), Quat::Identity(), about(Vec3::UnitZ(), 1.0));
         const double phi = std::atan2(0.1, 1.0), exact = std::asin(0.5 / std::hypot(1.0, 0.1)) - phi;
         const double tol = 1e-6;
         const auto hit = timeOfImpact(bar, sa, ground, still(Vec3::Zero()), tol);
@@ -166,18 +181,22 @@ private slots:
     void misses() {
         const Shape ball = Shape::sphere(0.01), plate = Shape::box(Vec3(0.005, 1, 1));
         // Passing beside the plate, and moving away from it.
-        QVERIFY(!timeOfImpact(ball, moving(Vec3(-0.5, 1.2, 0), Vec3(0.5, 1.2, 0)), plate, still(Vec3::Zero()), 1e-4));
-        QVERIFY(!timeOfImpact(ball, moving(Vec3(-0.5, 0, 0), Vec3(-0.9, 0, 0)), plate, still(Vec3::Zero()), 1e-4));
+        QVERIFY(!timeOfImpact(ball, moving(Vec3(-0.5, 1.2, 0), Vec3(0.5, 1.2, 0)), plate, still(Vec3::Zero()),
+                              1e-4));
+        QVERIFY(!timeOfImpact(ball, moving(Vec3(-0.5, 0, 0), Vec3(-0.9, 0, 0)), plate, still(Vec3::Zero()),
+                              1e-4));
         // Stopping short.
-        QVERIFY(!timeOfImpact(ball, moving(Vec3(-0.5, 0, 0), Vec3(-0.1, 0, 0)), plate, still(Vec3::Zero()), 1e-4));
+        QVERIFY(!timeOfImpact(ball, moving(Vec3(-0.5, 0, 0), Vec3(-0.1, 0, 0)), plate, still(Vec3::Zero()),
+                              1e-4));
         QVERIFY(!timeOfImpact(ball, moving(Vec3(0, 1, 0), Vec3(0, 0.6, 0)), Shape::plane(Vec3(0, 1, 0), 0.0),
                               still(Vec3::Zero()), 1e-4));
         // Already touching: s = 0.
-        const auto now = timeOfImpact(ball, moving(Vec3(-0.015, 0, 0), Vec3(-0.5, 0, 0)), plate, still(Vec3::Zero()), 1e-4);
+        const auto now = timeOfImpact(ball, moving(Vec3(-0.015, 0, 0), Vec3(-0.5, 0, 0)), plate,
+                                      still(Vec3::Zero()), 1e-4);
         QVERIFY(now && now->s == 0.0);
         // Two planes never meet.
-        QVERIFY(!timeOfImpact(Shape::plane(Vec3(0, 1, 0), 0), still(Vec3::Zero()), Shape::plane(Vec3(0, 1, 0), 1),
-                              still(Vec3::Zero()), 1e-4));
+        QVERIFY(!timeOfImpact(Shape::plane(Vec3(0, 1, 0), 0), still(Vec3::Zero()),
+                              Shape::plane(Vec3(0, 1, 0), 1), still(Vec3::Zero()), 1e-4));
     }
 
     void meshes() {
@@ -189,7 +208,8 @@ private slots:
         QVERIFY(hit && hit->s <= 0.55 && (0.55 - hit->s) * 5 <= tol);
         QVERIFY((hit->normal - Vec3(0, 1, 0)).norm() < 1e-9);
         hit = timeOfImpact(ground, still(Vec3::Zero()), ball, falling, tol);
-        QVERIFY(hit && hit->s <= 0.55 && (0.55 - hit->s) * 5 <= tol && (hit->normal - Vec3(0, -1, 0)).norm() < 1e-9);
+        QVERIFY(hit && hit->s <= 0.55 && (0.55 - hit->s) * 5 <= tol &&
+                (hit->normal - Vec3(0, -1, 0)).norm() < 1e-9);
         // A cube mesh (half side 0.5) falling onto a plane, turned 45 degrees about z: its
         // lowest edge is sqrt(0.5) below the centre. Centre from 3 to -1: touches at
         // s = (3 - sqrt(0.5)) / 4.
@@ -205,7 +225,8 @@ private slots:
         QVERIFY(hit->normal.y() > 0.999);
         // ... and a box falling the same way onto the moving ground (the ground rising to meet
         // it at 1 per step: relative speed 5).
-        hit = timeOfImpact(Shape::box(Vec3(0.5, 0.5, 0.5)), drop, ground, moving(Vec3::Zero(), Vec3(0, 1, 0)), tol);
+        hit = timeOfImpact(Shape::box(Vec3(0.5, 0.5, 0.5)), drop, ground, moving(Vec3::Zero(), Vec3(0, 1, 0)),
+                           tol);
         const double exact2 = (3 - std::sqrt(0.5)) / 5;
         QVERIFY(hit && hit->s <= exact2 && (exact2 - hit->s) * 5 <= tol);
         // A miss: the sphere falls beside the ground.

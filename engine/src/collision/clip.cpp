@@ -17,9 +17,10 @@ namespace tumble::collision::detail {
 
 namespace {
 
-constexpr double kFaceAlign = 0.99996;    // cos(~0.5 deg): the normal is this face's (else an edge contact)
-constexpr double kSegmentAlign = 0.985;    // cos(~10 deg): two round segments lie side by side
-constexpr double kRefHysteresis = 1e-4;  // A's face must be this much better aligned (cosine, ~0.8 deg) to be the reference
+constexpr double kFaceAlign = 0.99996;   // cos(~0.5 deg): the normal is this face's (else an edge contact)
+constexpr double kSegmentAlign = 0.985;  // cos(~10 deg): two round segments lie side by side
+constexpr double kRefHysteresis =
+    1e-4;  // A's face must be this much better aligned (cosine, ~0.8 deg) to be the reference
 constexpr int kCapSides = 16;
 constexpr int kMaxClip = 2 * Feature::kMax + 2;
 
@@ -28,7 +29,8 @@ void setPolygon(Feature& f, const Vec3& normal, std::uint32_t id) {
     f.face = true;
     f.id = id;
     // Wind counter-clockwise about the normal (first vertex kept).
-    if (f.count >= 3 && (f.v[1] - f.v[0]).cross(f.v[2] - f.v[1]).dot(normal) < 0) std::reverse(f.v.begin() + 1, f.v.begin() + f.count);
+    if (f.count >= 3 && (f.v[1] - f.v[0]).cross(f.v[2] - f.v[1]).dot(normal) < 0)
+        std::reverse(f.v.begin() + 1, f.v.begin() + f.count);
 }
 
 Feature pointFeature(const ConvexProxy& p, const Vec3& dir) {
@@ -47,87 +49,89 @@ Feature supportingFeature(const ConvexProxy& p, const Vec3& dir) {
     const Vec3 d = pose.R.transpose() * dir;
     const Vec3& h = p.halfExtents;
     switch (p.core) {
-    case ConvexProxy::Core::Point: return pointFeature(p, dir);
-    case ConvexProxy::Core::Segment: {
-        const Vec3 axis = pose.R.col(1);
-        f.count = 2;
-        f.v[0] = pose.p + h.y() * axis + p.radius * dir;
-        f.v[1] = pose.p - h.y() * axis + p.radius * dir;
-        f.id = 0x100;
-        return f;
-    }
-    case ConvexProxy::Core::Box: {
-        int k = 0;
-        d.cwiseAbs().maxCoeff(&k);
-        const double s = d[k] >= 0 ? 1.0 : -1.0;
-        const int u = (k + 1) % 3, w = (k + 2) % 3;
-        const double corners[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-        f.count = 4;
-        for (int i = 0; i < 4; ++i) {
-            Vec3 c = Vec3::Zero();
-            c[k] = s * h[k];
-            c[u] = corners[i][0] * h[u];
-            c[w] = corners[i][1] * h[w];
-            f.v[i] = pose.toWorld(c);
-        }
-        Vec3 n = Vec3::Zero();
-        n[k] = s;
-        setPolygon(f, pose.R * n, static_cast<std::uint32_t>(2 * k + (s < 0)));
-        return f;
-    }
-    case ConvexProxy::Core::Cylinder: {
-        const double r = h.x(), hh = h.y();
-        const double radial = std::hypot(d.x(), d.z());
-        const double dn = d.norm();
-        if (std::abs(d.y()) >= std::numbers::sqrt2 / 2 * dn) {
-            const double s = d.y() >= 0 ? 1.0 : -1.0;
-            const double start = radial > 1e-6 * dn ? std::atan2(d.z(), d.x()) : 0.0;
-            f.count = kCapSides;
-            for (int i = 0; i < kCapSides; ++i) {
-                const double t = start + 2.0 * std::numbers::pi * i / kCapSides;
-                f.v[i] = pose.toWorld(Vec3(r * std::cos(t), s * hh, r * std::sin(t)));
-            }
-            setPolygon(f, pose.R.col(1) * s, s > 0 ? 1u : 2u);
+        case ConvexProxy::Core::Point: return pointFeature(p, dir);
+        case ConvexProxy::Core::Segment: {
+            const Vec3 axis = pose.R.col(1);
+            f.count = 2;
+            f.v[0] = pose.p + h.y() * axis + p.radius * dir;
+            f.v[1] = pose.p - h.y() * axis + p.radius * dir;
+            f.id = 0x100;
             return f;
         }
-        const Vec3 rho = Vec3(d.x(), 0, d.z()) / radial;
-        f.count = 2;
-        f.v[0] = pose.toWorld(r * rho + Vec3(0, hh, 0));
-        f.v[1] = pose.toWorld(r * rho - Vec3(0, hh, 0));
-        f.id = 3;
-        return f;
-    }
-    case ConvexProxy::Core::Hull: {
-        const auto& faces = p.hull->faces;
-        int best = -1;
-        double bestDot = -2.0;
-        for (int i = 0; i < static_cast<int>(faces.size()); ++i) {
-            const double t = faces[i].normal.dot(d);
-            if (t > bestDot) bestDot = t, best = i;
+        case ConvexProxy::Core::Box: {
+            int k = 0;
+            d.cwiseAbs().maxCoeff(&k);
+            const double s = d[k] >= 0 ? 1.0 : -1.0;
+            const int u = (k + 1) % 3, w = (k + 2) % 3;
+            const double corners[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+            f.count = 4;
+            for (int i = 0; i < 4; ++i) {
+                Vec3 c = Vec3::Zero();
+                c[k] = s * h[k];
+                c[u] = corners[i][0] * h[u];
+                c[w] = corners[i][1] * h[w];
+                f.v[i] = pose.toWorld(c);
+            }
+            Vec3 n = Vec3::Zero();
+            n[k] = s;
+            setPolygon(f, pose.R * n, static_cast<std::uint32_t>(2 * k + (s < 0)));
+            return f;
         }
-        if (best < 0 || static_cast<int>(faces[best].vertices.size()) > Feature::kMax) return pointFeature(p, dir);
-        const auto& face = faces[best];
-        f.count = static_cast<int>(face.vertices.size());
-        for (int i = 0; i < f.count; ++i) f.v[i] = pose.toWorld(p.hull->vertices[face.vertices[i]]);
-        f.normal = pose.R * face.normal;
-        f.face = true;
-        f.id = static_cast<std::uint32_t>(best);
-        return f;
-    }
-    case ConvexProxy::Core::Triangle: {
-        const auto& t = p.triangle;
-        const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
-        if (n.squaredNorm() == 0.0) return pointFeature(p, dir);
-        const bool front = n.dot(dir) >= 0;
-        f.count = 3;
-        f.v[0] = t[0];
-        f.v[1] = front ? t[1] : t[2];
-        f.v[2] = front ? t[2] : t[1];
-        f.normal = (front ? n : Vec3(-n)).normalized();
-        f.face = true;
-        f.id = front ? 0 : 1;
-        return f;
-    }
+        case ConvexProxy::Core::Cylinder: {
+            const double r = h.x(), hh = h.y();
+            const double radial = std::hypot(d.x(), d.z());
+            const double dn = d.norm();
+            if (std::abs(d.y()) >= std::numbers::sqrt2 / 2 * dn) {
+                const double s = d.y() >= 0 ? 1.0 : -1.0;
+                // Facing almost straight: a fixed polygon, so the points and their ids hold still.
+                const double start = radial > 0.01 * dn ? std::atan2(d.z(), d.x()) : 0.0;
+                f.count = kCapSides;
+                for (int i = 0; i < kCapSides; ++i) {
+                    const double t = start + 2.0 * std::numbers::pi * i / kCapSides;
+                    f.v[i] = pose.toWorld(Vec3(r * std::cos(t), s * hh, r * std::sin(t)));
+                }
+                setPolygon(f, pose.R.col(1) * s, s > 0 ? 1u : 2u);
+                return f;
+            }
+            const Vec3 rho = Vec3(d.x(), 0, d.z()) / radial;
+            f.count = 2;
+            f.v[0] = pose.toWorld(r * rho + Vec3(0, hh, 0));
+            f.v[1] = pose.toWorld(r * rho - Vec3(0, hh, 0));
+            f.id = 3;
+            return f;
+        }
+        case ConvexProxy::Core::Hull: {
+            const auto& faces = p.hull->faces;
+            int best = -1;
+            double bestDot = -2.0;
+            for (int i = 0; i < static_cast<int>(faces.size()); ++i) {
+                const double t = faces[i].normal.dot(d);
+                if (t > bestDot) bestDot = t, best = i;
+            }
+            if (best < 0 || static_cast<int>(faces[best].vertices.size()) > Feature::kMax)
+                return pointFeature(p, dir);
+            const auto& face = faces[best];
+            f.count = static_cast<int>(face.vertices.size());
+            for (int i = 0; i < f.count; ++i) f.v[i] = pose.toWorld(p.hull->vertices[face.vertices[i]]);
+            f.normal = pose.R * face.normal;
+            f.face = true;
+            f.id = static_cast<std::uint32_t>(best);
+            return f;
+        }
+        case ConvexProxy::Core::Triangle: {
+            const auto& t = p.triangle;
+            const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
+            if (n.squaredNorm() == 0.0) return pointFeature(p, dir);
+            const bool front = n.dot(dir) >= 0;
+            f.count = 3;
+            f.v[0] = t[0];
+            f.v[1] = front ? t[1] : t[2];
+            f.v[2] = front ? t[2] : t[1];
+            f.normal = (front ? n : Vec3(-n)).normalized();
+            f.face = true;
+            f.id = front ? 0 : 1;
+            return f;
+        }
     }
     return pointFeature(p, dir);
 }
@@ -177,8 +181,8 @@ void clipSegment(Poly& seg, const Vec3& p0, const Vec3& inward, std::uint32_t pl
 // Clips `inc` by the side planes of `ref` (a polygon, or a segment whose side planes are
 // its two end planes) and keeps the points within the margin of the reference plane,
 // measured along `refNormal`.
-void clipAgainst(const Feature& ref, const Vec3& refNormal, const Feature& inc, double margin, std::uint32_t baseId,
-                 std::vector<Candidate>& out) {
+void clipAgainst(const Feature& ref, const Vec3& refNormal, const Feature& inc, double margin,
+                 std::uint32_t baseId, std::vector<Candidate>& out) {
     Poly a, b;
     a.n = inc.count;
     for (int i = 0; i < inc.count; ++i) a.v[i] = inc.v[i], a.tag[i] = static_cast<std::uint32_t>(i);
@@ -189,7 +193,8 @@ void clipAgainst(const Feature& ref, const Vec3& refNormal, const Feature& inc, 
         for (int e = 0; e < 2; ++e) {
             const Vec3 p0 = ref.v[e];
             const Vec3 inward = e == 0 ? u : Vec3(-u);
-            if (cur->n == 2) clipSegment(*cur, p0, inward, 0x200u + e);
+            if (cur->n == 2)
+                clipSegment(*cur, p0, inward, 0x200u + e);
             else {
                 clipPolygon(*cur, p0, inward, 0x200u + e, *next);
                 std::swap(cur, next);
@@ -199,7 +204,8 @@ void clipAgainst(const Feature& ref, const Vec3& refNormal, const Feature& inc, 
         for (int e = 0; e < ref.count && cur->n > 0; ++e) {
             const Vec3& p0 = ref.v[e];
             const Vec3 inward = ref.normal.cross(ref.v[(e + 1) % ref.count] - p0);
-            if (cur->n == 2) clipSegment(*cur, p0, inward, 0x200u + e);
+            if (cur->n == 2)
+                clipSegment(*cur, p0, inward, 0x200u + e);
             else {
                 clipPolygon(*cur, p0, inward, 0x200u + e, *next);
                 std::swap(cur, next);
@@ -227,8 +233,8 @@ void coreSegment(const ConvexProxy& p, Vec3& c0, Vec3& c1, double& r) {
 
 // Two round segments (capsules, cylinder sides) side by side: A's core clipped to the end
 // planes of B's, each end's depth from the true distance between the cores.
-void segmentPair(const ConvexProxy& a, const ConvexProxy& b, const Vec3& n, double margin, std::uint32_t baseId,
-                 std::vector<Candidate>& out) {
+void segmentPair(const ConvexProxy& a, const ConvexProxy& b, const Vec3& n, double margin,
+                 std::uint32_t baseId, std::vector<Candidate>& out) {
     Vec3 a0, a1, b0, b1;
     double ra, rb;
     coreSegment(a, a0, a1, ra);
@@ -262,8 +268,8 @@ void keepDeepest(const Penetration& pen, std::uint32_t id, const ConvexProxy& a,
 
 }  // namespace
 
-void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration& pen, double margin, Vec3& normal,
-                   std::vector<Candidate>& out) {
+void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration& pen, double margin,
+                   Vec3& normal, std::vector<Candidate>& out) {
     out.clear();
     const Vec3& n = pen.normal;
     const Feature fA = supportingFeature(a, -n);
@@ -359,7 +365,8 @@ void appendReduced(const std::vector<Candidate>& c, const Vec3& normal, std::vec
     best = 0.0;
     for (int i = 0; i < n; ++i) {
         const Vec3& q = c[i].position;
-        const double add = std::max({-sign * area(p0, p1, q), -sign * area(p1, p2, q), -sign * area(p2, p0, q)});
+        const double add =
+            std::max({-sign * area(p0, p1, q), -sign * area(p1, p2, q), -sign * area(p2, p0, q)});
         if (add > best) best = add, i3 = i;
     }
     if (i3 >= 0) m.add(c[i3].position, c[i3].depth, c[i3].feature);

@@ -19,7 +19,7 @@ struct Feature {
     std::array<Vec3, kMax> v;
     Vec3 normal = Vec3::Zero();  ///< polygon: outward unit normal; vertices counter-clockwise about it
     bool face = false;
-    std::uint32_t id = 0;        ///< which feature of the shape (face index, cap...)
+    std::uint32_t id = 0;  ///< which feature of the shape (face index, cap...)
 };
 
 /// The feature of `p` facing the unit direction `dir` (pointing away from the shape).

@@ -15,7 +15,7 @@ void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& p
 
 /// A convex shape against a triangle mesh (Shape kind Mesh) through the mesh's BVH.
 /// The convex is A, the mesh is B: normals point out of the mesh towards the convex.
-void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& mesh, const Pose& pm,
-                       double margin, std::vector<Manifold>& out);
+void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& mesh, const Pose& pm, double margin,
+                       std::vector<Manifold>& out);
 
 }  // namespace tumble::collision

@@ -26,9 +26,9 @@ namespace tumble::collision {
 namespace {
 
 constexpr double kExactFace = 1.0 - 1e-6;
-constexpr double kNearFace = 0.985;     // cos(~10 deg)
-constexpr double kInterior = 1e-6;      // barycentric weight below which a point is on an edge
-constexpr double kGroupCos = 0.996;     // cos(~5 deg): one manifold
+constexpr double kNearFace = 0.985;  // cos(~10 deg)
+constexpr double kInterior = 1e-6;   // barycentric weight below which a point is on an edge
+constexpr double kGroupCos = 0.996;  // cos(~5 deg): one manifold
 
 struct TriContact {
     int tri;
@@ -59,7 +59,8 @@ Penetration alongFace(const ConvexProxy& A, const ConvexProxy& T, const Vec3& n)
     return p;
 }
 
-template <class Visit> void trianglesNear(const MeshShape& m, const Aabb& box, Visit&& visit) {
+template <class Visit>
+void trianglesNear(const MeshShape& m, const Aabb& box, Visit&& visit) {
     if (m.bvh) {
         m.bvh->query(box, visit);
         return;
@@ -73,8 +74,8 @@ template <class Visit> void trianglesNear(const MeshShape& m, const Aabb& box, V
 
 }  // namespace
 
-void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshShape, const Pose& pm, double margin,
-                       std::vector<Manifold>& out) {
+void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshShape, const Pose& pm,
+                       double margin, std::vector<Manifold>& out) {
     const MeshShape& mesh = *meshShape.mesh;
     const ConvexProxy A = proxyOf(convex, pc);
     Pose rel;  // the convex in the mesh frame
@@ -86,8 +87,9 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
     double deepestFace = -std::numeric_limits<double>::infinity();
     trianglesNear(mesh, box, [&](int i) {
         const auto& tri = mesh.triangles[i];
-        const ConvexProxy T = triangleProxy(pm.toWorld(mesh.vertices[tri[0]]), pm.toWorld(mesh.vertices[tri[1]]),
-                                            pm.toWorld(mesh.vertices[tri[2]]));
+        const ConvexProxy T =
+            triangleProxy(pm.toWorld(mesh.vertices[tri[0]]), pm.toWorld(mesh.vertices[tri[1]]),
+                          pm.toWorld(mesh.vertices[tri[2]]));
         const Vec3 n = (T.triangle[1] - T.triangle[0]).cross(T.triangle[2] - T.triangle[0]);
         if (!(n.squaredNorm() > 0)) return;  // degenerate triangle: its neighbours cover it
         const Vec3 nt = n.normalized();
@@ -131,7 +133,8 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
             p.feature = detail::mixId(p.feature, static_cast<std::uint32_t>(c.tri));
             // Triangles sharing an edge or a vertex may both report a point there.
             bool dup = false;
-            for (const auto& q : g->points) dup = dup || (q.position - p.position).squaredNorm() <= 1e-18 * scale * scale;
+            for (const auto& q : g->points)
+                dup = dup || (q.position - p.position).squaredNorm() <= 1e-18 * scale * scale;
             if (!dup) g->points.push_back(p);
         }
     }

@@ -33,7 +33,8 @@ struct Face {
 };
 
 Vec3 anyPerp(const Vec3& d) {
-    const Vec3 axis = std::abs(d.x()) < 0.57 ? Vec3(1, 0, 0) : (std::abs(d.y()) < 0.57 ? Vec3(0, 1, 0) : Vec3(0, 0, 1));
+    const Vec3 axis =
+        std::abs(d.x()) < 0.57 ? Vec3(1, 0, 0) : (std::abs(d.y()) < 0.57 ? Vec3(0, 1, 0) : Vec3(0, 0, 1));
     return d.cross(axis).normalized();
 }
 
@@ -91,7 +92,8 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     // Grow the simplex to a tetrahedron; a direction that finds nothing new means the
     // Minkowski difference is flat along it.
     if (v.size() == 1) {
-        for (const Vec3& d : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+        for (const Vec3& d :
+             {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
             const SimplexVertex w = support(d);
             if ((w.w - v[0].w).norm() > tolPt) {
                 v.push_back(w);
@@ -136,7 +138,8 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     auto makeFace = [&](int i, int j, int k) {
         Vec3 n = (v[j].w - v[i].w).cross(v[k].w - v[i].w);
         const double len = n.norm();
-        Face f{{i, j, k}, {-1, -1, -1}, {0, 0, 0}, Vec3::Zero(), std::numeric_limits<double>::infinity(), true};
+        Face f{{i, j, k}, {-1, -1, -1}, {0, 0, 0}, Vec3::Zero(), std::numeric_limits<double>::infinity(),
+               true};
         if (len > 0) {
             f.n = n / len;
             f.dist = f.n.dot(v[i].w);
@@ -157,7 +160,8 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         for (int ea = 0; ea < 3; ++ea)
             for (int fb = 0; fb < 4; ++fb)
                 for (int eb = 0; eb < 3; ++eb)
-                    if (faces[fa].v[ea] == faces[fb].v[(eb + 1) % 3] && faces[fa].v[(ea + 1) % 3] == faces[fb].v[eb])
+                    if (faces[fa].v[ea] == faces[fb].v[(eb + 1) % 3] &&
+                        faces[fa].v[(ea + 1) % 3] == faces[fb].v[eb])
                         link(fa, ea, fb, eb);
 
     // The silhouette of the polytope seen from w (van den Bergen): from the face being
@@ -219,8 +223,10 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
             int match = -1;
             for (int j = 0; j < count; ++j)
                 if (faces[first + j].v[0] == faces[first + i].v[1]) match = j;
-            if (match < 0) broken = true;
-            else link(first + i, 1, first + match, 2);
+            if (match < 0)
+                broken = true;
+            else
+                link(first + i, 1, first + match, 2);
         }
         if (broken) {
             // Rounding made the polytope non-convex: the last face is the best answer we have.

@@ -18,39 +18,40 @@ namespace tumble::collision {
 
 namespace {
 
-constexpr double kRelGap = 1e-10;      // relative gap |v| - v̂·w that ends the descent
-constexpr double kOverlapScale = 1e-9; // cores closer than this × their size overlap
+constexpr double kRelGap = 1e-10;       // relative gap |v| - v̂·w that ends the descent
+constexpr double kOverlapScale = 1e-9;  // cores closer than this × their size overlap
 constexpr int kMaxIterations = 128;
 
 Vec3 coreSupportLocal(const ConvexProxy& p, const Vec3& d) {
     switch (p.core) {
-    case ConvexProxy::Core::Point: return Vec3::Zero();
-    case ConvexProxy::Core::Segment: return Vec3(0, d.y() >= 0 ? p.halfExtents.y() : -p.halfExtents.y(), 0);
-    case ConvexProxy::Core::Box:
-        return Vec3(d.x() >= 0 ? p.halfExtents.x() : -p.halfExtents.x(),
-                    d.y() >= 0 ? p.halfExtents.y() : -p.halfExtents.y(),
-                    d.z() >= 0 ? p.halfExtents.z() : -p.halfExtents.z());
-    case ConvexProxy::Core::Cylinder: {
-        const double rho = std::hypot(d.x(), d.z());
-        const double h = d.y() >= 0 ? p.halfExtents.y() : -p.halfExtents.y();
-        if (rho == 0.0) return Vec3(0, h, 0);
-        const double k = p.halfExtents.x() / rho;
-        return Vec3(k * d.x(), h, k * d.z());
-    }
-    case ConvexProxy::Core::Hull: {
-        const auto& vs = p.hull->vertices;
-        int best = 0;
-        double bestDot = vs[0].dot(d);
-        for (int i = 1; i < static_cast<int>(vs.size()); ++i) {
-            const double t = vs[i].dot(d);
-            if (t > bestDot) {
-                bestDot = t;
-                best = i;
-            }
+        case ConvexProxy::Core::Point: return Vec3::Zero();
+        case ConvexProxy::Core::Segment:
+            return Vec3(0, d.y() >= 0 ? p.halfExtents.y() : -p.halfExtents.y(), 0);
+        case ConvexProxy::Core::Box:
+            return Vec3(d.x() >= 0 ? p.halfExtents.x() : -p.halfExtents.x(),
+                        d.y() >= 0 ? p.halfExtents.y() : -p.halfExtents.y(),
+                        d.z() >= 0 ? p.halfExtents.z() : -p.halfExtents.z());
+        case ConvexProxy::Core::Cylinder: {
+            const double rho = std::hypot(d.x(), d.z());
+            const double h = d.y() >= 0 ? p.halfExtents.y() : -p.halfExtents.y();
+            if (rho == 0.0) return Vec3(0, h, 0);
+            const double k = p.halfExtents.x() / rho;
+            return Vec3(k * d.x(), h, k * d.z());
         }
-        return vs[best];
-    }
-    case ConvexProxy::Core::Triangle: break;
+        case ConvexProxy::Core::Hull: {
+            const auto& vs = p.hull->vertices;
+            int best = 0;
+            double bestDot = vs[0].dot(d);
+            for (int i = 1; i < static_cast<int>(vs.size()); ++i) {
+                const double t = vs[i].dot(d);
+                if (t > bestDot) {
+                    bestDot = t;
+                    best = i;
+                }
+            }
+            return vs[best];
+        }
+        case ConvexProxy::Core::Triangle: break;
     }
     return Vec3::Zero();
 }
@@ -173,7 +174,7 @@ Closest closestOnTetrahedron(detail::SimplexVertex* s, int& n, bool& inside) {
 
 struct GjkResult {
     bool overlap = false;
-    Vec3 v = Vec3::Zero();  // closest point of A - B to the origin (relative frame)
+    Vec3 v = Vec3::Zero();                    // closest point of A - B to the origin (relative frame)
     Vec3 a = Vec3::Zero(), b = Vec3::Zero();  // closest points on the cores, relative
     detail::SimplexVertex simplex[4];
     int count = 0;
@@ -204,8 +205,10 @@ GjkResult runGjk(const ConvexProxy& A, const ConvexProxy& B, const Vec3& origin,
         const int savedN = n;
         s[n++] = w;
         Closest c{w.w, {1, 0, 0, 0}};
-        if (n == 2) c = closestOnSegment(s, n);
-        else if (n == 3) c = closestOnTriangle(s, n);
+        if (n == 2)
+            c = closestOnSegment(s, n);
+        else if (n == 3)
+            c = closestOnTriangle(s, n);
         else if (n == 4) {
             bool inside = false;
             c = closestOnTetrahedron(s, n, inside);
@@ -247,13 +250,15 @@ double scaleOf(const ConvexProxy& a, const ConvexProxy& b) {
 
 }  // namespace
 
-Vec3 ConvexProxy::support(const Vec3& dir) const { return supportFrom(*this, dir, Vec3::Zero()); }
+Vec3 ConvexProxy::support(const Vec3& dir) const {
+    return supportFrom(*this, dir, Vec3::Zero());
+}
 
 Vec3 ConvexProxy::center() const {
     switch (core) {
-    case Core::Hull: return pose.toWorld(hull->interiorPoint);
-    case Core::Triangle: return (triangle[0] + triangle[1] + triangle[2]) / 3.0;
-    default: return pose.p;
+        case Core::Hull: return pose.toWorld(hull->interiorPoint);
+        case Core::Triangle: return (triangle[0] + triangle[1] + triangle[2]) / 3.0;
+        default: return pose.p;
     }
 }
 
@@ -261,37 +266,40 @@ ConvexProxy proxyOf(const Shape& s, const Pose& pose) {
     ConvexProxy p;
     p.pose = pose;
     switch (s.kind) {
-    case Kind::Sphere:
-        p.core = ConvexProxy::Core::Point;
-        p.radius = s.radius;
-        break;
-    case Kind::Capsule:
-        p.core = ConvexProxy::Core::Segment;
-        p.radius = s.radius;
-        p.halfExtents = Vec3(0, s.halfHeight, 0);
-        p.extent = s.halfHeight;
-        break;
-    case Kind::Box:
-        p.core = ConvexProxy::Core::Box;
-        p.halfExtents = s.halfExtents;
-        p.extent = s.halfExtents.norm();
-        break;
-    case Kind::Cylinder:
-        p.core = ConvexProxy::Core::Cylinder;
-        p.halfExtents = Vec3(s.radius, s.halfHeight, 0);
-        p.extent = std::hypot(s.radius, s.halfHeight);
-        break;
-    case Kind::Hull: {
-        if (!s.hull || s.hull->vertices.empty()) throw std::invalid_argument("proxyOf: hull shape without vertices");
-        p.core = ConvexProxy::Core::Hull;
-        p.hull = s.hull.get();
-        double r2 = 0.0;
-        for (const Vec3& v : s.hull->vertices) r2 = std::max(r2, (v - s.hull->interiorPoint).squaredNorm());
-        p.extent = std::sqrt(r2);
-        break;
-    }
-    case Kind::Plane:
-    case Kind::Mesh: throw std::invalid_argument(std::string("proxyOf: not a convex shape: ") + toString(s.kind));
+        case Kind::Sphere:
+            p.core = ConvexProxy::Core::Point;
+            p.radius = s.radius;
+            break;
+        case Kind::Capsule:
+            p.core = ConvexProxy::Core::Segment;
+            p.radius = s.radius;
+            p.halfExtents = Vec3(0, s.halfHeight, 0);
+            p.extent = s.halfHeight;
+            break;
+        case Kind::Box:
+            p.core = ConvexProxy::Core::Box;
+            p.halfExtents = s.halfExtents;
+            p.extent = s.halfExtents.norm();
+            break;
+        case Kind::Cylinder:
+            p.core = ConvexProxy::Core::Cylinder;
+            p.halfExtents = Vec3(s.radius, s.halfHeight, 0);
+            p.extent = std::hypot(s.radius, s.halfHeight);
+            break;
+        case Kind::Hull: {
+            if (!s.hull || s.hull->vertices.empty())
+                throw std::invalid_argument("proxyOf: hull shape without vertices");
+            p.core = ConvexProxy::Core::Hull;
+            p.hull = s.hull.get();
+            double r2 = 0.0;
+            for (const Vec3& v : s.hull->vertices)
+                r2 = std::max(r2, (v - s.hull->interiorPoint).squaredNorm());
+            p.extent = std::sqrt(r2);
+            break;
+        }
+        case Kind::Plane:
+        case Kind::Mesh:
+            throw std::invalid_argument(std::string("proxyOf: not a convex shape: ") + toString(s.kind));
     }
     return p;
 }

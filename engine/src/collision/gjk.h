@@ -16,10 +16,10 @@ namespace tumble::collision {
 struct ConvexProxy {
     enum class Core { Point, Segment, Box, Cylinder, Hull, Triangle };
     Core core = Core::Point;
-    Pose pose;                      ///< places the core (identity for a triangle)
-    double radius = 0.0;            ///< rounding added around the core
-    Vec3 halfExtents = Vec3::Zero();///< Box: half extents; Segment: y = half length;
-                                    ///< Cylinder: x = radius, y = half height
+    Pose pose;                         ///< places the core (identity for a triangle)
+    double radius = 0.0;               ///< rounding added around the core
+    Vec3 halfExtents = Vec3::Zero();   ///< Box: half extents; Segment: y = half length;
+                                       ///< Cylinder: x = radius, y = half height
     const ConvexHull* hull = nullptr;  ///< Hull core, in the pose's frame (not owned)
     std::array<Vec3, 3> triangle{};    ///< Triangle core, world points
 
@@ -33,7 +33,7 @@ struct ConvexProxy {
     double extent = 0.0;  ///< set by proxyOf / triangleProxy
 };
 
-ConvexProxy proxyOf(const Shape& s, const Pose& pose);                  // Sphere, Box, Capsule, Cylinder, Hull
+ConvexProxy proxyOf(const Shape& s, const Pose& pose);  // Sphere, Box, Capsule, Cylinder, Hull
 ConvexProxy triangleProxy(const Vec3& a, const Vec3& b, const Vec3& c);  // world points
 
 /// Closest points on the FULL shapes (radius included); distance <= 0 / overlap when touching.

@@ -42,8 +42,12 @@ struct Probe {
     Vec3 normal, pointA, pointB;
 };
 
-double turn(const Sweep& s) { return s.q0.angularDistance(s.q1); }
-bool turns(const Sweep& s) { return turn(s) > 0.0; }
+double turn(const Sweep& s) {
+    return s.q0.angularDistance(s.q1);
+}
+bool turns(const Sweep& s) {
+    return turn(s) > 0.0;
+}
 
 // Conservative advancement over [0, sEnd]; bound(n, s) is mu for the normal n at time s.
 template <class DistanceAt, class Bound>
@@ -52,7 +56,8 @@ std::optional<Impact> advance(DistanceAt&& distanceAt, Bound&& bound, double tol
     for (int iter = 0;; ++iter) {
         const Probe p = distanceAt(s);
         // At the iteration cap the current time is still safe (never past a contact).
-        if (p.distance <= tol || iter == kMaxIterations) return Impact{s, p.normal, 0.5 * (p.pointA + p.pointB)};
+        if (p.distance <= tol || iter == kMaxIterations)
+            return Impact{s, p.normal, 0.5 * (p.pointA + p.pointB)};
         const double mu = bound(p.normal, s);
         if (!(mu > 0.0)) return std::nullopt;
         s += (p.distance - 0.5 * tol) / mu;
@@ -60,10 +65,14 @@ std::optional<Impact> advance(DistanceAt&& distanceAt, Bound&& bound, double tol
     }
 }
 
-bool isConvex(Kind k) { return k != Kind::Plane && k != Kind::Mesh; }
+bool isConvex(Kind k) {
+    return k != Kind::Plane && k != Kind::Mesh;
+}
 
 // Bound on the distance of any point of the shape from the centre of mass.
-double reach(const Shape& shape, const Sweep& sw) { return boundingRadius(shape) + sw.localCenter.norm(); }
+double reach(const Shape& shape, const Sweep& sw) {
+    return boundingRadius(shape) + sw.localCenter.norm();
+}
 
 Probe probe(const ConvexProxy& a, const ConvexProxy& b) {
     const Distance d = gjkDistance(a, b);
@@ -111,12 +120,14 @@ std::shared_ptr<const TriangleBvh> bvhOf(const MeshShape& m) {
 
 ConvexProxy triangleAt(const MeshShape& m, int tri, const Pose& pose) {
     const auto& t = m.triangles[tri];
-    return triangleProxy(pose.toWorld(m.vertices[t[0]]), pose.toWorld(m.vertices[t[1]]), pose.toWorld(m.vertices[t[2]]));
+    return triangleProxy(pose.toWorld(m.vertices[t[0]]), pose.toWorld(m.vertices[t[1]]),
+                         pose.toWorld(m.vertices[t[2]]));
 }
 
 // Centre (body frame) and radius of a triangle's bounding ball, and its reach about the
 // body's centre of mass.
-void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& centre, double& radius, double& reachCm) {
+void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& centre, double& radius,
+                  double& reachCm) {
     const auto& t = m.triangles[tri];
     centre = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
     radius = 0.0;
@@ -127,13 +138,15 @@ void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& ce
     }
 }
 
-std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tol) {
+std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
+                                   double tol) {
     return advance([&](double s) { return probe(proxyOf(a, sa.at(s)), proxyOf(b, sb.at(s))); },
                    boundFor(sa, reach(a, sa), sb, reach(b, sb)), tol, 1.0);
 }
 
 // A (convex or mesh) against the plane B.
-std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape& plane, const Sweep& sp, double tol) {
+std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape& plane, const Sweep& sp,
+                                   double tol) {
     const double rA = reach(a, sa);
     const double thetaP = turn(sp);
     auto distanceAt = [&](double s) {
@@ -172,7 +185,8 @@ std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape&
 }
 
 // A (convex) against the mesh B, triangle by triangle.
-std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, const Shape& mesh, const Sweep& sm, double tol) {
+std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, const Shape& mesh, const Sweep& sm,
+                                 double tol) {
     const MeshShape& m = *mesh.mesh;
     const auto bvh = bvhOf(m);
     const double rA = reach(a, sa);
@@ -183,8 +197,9 @@ std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, const Shape& m
         double radius, rT;
         triangleBall(m, tri, sm.localCenter, centre, radius, rT);
         const double sEnd = best ? best->s : 1.0;
-        auto hit = advance([&](double s) { return probe(proxyOf(a, sa.at(s)), triangleAt(m, tri, sm.at(s))); },
-                           boundFor(sa, rA, sm, rT), tol, sEnd);
+        auto hit =
+            advance([&](double s) { return probe(proxyOf(a, sa.at(s)), triangleAt(m, tri, sm.at(s))); },
+                    boundFor(sa, rA, sm, rT), tol, sEnd);
         if (hit && (!best || hit->s < best->s)) best = hit;
     });
     return best;
@@ -207,8 +222,9 @@ std::optional<Impact> meshMesh(const Shape& a, const Sweep& sa, const Shape& b, 
             double rb, rTb;
             triangleBall(mb, j, sb.localCenter, cb, rb, rTb);
             const double sEnd = best ? best->s : 1.0;
-            auto hit = advance([&](double s) { return probe(triangleAt(ma, i, sa.at(s)), triangleAt(mb, j, sb.at(s))); },
-                               boundFor(sa, rTa, sb, rTb), tol, sEnd);
+            auto hit = advance(
+                [&](double s) { return probe(triangleAt(ma, i, sa.at(s)), triangleAt(mb, j, sb.at(s))); },
+                boundFor(sa, rTa, sb, rTb), tol, sEnd);
             if (hit && (!best || hit->s < best->s)) best = hit;
         });
     }
@@ -222,7 +238,8 @@ std::optional<Impact> flipped(std::optional<Impact> i) {
 
 }  // namespace
 
-std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tolerance) {
+std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
+                                   double tolerance) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return std::nullopt;
     // A tolerance of zero would only be reached in the limit; keep a rounding-level floor.
     double scale = 0.0;
