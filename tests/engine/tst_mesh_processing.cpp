@@ -27,8 +27,10 @@ namespace {
 // three vertices, as STL files store them.
 TriangleMesh boxMesh(const Vec3& lo, const Vec3& hi, bool split = false) {
     TriangleMesh m;
-    for (int k = 0; k < 8; ++k) m.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
-    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (int k = 0; k < 8; ++k)
+        m.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     for (const auto& q : quads) {
         m.triangles.push_back({q[0], q[1], q[2]});
         m.triangles.push_back({q[0], q[2], q[3]});
@@ -55,14 +57,18 @@ QString hullProblem(const ConvexHull& h, double eps) {
         for (size_t k = 0; k < face.vertices.size(); ++k) {
             const int a = face.vertices[k], b = face.vertices[(k + 1) % face.vertices.size()];
             if (a < 0 || a >= n) return QString("face %1: bad index").arg(f);
-            if (std::abs(face.normal.dot(h.vertices[a]) - face.offset) > eps) return QString("face %1: vertex off its plane").arg(f);
+            if (std::abs(face.normal.dot(h.vertices[a]) - face.offset) > eps)
+                return QString("face %1: vertex off its plane").arg(f);
             newell += h.vertices[a].cross(h.vertices[b]);
             ++directed[{a, b}];
         }
-        if (!(newell.dot(face.normal) > 0.0)) return QString("face %1: not counter-clockwise seen from outside").arg(f);
-        if (!(face.normal.dot(h.interiorPoint) < face.offset - eps)) return QString("face %1: interior point not inside").arg(f);
+        if (!(newell.dot(face.normal) > 0.0))
+            return QString("face %1: not counter-clockwise seen from outside").arg(f);
+        if (!(face.normal.dot(h.interiorPoint) < face.offset - eps))
+            return QString("face %1: interior point not inside").arg(f);
         for (const Vec3& v : h.vertices) {
-            if (face.normal.dot(v) > face.offset + eps) return QString("face %1: a vertex is outside it").arg(f);
+            if (face.normal.dot(v) > face.offset + eps)
+                return QString("face %1: a vertex is outside it").arg(f);
         }
     }
     // A closed polytope: every directed edge once, and its reverse once.
@@ -123,7 +129,8 @@ private slots:
         std::uniform_real_distribution<double> u(-0.999, 0.999);
         std::vector<Vec3> points;
         for (int k = 0; k < 200; ++k) points.emplace_back(2 * u(rng), 3 * u(rng), 4 * u(rng));
-        for (int k = 0; k < 8; ++k) points.insert(points.begin() + 25 * k, Vec3(k & 1 ? 2 : -2, k & 2 ? 3 : -3, k & 4 ? 4 : -4));
+        for (int k = 0; k < 8; ++k)
+            points.insert(points.begin() + 25 * k, Vec3(k & 1 ? 2 : -2, k & 2 ? 3 : -3, k & 4 ? 4 : -4));
         const ConvexHull h = mesh::convexHull(points);
         QCOMPARE(h.vertices.size(), size_t(8));
         QCOMPARE(h.faces.size(), size_t(6));
@@ -162,8 +169,9 @@ private slots:
         // Every input point outside the hull of the others must be a vertex: check the
         // extreme point along a few directions.
         for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(1, 2, 3).normalized()}) {
-            const auto far = std::max_element(points.begin(), points.end(),
-                                              [&](const Vec3& a, const Vec3& b) { return a.dot(d) < b.dot(d); });
+            const auto far =
+                std::max_element(points.begin(), points.end(),
+                                 [&](const Vec3& a, const Vec3& b) { return a.dot(d) < b.dot(d); });
             QVERIFY(std::find(h.vertices.begin(), h.vertices.end(), *far) != h.vertices.end());
         }
     }
@@ -181,12 +189,18 @@ private slots:
     void degenerateHullInput_data() {
         QTest::addColumn<QString>("name");
         QTest::addColumn<QString>("expected");
-        QTest::newRow("three points") << "three" << "at least 4 points";
-        QTest::newRow("square") << "square" << "one plane";
-        QTest::newRow("tilted disc") << "disc" << "one plane";
-        QTest::newRow("segment") << "segment" << "one line";
-        QTest::newRow("one point") << "same" << "coincide";
-        QTest::newRow("nan") << "nan" << "not finite";
+        QTest::newRow("three points") << "three"
+                                      << "at least 4 points";
+        QTest::newRow("square") << "square"
+                                << "one plane";
+        QTest::newRow("tilted disc") << "disc"
+                                     << "one plane";
+        QTest::newRow("segment") << "segment"
+                                 << "one line";
+        QTest::newRow("one point") << "same"
+                                   << "coincide";
+        QTest::newRow("nan") << "nan"
+                             << "not finite";
     }
 
     void degenerateHullInput() {
@@ -199,7 +213,8 @@ private slots:
             const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
             for (int k = 0; k < 50; ++k) p.push_back(R * Vec3(std::cos(k), std::sin(k), 0) + Vec3(5, 6, 7));
         }
-        if (name == "segment") for (int k = 0; k < 10; ++k) p.push_back(Vec3(1, 2, 3) * k);
+        if (name == "segment")
+            for (int k = 0; k < 10; ++k) p.push_back(Vec3(1, 2, 3) * k);
         if (name == "same") p.assign(6, Vec3(1, 2, 3));
         if (name == "nan") p = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, std::nan(""))};
         try {
@@ -321,15 +336,17 @@ private slots:
         const Model m = compile(test::sceneOf({b}));
         QVERIFY(std::abs(m.bodies[0].mass - 3.0) < 1e-12);
         QVERIFY((m.bodies[0].centerOfMass - Vec3::Constant(0.5)).norm() < 1e-12);
-        QCOMPARE(QString::fromStdString(m.notes.at(0)),
-                 QString("bodies[0] (rock): the mesh is not closed; mass properties come from its convex hull"));
+        QCOMPARE(
+            QString::fromStdString(m.notes.at(0)),
+            QString("bodies[0] (rock): the mesh is not closed; mass properties come from its convex hull"));
     }
 
     void meshNeverLoadedIsRefused() {
         BodyDesc b = meshBody(boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)));
         b.shape.meshData.reset();
         b.mass = 1.0;
-        QVERIFY(sceneErrorPath(test::sceneOf({b})).startsWith("bodies[0].shape.file | the mesh 'rock.obj' was never loaded"));
+        QVERIFY(sceneErrorPath(test::sceneOf({b}))
+                    .startsWith("bodies[0].shape.file | the mesh 'rock.obj' was never loaded"));
         b.motion = Motion::Static;
         b.mass.reset();
         QVERIFY(sceneErrorPath(test::sceneOf({b})).startsWith("bodies[0].shape.file | "));
@@ -341,15 +358,18 @@ private slots:
         sheet.triangles = {{0, 2, 1}, {0, 3, 2}};
         BodyDesc b = meshBody(sheet);
         b.density = 100.0;
-        QVERIFY(sceneErrorPath(test::sceneOf({b})).startsWith("bodies[0].density | rock.obj: the mesh encloses no volume"));
+        QVERIFY(sceneErrorPath(test::sceneOf({b}))
+                    .startsWith("bodies[0].density | rock.obj: the mesh encloses no volume"));
         b.density.reset();
         b.mass = 1.0;
-        QVERIFY(sceneErrorPath(test::sceneOf({b})).startsWith("bodies[0].shape.file | rock.obj: the mesh encloses no "
-                                                              "volume (all points lie on one plane"));
+        QVERIFY(sceneErrorPath(test::sceneOf({b}))
+                    .startsWith("bodies[0].shape.file | rock.obj: the mesh encloses no "
+                                "volume (all points lie on one plane"));
         QVERIFY(sceneErrorPath(test::sceneOf({b})).contains("give center_of_mass and inertia"));
         b.inertia = Mat3(Vec3(1, 2, 1).asDiagonal());
         b.centerOfMass = Vec3(0.5, 0, 0.5);
-        QVERIFY(sceneErrorPath(test::sceneOf({b})).startsWith("bodies[0].shape.file | rock.obj: has no convex hull"));
+        QVERIFY(sceneErrorPath(test::sceneOf({b}))
+                    .startsWith("bodies[0].shape.file | rock.obj: has no convex hull"));
         b.shape.collision = MeshCollision::Triangles;
         QCOMPARE(sceneErrorPath(test::sceneOf({b})), QString("compiled"));
         // A closed but flat surface (both sides of the sheet) has no volume either.
@@ -373,7 +393,8 @@ private slots:
         QVERIFY(sceneErrorPath(test::sceneOf({b})).contains("has no triangles with an area"));
         m.triangles = {{0, 1, 5}};
         b.shape.meshData = std::make_shared<const TriangleMesh>(m);
-        QVERIFY(sceneErrorPath(test::sceneOf({b})).startsWith("bodies[0].shape.file | rock.obj: triangle 0 uses vertex 5"));
+        QVERIFY(sceneErrorPath(test::sceneOf({b}))
+                    .startsWith("bodies[0].shape.file | rock.obj: triangle 0 uses vertex 5"));
     }
 
     // meshData is derived from file and scale: scenes compare by what the file holds.

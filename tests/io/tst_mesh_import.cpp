@@ -37,7 +37,8 @@ Solid solidOf(const TriangleMesh& m) {
 
 // The unit cube [-0.5, 0.5]³ as binary STL: 80-byte header, count, 50 bytes per triangle.
 void writeBinaryStlCube(const fs::path& file, const Vec3& offset) {
-    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     std::ofstream out(file, std::ios::binary);
     const char header[80] = "binary cube written by tst_mesh_import";
     out.write(header, 80);
@@ -81,7 +82,9 @@ QString inputError(const std::string& text, const fs::path& dir) {
     return "no error";
 }
 
-bool near(const Mat3& a, const Mat3& b, double tol) { return (a - b).cwiseAbs().maxCoeff() <= tol; }
+bool near(const Mat3& a, const Mat3& b, double tol) {
+    return (a - b).cwiseAbs().maxCoeff() <= tol;
+}
 
 }  // namespace
 
@@ -99,23 +102,25 @@ private slots:
         const QString ours = QString::fromStdString(kMeshes.string());
         const Vec3 zero = Vec3::Zero();
         QTest::newRow("OBJ box") << models + "/OBJ/box.obj" << 12 << 8 << true << 1.0 << zero;
-        QTest::newRow("OBJ faces, lines and points") << models + "/OBJ/testmixed.obj" << 12 << 8 << true << 1.0 << zero;
-        QTest::newRow("PLY ascii cube") << models + "/PLY/cube.ply" << 12 << 8 << true << 1.0 << Vec3(0.5, 0.5, 0.5);
-        QTest::newRow("PLY binary cube") << models + "/PLY/cube_binary.ply" << 12 << 8 << true << 1.0
-                                         << Vec3(0.5, 0.5, 0.5);
+        QTest::newRow("OBJ faces, lines and points")
+            << models + "/OBJ/testmixed.obj" << 12 << 8 << true << 1.0 << zero;
+        QTest::newRow("PLY ascii cube")
+            << models + "/PLY/cube.ply" << 12 << 8 << true << 1.0 << Vec3(0.5, 0.5, 0.5);
+        QTest::newRow("PLY binary cube")
+            << models + "/PLY/cube_binary.ply" << 12 << 8 << true << 1.0 << Vec3(0.5, 0.5, 0.5);
         QTest::newRow("OFF cube") << models + "/OFF/Cube.off" << 12 << 8 << true << 1.0 << zero;
-        QTest::newRow("glTF2 separate") << models + "/glTF2/BoxTextured-glTF/BoxTextured.gltf" << 12 << 8 << true << 1.0
-                                        << zero;
-        QTest::newRow("glTF2 embedded") << models + "/glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf" << 12 << 8
-                                        << true << 1.0 << zero;
-        QTest::newRow("glTF2 binary") << models + "/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb" << 12 << 8 << true
-                                      << 1.0 << zero;
+        QTest::newRow("glTF2 separate")
+            << models + "/glTF2/BoxTextured-glTF/BoxTextured.gltf" << 12 << 8 << true << 1.0 << zero;
+        QTest::newRow("glTF2 embedded")
+            << models + "/glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf" << 12 << 8 << true << 1.0 << zero;
+        QTest::newRow("glTF2 binary")
+            << models + "/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb" << 12 << 8 << true << 1.0 << zero;
         // Ours: an ascii STL (each facet its own vertices, joined on import), a concave prism.
         QTest::newRow("STL ascii box") << ours + "/box.stl" << 12 << 8 << true << 1.0 << zero;
         QTest::newRow("OBJ L prism") << ours + "/l-prism.obj" << 28 << 16 << true << 3.0
                                      << Vec3(5.0 / 6.0, 5.0 / 6.0, 0.5);
-        QTest::newRow("OFF tetrahedron") << ours + "/tetrahedron.off" << 4 << 4 << true << 1.0 / 6.0
-                                         << Vec3(0.25, 0.25, 0.25);
+        QTest::newRow("OFF tetrahedron")
+            << ours + "/tetrahedron.off" << 4 << 4 << true << 1.0 / 6.0 << Vec3(0.25, 0.25, 0.25);
         QTest::newRow("PLY open box") << ours + "/open-box.ply" << 10 << 8 << false << -1.0 << zero;
     }
 
@@ -184,7 +189,8 @@ private slots:
         fs::create_directories(base / "meshes");
         fs::copy_file(kMeshes / "tetrahedron.off", base / "meshes" / "tet.off");
         writeText(base / "tet.json",
-                  sceneWithMesh("meshes/tet.off", R"("density": 600, "position": [1, 2, 3])", R"(, "scale": [2, 2, 2])"));
+                  sceneWithMesh("meshes/tet.off", R"("density": 600, "position": [1, 2, 3])",
+                                R"(, "scale": [2, 2, 2])"));
         const SceneDesc scene = io::readSceneFile(base / "tet.json");
         QVERIFY(scene.bodies[1].shape.meshData);
         const World world(scene);
@@ -233,34 +239,44 @@ private slots:
         QVERIFY(b.centerOfMass.norm() < 1e-12);  // the hull is the whole box, centred
         const Vec3 d = 6.0 / 12.0 * Vec3(4 + 9, 1 + 9, 1 + 4);
         QVERIFY(near(b.inertia, Mat3(d.asDiagonal()), 1e-12));
-        QCOMPARE(QString::fromStdString(world.model().notes.at(0)),
-                 QString("bodies[1] (rock): the mesh is not closed; mass properties come from its convex hull"));
+        QCOMPARE(
+            QString::fromStdString(world.model().notes.at(0)),
+            QString("bodies[1] (rock): the mesh is not closed; mass properties come from its convex hull"));
     }
 
     void badMeshes_data() {
         QTest::addColumn<QString>("file");
         QTest::addColumn<QString>("expected");
-        QTest::newRow("missing") << "meshes/rock.obj"
-                                 << "drop.json: bodies[1].shape.file: meshes/rock.obj: cannot be read (missing, or no "
-                                    "permission)";
-        QTest::newRow("a directory") << "meshes"
-                                     << "drop.json: bodies[1].shape.file: meshes: is a directory, not a mesh file";
+        QTest::newRow("missing")
+            << "meshes/rock.obj"
+            << "drop.json: bodies[1].shape.file: meshes/rock.obj: cannot be read (missing, or no "
+               "permission)";
+        QTest::newRow("a directory")
+            << "meshes"
+            << "drop.json: bodies[1].shape.file: meshes: is a directory, not a mesh file";
         // What assimp makes of noise depends on the reader it picks; any refusal will do.
-        QTest::newRow("garbage obj") << "meshes/garbage.obj" << "drop.json: bodies[1].shape.file: meshes/garbage.obj: ";
-        QTest::newRow("garbage stl") << "meshes/garbage.stl"
-                                     << "drop.json: bodies[1].shape.file: meshes/garbage.stl: cannot be read as a mesh: ";
-        QTest::newRow("garbage, no extension") << "meshes/garbage"
-                                               << "drop.json: bodies[1].shape.file: meshes/garbage: cannot be read as a "
-                                                  "mesh: No suitable reader";
-        QTest::newRow("empty") << "meshes/empty.stl" << "drop.json: bodies[1].shape.file: meshes/empty.stl: cannot be read";
-        QTest::newRow("text, no mesh") << "meshes/words.obj" << "drop.json: bodies[1].shape.file: meshes/words.obj: holds no mesh";
+        QTest::newRow("garbage obj") << "meshes/garbage.obj"
+                                     << "drop.json: bodies[1].shape.file: meshes/garbage.obj: ";
+        QTest::newRow("garbage stl")
+            << "meshes/garbage.stl"
+            << "drop.json: bodies[1].shape.file: meshes/garbage.stl: cannot be read as a mesh: ";
+        QTest::newRow("garbage, no extension")
+            << "meshes/garbage"
+            << "drop.json: bodies[1].shape.file: meshes/garbage: cannot be read as a "
+               "mesh: No suitable reader";
+        QTest::newRow("empty") << "meshes/empty.stl"
+                               << "drop.json: bodies[1].shape.file: meshes/empty.stl: cannot be read";
+        QTest::newRow("text, no mesh") << "meshes/words.obj"
+                                       << "drop.json: bodies[1].shape.file: meshes/words.obj: holds no mesh";
         const std::string models = kAssimpModels.string();
         QTest::newRow("OBJ points") << QString::fromStdString(models + "/OBJ/testpoints.obj")
-                                    << QString::fromStdString("drop.json: bodies[1].shape.file: " + models +
-                                                              "/OBJ/testpoints.obj: holds no triangles (only points or lines)");
+                                    << QString::fromStdString(
+                                           "drop.json: bodies[1].shape.file: " + models +
+                                           "/OBJ/testpoints.obj: holds no triangles (only points or lines)");
         QTest::newRow("OBJ lines") << QString::fromStdString(models + "/OBJ/testline.obj")
-                                   << QString::fromStdString("drop.json: bodies[1].shape.file: " + models +
-                                                             "/OBJ/testline.obj: holds no triangles (only points or lines)");
+                                   << QString::fromStdString(
+                                          "drop.json: bodies[1].shape.file: " + models +
+                                          "/OBJ/testline.obj: holds no triangles (only points or lines)");
         QTest::newRow("PLY points") << QString::fromStdString(models + "/PLY/points.ply")
                                     << QString::fromStdString("drop.json: bodies[1].shape.file: " + models +
                                                               "/PLY/points.ply: holds no triangles");
@@ -297,7 +313,8 @@ private slots:
             QFAIL("a flat mesh with a density compiled");
         } catch (const SceneError& e) {
             QCOMPARE(QString::fromStdString(e.path()), QString("bodies[1].density"));
-            QVERIFY2(QString::fromStdString(e.message()).startsWith(QString::fromStdString(file + ": the mesh encloses no volume")),
+            QVERIFY2(QString::fromStdString(e.message())
+                         .startsWith(QString::fromStdString(file + ": the mesh encloses no volume")),
                      e.what());
         }
     }

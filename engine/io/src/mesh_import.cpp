@@ -4,10 +4,10 @@
 // several placed parts comes out as the user sees it in a modelling tool.
 #include <tumble/io/mesh_import.h>
 
-#include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <fstream>
 #include <map>
@@ -19,19 +19,21 @@ namespace tumble::io {
 TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
     const std::string name = file.string();
     std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) throw InputError(name, "", "is a directory, not a mesh file");
+    if (std::filesystem::is_directory(file, ec))
+        throw InputError(name, "", "is a directory, not a mesh file");
     if (!std::ifstream(file, std::ios::binary)) {
         throw InputError(name, "", "cannot be read (missing, or no permission)");
     }
 
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                                aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                    aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                    aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
-                                    aiComponent_MATERIALS);
-    const unsigned flags = aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                           aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
+                                aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
+                                    aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
+                                    aiComponent_ANIMATIONS | aiComponent_TEXTURES | aiComponent_LIGHTS |
+                                    aiComponent_CAMERAS | aiComponent_MATERIALS);
+    const unsigned flags = aiProcess_RemoveComponent | aiProcess_Triangulate |
+                           aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+                           aiProcess_ValidateDataStructure;
     const aiScene* scene = importer.ReadFile(name, flags);
     if (!scene) {
         const std::string why = importer.GetErrorString();
@@ -41,7 +43,8 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
             throw InputError(name, "", "holds no triangles (no faces at all, only points or nothing)");
         }
         if (why.find("mNumMeshes is 0") != std::string::npos) throw InputError(name, "", "holds no mesh");
-        throw InputError(name, "", "cannot be read as a mesh: " + (why.empty() ? std::string("unknown error") : why));
+        throw InputError(name, "",
+                         "cannot be read as a mesh: " + (why.empty() ? std::string("unknown error") : why));
     }
 
     TriangleMesh mesh;
@@ -53,9 +56,10 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
             const aiVector3D& p = part->mVertices[v];
             const Vec3 q = Vec3(p.x, p.y, p.z).cwiseProduct(scale);
             if (!q.allFinite()) {
-                throw InputError(name, "", "vertex " + std::to_string(v) + " of mesh " + std::to_string(m) +
-                                               " is not a finite number" +
-                                               (Vec3(p.x, p.y, p.z).allFinite() ? " once scaled" : ""));
+                throw InputError(name, "",
+                                 "vertex " + std::to_string(v) + " of mesh " + std::to_string(m) +
+                                     " is not a finite number" +
+                                     (Vec3(p.x, p.y, p.z).allFinite() ? " once scaled" : ""));
             }
             mesh.vertices.push_back(q);
         }
@@ -65,8 +69,9 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
             std::array<int, 3> t{};
             for (int k = 0; k < 3; ++k) {
                 if (face.mIndices[k] >= part->mNumVertices) {
-                    throw InputError(name, "", "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
-                                                   " uses a vertex that does not exist");
+                    throw InputError(name, "",
+                                     "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                                         " uses a vertex that does not exist");
                 }
                 t[k] = base + static_cast<int>(face.mIndices[k]);
             }
@@ -74,8 +79,8 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
         }
     }
     if (mesh.triangles.empty()) {
-        throw InputError(name, "", scene->mNumMeshes == 0 ? "holds no mesh"
-                                                          : "holds no triangles (only points or lines)");
+        throw InputError(
+            name, "", scene->mNumMeshes == 0 ? "holds no mesh" : "holds no triangles (only points or lines)");
     }
     return mesh;
 }
@@ -90,7 +95,8 @@ void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, con
             try {
                 slot = std::make_shared<const TriangleMesh>(importMesh(baseDir / s.file, s.scale));
             } catch (const InputError& e) {
-                throw InputError(sceneName, "bodies[" + std::to_string(i) + "].shape.file", s.file + ": " + e.message());
+                throw InputError(sceneName, "bodies[" + std::to_string(i) + "].shape.file",
+                                 s.file + ": " + e.message());
             }
         }
         s.meshData = slot;

@@ -91,7 +91,8 @@ void checkSpansSpace(const std::vector<Vec3>& points) {
     if (offLine(c) <= flat) throw HullError("all points lie on one line");
     const Vec3 normal = (b - a).cross(c - a).normalized();
     auto offPlane = [&](const Vec3& p) { return std::abs(normal.dot(p - a)); };
-    if (offPlane(farthest(offPlane)) <= flat) throw HullError("all points lie on one plane (the mesh is flat)");
+    if (offPlane(farthest(offPlane)) <= flat)
+        throw HullError("all points lie on one plane (the mesh is flat)");
 }
 
 std::string firstLine(const std::string& text) {
@@ -116,8 +117,8 @@ ConvexHull convexHull(const std::vector<Vec3>& points) {
     QHULL_LIB_CHECK
     qh_zero(qh, errFile);
     char options[] = "qhull";
-    const int exitCode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, options,
-                                      nullptr, errFile);
+    const int exitCode =
+        qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, options, nullptr, errFile);
     ConvexHull hull;
     if (exitCode == 0) {
         // Hull vertices in the order of the input points, so the result does not depend
@@ -147,8 +148,8 @@ ConvexHull convexHull(const std::vector<Vec3>& points) {
     const std::string message = errText ? firstLine(errText) : std::string();
     std::free(errText);
     if (exitCode != 0) {
-        throw HullError("qhull could not build the hull: " + (message.empty() ? "error " + std::to_string(exitCode)
-                                                                               : message));
+        throw HullError("qhull could not build the hull: " +
+                        (message.empty() ? "error " + std::to_string(exitCode) : message));
     }
     finish(hull);
     return hull;

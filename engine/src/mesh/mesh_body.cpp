@@ -61,8 +61,10 @@ PreparedMesh prepareMesh(const TriangleMesh& raw, bool wantHull, bool wantMass) 
         p.hullProblem = "the mesh has no triangles";
     }
     if (wantMass) {
-        if (p.closed) integrate(p.surface, tolerance, p);
-        else if (p.hull) integrate(hullSurface(*p.hull), tolerance, p);
+        if (p.closed)
+            integrate(p.surface, tolerance, p);
+        else if (p.hull)
+            integrate(hullSurface(*p.hull), tolerance, p);
     }
     return p;
 }

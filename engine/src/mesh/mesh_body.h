@@ -14,7 +14,7 @@
 namespace tumble::mesh {
 
 struct PreparedMesh {
-    TriangleMesh surface;        ///< cleaned; facing outwards when closed
+    TriangleMesh surface;  ///< cleaned; facing outwards when closed
     CleanStats stats;
     bool closed = false;         ///< isClosed(surface)
     bool turnedOutward = false;  ///< the closed surface faced inwards; its triangles were reversed

@@ -34,8 +34,8 @@ void checkInput(const TriangleMesh& mesh) {
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         for (int v : mesh.triangles[t]) {
             if (v < 0 || v >= n) {
-                throw std::invalid_argument("triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) +
-                                            ", but there are " + std::to_string(n));
+                throw std::invalid_argument("triangle " + std::to_string(t) + " uses vertex " +
+                                            std::to_string(v) + ", but there are " + std::to_string(n));
             }
         }
     }
@@ -141,8 +141,8 @@ TriangleMesh cleanMesh(const TriangleMesh& mesh, double tolerance, CleanStats* s
         newIndex[v] = static_cast<int>(out.vertices.size());
         out.vertices.push_back(mesh.vertices[v]);
     }
-    stats.unusedVertices = static_cast<int>(mesh.vertices.size()) - stats.weldedVertices -
-                           static_cast<int>(out.vertices.size());
+    stats.unusedVertices =
+        static_cast<int>(mesh.vertices.size()) - stats.weldedVertices - static_cast<int>(out.vertices.size());
     out.triangles.reserve(kept.size());
     for (const auto& t : kept) out.triangles.push_back({newIndex[t[0]], newIndex[t[1]], newIndex[t[2]]});
     if (statsOut) *statsOut = stats;
