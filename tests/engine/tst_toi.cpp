@@ -229,6 +229,14 @@ private slots:
                            tol);
         const double exact2 = (3 - std::sqrt(0.5)) / 5;
         QVERIFY(hit && hit->s <= exact2 && (exact2 - hit->s) * 5 <= tol);
+        // The ground turning about its own normal is the same surface: the same time, by
+        // the turning bounds (the sphere stays over the ground).
+        const Sweep spinning =
+            moving(Vec3::Zero(), Vec3::Zero(), Quat::Identity(), about(Vec3::UnitY(), 1.0));
+        hit = timeOfImpact(ball, falling, ground, spinning, tol);
+        QVERIFY(hit && hit->s <= 0.55 && (0.55 - hit->s) * 5 <= tol);
+        hit = timeOfImpact(ball, falling, Shape::plane(Vec3(0, 1, 0), 0.0), spinning, tol);
+        QVERIFY(hit && hit->s <= 0.55 && (0.55 - hit->s) * 5 <= tol);
         // A miss: the sphere falls beside the ground.
         QVERIFY(!timeOfImpact(ball, moving(Vec3(6, 3, 0), Vec3(6, -2, 0)), ground, still(Vec3::Zero()), tol));
     }

@@ -307,7 +307,16 @@ void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration
     out.push_back({0.5 * (pen.pointA + pen.pointB), pen.depth, single});
 }
 
-void appendReduced(const std::vector<Candidate>& c, const Vec3& normal, std::vector<Manifold>& out) {
+void appendReduced(const std::vector<Candidate>& all, const Vec3& normal, std::vector<Manifold>& out) {
+    // Coincident points (a degenerate face, two clips meeting at a corner) count once.
+    std::vector<Candidate> c;
+    c.reserve(all.size());
+    for (const Candidate& p : all) {
+        bool dup = false;
+        for (const Candidate& q : c)
+            dup = dup || (p.position - q.position).norm() <= 1e-12 * (1.0 + p.position.norm());
+        if (!dup) c.push_back(p);
+    }
     const int n = static_cast<int>(c.size());
     if (n == 0) return;
     Manifold m;

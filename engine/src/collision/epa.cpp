@@ -196,13 +196,15 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
 
     const double doneTol = kDoneTol * scale;
     int best = 0;
+    double reach = 0.0;  // the support along the best face's normal: an upper bound of the depth
     for (int iter = 0; iter < kMaxIterations; ++iter) {
         best = -1;
         for (int i = 0; i < static_cast<int>(faces.size()); ++i)
             if (faces[i].alive && (best < 0 || faces[i].dist < faces[best].dist)) best = i;
         const Face f = faces[best];
         const SimplexVertex w = support(f.n);
-        if (f.n.dot(w.w) - f.dist <= doneTol) break;
+        reach = f.n.dot(w.w);
+        if (reach - f.dist <= doneTol) break;
         const int index = static_cast<int>(v.size());
         v.push_back(w);
         silhouette(best, w.w);
@@ -240,7 +242,11 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     const auto l = closestOnTriangle(v[f.v[0]].w - q, v[f.v[1]].w - q, v[f.v[2]].w - q);
     Penetration p;
     p.normal = -f.n;
-    p.depth = f.dist;
+    // The face's distance is a lower bound of the depth and the support along its normal an
+    // upper one; they agree to the tolerance on convergence. Where the iterations ran out
+    // (deep overlap of two curved cores) the upper bound is the one that, applied along the
+    // normal, really separates the shapes.
+    p.depth = reach;
     for (int i = 0; i < 3; ++i) {
         p.pointA += l[i] * v[f.v[i]].a;
         p.pointB += l[i] * v[f.v[i]].b;
