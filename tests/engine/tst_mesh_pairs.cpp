@@ -35,8 +35,8 @@ struct Rng {
 
 // A closed prism: the polygon (counter-clockwise in xy) with its cap triangulation,
 // extruded from z0 to z1, as a Mesh shape with its BVH.
-Shape prism(const std::vector<std::array<double, 2>>& poly, const std::vector<std::array<int, 3>>& cap, double z0,
-            double z1) {
+Shape prism(const std::vector<std::array<double, 2>>& poly, const std::vector<std::array<int, 3>>& cap,
+            double z0, double z1) {
     auto m = std::make_shared<MeshShape>();
     const int n = static_cast<int>(poly.size());
     for (const auto& q : poly) m->vertices.emplace_back(q[0], q[1], z0);
@@ -60,7 +60,8 @@ Shape prism(const std::vector<std::array<double, 2>>& poly, const std::vector<st
 
 // The L: [0,2]x[0,1] and [0,1]x[0,2]; the notch [1,2]x[1,2] is outside.
 Shape lPrism(double z0, double z1) {
-    return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{3, 4, 5}, {3, 5, 0}, {3, 0, 1}, {3, 1, 2}}, z0, z1);
+    return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}},
+                 {{3, 4, 5}, {3, 5, 0}, {3, 0, 1}, {3, 1, 2}}, z0, z1);
 }
 
 // An upside-down U: legs [0,1]x[0,1] and [2,3]x[0,1] under a bridge [0,3]x[1,2].
@@ -70,8 +71,8 @@ Shape uPrism() {
 }
 
 Shape cubeMesh(const Vec3& h) {
-    return prism({{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}}, {{0, 1, 2}, {0, 2, 3}}, -h.z(),
-                 h.z());
+    return prism({{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}}, {{0, 1, 2}, {0, 2, 3}},
+                 -h.z(), h.z());
 }
 
 double maxPlaneValue(const ref::Polyhedron& body, const Vec3& p) {
@@ -202,7 +203,8 @@ void TestMeshPairs::cubeMeshesCrossedRidgeOverRidge() {
     const double s2 = std::sqrt(2.0), delta = 0.1;
     const Shape cube = cubeMesh(Vec3::Ones());
     const Pose pb{Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()};
-    const Pose pa{Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()).toRotationMatrix(), Vec3(0, 0, 2 * s2 - delta)};
+    const Pose pa{Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()).toRotationMatrix(),
+                  Vec3(0, 0, 2 * s2 - delta)};
     std::vector<Manifold> out;
     collideMeshMesh(cube, pa, cube, pb, 0.0, out);
     QCOMPARE(out.size(), std::size_t(1));
@@ -260,7 +262,8 @@ void TestMeshPairs::randomCubeMeshesAgreeWithReference() {
         for (const auto& p : rc.points)
             if (p.kind == ref::RefPoint::Kind::VertexOfAInB || p.kind == ref::RefPoint::Kind::VertexOfBInA)
                 refVertexDepth = std::max(refVertexDepth, p.depth);
-        const ref::Polyhedron A = ref::worldPolyhedron(Shape::box(ha), pa), B = ref::worldPolyhedron(Shape::box(hb), pb);
+        const ref::Polyhedron A = ref::worldPolyhedron(Shape::box(ha), pa),
+                              B = ref::worldPolyhedron(Shape::box(hb), pb);
         double deepest = 0.0;
         for (const auto& m : out) {
             QVERIFY(std::abs(m.normal.norm() - 1.0) < 1e-12);

@@ -6,9 +6,9 @@
 #include "collision/bvh.h"
 #include "collision/reference.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <QtTest>
 
@@ -39,7 +39,9 @@ struct Rng {
     }
 };
 
-Pose makePose(const Mat3& R, const Vec3& p) { return Pose{R, p}; }
+Pose makePose(const Mat3& R, const Vec3& p) {
+    return Pose{R, p};
+}
 
 // A closed prism: the polygon (counter-clockwise in xy) with its cap triangulation,
 // extruded from z0 to z1.
@@ -64,8 +66,8 @@ MeshShape prism(const std::vector<std::array<double, 2>>& poly, const std::vecto
 
 // The L: [0,2]x[0,1] and [0,1]x[0,2], z in [0,1]; the notch [1,2]x[1,2] is outside.
 MeshShape lPrism() {
-    return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{3, 4, 5}, {3, 5, 0}, {3, 0, 1}, {3, 1, 2}}, 0.0,
-                 1.0);
+    return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}},
+                 {{3, 4, 5}, {3, 5, 0}, {3, 0, 1}, {3, 1, 2}}, 0.0, 1.0);
 }
 
 bool inL(const Vec3& p) {
@@ -98,8 +100,9 @@ double windingNumber(const MeshShape& m, const Vec3& p) {
 // every edge is used once in each direction.
 MeshShape loadModel(const QString& path) {
     Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(path.toStdString(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                                     aiProcess_PreTransformVertices);
+    const aiScene* scene =
+        importer.ReadFile(path.toStdString(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                  aiProcess_PreTransformVertices);
     MeshShape m;
     if (!scene) return m;
     std::map<std::tuple<double, double, double>, int> weld;
@@ -217,7 +220,8 @@ void TestReference::boxVertexInsideBox() {
     const ref::Polyhedron bp = ref::worldPolyhedron(b, Pose{});
     hull.vertices = bp.vertices;
     for (const auto& f : bp.faces) hull.faces.push_back({f.normal, f.offset, f.vertices});
-    const Pose moved = makePose(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix(), Vec3(4, 5, 6));
+    const Pose moved =
+        makePose(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix(), Vec3(4, 5, 6));
     const ref::Inside in2 = ref::pointInConvex(hull, moved, moved.toWorld(tip));
     QVERIFY(in2.inside);
     QVERIFY(std::abs(in2.depth - depth) < 1e-12);
@@ -250,15 +254,17 @@ void TestReference::edgeCrossingWithNoVertexInside() {
     // z = sqrt 2), A turned 45° about y (a ridge along y below), A's ridge delta below B's.
     const double s2 = std::sqrt(2.0), delta = 0.1;
     const Shape cube = Shape::box(Vec3::Ones());
-    const Pose pb = makePose(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero());
-    const Pose pa =
-        makePose(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()).toRotationMatrix(), Vec3(0, 0, 2 * s2 - delta));
+    const Pose pb =
+        makePose(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero());
+    const Pose pa = makePose(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()).toRotationMatrix(),
+                             Vec3(0, 0, 2 * s2 - delta));
     const ref::RefContacts rc = ref::referenceContacts(cube, pa, cube, pb);
     QVERIFY(rc.penetrating);
     QCOMPARE(rc.points.size(), std::size_t(4));
     int ofA = 0, ofB = 0;
     for (const auto& p : rc.points) {
-        QVERIFY(p.kind == ref::RefPoint::Kind::EdgeOfAFaceOfB || p.kind == ref::RefPoint::Kind::EdgeOfBFaceOfA);
+        QVERIFY(p.kind == ref::RefPoint::Kind::EdgeOfAFaceOfB ||
+                p.kind == ref::RefPoint::Kind::EdgeOfBFaceOfA);
         if (p.kind == ref::RefPoint::Kind::EdgeOfAFaceOfB) {
             // A's ridge (0, t, sqrt2 - delta) leaves B's roof at |t| = delta.
             QVERIFY((p.position - Vec3(0, p.position.y(), s2 - delta)).norm() < 1e-12);
@@ -286,9 +292,10 @@ void TestReference::rayParityOnLPrism() {
     MeshShape l = lPrism();
     MeshShape withBvh = l;
     withBvh.bvh = std::make_shared<const TriangleBvh>(l.vertices, l.triangles);
-    const Pose pose = makePose(Eigen::AngleAxisd(1.1, Vec3(0.3, -1, 0.5).normalized()).toRotationMatrix(), Vec3(-2, 3, 1));
-    const std::vector<Vec3> points = {{0.5, 0.5, 0.5}, {1.5, 0.5, 0.5}, {0.5, 1.5, 0.5}, {1.9, 0.1, 0.9},
-                                      {1.5, 1.5, 0.5}, {1.1, 1.1, 0.5}, {1.9, 1.9, 0.1}, {2.5, 0.5, 0.5},
+    const Pose pose =
+        makePose(Eigen::AngleAxisd(1.1, Vec3(0.3, -1, 0.5).normalized()).toRotationMatrix(), Vec3(-2, 3, 1));
+    const std::vector<Vec3> points = {{0.5, 0.5, 0.5}, {1.5, 0.5, 0.5}, {0.5, 1.5, 0.5},  {1.9, 0.1, 0.9},
+                                      {1.5, 1.5, 0.5}, {1.1, 1.1, 0.5}, {1.9, 1.9, 0.1},  {2.5, 0.5, 0.5},
                                       {0.5, 0.5, 1.5}, {0.5, 2.5, 0.5}, {-0.1, 0.5, 0.5}, {0.5, 0.5, -0.01}};
     for (const Vec3& p : points) {
         QCOMPARE(ref::pointInMesh(l, Pose{}, p), inL(p));
@@ -316,7 +323,8 @@ void TestReference::rayParityWhenTheFirstRayHitsAnEdgeOrAVertex() {
     // Targets: every vertex and every edge's midpoint (cap and side diagonals included).
     std::vector<Vec3> targets = plain.vertices;
     for (const auto& t : plain.triangles)
-        for (int k = 0; k < 3; ++k) targets.push_back(0.5 * (plain.vertices[t[k]] + plain.vertices[t[(k + 1) % 3]]));
+        for (int k = 0; k < 3; ++k)
+            targets.push_back(0.5 * (plain.vertices[t[k]] + plain.vertices[t[(k + 1) % 3]]));
     int tested = 0, retried = 0, insideCount = 0;
     for (const Vec3& target : targets) {
         for (double back : {0.05, 0.3, 0.7, 1.6}) {
@@ -374,8 +382,8 @@ void TestReference::rayParityOnAssimpModels() {
     }
     QVERIFY(inside > n / 50);
     QVERIFY(inside < n);
-    qInfo("%s: %d triangles, %d of %d points inside, %d recast", qPrintable(path), int(m.triangles.size()), inside,
-          n, recast);
+    qInfo("%s: %d triangles, %d of %d points inside, %d recast", qPrintable(path), int(m.triangles.size()),
+          inside, n, recast);
 }
 
 void TestReference::vertexAndEdgeTestsAgreeWithSeparatingAxes() {
@@ -386,7 +394,8 @@ void TestReference::vertexAndEdgeTestsAgreeWithSeparatingAxes() {
     int penetrating = 0, edgeOnly = 0;
     for (int k = 0; k < 3000; ++k) {
         const Shape a = Shape::box(rng.vec(0.1, 1.0)), b = Shape::box(rng.vec(0.1, 1.0));
-        const Pose pa = makePose(rng.rotation(), rng.vec(-1.2, 1.2)), pb = makePose(rng.rotation(), Vec3::Zero());
+        const Pose pa = makePose(rng.rotation(), rng.vec(-1.2, 1.2)),
+                   pb = makePose(rng.rotation(), Vec3::Zero());
         const ref::RefContacts rc = ref::referenceContacts(a, pa, b, pb);
         if (std::abs(rc.depth) < 1e-9) continue;
         QCOMPARE(rc.penetrating, rc.depth > 0.0);
@@ -396,7 +405,8 @@ void TestReference::vertexAndEdgeTestsAgreeWithSeparatingAxes() {
             QVERIFY(maxPlaneValue(A, p.position) < 1e-12);
             QVERIFY(maxPlaneValue(B, p.position) < 1e-12);
             QVERIFY(p.depth <= rc.depth + 1e-12);
-            anyVertex |= p.kind == ref::RefPoint::Kind::VertexOfAInB || p.kind == ref::RefPoint::Kind::VertexOfBInA;
+            anyVertex |=
+                p.kind == ref::RefPoint::Kind::VertexOfAInB || p.kind == ref::RefPoint::Kind::VertexOfBInA;
         }
         // The separating-axis overlap along the normal is the depth, and no axis is smaller.
         QVERIFY(std::abs(ref::overlapAlong(A, B, rc.normal) - rc.depth) < 1e-12);
@@ -415,8 +425,9 @@ void TestReference::meshAndConvexFormsAgree() {
     Shape meshBox;
     meshBox.kind = Kind::Mesh;
     {
-        auto m = std::make_shared<MeshShape>(prism({{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}},
-                                                   {{0, 1, 2}, {0, 2, 3}}, -h.z(), h.z()));
+        auto m = std::make_shared<MeshShape>(
+            prism({{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}},
+                  {{0, 1, 2}, {0, 2, 3}}, -h.z(), h.z()));
         m->bvh = std::make_shared<const TriangleBvh>(m->vertices, m->triangles);
         meshBox.mesh = m;
     }
@@ -425,7 +436,8 @@ void TestReference::meshAndConvexFormsAgree() {
     int compared = 0;
     for (int k = 0; k < 400; ++k) {
         const Shape other = Shape::box(rng.vec(0.2, 0.7));
-        const Pose po = makePose(rng.rotation(), rng.vec(-0.9, 0.9)), pm = makePose(rng.rotation(), Vec3::Zero());
+        const Pose po = makePose(rng.rotation(), rng.vec(-0.9, 0.9)),
+                   pm = makePose(rng.rotation(), Vec3::Zero());
         const ref::RefContacts convex = ref::referenceContacts(other, po, box, pm);
         const ref::RefContacts mesh = ref::referenceContacts(other, po, meshBox, pm);
         QCOMPARE(mesh.penetrating, convex.penetrating);

@@ -103,8 +103,10 @@ void emit(std::vector<Candidate> cands, std::vector<Manifold>& out) {
     for (const Candidate& c : cands) {
         auto it = std::find_if(groups.begin(), groups.end(),
                                [&](const auto& g) { return g.front().normal.dot(c.normal) >= kGroupCos; });
-        if (it == groups.end()) groups.push_back({c});
-        else it->push_back(c);
+        if (it == groups.end())
+            groups.push_back({c});
+        else
+            it->push_back(c);
     }
     for (const auto& g : groups) {
         Manifold m;
@@ -132,7 +134,8 @@ bool closestWithin(const MeshShape& m, const TriangleBvh& bvh, const Vec3& p, do
     const Aabb box{p.array() - radius, p.array() + radius};
     bvh.query(box, [&](int t) {
         const auto& v = m.triangles[t];
-        const Vec3 q = reference::closestPointOnTriangle(p, m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]]);
+        const Vec3 q =
+            reference::closestPointOnTriangle(p, m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]]);
         const double d2 = (q - p).squaredNorm();
         if (d2 < best) {
             best = d2;
@@ -171,20 +174,21 @@ void vertexContacts(const MeshShape& body, const Pose& poseBody, const MeshShape
         const double depth = inside ? dist : -dist;
         if (depth <= -margin) continue;
         const Vec3 nWorld = poseOther.directionToWorld(dir);
-        out.push_back({w + 0.5 * depth * nWorld, sign * nWorld, depth, featureId(kind, static_cast<std::uint64_t>(i))});
+        out.push_back(
+            {w + 0.5 * depth * nWorld, sign * nWorld, depth, featureId(kind, static_cast<std::uint64_t>(i))});
     }
 }
 
 struct Crossing {
-    double t;      // along the edge, 0..1
-    int tri;       // the other mesh's triangle
-    bool enters;   // the edge runs against the triangle's outward normal
+    double t;     // along the edge, 0..1
+    int tri;      // the other mesh's triangle
+    bool enters;  // the edge runs against the triangle's outward normal
 };
 
 // Strict crossing of segment p0-p1 with triangle (a, b, c) of outward normal n: the point
 // parameter t, or false. Closed triangle: a crossing on an edge is reported by both sides.
-bool segmentTriangle(const Vec3& p0, const Vec3& p1, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
-                     double& t) {
+bool segmentTriangle(const Vec3& p0, const Vec3& p1, const Vec3& a, const Vec3& b, const Vec3& c,
+                     const Vec3& n, double& t) {
     const double e0 = n.dot(p0 - a), e1 = n.dot(p1 - a);
     if (!((e0 < 0.0 && e1 > 0.0) || (e0 > 0.0 && e1 < 0.0))) return false;
     t = e0 / (e0 - e1);
@@ -195,8 +199,9 @@ bool segmentTriangle(const Vec3& p0, const Vec3& p1, const Vec3& a, const Vec3& 
 
 // Chords of the edges of `body` through `other`, both in the frame of `other`.
 void edgeContacts(const MeshShape& body, const std::vector<Vec3>& bodyInOther, const MeshShape& other,
-                  const TriangleBvh& otherBvh, const Pose& poseOther, const std::set<std::pair<int, int>>& pairs,
-                  double sign, std::uint32_t kind, std::vector<Candidate>& out) {
+                  const TriangleBvh& otherBvh, const Pose& poseOther,
+                  const std::set<std::pair<int, int>>& pairs, double sign, std::uint32_t kind,
+                  std::vector<Candidate>& out) {
     std::map<std::pair<int, int>, std::vector<Crossing>> crossings;
     std::set<std::pair<std::pair<int, int>, int>> seen;
     for (const auto& [tb, to] : pairs) {
@@ -205,12 +210,14 @@ void edgeContacts(const MeshShape& body, const std::vector<Vec3>& bodyInOther, c
         const Vec3 n = triangleNormal(other, to);
         if (n.isZero()) continue;
         for (int k = 0; k < 3; ++k) {
-            const std::pair<int, int> edge{std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])};
+            const std::pair<int, int> edge{std::min(tri[k], tri[(k + 1) % 3]),
+                                           std::max(tri[k], tri[(k + 1) % 3])};
             if (edge.first == edge.second || !seen.insert({edge, to}).second) continue;
             const Vec3& p0 = bodyInOther[edge.first];
             const Vec3& p1 = bodyInOther[edge.second];
             double t;
-            if (segmentTriangle(p0, p1, other.vertices[ot[0]], other.vertices[ot[1]], other.vertices[ot[2]], n, t))
+            if (segmentTriangle(p0, p1, other.vertices[ot[0]], other.vertices[ot[1]], other.vertices[ot[2]],
+                                n, t))
                 crossings[edge].push_back({t, to, n.dot(p1 - p0) < 0.0});
         }
     }
@@ -287,7 +294,8 @@ void edgeContacts(const MeshShape& body, const std::vector<Vec3>& bodyInOther, c
             }
             const Vec3 nWorld = poseOther.directionToWorld(dir);
             const Vec3 w = poseOther.toWorld(point) + 0.5 * depth * nWorld;
-            const std::uint64_t key = (static_cast<std::uint64_t>(edge.first) << 32) ^ static_cast<std::uint32_t>(edge.second);
+            const std::uint64_t key =
+                (static_cast<std::uint64_t>(edge.first) << 32) ^ static_cast<std::uint32_t>(edge.second);
             out.push_back({w, sign * nWorld, depth, featureId(kind, key)});
         }
     }

@@ -13,8 +13,8 @@ namespace tumble::collision {
 /// A triangle mesh against a plane: its vertices by the plane test (19). One manifold with
 /// the plane's normal (out of the plane towards the mesh), the deepest vertex and up to
 /// three more spread over the support; points with depth > -margin.
-void collideMeshPlane(const Shape& mesh, const Pose& pm, const Shape& plane, const Pose& pp,
-                      double margin, std::vector<Manifold>& out);
+void collideMeshPlane(const Shape& mesh, const Pose& pm, const Shape& plane, const Pose& pp, double margin,
+                      std::vector<Manifold>& out);
 
 /// Two triangle meshes: vertices of each inside the other by ray parity (closed meshes),
 /// plus edge-face crossings, through the BVHs (TriangleBvh::queryPairs / query).

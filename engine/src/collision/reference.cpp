@@ -119,37 +119,39 @@ void rayTriangle(const Vec3& o, const Vec3& d, const Vec3& v0, const Vec3& v1, c
 
 }  // namespace
 
-double planeValue(const Vec3& n, double d, const Vec3& p) { return n.dot(p) + d; }
+double planeValue(const Vec3& n, double d, const Vec3& p) {
+    return n.dot(p) + d;
+}
 
 Polyhedron worldPolyhedron(const Shape& shape, const Pose& pose) {
     Polyhedron poly;
     switch (shape.kind) {
-    case Kind::Box:
-        poly = boxPolyhedron(shape.halfExtents, pose);
-        facePlanes(poly);
-        edgesFromFaces(poly);
-        return poly;
-    case Kind::Hull: {
-        const ConvexHull& h = *shape.hull;
-        for (const Vec3& v : h.vertices) poly.vertices.push_back(pose.toWorld(v));
-        for (const auto& f : h.faces) {
-            const Vec3 n = pose.directionToWorld(f.normal);
-            poly.faces.push_back({n, f.offset + n.dot(pose.p), f.vertices});
+        case Kind::Box:
+            poly = boxPolyhedron(shape.halfExtents, pose);
+            facePlanes(poly);
+            edgesFromFaces(poly);
+            return poly;
+        case Kind::Hull: {
+            const ConvexHull& h = *shape.hull;
+            for (const Vec3& v : h.vertices) poly.vertices.push_back(pose.toWorld(v));
+            for (const auto& f : h.faces) {
+                const Vec3 n = pose.directionToWorld(f.normal);
+                poly.faces.push_back({n, f.offset + n.dot(pose.p), f.vertices});
+            }
+            poly.edges = h.edges;
+            return poly;
         }
-        poly.edges = h.edges;
-        return poly;
-    }
-    case Kind::Mesh: {
-        const MeshShape& m = *shape.mesh;
-        for (const Vec3& v : m.vertices) poly.vertices.push_back(pose.toWorld(v));
-        for (const auto& t : m.triangles) poly.faces.push_back({Vec3::Zero(), 0.0, {t[0], t[1], t[2]}});
-        facePlanes(poly);
-        edgesFromFaces(poly);
-        poly.convex = false;
-        poly.closed = m.closed;
-        return poly;
-    }
-    default: break;
+        case Kind::Mesh: {
+            const MeshShape& m = *shape.mesh;
+            for (const Vec3& v : m.vertices) poly.vertices.push_back(pose.toWorld(v));
+            for (const auto& t : m.triangles) poly.faces.push_back({Vec3::Zero(), 0.0, {t[0], t[1], t[2]}});
+            facePlanes(poly);
+            edgesFromFaces(poly);
+            poly.convex = false;
+            poly.closed = m.closed;
+            return poly;
+        }
+        default: break;
     }
     throw std::invalid_argument(std::string("reference: not a polyhedron: ") + toString(shape.kind));
 }
@@ -208,8 +210,8 @@ Parity rayParity(const MeshShape& mesh, const Vec3& o) {
         RayCount rc;
         auto visit = [&](int t) {
             const auto& tri = mesh.triangles[t];
-            rayTriangle(o, d, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]],
-                        originTol, rc);
+            rayTriangle(o, d, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]], originTol,
+                        rc);
         };
         if (mesh.bvh) {
             mesh.bvh->raycast(o, d, kInf, visit);
@@ -310,21 +312,13 @@ double overlapAlong(const Polyhedron& a, const Polyhedron& b, const Vec3& n) {
     return maxB - minA;
 }
 
-namespace {
-
-// The separating-axis minimum over the candidate axes of two convex polyhedra, both signs
-// of each (an extra direction only adds an overlap that is not smaller than the minimum).
-void separatingAxisMinimum(const Polyhedron& a, const Polyhedron& b, RefContacts& rc) {
-    double best = kInf;
-    Vec3 bestAxis = Vec3(0, 1, 0);
+std::vector<AxisOverlap> separatingAxes(const Polyhedron& a, const Polyhedron& b) {
+    std::vector<AxisOverlap> axes;
+    // Both signs of each candidate: an extra direction only adds an overlap that is not
+    // smaller than the minimum.
     auto consider = [&](const Vec3& n) {
-        for (const Vec3& s : {n, Vec3(-n)}) {
-            const double o = overlapAlong(a, b, s);
-            if (o < best) {
-                best = o;
-                bestAxis = s;
-            }
-        }
+        axes.push_back({n, overlapAlong(a, b, n)});
+        axes.push_back({-n, overlapAlong(a, b, -n)});
     };
     for (const auto& f : b.faces) consider(f.normal);
     for (const auto& f : a.faces) consider(f.normal);
@@ -333,13 +327,24 @@ void separatingAxisMinimum(const Polyhedron& a, const Polyhedron& b, RefContacts
         for (const auto& eb : b.edges) {
             const Vec3 db = b.vertices[eb[1]] - b.vertices[eb[0]];
             const Vec3 u = da.cross(db);
-            // Parallel edges: their axis is covered by the face normals.
             if (u.norm() <= 1e-9 * da.norm() * db.norm()) continue;
             consider(u.normalized());
         }
     }
-    rc.depth = best;
-    rc.normal = bestAxis;
+    return axes;
+}
+
+namespace {
+
+// The separating-axis minimum over the candidate axes (the first of equal ones).
+void separatingAxisMinimum(const Polyhedron& a, const Polyhedron& b, RefContacts& rc) {
+    rc.depth = kInf;
+    for (const AxisOverlap& ax : separatingAxes(a, b)) {
+        if (ax.overlap < rc.depth) {
+            rc.depth = ax.overlap;
+            rc.normal = ax.axis;
+        }
+    }
 }
 
 // Vertices of `body` inside `other` as reference points (normal out of `other`).
@@ -403,9 +408,11 @@ RefContacts referenceContacts(const Shape& a, const Pose& pa, const Shape& b, co
     verticesInside(A, B, b, pb, RefPoint::Kind::VertexOfAInB, 1.0, rc);
     verticesInside(B, A, a, pa, RefPoint::Kind::VertexOfBInA, -1.0, rc);
     for (const auto& c : edgeFaceCrossings(A, B))
-        rc.points.push_back({RefPoint::Kind::EdgeOfAFaceOfB, c.point, B.faces[c.face].normal, 0.0, c.edge, c.face});
+        rc.points.push_back(
+            {RefPoint::Kind::EdgeOfAFaceOfB, c.point, B.faces[c.face].normal, 0.0, c.edge, c.face});
     for (const auto& c : edgeFaceCrossings(B, A))
-        rc.points.push_back({RefPoint::Kind::EdgeOfBFaceOfA, c.point, -A.faces[c.face].normal, 0.0, c.edge, c.face});
+        rc.points.push_back(
+            {RefPoint::Kind::EdgeOfBFaceOfA, c.point, -A.faces[c.face].normal, 0.0, c.edge, c.face});
     rc.penetrating = !rc.points.empty();
     if (A.convex && B.convex) {
         separatingAxisMinimum(A, B, rc);

@@ -53,8 +53,8 @@ struct Polyhedron {
     std::vector<Vec3> vertices;  ///< world
     std::vector<Face> faces;
     std::vector<std::array<int, 2>> edges;  ///< each undirected edge once
-    bool convex = true;  ///< false: a triangle mesh, inside tested by ray parity
-    bool closed = true;  ///< false: an open mesh, no inside (only edge-face crossings)
+    bool convex = true;                     ///< false: a triangle mesh, inside tested by ray parity
+    bool closed = true;                     ///< false: an open mesh, no inside (only edge-face crossings)
 };
 
 /// A Box, Hull or Mesh shape at a pose, in the world. Throws std::invalid_argument for
@@ -67,14 +67,14 @@ struct PlaneHit {
     int vertex = -1;
     double depth = 0.0;
 };
-std::vector<PlaneHit> pointsAgainstPlane(const std::vector<Vec3>& points, const Vec3& n,
-                                         double offset, double margin);
+std::vector<PlaneHit> pointsAgainstPlane(const std::vector<Vec3>& points, const Vec3& n, double offset,
+                                         double margin);
 
 /// A world point against a convex polyhedron, every face by the plane test.
 struct Inside {
-    bool inside = false;  ///< E(p) < 0 for every face
-    double depth = 0.0;   ///< distance to the nearest face plane (-max E), > 0 inside
-    int face = -1;        ///< that face
+    bool inside = false;         ///< E(p) < 0 for every face
+    double depth = 0.0;          ///< distance to the nearest face plane (-max E), > 0 inside
+    int face = -1;               ///< that face
     Vec3 normal = Vec3::Zero();  ///< its outward normal
 };
 Inside pointInConvex(const Polyhedron& body, const Vec3& p);
@@ -114,10 +114,10 @@ double distanceToSurface(const Polyhedron& body, const Vec3& p, Vec3& closest, i
 
 /// An edge of one polyhedron piercing a face polygon of the other.
 struct EdgeFaceCrossing {
-    int edge = -1;       ///< index into edges of the first
-    int face = -1;       ///< index into faces of the second
-    double t = 0.0;      ///< along the edge, from edges[edge][0] (0) to [1] (1)
-    Vec3 point;          ///< the crossing, world
+    int edge = -1;   ///< index into edges of the first
+    int face = -1;   ///< index into faces of the second
+    double t = 0.0;  ///< along the edge, from edges[edge][0] (0) to [1] (1)
+    Vec3 point;      ///< the crossing, world
 };
 /// Every edge of `edgesOf` against every face of `facesOf`: the points where an edge
 /// crosses a face's plane strictly inside the face polygon. An edge lying in a face's plane
@@ -136,8 +136,8 @@ struct RefPoint {
 };
 
 struct RefContacts {
-    bool penetrating = false;  ///< some vertex inside, or some edge crossing a face
-    double depth = 0.0;        ///< the pair's depth (header comment); < 0: separation
+    bool penetrating = false;     ///< some vertex inside, or some edge crossing a face
+    double depth = 0.0;           ///< the pair's depth (header comment); < 0: separation
     Vec3 normal = Vec3(0, 1, 0);  ///< out of B towards A
     std::vector<RefPoint> points;
 };
@@ -146,6 +146,16 @@ struct RefContacts {
 /// convex bodies `depth` is the separating-axis minimum also when they are apart (then < 0:
 /// the largest gap along a candidate axis, a lower bound of the distance).
 RefContacts referenceContacts(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb);
+
+/// Every candidate separating axis of two convex polyhedra with its overlap: the face
+/// normals of B and of A and the normalised cross products of an edge of A with an edge of
+/// B (parallel edges skipped: the faces cover them), each in both directions. The smallest
+/// overlap is referenceContacts' depth.
+struct AxisOverlap {
+    Vec3 axis;
+    double overlap = 0.0;
+};
+std::vector<AxisOverlap> separatingAxes(const Polyhedron& a, const Polyhedron& b);
 
 /// The separating-axis overlap of two convex polyhedra along n (how far A must move along n
 /// to clear B): max over B of n·x - min over A of n·x.
