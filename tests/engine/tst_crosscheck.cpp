@@ -6,7 +6,8 @@
 // What is compared, and the tolerances (size = sum of the bounding radii):
 // - Detection. The reference penetrates by more than touch = 1e-7 size (below that the pair
 //   is touching and either answer is right) => the fast path reports a point with depth > 0.
-//   The reference separates the pair by more than touch => no point deeper than touch.
+//   The reference separates the pair by more than touch => no point deeper than touch;
+//   by more than a margin of 0.05 size => nothing at all when asked with that margin.
 // - Normal and depth against the separating-axis minimum of the reference (the minimum
 //   translation), allowing for what each fast path promises:
 //   * box-box is SAT too, but prefers a face axis unless an edge axis is 5% shallower (and
@@ -124,6 +125,14 @@ void checkPair(Path path, const Shape& a, const Pose& pa, const Shape& b, const 
         ++st.separated;
         for (const auto& m : out)
             if (m.maxDepth() > touch) fail("separated, yet a penetrating point");
+        // The largest gap over the axes is a lower bound of the distance: beyond the margin,
+        // not even near contacts.
+        const double margin = 0.05 * size;
+        if (minimum < -margin - touch) {
+            out.clear();
+            collide(a, pa, b, pb, margin, out);
+            if (!out.empty()) fail("separated by more than the margin, yet contacts");
+        }
         return;
     }
     if (minimum <= touch) return;
