@@ -7,6 +7,7 @@
 
 #include <QtTest>
 
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -271,38 +272,77 @@ private slots:
         QCOMPARE(partners, expected);
     }
 
-    void treeStaysBalancedUnderChurn() {
+    void treeQueriesMatchBruteForceUnderChurn() {
+        // Random insertions, additions and removals in two trees; every query, the tree
+        // against itself and against the other, exactly as brute force over the stored boxes,
+        // before and after rebuilds.
+        constexpr int kBodies = 1500;
         Generator gen(17);
-        AabbTree tree;
-        std::vector<int> leafOf(2000, AabbTree::kNull);
-        std::vector<Aabb> box(2000);
-        const SceneKind kind{2000, false, false, 0.0, 0};
+        const SceneKind kind{kBodies, false, true, 0.0, 0};
         const std::vector<Vec3> noClusters;
-        for (int round = 0; round < 20000; ++round) {
-            const int i = gen.integer(0, 1999);
-            if (leafOf[i] != AabbTree::kNull) {
-                tree.remove(leafOf[i]);
-                leafOf[i] = AabbTree::kNull;
-            } else {
-                box[i] = gen.randomBox(kind, 25.0, noClusters);
-                leafOf[i] = tree.insert(box[i], i);
-            }
+        AabbTree trees[2];
+        std::vector<Aabb> box[2];
+        for (int t = 0; t < 2; ++t) {
+            trees[t].reset(kBodies);
+            box[t].assign(kBodies, Aabb{});
         }
-        QVERIFY(tree.valid());
-        int leaves = 0;
-        for (int l : leafOf) leaves += l != AabbTree::kNull;
-        QCOMPARE(tree.leafCount(), leaves);
-        // AVL balance bounds the height by 1.44 log2(leaves + 2).
-        QVERIFY(tree.height() <= 1.45 * std::log2(leaves + 2.0) + 1);
-        for (int q = 0; q < 200; ++q) {
-            const Aabb probe = gen.randomBox(kind, 25.0, noClusters).inflated(1.0);
-            std::vector<int> found;
-            tree.query(probe, [&](int body) { found.push_back(body); });
-            std::sort(found.begin(), found.end());
-            std::vector<int> expected;
-            for (int i = 0; i < 2000; ++i)
-                if (leafOf[i] != AabbTree::kNull && box[i].overlaps(probe)) expected.push_back(i);
-            QCOMPARE(found, expected);
+        auto check = [&]() {
+            for (int t = 0; t < 2; ++t) QVERIFY(trees[t].valid());
+            for (int q = 0; q < 50; ++q) {
+                const Aabb probe = gen.randomBox(kind, 22.0, noClusters);
+                std::vector<int> found;
+                trees[0].query(probe, [&](int body) { found.push_back(body); });
+                std::sort(found.begin(), found.end());
+                std::vector<int> expected;
+                for (int i = 0; i < kBodies; ++i)
+                    if (trees[0].contains(i) && box[0][i].overlaps(probe)) expected.push_back(i);
+                QCOMPARE(found, expected);
+            }
+            Pairs self, cross, selfExpected, crossExpected;
+            trees[0].selfPairs([&](int a, int b) { self.emplace_back(std::min(a, b), std::max(a, b)); });
+            trees[0].pairsWith(trees[1], [&](int a, int b) { cross.emplace_back(a, b); });
+            std::sort(self.begin(), self.end());
+            std::sort(cross.begin(), cross.end());
+            for (int i = 0; i < kBodies; ++i) {
+                if (!trees[0].contains(i)) continue;
+                for (int j = i + 1; j < kBodies; ++j)
+                    if (trees[0].contains(j) && box[0][i].overlaps(box[0][j])) selfExpected.emplace_back(i, j);
+                for (int j = 0; j < kBodies; ++j)
+                    if (trees[1].contains(j) && box[0][i].overlaps(box[1][j])) crossExpected.emplace_back(i, j);
+            }
+            QCOMPARE(self, selfExpected);
+            QCOMPARE(cross, crossExpected);
+            QVERIFY(!self.empty() && !cross.empty());
+        };
+        for (int round = 0; round < 6; ++round) {
+            for (int k = 0; k < 3000; ++k) {
+                const int t = gen.integer(0, 1);
+                const int i = gen.integer(0, kBodies - 1);
+                if (trees[t].contains(i)) {
+                    trees[t].remove(i);
+                } else {
+                    box[t][i] = gen.randomBox(kind, 22.0, noClusters);
+                    if (round == 0 || gen.chance(0.1)) {
+                        trees[t].add(i, box[t][i]);  // seen after the rebuild below
+                    } else {
+                        trees[t].insert(i, box[t][i]);
+                    }
+                }
+            }
+            if (round % 2 == 0) {
+                for (AabbTree& tree : trees) {
+                    tree.rebuild();
+                    QVERIFY(!tree.needsRebuild());
+                    QVERIFY(tree.height() <= static_cast<int>(std::bit_width(static_cast<unsigned>(tree.leafCount()))) + 1);
+                }
+            }
+            if (round % 2 == 1) {
+                // Unlinked leaves wait for a rebuild; the others are all seen.
+                for (AabbTree& tree : trees) QVERIFY(tree.needsRebuild());
+                for (AabbTree& tree : trees) tree.rebuild();
+            }
+            check();
+            if (QTest::currentTestFailed()) return;
         }
     }
 };

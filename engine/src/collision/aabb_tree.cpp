@@ -1,9 +1,9 @@
-// Dynamic AABB tree: insertion by least surface-area growth, removal, and height rotations.
+// Dynamic AABB tree: top-down rebuild, insertion by least surface-area cost, removal.
 #include "collision/aabb_tree.h"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
-#include <cstdlib>
 
 namespace tumble::collision {
 
@@ -21,6 +21,8 @@ Aabb merged(const Aabb& a, const Aabb& b) {
     return m;
 }
 
+bool sameBox(const Aabb& a, const Aabb& b) { return a.min == b.min && a.max == b.max; }
+
 }  // namespace
 
 int AabbTree::allocate() {
@@ -37,31 +39,60 @@ int AabbTree::allocate() {
 void AabbTree::release(int node) {
     nodes_[node].parent = free_;
     nodes_[node].child1 = kNull;
+    nodes_[node].child2 = kNull;
     nodes_[node].height = -1;
     free_ = node;
 }
 
-void AabbTree::clear() {
+void AabbTree::reset(int bodyCount) {
     nodes_.clear();
+    leafOf_.assign(static_cast<std::size_t>(bodyCount), kNull);
     root_ = kNull;
     free_ = kNull;
     leaves_ = 0;
+    unlinked_ = 0;
+    changes_ = 0;
 }
 
-int AabbTree::insert(const Aabb& box, int body) {
+int AabbTree::newLeaf(int body, const Aabb& box) {
+    assert(body >= 0 && body < static_cast<int>(leafOf_.size()) && leafOf_[body] == kNull);
     const int leaf = allocate();
     nodes_[leaf].box = box;
-    nodes_[leaf].body = body;
-    insertLeaf(leaf);
+    nodes_[leaf].child2 = body;
+    leafOf_[body] = leaf;
     ++leaves_;
     return leaf;
 }
 
-void AabbTree::remove(int leaf) {
-    assert(leaf >= 0 && leaf < static_cast<int>(nodes_.size()) && nodes_[leaf].leaf());
-    removeLeaf(leaf);
+void AabbTree::add(int body, const Aabb& box) {
+    newLeaf(body, box);
+    ++unlinked_;
+}
+
+void AabbTree::insert(int body, const Aabb& box) {
+    insertLeaf(newLeaf(body, box));
+    ++changes_;
+}
+
+void AabbTree::remove(int body) {
+    const int leaf = leafOf_[body];
+    assert(leaf != kNull);
+    if (nodes_[leaf].parent == kNull && leaf != root_) {
+        --unlinked_;
+    } else {
+        removeLeaf(leaf);
+        ++changes_;
+    }
     release(leaf);
+    leafOf_[body] = kNull;
     --leaves_;
+}
+
+bool AabbTree::needsRebuild() const {
+    if (unlinked_ > 0) return true;
+    if (changes_ > leaves_ / 4 + 16) return true;
+    const int balanced = std::bit_width(static_cast<unsigned>(leaves_));  // ~ceil(log2 n) + 1
+    return height() > 2 * balanced + 8;
 }
 
 void AabbTree::insertLeaf(int leaf) {
@@ -70,21 +101,26 @@ void AabbTree::insertLeaf(int leaf) {
         nodes_[leaf].parent = kNull;
         return;
     }
-    // Walk down to the leaf to pair with, into the child whose subtree grows least: a new
-    // parent there costs its area when the child is a leaf, else the child's growth (the
-    // growth of the current node is the same either way). Always ending at a leaf keeps every
-    // change at one level of height, which the rotations can absorb: the tree stays AVL
-    // balanced, height <= 1.44 log2(n + 2).
+    // Walk down while going on is cheaper than pairing the leaf with the whole branch here.
+    // Pairing here costs the new parent's area; going on costs the growth of this node (paid
+    // the same by every ancestor, so only this level's is counted) plus what the child adds:
+    // its own growth, or the new parent's area if the child is a leaf.
     const Aabb leafBox = nodes_[leaf].box;
     int index = root_;
     while (!nodes_[index].leaf()) {
         const Node& n = nodes_[index];
+        const double combinedArea = area(merged(n.box, leafBox));
+        const double here = 2.0 * combinedArea;
+        const double inherited = 2.0 * (combinedArea - area(n.box));
         auto descendCost = [&](int child) {
             const Node& c = nodes_[child];
             const double grown = area(merged(c.box, leafBox));
-            return c.leaf() ? grown : grown - area(c.box);
+            return (c.leaf() ? grown : grown - area(c.box)) + inherited;
         };
-        index = descendCost(n.child1) <= descendCost(n.child2) ? n.child1 : n.child2;
+        const double cost1 = descendCost(n.child1);
+        const double cost2 = descendCost(n.child2);
+        if (here < cost1 && here < cost2) break;
+        index = cost1 <= cost2 ? n.child1 : n.child2;
     }
 
     const int sibling = index;
@@ -129,67 +165,91 @@ void AabbTree::removeLeaf(int leaf) {
     refitUpwards(grand);
 }
 
-// From `node` to the root: rebalance, then recompute height and box from the children.
+// From `node` towards the root: height and box from the children, until nothing changes.
 void AabbTree::refitUpwards(int node) {
     while (node != kNull) {
-        node = rotate(node);
         Node& n = nodes_[node];
-        n.height = 1 + std::max(nodes_[n.child1].height, nodes_[n.child2].height);
-        n.box = merged(nodes_[n.child1].box, nodes_[n.child2].box);
+        const int height = 1 + std::max(nodes_[n.child1].height, nodes_[n.child2].height);
+        const Aabb box = merged(nodes_[n.child1].box, nodes_[n.child2].box);
+        if (height == n.height && sameBox(box, n.box)) return;
+        n.height = height;
+        n.box = box;
         node = n.parent;
     }
 }
 
-// If one child of `a` is two levels taller than the other (one insertion or removal never
-// unbalances more), lifts that child into a's place with a as its child; of the lifted
-// child's two children, the taller stays with it and the shorter goes to a. Both nodes are
-// then balanced. Returns the node now at a's place.
-int AabbTree::rotate(int a) {
-    Node& na = nodes_[a];
-    if (na.leaf()) return a;
-    const int b = na.child1;
-    const int c = na.child2;
-    const int balance = nodes_[c].height - nodes_[b].height;
-    if (balance >= -1 && balance <= 1) return a;
+void AabbTree::rebuild() {
+    scratch_.clear();
+    for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
+        if (nodes_[id].height == 0) scratch_.push_back(id);  // the leaves, in id order
+    spare_.clear();
+    // Room for the rebuilt tree and some insertions after it, so that nodes_ (which spare_
+    // becomes) does not grow while the number of leaves stays put.
+    spare_.reserve(2 * scratch_.size() + 64);
+    root_ = scratch_.empty() ? kNull : buildRange(0, static_cast<int>(scratch_.size()));
+    std::swap(nodes_, spare_);
+    spare_.clear();
+    spare_.reserve(nodes_.capacity());  // the next rebuild of as many leaves allocates nothing
+    free_ = kNull;
+    unlinked_ = 0;
+    changes_ = 0;
+}
 
-    // `up` is the taller child, `stay` the other; `up` takes a's place with a as a child.
-    const int up = balance > 1 ? c : b;
-    const int stay = balance > 1 ? b : c;
-    Node& nu = nodes_[up];
-    const int f = nu.child1;
-    const int g = nu.child2;
-
-    nu.parent = na.parent;
-    if (na.parent == kNull) {
-        root_ = up;
-    } else if (nodes_[na.parent].child1 == a) {
-        nodes_[na.parent].child1 = up;
-    } else {
-        nodes_[na.parent].child2 = up;
+// Builds, into spare_ and in depth-first order, the subtree over the leaves of nodes_ listed
+// in scratch_[begin, end); returns its root.
+int AabbTree::buildRange(int begin, int end) {
+    const int index = static_cast<int>(spare_.size());
+    spare_.emplace_back();
+    if (end - begin == 1) {
+        const Node& old = nodes_[scratch_[begin]];
+        spare_[index].box = old.box;
+        spare_[index].child2 = old.body();
+        leafOf_[old.body()] = index;
+        return index;
     }
-    na.parent = up;
-
-    // The taller grandchild stays under `up`; the shorter one joins `stay` under a.
-    const bool fTaller = nodes_[f].height > nodes_[g].height;
-    const int keep = fTaller ? f : g;
-    const int move = fTaller ? g : f;
-    nu.child1 = a;
-    nu.child2 = keep;
-    na.child1 = stay;
-    na.child2 = move;
-    nodes_[move].parent = a;
-
-    na.box = merged(nodes_[stay].box, nodes_[move].box);
-    na.height = 1 + std::max(nodes_[stay].height, nodes_[move].height);
-    nu.box = merged(na.box, nodes_[keep].box);
-    nu.height = 1 + std::max(na.height, nodes_[keep].height);
-    return up;
+    Aabb centres;  // of the doubled centres min + max: the same order, one operation less
+    for (int k = begin; k < end; ++k) centres.add(nodes_[scratch_[k]].box.min + nodes_[scratch_[k]].box.max);
+    int axis = 0;
+    centres.extent().maxCoeff(&axis);
+    const int mid = begin + (end - begin) / 2;
+    // Ties broken by body: a strict total order, so the halves do not depend on the library.
+    std::nth_element(scratch_.begin() + begin, scratch_.begin() + mid, scratch_.begin() + end,
+                     [&](int a, int b) {
+                         const Node& na = nodes_[a];
+                         const Node& nb = nodes_[b];
+                         const double ca = na.box.min[axis] + na.box.max[axis];
+                         const double cb = nb.box.min[axis] + nb.box.max[axis];
+                         return ca < cb || (ca == cb && na.body() < nb.body());
+                     });
+    const int left = buildRange(begin, mid);
+    const int right = buildRange(mid, end);
+    Node& n = spare_[index];
+    n.child1 = left;
+    n.child2 = right;
+    n.box = merged(spare_[left].box, spare_[right].box);
+    n.height = 1 + std::max(spare_[left].height, spare_[right].height);
+    spare_[left].parent = index;
+    spare_[right].parent = index;
+    return index;
 }
 
 bool AabbTree::valid() const {
-    if (root_ == kNull) return leaves_ == 0;
-    int leaves = 0;
-    return nodes_[root_].parent == kNull && validSubtree(root_, kNull, leaves) && leaves == leaves_;
+    int reachable = 0;
+    if (root_ != kNull && (nodes_[root_].parent != kNull || !validSubtree(root_, kNull, reachable)))
+        return false;
+    int unlinked = 0;
+    for (int id = 0; id < static_cast<int>(nodes_.size()); ++id) {
+        const Node& n = nodes_[id];
+        if (n.height == 0 && n.parent == kNull && id != root_) ++unlinked;
+    }
+    int found = 0;
+    for (int body = 0; body < static_cast<int>(leafOf_.size()); ++body) {
+        const int leaf = leafOf_[body];
+        if (leaf == kNull) continue;
+        if (nodes_[leaf].height != 0 || nodes_[leaf].body() != body) return false;
+        ++found;
+    }
+    return unlinked == unlinked_ && reachable + unlinked == leaves_ && found == leaves_;
 }
 
 bool AabbTree::validSubtree(int node, int parent, int& leaves) const {
@@ -197,14 +257,12 @@ bool AabbTree::validSubtree(int node, int parent, int& leaves) const {
     if (n.parent != parent) return false;
     if (n.leaf()) {
         ++leaves;
-        return n.height == 0 && n.child2 == kNull;
+        return n.height == 0;
     }
     const Node& c1 = nodes_[n.child1];
     const Node& c2 = nodes_[n.child2];
     if (n.height != 1 + std::max(c1.height, c2.height)) return false;
-    if (std::abs(c1.height - c2.height) > 1) return false;
-    const Aabb m = merged(c1.box, c2.box);
-    if (m.min != n.box.min || m.max != n.box.max) return false;
+    if (!sameBox(merged(c1.box, c2.box), n.box)) return false;
     return validSubtree(n.child1, node, leaves) && validSubtree(n.child2, node, leaves);
 }
 

@@ -29,10 +29,11 @@ bool sameBox(const Aabb& a, const Aabb& b) { return a.min == b.min && a.max == b
 
 }  // namespace
 
-void Broadphase::reset(std::size_t count, const std::vector<Aabb>& bounds) {
-    movingTree_.clear();
-    staticTree_.clear();
-    proxies_.assign(count, Proxy{});
+void Broadphase::reset(int count, const std::vector<Aabb>& bounds) {
+    movingTree_.reset(count);
+    staticTree_.reset(count);
+    sets_.assign(static_cast<std::size_t>(count), Set::None);
+    stored_.assign(static_cast<std::size_t>(count), Aabb{});
     double sum = 0.0;
     int finite = 0;
     for (const Aabb& b : bounds) {
@@ -41,6 +42,7 @@ void Broadphase::reset(std::size_t count, const std::vector<Aabb>& bounds) {
         ++finite;
     }
     typicalSize_ = finite > 0 ? sum / finite : 0.0;
+    fresh_ = true;
 }
 
 Aabb Broadphase::fattened(const Aabb& box) const {
@@ -51,7 +53,7 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
     if (bounds.size() != moving.size())
         throw std::invalid_argument("Broadphase::update: bounds and moving differ in size");
     const int n = static_cast<int>(bounds.size());
-    if (proxies_.size() != bounds.size()) reset(bounds.size(), bounds);
+    if (sets_.size() != bounds.size()) reset(n, bounds);
 
     reinserted_ = 0;
     movingBodies_.clear();
@@ -60,45 +62,57 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
         const Aabb& box = bounds[i];
         Set set = Set::None;
         if (!isEmpty(box)) set = !isBounded(box) ? Set::Unbounded : moving[i] ? Set::Moving : Set::Static;
-        Proxy& p = proxies_[i];
+        const Set old = sets_[i];
 
-        bool reinsert = p.set != set;
+        bool reinsert = old != set;
         if (!reinsert && set == Set::Moving) {
-            const Aabb& fat = movingTree_.box(p.leaf);
+            const Aabb& fat = stored_[i];
             const double slack = kFatFraction * std::max(box.extent().maxCoeff(), typicalSize_);
             reinsert = !encloses(fat, box) || (fat.extent() - box.extent()).sum() > 12.0 * slack;
         } else if (!reinsert && set == Set::Static) {
-            reinsert = !sameBox(staticTree_.box(p.leaf), box);
+            reinsert = !sameBox(stored_[i], box);
         }
         if (reinsert) {
-            if (p.set == Set::Moving) movingTree_.remove(p.leaf);
-            if (p.set == Set::Static) staticTree_.remove(p.leaf);
-            p.leaf = AabbTree::kNull;
-            if (set == Set::Moving) p.leaf = movingTree_.insert(fattened(box), i);
-            if (set == Set::Static) p.leaf = staticTree_.insert(box, i);
-            if (p.leaf != AabbTree::kNull) ++reinserted_;
-            p.set = set;
+            if (old == Set::Moving) movingTree_.remove(i);
+            if (old == Set::Static) staticTree_.remove(i);
+            if (set == Set::Moving || set == Set::Static) {
+                AabbTree& tree = set == Set::Moving ? movingTree_ : staticTree_;
+                stored_[i] = set == Set::Moving ? fattened(box) : box;
+                if (fresh_) {
+                    tree.add(i, stored_[i]);
+                } else {
+                    tree.insert(i, stored_[i]);
+                }
+                ++reinserted_;
+            }
+            sets_[i] = set;
         }
         if (set == Set::Moving) movingBodies_.push_back(i);
         if (set == Set::Unbounded) unbounded_.push_back(i);
     }
+    fresh_ = false;
+    rebuilt_ = false;
+    for (AabbTree* tree : {&movingTree_, &staticTree_}) {
+        if (tree->needsRebuild()) {
+            tree->rebuild();
+            rebuilt_ = true;
+        }
+    }
 
     pairs_.clear();
-    for (int i : movingBodies_) {
-        const Aabb& box = bounds[i];
-        // Each moving-moving pair is met from both ends; the lower index keeps it.
-        movingTree_.query(box, [&](int j) {
-            if (j > i && box.overlaps(bounds[j])) pairs_.emplace_back(i, j);
-        });
-        // The static tree holds exact boxes: a hit is an overlap.
-        staticTree_.query(box, [&](int s) { addPair(i, s); });
-    }
+    // Fat boxes overlapping say nothing yet: every candidate is checked on the true boxes.
+    movingTree_.selfPairs([&](int a, int b) {
+        if (bounds[a].overlaps(bounds[b])) addPair(a, b);
+    });
+    movingTree_.pairsWith(staticTree_, [&](int m, int s) {
+        if (bounds[m].overlaps(bounds[s])) addPair(m, s);
+    });
     for (std::size_t k = 0; k < unbounded_.size(); ++k) {
         const int u = unbounded_[k];
         const Aabb& box = bounds[u];
         if (moving[u]) {
             for (int j = 0; j < n; ++j) {
-                const Set s = proxies_[j].set;
+                const Set s = sets_[j];
                 if ((s == Set::Moving || s == Set::Static) && box.overlaps(bounds[j])) addPair(u, j);
             }
         } else {

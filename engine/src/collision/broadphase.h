@@ -3,19 +3,22 @@
 // Why dynamic AABB trees and not sweep-and-prune: sorting along one axis leaves every pair
 // that overlaps on that axis to be checked, about n^2 w / L of them for n boxes of size w in
 // a cube of side L; at constant density L grows as n^(1/3), so the work grows as n^(5/3)
-// (some 10^8 checks for 100 000 bodies). A tree query costs O(log n + k) per body at any
-// density and size, and with fattened boxes a body that moves a little is not touched.
+// (some 10^8 checks for 100 000 bodies). A tree finds the overlapping pairs by descending
+// against itself in about O(n + pairs) at any density, and with fattened boxes a body that
+// moves a little does not touch the tree at all.
 //
 // Three sets, each body in exactly one:
 // - moving bodies with finite boxes, in a tree of boxes fattened by a margin (a body is
 //   re-inserted only when its box leaves its fat box, or when the fat box became much
-//   larger than needed);
-// - static bodies with finite boxes, in a tree of their exact boxes that only moving
-//   bodies query: static-static pairs are never looked at;
+//   larger than needed); pairs among them come from the tree's descent against itself;
+// - static bodies with finite boxes, in a tree of their exact boxes, descended only against
+//   the moving tree: static-static pairs are never looked at;
 // - unbounded bodies (a box with an infinite bound: planes), kept in a list and checked
 //   against every body they could pair with.
 // Bodies whose box is empty (min > max on some axis, or NaN) pair with nothing.
-// A body may change sets (wakes up, falls asleep) from one update to the next.
+// A body may change sets (wakes up, falls asleep) from one update to the next. A tree is
+// rebuilt top-down when a quarter of it has changed since its last rebuild (see aabb_tree.h),
+// so an update costs O(n + pairs + changes * log n) and, now and then, O(n log n).
 #pragma once
 
 #include "collision/aabb_tree.h"
@@ -40,30 +43,31 @@ public:
     /// Sorted ascending by (i, j), no duplicates: deterministic whatever the input history.
     const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
 
-    /// Moving and static bodies (re-)inserted into a tree by the last update; for benchmarks.
+    /// Moving and static bodies (re-)inserted into a tree by the last update, and whether
+    /// it rebuilt a tree; for benchmarks.
     int reinserted() const { return reinserted_; }
+    bool rebuilt() const { return rebuilt_; }
     const AabbTree& movingTree() const { return movingTree_; }
     const AabbTree& staticTree() const { return staticTree_; }
 
 private:
     enum class Set : std::uint8_t { None, Moving, Static, Unbounded };
-    struct Proxy {
-        Set set = Set::None;
-        int leaf = AabbTree::kNull;
-    };
 
-    void reset(std::size_t count, const std::vector<Aabb>& bounds);
+    void reset(int count, const std::vector<Aabb>& bounds);
     Aabb fattened(const Aabb& box) const;
     void addPair(int a, int b) { pairs_.emplace_back(a < b ? a : b, a < b ? b : a); }
 
     AabbTree movingTree_;
     AabbTree staticTree_;
-    std::vector<Proxy> proxies_;
+    std::vector<Set> sets_;
+    std::vector<Aabb> stored_;          // the box in the body's tree, read in body order
     std::vector<int> movingBodies_;     // bounded moving bodies, ascending
     std::vector<int> unbounded_;        // ascending
     std::vector<std::pair<int, int>> pairs_;
     double typicalSize_ = 0.0;          // mean largest side of the finite boxes at reset
     int reinserted_ = 0;
+    bool rebuilt_ = false;
+    bool fresh_ = false;                // trees just reset: add leaves, then rebuild
 };
 
 /// O(n^2) reference for the tests: the same contract as Broadphase::update + pairs().

@@ -1,0 +1,239 @@
+// Collision benchmarks (run by hand, not a test; figures go to docs/benchmarks.md):
+// - broadphase: update time and pair count for n boxes spread at constant density (the
+//   volume grows with n), the first full update from scratch and steady-state updates with
+//   small motion, with the number of heap allocations per steady update;
+// - triangle BVH: build and mesh-mesh pair query on sphere meshes;
+// - narrowphase: placeholder, see benchNarrowphase().
+// Times are process CPU time (std::clock), not wall time: the machines this runs on are
+// shared, and CPU time does not count the time other processes hold the core. Every figure
+// is the median of several runs. Usage: tumble-bench-collision [--quick]
+#include "collision/broadphase.h"
+#include "collision/bvh.h"
+
+#include <algorithm>
+#include <atomic>
+#include <ctime>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <numbers>
+#include <random>
+#include <vector>
+
+using namespace tumble;
+using namespace tumble::collision;
+
+// Counts heap allocations, to show that steady-state broadphase updates make none.
+namespace {
+std::atomic<long> allocations{0};
+}
+
+void* operator new(std::size_t size) {
+    ++allocations;
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+void* operator new(std::size_t size, std::align_val_t align) {
+    ++allocations;
+    const std::size_t a = static_cast<std::size_t>(align);
+    if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+namespace {
+
+struct Clock {
+    using time_point = std::clock_t;
+    static time_point now() { return std::clock(); }
+};
+
+double secondsSince(Clock::time_point start) {
+    return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// ---------------------------------------------------------------------------------------
+// Broadphase
+
+struct Scene {
+    std::vector<Aabb> bounds;
+    std::vector<std::uint8_t> moving;
+};
+
+// n bodies: boxes of half-sides 0.25..0.75 at one body per 8 volume units, 10 % static, and
+// a static ground plane (an infinite box) as body 0.
+Scene spreadScene(int n, std::mt19937& rng) {
+    const double side = 2.0 * std::cbrt(static_cast<double>(n));
+    std::uniform_real_distribution<double> pos(0.0, side), half(0.25, 0.75), unit(0.0, 1.0);
+    Scene s;
+    s.bounds.reserve(n);
+    s.moving.reserve(n);
+    const double inf = std::numeric_limits<double>::infinity();
+    s.bounds.push_back({Vec3::Constant(-inf), Vec3::Constant(inf)});
+    s.moving.push_back(0);
+    for (int i = 1; i < n; ++i) {
+        const Vec3 c(pos(rng), pos(rng), pos(rng));
+        const Vec3 h(half(rng), half(rng), half(rng));
+        s.bounds.push_back({c - h, c + h});
+        s.moving.push_back(unit(rng) < 0.1 ? 0 : 1);
+    }
+    return s;
+}
+
+// Every moving body takes a random step of up to 0.02 per axis (1/50 of a body's size:
+// about 1 m/s at 60 Hz for a 1 m body).
+void smallMotion(Scene& s, std::mt19937& rng) {
+    std::uniform_real_distribution<double> step(-0.02, 0.02);
+    for (std::size_t i = 0; i < s.bounds.size(); ++i) {
+        if (!s.moving[i] || !s.bounds[i].min.allFinite()) continue;
+        const Vec3 d(step(rng), step(rng), step(rng));
+        s.bounds[i].min += d;
+        s.bounds[i].max += d;
+    }
+}
+
+void benchBroadphase(bool quick) {
+    std::printf("Broadphase (dynamic AABB trees), boxes at constant density, 10%% static + a plane\n");
+    std::printf("%8s %9s %11s %12s %10s %14s %10s %11s %11s\n", "bodies", "pairs", "first [ms]",
+                "steady [ms]", "max [ms]", "per body [ns]", "reinserts", "allocs/upd", "brute [ms]");
+    for (int n : {1000, 10000, 100000}) {
+        std::mt19937 rng(12345u + static_cast<unsigned>(n));
+        Scene scene = spreadScene(n, rng);
+        const int runs = quick ? 3 : (n >= 100000 ? 5 : 9);
+
+        std::vector<double> first;
+        std::size_t pairs = 0;
+        for (int r = 0; r < runs; ++r) {
+            Broadphase bp;
+            const auto t = Clock::now();
+            bp.update(scene.bounds, scene.moving);
+            first.push_back(secondsSince(t));
+            pairs = bp.pairs().size();
+        }
+
+        Broadphase bp;
+        bp.update(scene.bounds, scene.moving);
+        // Warm up: let fat boxes and buffers settle before measuring the steady state.
+        for (int k = 0; k < 10; ++k) {
+            smallMotion(scene, rng);
+            bp.update(scene.bounds, scene.moving);
+        }
+        std::vector<double> steady;
+        double reinserts = 0.0;
+        long allocs = 0;
+        // Enough steps that a tree rebuild (every few hundred steps here) may fall inside.
+        const int steps = quick ? 5 : 101;
+        for (int k = 0; k < steps; ++k) {
+            smallMotion(scene, rng);
+            const long before = allocations.load();
+            const auto t = Clock::now();
+            bp.update(scene.bounds, scene.moving);
+            const double seconds = secondsSince(t);
+            allocs += allocations.load() - before;
+            steady.push_back(seconds);
+            reinserts += bp.reinserted();
+        }
+
+        double brute = std::nan("");
+        if (n <= 10000) {
+            std::vector<double> b;
+            for (int r = 0; r < (n <= 1000 ? 5 : 1); ++r) {
+                const auto t = Clock::now();
+                const auto ref = bruteForcePairs(scene.bounds, scene.moving);
+                b.push_back(secondsSince(t));
+                if (ref != bp.pairs()) std::printf("  MISMATCH with brute force at n = %d\n", n);
+            }
+            brute = median(b);
+        }
+        const double s = median(steady);
+        std::printf("%8d %9zu %11.2f %12.2f %10.2f %14.0f %10.0f %11.2f %11.1f\n", n, pairs,
+                    1e3 * median(first), 1e3 * s, 1e3 * *std::max_element(steady.begin(), steady.end()),
+                    1e9 * s / n, reinserts / steps, static_cast<double>(allocs) / steps, 1e3 * brute);
+    }
+    std::printf("first: a fresh Broadphase's first update; steady: median of later updates after\n"
+                "small motion, max: the slowest of them; reinserts: bodies re-inserted per steady\n"
+                "update; allocs/upd: heap allocations per steady update; brute: bruteForcePairs\n\n");
+}
+
+// ---------------------------------------------------------------------------------------
+// Triangle BVH
+
+struct Mesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles;
+};
+
+Mesh uvSphere(double r, int rings, int segments) {
+    using std::numbers::pi;
+    Mesh m;
+    for (int i = 0; i <= rings; ++i) {
+        const double phi = pi * i / rings - pi / 2;
+        for (int s = 0; s < segments; ++s) {
+            const double a = 2 * pi * s / segments;
+            m.vertices.emplace_back(r * std::cos(phi) * std::cos(a), r * std::sin(phi),
+                                    -r * std::cos(phi) * std::sin(a));
+        }
+    }
+    auto id = [&](int i, int s) { return i * segments + s % segments; };
+    for (int i = 0; i < rings; ++i) {
+        for (int s = 0; s < segments; ++s) {
+            m.triangles.push_back({id(i, s), id(i, s + 1), id(i + 1, s + 1)});
+            m.triangles.push_back({id(i, s), id(i + 1, s + 1), id(i + 1, s)});
+        }
+    }
+    return m;
+}
+
+void benchBvh(bool quick) {
+    std::printf("Triangle BVH: two unit UV spheres, the second turned and offset by 0.5\n");
+    std::printf("%10s %12s %14s %12s\n", "triangles", "build [ms]", "pairs query [ms]", "pairs");
+    for (int rings : {32, 64, 128}) {
+        const Mesh m = uvSphere(1.0, rings, 2 * rings);
+        std::vector<double> build, query;
+        long pairs = 0;
+        for (int r = 0; r < (quick ? 3 : 7); ++r) {
+            auto t = Clock::now();
+            const TriangleBvh bvh(m.vertices, m.triangles);
+            build.push_back(secondsSince(t));
+            Pose pose;
+            pose.R = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+            pose.p = Vec3(0.5, 0.0, 0.0);
+            pairs = 0;
+            t = Clock::now();
+            bvh.queryPairs(bvh, pose, [&](int, int) { ++pairs; });
+            query.push_back(secondsSince(t));
+        }
+        std::printf("%10zu %12.3f %14.3f %12ld\n", m.triangles.size(), 1e3 * median(build),
+                    1e3 * median(query), pairs);
+    }
+    std::printf("\n");
+}
+
+// ---------------------------------------------------------------------------------------
+// Narrowphase: to be added by the narrowphase's owner. One row per pair type (sphere-sphere,
+// box-box, hull-hull, hull-mesh, ...): contacts computed per second for random poses in
+// contact, e.g. from the broadphase scene above with the shapes filled in.
+void benchNarrowphase(bool /*quick*/) {
+    std::printf("Narrowphase: (not measured yet)\n\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+    benchBroadphase(quick);
+    benchBvh(quick);
+    benchNarrowphase(quick);
+    return 0;
+}
