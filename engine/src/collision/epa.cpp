@@ -19,7 +19,7 @@ namespace {
 
 constexpr double kGrowTol = 1e-9;   // a point must leave the simplex's span by this × scale
 constexpr double kDoneTol = 1e-10;  // support gains less than this × scale: done
-constexpr int kMaxIterations = 128;
+constexpr int kMaxIterations = 256;  // curved cores deep in each other need the most (~100)
 
 // A face of the polytope, wound counter-clockwise seen from outside. Edge e runs from
 // v[e] to v[(e + 1) % 3]; adj[e] is the face across it, where it is edge adjEdge[e].
@@ -237,9 +237,27 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         }
     }
 
+    // The witness points: the weights of the origin's projection in the nearest face. A
+    // face of the difference is often split into coplanar triangles of equal distance, and
+    // the projection lies in only one of them: take the one it is in (or nearest to).
     const Face& f = faces[best];
-    const Vec3 q = f.n * f.dist;  // the origin's projection on the nearest face
-    const auto l = closestOnTriangle(v[f.v[0]].w - q, v[f.v[1]].w - q, v[f.v[2]].w - q);
+    const Vec3 q = f.n * f.dist;
+    auto weights = [&](const Face& g, double& miss) {
+        const auto l = closestOnTriangle(v[g.v[0]].w - q, v[g.v[1]].w - q, v[g.v[2]].w - q);
+        miss = (l[0] * v[g.v[0]].w + l[1] * v[g.v[1]].w + l[2] * v[g.v[2]].w - q).squaredNorm();
+        return l;
+    };
+    double miss = 0.0;
+    int witness = best;
+    auto l = weights(f, miss);
+    for (int i = 0; i < static_cast<int>(faces.size()) && miss > 0.0; ++i) {
+        const Face& g = faces[i];
+        if (!g.alive || i == best || g.n.dot(f.n) < 1.0 - 1e-9 || std::abs(g.dist - f.dist) > doneTol) continue;
+        double m = 0.0;
+        const auto lg = weights(g, m);
+        if (m < miss) miss = m, l = lg, witness = i;
+    }
+    const Face& fw = faces[witness];
     Penetration p;
     p.normal = -f.n;
     // The face's distance is a lower bound of the depth and the support along its normal an
@@ -248,8 +266,8 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     // normal, really separates the shapes.
     p.depth = reach;
     for (int i = 0; i < 3; ++i) {
-        p.pointA += l[i] * v[f.v[i]].a;
-        p.pointB += l[i] * v[f.v[i]].b;
+        p.pointA += l[i] * v[fw.v[i]].a;
+        p.pointB += l[i] * v[fw.v[i]].b;
     }
     return p;
 }
