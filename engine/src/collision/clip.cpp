@@ -17,7 +17,7 @@ namespace tumble::collision::detail {
 
 namespace {
 
-constexpr double kFaceAlign = 0.99996;   // cos(~0.5 deg): the normal is this face's (else an edge contact)
+constexpr double kFaceAlign = 1.0 - 1e-6;  // cos(~0.08 deg): the normal is this face's (else an edge contact)
 constexpr double kSegmentAlign = 0.985;  // cos(~10 deg): two round segments lie side by side
 constexpr double kRefHysteresis =
     1e-4;  // A's face must be this much better aligned (cosine, ~0.8 deg) to be the reference
