@@ -127,23 +127,31 @@ Vec3 triangleNormal(const MeshShape& m, int t) {
 }
 
 // Closest point of the mesh's triangles within `radius` of p (mesh frame); false if none.
+// The search box starts small and grows fourfold: a triangle nearer than r meets the box of
+// half-width r, so the first box in which something lies within r holds the closest. Most
+// queries are for points just under the surface, so this visits few triangles.
 bool closestWithin(const MeshShape& m, const TriangleBvh& bvh, const Vec3& p, double radius, Vec3& closest,
                    int& tri) {
-    double best = kInf;
-    tri = -1;
-    const Aabb box{p.array() - radius, p.array() + radius};
-    bvh.query(box, [&](int t) {
-        const auto& v = m.triangles[t];
-        const Vec3 q =
-            reference::closestPointOnTriangle(p, m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]]);
-        const double d2 = (q - p).squaredNorm();
-        if (d2 < best) {
-            best = d2;
-            closest = q;
-            tri = t;
-        }
-    });
-    return tri >= 0 && best <= radius * radius;
+    double r = std::min(radius, bvh.bounds().extent().norm() / 256.0);
+    for (;;) {
+        double best = kInf;
+        tri = -1;
+        const Aabb box{p.array() - r, p.array() + r};
+        bvh.query(box, [&](int t) {
+            const auto& v = m.triangles[t];
+            const Vec3 q =
+                reference::closestPointOnTriangle(p, m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]]);
+            const double d2 = (q - p).squaredNorm();
+            if (d2 < best) {
+                best = d2;
+                closest = q;
+                tri = t;
+            }
+        });
+        if (tri >= 0 && best <= r * r) return true;
+        if (r >= radius) return false;
+        r = std::min(4.0 * r, radius);
+    }
 }
 
 // The vertices of `body` (at poseBody) against `other` (at poseOther): inside by parity, or

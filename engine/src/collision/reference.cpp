@@ -201,8 +201,15 @@ Vec3 parityRayDirection(int k) {
 }
 
 Parity rayParity(const MeshShape& mesh, const Vec3& o) {
+    // The mesh's reach from o, for the tolerance of "at the origin": the BVH's box when there
+    // is one (this runs once per vertex of the other mesh in collideMeshMesh).
     double size = 0.0;
-    for (const Vec3& v : mesh.vertices) size = std::max(size, (v - o).cwiseAbs().maxCoeff());
+    if (mesh.bvh && !mesh.bvh->bounds().empty()) {
+        const Aabb& b = mesh.bvh->bounds();
+        size = std::max((b.max - o).cwiseAbs().maxCoeff(), (b.min - o).cwiseAbs().maxCoeff());
+    } else {
+        for (const Vec3& v : mesh.vertices) size = std::max(size, (v - o).cwiseAbs().maxCoeff());
+    }
     const double originTol = 1e-12 * size;
     Parity result;
     for (int k = 0; k < kMaxParityRays; ++k) {
