@@ -174,7 +174,7 @@ private slots:
         QFETCH(double, staticShare);
         QFETCH(int, unbounded);
         const SceneKind kind{n, clustered, grid, staticShare, unbounded};
-        for (unsigned seed = 1; seed <= 3; ++seed) {
+        for (unsigned seed = 1; seed <= (n >= 1000 ? 2u : 3u); ++seed) {
             Generator gen(seed * 7919u + static_cast<unsigned>(n));
             Scene s = gen.scene(kind);
             Broadphase bp;
