@@ -60,6 +60,8 @@ SceneDesc everyField() {
     s.settings.duration = 2.5;
     s.settings.integrator = "symplectic-euler";
     s.settings.frameRate = 50;
+    s.settings.sleeping = false;
+    s.settings.solverIterations = 7;
 
     BodyDesc ground;
     ground.name = "ground";
@@ -422,6 +424,29 @@ private slots:
         row("unknown integrator", R"("integrator": "rk4")", R"("integrator": "leapfrog")",
             "settings.integrator",
             "drop.json: settings.integrator: unknown integrator 'leapfrog' (see --list-integrators)");
+        row("sleeping a string", R"("frame_rate": 30})", R"("frame_rate": 30, "sleeping": "yes"})",
+            "settings.sleeping", "drop.json: settings.sleeping: must be true or false");
+        row("sleeping a number", R"("frame_rate": 30})", R"("frame_rate": 30, "sleeping": 0})",
+            "settings.sleeping", "drop.json: settings.sleeping: must be true or false");
+        row("sleeping null", R"("frame_rate": 30})", R"("frame_rate": 30, "sleeping": null})",
+            "settings.sleeping", "drop.json: settings.sleeping: must be true or false");
+        row("solver_iterations 2.5", R"("frame_rate": 30})", R"("frame_rate": 30, "solver_iterations": 2.5})",
+            "settings.solver_iterations", "drop.json: settings.solver_iterations: must be an integer");
+        row("solver_iterations 5.0", R"("frame_rate": 30})", R"("frame_rate": 30, "solver_iterations": 5.0})",
+            "settings.solver_iterations", "drop.json: settings.solver_iterations: must be an integer");
+        row("solver_iterations a string", R"("frame_rate": 30})",
+            R"("frame_rate": 30, "solver_iterations": "20"})", "settings.solver_iterations",
+            "drop.json: settings.solver_iterations: must be an integer");
+        row("solver_iterations true", R"("frame_rate": 30})",
+            R"("frame_rate": 30, "solver_iterations": true})", "settings.solver_iterations",
+            "drop.json: settings.solver_iterations: must be an integer");
+        row("solver_iterations 0", R"("frame_rate": 30})", R"("frame_rate": 30, "solver_iterations": 0})",
+            "settings.solver_iterations", "drop.json: settings.solver_iterations: must be from 1 to 10000");
+        row("solver_iterations -3", R"("frame_rate": 30})", R"("frame_rate": 30, "solver_iterations": -3})",
+            "settings.solver_iterations", "drop.json: settings.solver_iterations: must be from 1 to 10000");
+        row("solver_iterations 10001", R"("frame_rate": 30})",
+            R"("frame_rate": 30, "solver_iterations": 10001})", "settings.solver_iterations",
+            "drop.json: settings.solver_iterations: must be from 1 to 10000");
         row("settings an array",
             R"("settings": {"gravity": [0, -9.81, 0], "dt": 0.01, "duration": 1, "integrator": "rk4", "frame_rate": 30})",
             R"("settings": [])", "settings", "drop.json: settings: must be an object");
@@ -460,8 +485,8 @@ private slots:
         row("mass overflows", R"("radius": 0.5)", R"("radius": 1e160)", "bodies[1].mass",
             "drop.json: bodies[1].mass: with this shape gives an inertia tensor that is not finite and "
             "positive definite (largest entry inf kg m^2)");
-        row("volume overflows", R"("half_extents": [0.5, 0.25, 0.5])", R"("half_extents": [1e200, 1e200, 1e200])",
-            "bodies[2].density",
+        row("volume overflows", R"("half_extents": [0.5, 0.25, 0.5])",
+            R"("half_extents": [1e200, 1e200, 1e200])", "bodies[2].density",
             "drop.json: bodies[2].density: with this shape gives a mass of inf kg, which is not a usable "
             "finite positive number");
         row("volume underflows", R"("half_extents": [0.5, 0.25, 0.5])",
@@ -501,6 +526,54 @@ private slots:
         QCOMPARE(scene.bodies.size(), size_t(3));
         QCOMPARE(scene.settings.integrator, std::string("rk4"));
         QCOMPARE(scene.bodies[1].forces.size(), size_t(1));
+        // Absent sleeping and solver_iterations take their documented defaults.
+        QCOMPARE(scene.settings.sleeping, true);
+        QCOMPARE(scene.settings.solverIterations, 20);
+    }
+
+    void solverSettings_data() {
+        QTest::addColumn<QString>("keys");  // inserted after "frame_rate": 30
+        QTest::addColumn<bool>("sleeping");
+        QTest::addColumn<int>("iterations");
+        QTest::newRow("sleeping off") << R"(, "sleeping": false)" << false << 20;
+        QTest::newRow("sleeping on") << R"(, "sleeping": true)" << true << 20;
+        QTest::newRow("5 iterations") << R"(, "solver_iterations": 5)" << true << 5;
+        QTest::newRow("both") << R"(, "solver_iterations": 5, "sleeping": false)" << false << 5;
+        QTest::newRow("1 iteration") << R"(, "solver_iterations": 1)" << true << 1;
+        QTest::newRow("10000 iterations") << R"(, "solver_iterations": 10000)" << true << 10000;
+    }
+
+    void solverSettings() {
+        QFETCH(QString, keys);
+        QFETCH(bool, sleeping);
+        QFETCH(int, iterations);
+        QString text = kBase;
+        QCOMPARE(text.count(R"("frame_rate": 30})"), 1);
+        text.replace(R"("frame_rate": 30})", R"("frame_rate": 30)" + keys + "}");
+        const SceneDesc scene = io::parseScene(text.toStdString(), "drop.json");
+        QCOMPARE(scene.settings.sleeping, sleeping);
+        QCOMPARE(scene.settings.solverIterations, iterations);
+        // The engine takes them (in range), and saving keeps them.
+        const World world(scene);
+        QCOMPARE(world.model().bodies.size(), scene.bodies.size());
+        const SceneDesc back = io::parseScene(io::sceneToJson(scene), "again.json");
+        QCOMPARE(back.settings.sleeping, sleeping);
+        QCOMPARE(back.settings.solverIterations, iterations);
+        QVERIFY(back == scene);
+    }
+
+    // The round trip of every field is not vacuous for the two solver settings either.
+    void roundTripKeepsSolverSettings() {
+        const SceneDesc scene = everyField();
+        const SceneDesc back = io::parseScene(io::sceneToJson(scene), "every.json");
+        QCOMPARE(back.settings.sleeping, false);
+        QCOMPARE(back.settings.solverIterations, 7);
+        SceneDesc other = back;
+        other.settings.sleeping = true;
+        QVERIFY(!(other == scene));
+        other = back;
+        other.settings.solverIterations = 20;
+        QVERIFY(!(other == scene));
     }
 
     // A file read from disk is named as given, in every message.
@@ -557,7 +630,8 @@ private slots:
         text.replace(R"("orientation": [1, 0, 0, 0])", R"("orientation": [1e200, 1e200, 0, 0])");
         text.replace(R"("normal": [0, 1, 0])", R"("normal": [0, 3e300, 4e300])");
         scene = io::parseScene(text.toStdString(), "drop.json");
-        QVERIFY((scene.bodies[1].orientation.coeffs() - Eigen::Vector4d(std::sqrt(0.5), 0, 0, std::sqrt(0.5))).norm() < 1e-15);
+        QVERIFY((scene.bodies[1].orientation.coeffs() - Eigen::Vector4d(std::sqrt(0.5), 0, 0, std::sqrt(0.5)))
+                    .norm() < 1e-15);
         QVERIFY((scene.bodies[0].shape.normal - Vec3(0, 0.6, 0.8)).norm() < 1e-15);
         QVERIFY(World(scene).state().bodies[1].q.coeffs().allFinite());
 
