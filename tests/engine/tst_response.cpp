@@ -316,7 +316,7 @@ private slots:
     // be symmetric: no spin (|ω| < 1e-9 rad/s) and the vertical velocity reversed times e.
     // Without gravity the velocity is constant before and after: 1e-9 relative. With
     // gravity (rk4, exact in free flight) the impact speed sqrt(2 g d) holds only as well
-    // as the moment of impact is found: 1e-6 relative, as for the bouncing ball.
+    // as the moment of impact is found (see the tolerance below).
     void boxLandingFlat_data() {
         QTest::addColumn<bool>("gravity");
         QTest::addRow("no gravity") << false;
@@ -343,7 +343,10 @@ private slots:
         const Vec3 u = velocityOf(w, 1), om = omegaOf(w, 1);
         QVERIFY2(om.norm() < 1e-9,
                  qPrintable(QString("spin after a flat landing: |ω| = %1 rad/s").arg(om.norm())));
-        const double tol = (gravity ? 1e-6 : 1e-9) * vImpact;
+        // With gravity the speed at impact depends on where the impulse acts: touching found
+        // within δ = 1 µm (the bouncing ball's standard, 1e-6 of a 1 m drop) changes the
+        // rebound speed by (1 + e) g δ / v. Without gravity: rounding only.
+        const double tol = gravity ? (1 + e) * kG * 1e-6 / vImpact : 1e-9 * vImpact;
         QVERIFY2((u - Vec3(0, vyExpected, 0)).norm() < tol,
                  qPrintable(QString("v = (%1, %2, %3), expected (0, %4, 0)")
                                 .arg(num(u.x()), num(u.y()), num(u.z()), num(vyExpected))));
@@ -411,14 +414,18 @@ private slots:
         World w(scene);
         const Vec3 x0 = w.state().bodies[1].x;
         if (ratio < 1.0) {
+            // Sticking: no slide along the slope. The box may settle into the ground by the
+            // solver's penetration allowance (gravity pushes it in by g h² per step before
+            // the contact answers); that is not sliding, and is bounded separately.
             while (w.state().time < 2.0) {
                 w.step(kDt);
                 const Vec3 dx = w.state().bodies[1].x - x0;
-                QVERIFY2(dx.norm() < 1e-4, qPrintable(QString("moved (%1, %2, %3) m by t = %4 s")
-                                                          .arg(dx.x())
-                                                          .arg(dx.y())
-                                                          .arg(dx.z())
-                                                          .arg(w.state().time)));
+                QVERIFY2(std::hypot(dx.x(), dx.z()) < 1e-4 && std::abs(dx.y()) < 1e-3,
+                         qPrintable(QString("moved (%1, %2, %3) m by t = %4 s")
+                                        .arg(dx.x())
+                                        .arg(dx.y())
+                                        .arg(dx.z())
+                                        .arg(w.state().time)));
             }
             return;
         }
@@ -480,23 +487,29 @@ private slots:
                  qPrintable(QString("v = %1 m/s but ω r = %2 m/s").arg(num(speed), num(omegaR))));
     }
 
-    // 9. Stacks at the default step with sleeping off, so that the solver alone holds them
-    // for the whole run. A stack that "stands" stays within a centimetre of where it was
-    // built and tilts less than a degree (what a user would still call standing; warm
-    // starting and position correction are what make this hold for a minute).
+    // 9. Stacks at the default step. A stack that "stands" stays within a centimetre (the
+    // pyramid, 15 contacts high, two) of where it was built and tilts less than a degree:
+    // what a user would still call standing; warm starting and position correction are
+    // what make this hold for a minute. Sleeping is off, so that the solver alone holds
+    // them for the whole run (a sleeping stack cannot drift); the pyramid also runs with
+    // sleeping on, which must not make it fall either. The pyramid with sleeping off (120
+    // boxes, 14400 steps) is the slow case of the suite.
     void stacks_data() {
         QTest::addColumn<QString>("kind");
         QTest::addColumn<double>("seconds");
         QTest::addColumn<double>("tolerance");  // m, horizontal and vertical
-        QTest::addRow("tower of 20") << "tower" << 60.0 << 0.01;
-        QTest::addRow("pyramid of 15 rows") << "pyramid" << 60.0 << 0.02;
-        QTest::addRow("100 kg on 1 kg") << "ratio2" << 20.0 << 0.01;
-        QTest::addRow("1, 100, 1, 100 kg") << "ratio4" << 20.0 << 0.01;
+        QTest::addColumn<bool>("sleeping");
+        QTest::addRow("tower of 20") << "tower" << 60.0 << 0.01 << false;
+        QTest::addRow("pyramid of 15 rows") << "pyramid" << 60.0 << 0.02 << false;
+        QTest::addRow("pyramid of 15 rows, sleeping on") << "pyramid" << 60.0 << 0.02 << true;
+        QTest::addRow("100 kg on 1 kg") << "ratio2" << 20.0 << 0.01 << false;
+        QTest::addRow("1, 100, 1, 100 kg") << "ratio4" << 20.0 << 0.01 << false;
     }
     void stacks() {
         QFETCH(QString, kind);
         QFETCH(double, seconds);
         QFETCH(double, tolerance);
+        QFETCH(bool, sleeping);
         const Vec3 half(0.5, 0.5, 0.5);
         std::vector<BodyDesc> bodies{groundPlane(0.0, 0.5)};
         auto add = [&](const Vec3& p, double mass) {
@@ -515,7 +528,7 @@ private slots:
             for (int k = 0; k < n; ++k) add(Vec3(0, 0.5 + k, 0), k % 2 ? 100.0 : 1.0);
         }
         SceneDesc scene = sceneOf(bodies);
-        scene.settings.sleeping = false;
+        scene.settings.sleeping = sleeping;
         World w(scene);
         const State start = w.state();
         while (w.state().time < seconds - 1e-9) {
@@ -575,7 +588,12 @@ private slots:
         while (w.state().time < tArrive + 0.5 && !woken) {
             const long before = w.profile().awakeBodySteps;
             const bool wasAsleep = w.state().isAsleep(1);
+            const double ballVy = velocityOf(w, 2).y();
             w.step(kDt);
+            // The ball touched the box in this step: a contact or impact is reported, or, as
+            // the report only covers the end of the step, the falling ball turned upwards
+            // (in free flight it never does).
+            const bool ballTouched = touches(w, 1, 2) || (ballVy < 0.0 && velocityOf(w, 2).y() > 0.0);
             const long awake = w.profile().awakeBodySteps - before;
             const State& s = w.state();
             QVERIFY2(s.bodies[1].x.y() > half.y() - 0.01,
@@ -588,10 +606,10 @@ private slots:
                 QVERIFY2(
                     awake >= 2,
                     qPrintable(QString("only %1 bodies integrated in a step with sleeping off").arg(awake)));
-                if (touches(w, 1, 2)) woken = true;  // the run is over once the ball arrives
+                if (ballTouched) woken = true;  // the run is over once the ball arrives
                 continue;
             }
-            if (touches(w, 1, 2)) {
+            if (ballTouched) {
                 QVERIFY2(
                     wasAsleep,
                     qPrintable(QString("the ball arrived at t = %1 s before the box slept").arg(s.time)));
