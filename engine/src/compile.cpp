@@ -53,6 +53,8 @@ void validateSettings(const Settings& s) {
     requirePositive(s.dt, "settings.dt");
     requireNonNegative(s.duration, "settings.duration");
     requirePositive(s.frameRate, "settings.frame_rate");
+    if (s.solverIterations < 1 || s.solverIterations > 10000)
+        throw SceneError("settings.solver_iterations", "must be from 1 to 10000");
     if (s.duration * s.frameRate > 1e8) {
         throw SceneError("settings.duration", "with this frame_rate gives more than 10^8 frames");
     }

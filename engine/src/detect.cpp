@@ -24,13 +24,13 @@ void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
     }
 }
 
-void findPairs(const Model& model, DetectScratch& s) {
+void findPairs(const Model& model, const State& state, DetectScratch& s) {
     const size_t n = model.bodies.size();
     s.swept.resize(n);
     s.moving.resize(n);
     for (size_t i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
-        s.moving[i] = b.motion != Motion::Static;
+        s.moving[i] = b.motion != Motion::Static && !state.isAsleep(static_cast<int>(i));
         s.swept[i] = bounds(b.collider, s.end[i]);
         if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
     }
@@ -61,24 +61,24 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
     return w;
 }
 
-bool touching(const std::vector<Manifold>& contacts, int a, int b) {
+bool touching(const std::vector<Manifold>& contacts, int a, int b, double tol) {
     return std::any_of(contacts.begin(), contacts.end(),
-                       [&](const Manifold& m) { return m.bodyA == a && m.bodyB == b && m.maxDepth() >= 0.0; });
+                       [&](const Manifold& m) { return m.bodyA == a && m.bodyB == b && m.maxDepth() >= -tol; });
 }
 
 }  // namespace
 
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 DetectScratch& s) {
+                 double touchTolerance, double tolerance, DetectScratch& s) {
     s.impacts.clear();
     for (const auto& [a, b] : s.broadphase.pairs()) {
-        if (touching(s.previous, a, b)) continue;  // in contact already: no new impact
+        if (touching(s.previous, a, b, touchTolerance)) continue;  // in contact already: no new impact
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
         const double size = std::min(boundingRadius(A.collider), boundingRadius(B.collider));
         const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
-                                      sweepOf(B, before.bodies[b], after.bodies[b]), 1e-3 * size);
+                                      sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
         // s = 0: touching at the start already (the first step has no previous contacts).
         if (hit && hit->s > 0.0) s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
     }

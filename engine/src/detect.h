@@ -32,15 +32,17 @@ bool needsContacts(const Model& model);
 /// World pose of each body's frame.
 void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out);
 
-/// Broadphase: pairs whose boxes, swept over the step, overlap.
-void findPairs(const Model& model, DetectScratch& s);
+/// Broadphase: pairs whose boxes, swept over the step, overlap. Sleeping bodies stand with
+/// the static ones, so two sleeping bodies (or a sleeping and a static one) never pair.
+void findPairs(const Model& model, const State& state, DetectScratch& s);
 
 /// Narrowphase: the manifolds of every pair at the end of the step.
 void findContacts(const Model& model, DetectScratch& s, double margin);
 
-/// Time of impact: for pairs that did not touch at the start of the step, the moment they
-/// first touch within it (t0 = time at the start, h = step).
+/// Time of impact: for pairs that did not touch at the start of the step (no point of
+/// `s.previous` deeper than -touchTolerance), the moment they first come within
+/// `tolerance` × the smaller body's size (t0 = time at the start, h = step).
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 DetectScratch& s);
+                 double touchTolerance, double tolerance, DetectScratch& s);
 
 }  // namespace tumble

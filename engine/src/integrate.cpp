@@ -29,6 +29,11 @@ const std::vector<Wrench>& evaluateForces(const Model& model, const std::vector<
     return scratch.wrench;
 }
 
+// The dynamic bodies to advance: all of them, or the awake ones when some sleep.
+const std::vector<int>& awake(const Model& model, const IntegrateScratch& scr) {
+    return scr.awake ? *scr.awake : model.dynamicBodies;
+}
+
 Eigen::Vector4d quatRate(const Quat& q, const Vec3& omega) {
     const Quat dq = Quat(0.0, omega.x(), omega.y(), omega.z()) * q;
     return 0.5 * Eigen::Vector4d(dq.w(), dq.x(), dq.y(), dq.z());
@@ -43,7 +48,7 @@ void rates(const Model& model, const std::vector<BodyState>& bodies, double t,
            std::vector<IntegrateScratch::Rate>& out, IntegrateScratch& scratch, Profile& profile) {
     const std::vector<Wrench>& w = evaluateForces(model, bodies, t, scratch, profile);
     out.resize(bodies.size());
-    for (int i : model.dynamicBodies) {
+    for (int i : awake(model, scratch)) {
         const BodyModel& b = model.bodies[i];
         const BodyState& s = bodies[i];
         const Mat3 R = s.q.normalized().toRotationMatrix();
@@ -55,7 +60,7 @@ void rates(const Model& model, const std::vector<BodyState>& bodies, double t,
 void euler(const Model& model, State& state, double h, IntegrateScratch& scr, Profile& prof) {
     auto& k = scr.rates[0];
     rates(model, state.bodies, state.time, k, scr, prof);
-    for (int i : model.dynamicBodies) {
+    for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];
         s.x += h * k[i].x;
         s.q = addToQuat(s.q, k[i].q, h).normalized();
@@ -71,7 +76,7 @@ void rk4(const Model& model, State& state, double h, IntegrateScratch& scr, Prof
     for (int n = 0; n < 4; ++n) {
         rates(model, scr.stage, n == 0 ? t : t + stageStep[n - 1], scr.rates[n], scr, prof);
         if (n == 3) break;
-        for (int i : model.dynamicBodies) {
+        for (int i : awake(model, scr)) {
             const BodyState& s = state.bodies[i];
             const auto& k = scr.rates[n][i];
             BodyState& y = scr.stage[i];
@@ -82,7 +87,7 @@ void rk4(const Model& model, State& state, double h, IntegrateScratch& scr, Prof
         }
     }
     const double w = h / 6.0;
-    for (int i : model.dynamicBodies) {
+    for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];
         const auto& k1 = scr.rates[0][i];
         const auto& k2 = scr.rates[1][i];
@@ -98,7 +103,7 @@ void rk4(const Model& model, State& state, double h, IntegrateScratch& scr, Prof
 void symplecticEuler(const Model& model, State& state, double h, IntegrateScratch& scr,
                      Profile& prof) {
     const std::vector<Wrench>& w = evaluateForces(model, state.bodies, state.time, scr, prof);
-    for (int i : model.dynamicBodies) {
+    for (int i : awake(model, scr)) {
         const BodyModel& b = model.bodies[i];
         BodyState& s = state.bodies[i];
         s.P += h * w[i].force;
@@ -127,7 +132,7 @@ void freeRotation(const BodyModel& b, BodyState& s, double h) {
 
 void splitting(const Model& model, State& state, double h, IntegrateScratch& scr, Profile& prof) {
     const std::vector<Wrench>& w0 = evaluateForces(model, state.bodies, state.time, scr, prof);
-    for (int i : model.dynamicBodies) {
+    for (int i : awake(model, scr)) {
         const BodyModel& b = model.bodies[i];
         BodyState& s = state.bodies[i];
         s.P += 0.5 * h * w0[i].force;
@@ -136,7 +141,7 @@ void splitting(const Model& model, State& state, double h, IntegrateScratch& scr
         freeRotation(b, s, h);
     }
     const std::vector<Wrench>& w1 = evaluateForces(model, state.bodies, state.time + h, scr, prof);
-    for (int i : model.dynamicBodies) {
+    for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];
         s.P += 0.5 * h * w1[i].force;
         s.L += 0.5 * h * w1[i].torque;

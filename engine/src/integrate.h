@@ -1,4 +1,4 @@
-// Stage: integrate. Advances every dynamic and kinematic body by one step with the
+// Stage: integrate. Advances every awake dynamic body and every kinematic body by one step with the
 // model's integrator; static bodies are never touched. The integrators call the forces
 // stage as often as they need (1, 2 or 4 times a step).
 #pragma once
@@ -20,6 +20,8 @@ struct IntegrateScratch {
         Eigen::Vector4d q;  // w, x, y, z
     };
     std::vector<Rate> rates[4];
+    /// The dynamic bodies to advance (the awake ones); null: every dynamic body.
+    const std::vector<int>* awake = nullptr;
 };
 
 void integrate(const Model& model, State& state, double h, IntegrateScratch& scratch,

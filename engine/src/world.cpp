@@ -1,28 +1,31 @@
 // World::step, the orchestrator: one call per stage, each timed into the profile.
+//
+// A step integrates every awake body to the end of the step and finds the contacts there.
+// If a pair that did not touch at the start came into contact within the step, the step
+// is cut at the first such moment: the bodies are integrated again from the start to that
+// moment, the impulses of the impact are applied there (impact.h), and the rest of the
+// step is taken the same way (at most kMaxCuts times a step; later impacts are left to the
+// contact solver). The step ends with the contact solver (contact_solver.h) and sleeping.
 #include <tumble/world.h>
 
+#include "contact_solver.h"
 #include "detect.h"
 #include "guard.h"
+#include "impact.h"
 #include "integrate.h"
+#include "sleep.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace tumble {
 
-struct World::Scratch {
-    IntegrateScratch integrate;
-    DetectScratch detect;
-    State before;
-};
-
-World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
-    state_ = initialState(model_, scene);
-}
-
-World::World(Model model, State state)
-    : model_(std::move(model)), state_(std::move(state)), scratch_(std::make_shared<Scratch>()) {}
-
 namespace {
+
+constexpr int kMaxCuts = 8;              // moments of impact handled exactly per step
+constexpr double kImpactTolerance = 1e-6;  // of the smaller body's size: how near "touching" is
+constexpr double kTouchTolerance = 1e-5;   // of the largest body's size: contacts this far apart count
 
 using Clock = std::chrono::steady_clock;
 
@@ -30,41 +33,160 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 }  // namespace
 
-void World::step(double h) {
-    const bool contacts = needsContacts(model_);
-    DetectScratch& d = scratch_->detect;
-    if (contacts) scratch_->before = state_;
+struct World::Scratch {
+    IntegrateScratch integrate;
+    DetectScratch detect;
+    ImpactScratch impact;
+    ContactSolverScratch solver;
+    SleepScratch sleep;
+    State before;
+    std::vector<double> sizes;  // bounding radius per body
+    std::vector<int> awake;     // awake dynamic bodies, when sleeping is on
+    std::vector<int> seeds;
+    std::vector<collision::ImpactEvent> impacts;  // of the whole step
+    double touchTolerance = 0.0;
+};
 
-    auto t = Clock::now();
+World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
+    state_ = initialState(model_, scene);
+}
+
+World::World(Model model, State state)
+    : model_(std::move(model)), state_(std::move(state)), scratch_(std::make_shared<Scratch>()) {
+    double largest = 0.0;
+    for (const BodyModel& b : model_.bodies) {
+        scratch_->sizes.push_back(boundingRadius(b.collider));
+        if (std::isfinite(scratch_->sizes.back())) largest = std::max(largest, scratch_->sizes.back());
+    }
+    scratch_->touchTolerance = kTouchTolerance * largest;
+}
+
+void World::setState(const State& state) {
+    state_ = state;
+    scratch_->detect.contacts.clear();
+}
+
+void World::advance(double h) {
+    Scratch& s = *scratch_;
+    if (model_.settings.sleeping && !state_.asleep.empty()) {
+        awakeBodies(model_, state_, s.awake);
+        s.integrate.awake = &s.awake;
+    } else {
+        s.integrate.awake = nullptr;
+    }
+    const auto t = Clock::now();
     const double forcesBefore = profile_.forces;
-    integrate(model_, state_, h, scratch_->integrate, profile_);  // calls the forces stage
+    integrate(model_, state_, h, s.integrate, profile_);  // calls the forces stage
     state_.time += h;
     checkFinite(model_, state_);
     profile_.integrate += since(t) - (profile_.forces - forcesBefore);
-    ++profile_.steps;
-    if (!contacts) return;  // nothing can touch: the contact stages are skipped
+    profile_.awakeBodySteps += static_cast<long>(s.integrate.awake ? s.awake.size() : model_.dynamicBodies.size());
+}
 
-    t = Clock::now();
-    bodyPoses(model_, scratch_->before, d.start);
+void World::detect(double t0, double h) {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    auto t = Clock::now();
+    bodyPoses(model_, s.before, d.start);
     bodyPoses(model_, state_, d.end);
-    findPairs(model_, d);
+    findPairs(model_, state_, d);
     profile_.broadphase += since(t);
     profile_.pairs += static_cast<long>(d.broadphase.pairs().size());
 
     t = Clock::now();
-    std::swap(d.previous, d.contacts);
-    findContacts(model_, d, 0.0);
+    findContacts(model_, d, s.touchTolerance);
     profile_.narrowphase += since(t);
-    for (const auto& m : d.contacts) profile_.contactPoints += m.count;
 
     t = Clock::now();
-    findImpacts(model_, scratch_->before, state_, state_.time - h, h, d);
+    findImpacts(model_, s.before, state_, t0, h, s.touchTolerance, kImpactTolerance, d);
     profile_.timeOfImpact += since(t);
-    profile_.impacts += static_cast<long>(d.impacts.size());
+
+    // An awake body touching a sleeping one wakes it, and the contacts are found again
+    // with the woken bodies among the moving ones.
+    if (model_.settings.sleeping && wakeTouched(model_, state_, d.contacts, d.impacts)) {
+        t = Clock::now();
+        findPairs(model_, state_, d);
+        findContacts(model_, d, s.touchTolerance);
+        profile_.narrowphase += since(t);
+    }
+}
+
+// Cuts the step at the first impact: back to the start of the sub-step, forward to the
+// moment, impulses there.
+void World::impactAt(double t0) {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    const auto t = Clock::now();
+    double first = d.impacts.front().time;
+    for (const auto& e : d.impacts) first = std::min(first, e.time);
+    s.seeds.clear();
+    for (const auto& e : d.impacts) {
+        if (e.time > first + 1e-12 * std::max(1.0, std::abs(first))) continue;
+        s.impacts.push_back(e);
+        s.seeds.push_back(e.bodyA);
+        s.seeds.push_back(e.bodyB);
+    }
+    profile_.impactSolve += since(t);
+    state_ = s.before;
+    if (first > t0) advance(first - t0);
+    state_.time = first;
+
+    const auto t2 = Clock::now();
+    bodyPoses(model_, state_, d.end);
+    findContacts(model_, d, s.touchTolerance);
+    const double restingSpeed = 2.0 * model_.settings.gravity.norm() * model_.settings.dt;
+    const ImpactResult r =
+        resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, restingSpeed, s.impact, ledger_);
+    ++profile_.impactMoments;
+    if (r.limited) ++profile_.impactSweepLimits;
+    std::swap(d.previous, d.contacts);  // the contacts at the start of the rest of the step
+    profile_.impactSolve += since(t2);
+}
+
+void World::step(double h) {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    const double tEnd = state_.time + h;
+    ++profile_.steps;
+    if (!needsContacts(model_)) {  // nothing can touch: the contact stages are skipped
+        advance(h);
+        return;
+    }
+    if (model_.settings.sleeping) wakeTouched(model_, state_, {}, {});  // forces switching on
+    std::swap(d.previous, d.contacts);  // the last step's contacts: pairs touching at the start
+    s.impacts.clear();
+    for (int cut = 0;; ++cut) {
+        s.before = state_;
+        const double t0 = state_.time;
+        advance(tEnd - t0);
+        state_.time = tEnd;
+        detect(t0, tEnd - t0);
+        if (cut == kMaxCuts) s.impacts.insert(s.impacts.end(), d.impacts.begin(), d.impacts.end());
+        if (d.impacts.empty() || cut == kMaxCuts) break;
+        impactAt(t0);
+    }
+
+    auto t = Clock::now();
+    ContactSolverSettings cfg;
+    cfg.iterations = model_.settings.solverIterations;
+    cfg.h = h;
+    cfg.restingSpeed = 2.0 * model_.settings.gravity.norm() * model_.settings.dt;
+    cfg.touchTolerance = s.touchTolerance;
+    solveContacts(model_, state_, d.contacts, s.sizes, cfg, s.solver, ledger_);
+    checkFinite(model_, state_);
+    profile_.solve += since(t);
+
+    if (model_.settings.sleeping) {
+        t = Clock::now();
+        updateSleep(model_, state_, d.contacts, s.touchTolerance, h, s.sleep, ledger_);
+        profile_.sleep += since(t);
+    }
+    for (const auto& m : d.contacts) profile_.contactPoints += m.count;
+    profile_.impacts += static_cast<long>(s.impacts.size());
 }
 
 const std::vector<collision::Manifold>& World::contacts() const { return scratch_->detect.contacts; }
 
-const std::vector<collision::ImpactEvent>& World::impacts() const { return scratch_->detect.impacts; }
+const std::vector<collision::ImpactEvent>& World::impacts() const { return scratch_->impacts; }
 
 }  // namespace tumble

@@ -92,7 +92,9 @@ private slots:
 
     // Gravity acts on dynamic bodies only.
     void gravityScalesWithMass() {
-        World w(sceneOf({sphereBody("light", 0.1, 1.0), sphereBody("heavy", 0.1, 5.0)}, Vec3(0, -2, 0)));
+        BodyDesc heavy = sphereBody("heavy", 0.1, 5.0);
+        heavy.position = Vec3(1, 0, 0);  // apart: they fall side by side
+        World w(sceneOf({sphereBody("light", 0.1, 1.0), heavy}, Vec3(0, -2, 0)));
         w.step(0.25);
         QCOMPARE(w.state().bodies[0].P.y(), -0.5);
         QCOMPARE(w.state().bodies[1].P.y(), -2.5);

@@ -89,6 +89,8 @@ struct Settings {
     double duration = 5.0;
     std::string integrator;                      ///< empty: the engine's default
     double frameRate = 60.0;
+    bool sleeping = true;         ///< bodies at rest fall asleep (off: every body always simulated)
+    int solverIterations = 20;    ///< velocity iterations of the contact solver per step
 
     bool operator==(const Settings&) const = default;
 };

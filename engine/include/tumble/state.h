@@ -19,9 +19,26 @@ struct BodyState {
     Vec3 L = Vec3::Zero();
 };
 
+/// The contact solver's memory of one contact point: the impulses it applied in the last
+/// step, to start the next step's solve from (warm starting). Matched by bodies and feature.
+struct ContactMemory {
+    int bodyA = -1;
+    int bodyB = -1;
+    std::uint32_t feature = 0;
+    Vec3 position = Vec3::Zero();  ///< world, where the point was
+    double normalImpulse = 0.0;    ///< N·s, along the manifold normal
+    Vec3 tangentImpulse = Vec3::Zero();  ///< N·s, world, perpendicular to the normal
+};
+
 struct State {
     double time = 0.0;
     std::vector<BodyState> bodies;
+    /// Sleep bookkeeping per body (empty: every body awake, none at rest yet).
+    std::vector<double> restTime;       ///< s the body has been slow enough to sleep
+    std::vector<std::uint8_t> asleep;   ///< 1: not simulated until something touches it
+    std::vector<ContactMemory> contacts;  ///< warm-start impulses of the last step
+
+    bool isAsleep(int body) const { return !asleep.empty() && asleep[body] != 0; }
 };
 
 /// A 64-bit FNV-1a digest of the exact bits of the time and every body's x, q, P, L.

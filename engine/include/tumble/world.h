@@ -17,11 +17,26 @@ struct Profile {
     double broadphase = 0.0;
     double narrowphase = 0.0;
     double timeOfImpact = 0.0;
+    double impactSolve = 0.0;   ///< re-stepping to the moments of impact and the impulses there
+    double solve = 0.0;          ///< the contact solver at the end of each step
+    double sleep = 0.0;          ///< islands and sleeping
     long steps = 0;
     long forceEvaluations = 0;
     long pairs = 0;          ///< broadphase pairs, summed over steps
     long contactPoints = 0;  ///< narrowphase contact points, summed over steps
     long impacts = 0;        ///< pairs that came into contact within a step
+    long impactMoments = 0;  ///< moments of impact the step was cut at
+    long impactSweepLimits = 0;  ///< impact loops stopped by their bound (see docs/architecture.md)
+    long awakeBodySteps = 0; ///< dynamic bodies integrated, summed over steps (sleeping ones are not)
+};
+
+/// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no
+/// driving force, energy(end) = energy(start) - lostInContacts - lostInFriction
+/// + positionCorrection, up to the integrator's own error.
+struct EnergyLedger {
+    double lostInContacts = 0.0;     ///< kinetic energy taken by normal impulses (restitution < 1)
+    double lostInFriction = 0.0;     ///< kinetic energy taken by friction impulses
+    double positionCorrection = 0.0; ///< potential energy of pushing overlapping bodies apart
 };
 
 class World {
@@ -32,12 +47,17 @@ public:
 
     const Model& model() const { return model_; }
     const State& state() const { return state_; }
-    void setState(const State& state) { state_ = state; }
+    /// Replaces the state (a frame of the timeline, an edit); the contacts found so far are
+    /// forgotten, the remembered impulses and sleep data come with `state`.
+    void setState(const State& state);
     void setTime(double t) { state_.time = t; }
     const Profile& profile() const { return profile_; }
+    const EnergyLedger& ledger() const { return ledger_; }
 
     /// Advances the state by h seconds: forces -> integrate -> broadphase -> narrowphase ->
-    /// time of impact. Throws SimulationError when a body's state becomes non-finite.
+    /// time of impact (cutting the step at each first touch for the impact impulses) ->
+    /// contact solver -> sleeping. Throws SimulationError when a body's state becomes
+    /// non-finite.
     void step(double h);
 
     /// The contact manifolds at the end of the last step (bodyA < bodyB).
@@ -46,9 +66,14 @@ public:
     const std::vector<collision::ImpactEvent>& impacts() const;
 
 private:
+    void advance(double h);            // integrate the awake bodies by h
+    void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
+    void impactAt(double t0);          // cut the step at the first impact and resolve it
+
     Model model_;
     State state_;
     Profile profile_;
+    EnergyLedger ledger_;
     struct Scratch;
     std::shared_ptr<Scratch> scratch_;
 };

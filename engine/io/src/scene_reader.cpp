@@ -67,6 +67,18 @@ public:
         return j.get<std::string>();
     }
 
+    bool boolean(const json& j, const std::string& path) const {
+        if (!j.is_boolean()) fail(path, "must be true or false");
+        return j.get<bool>();
+    }
+
+    int integer(const json& j, const std::string& path) const {
+        if (!j.is_number_integer()) fail(path, "must be an integer");
+        const auto v = j.get<long long>();
+        if (v < -1000000000LL || v > 1000000000LL) fail(path, "is out of range");
+        return static_cast<int>(v);
+    }
+
     template <int N>
     Eigen::Matrix<double, N, 1> vector(const json& j, const std::string& path) const {
         if (!j.is_array() || j.size() != N) fail(path, "must be an array of " + std::to_string(N) + " numbers");
@@ -114,13 +126,16 @@ E enumValue(const Reader& r, const json& j, const std::string& path, std::initia
 Settings readSettings(const Reader& r, const json& j) {
     const std::string p = "settings";
     r.object(j, p);
-    r.onlyKeys(j, p, {"gravity", "dt", "duration", "integrator", "frame_rate"});
+    r.onlyKeys(j, p, {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations"});
     Settings s;
     r.optional(j, p, "gravity", [&](const json& v, const std::string& f) { s.gravity = r.vector<3>(v, f); });
     r.optional(j, p, "dt", [&](const json& v, const std::string& f) { s.dt = r.number(v, f); });
     r.optional(j, p, "duration", [&](const json& v, const std::string& f) { s.duration = r.number(v, f); });
     r.optional(j, p, "integrator", [&](const json& v, const std::string& f) { s.integrator = r.string(v, f); });
     r.optional(j, p, "frame_rate", [&](const json& v, const std::string& f) { s.frameRate = r.number(v, f); });
+    r.optional(j, p, "sleeping", [&](const json& v, const std::string& f) { s.sleeping = r.boolean(v, f); });
+    r.optional(j, p, "solver_iterations",
+               [&](const json& v, const std::string& f) { s.solverIterations = r.integer(v, f); });
     return s;
 }
 

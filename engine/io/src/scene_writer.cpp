@@ -104,6 +104,8 @@ std::string sceneToJson(const SceneDesc& scene) {
     // An empty integrator stays absent: the scene keeps following the engine's default.
     if (!scene.settings.integrator.empty()) s["integrator"] = scene.settings.integrator;
     s["frame_rate"] = scene.settings.frameRate;
+    s["sleeping"] = scene.settings.sleeping;
+    s["solver_iterations"] = scene.settings.solverIterations;
     j["bodies"] = ojson::array();
     for (const BodyDesc& b : scene.bodies) j["bodies"].push_back(bodyJson(b));
     return j.dump(2) + "\n";

@@ -1,0 +1,64 @@
+// Stage: the contact solver, for contacts that persist (resting, sliding, rolling). It runs
+// at the end of every step on the contacts found there, after any moments of impact were
+// handled (impact.h).
+//
+// Velocities: sequential impulses with accumulated, clamped impulses per point (the
+// normal impulse never pulls; the friction impulse stays inside the Coulomb cone
+// |λt| ≤ μ λn), started from the impulses of the same points in the last step (warm
+// starting: a stack needs few iterations because each step starts from the answer of the
+// one before). A point approaching faster than the resting speed bounces with restitution
+// ε (target -ε v⁻); slower, it is resting contact (target 0).
+//
+// Positions: the overlap left by the step is removed by moving the bodies apart along
+// the normal (a few Gauss-Seidel passes, a fraction of the overlap beyond a small slop
+// each step) without touching the momenta, so the correction adds no kinetic energy. The
+// potential energy it adds is counted in the ledger.
+#pragma once
+
+#include "solver_body.h"
+
+#include <tumble/collision.h>
+#include <tumble/model.h>
+#include <tumble/world.h>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace tumble {
+
+struct ContactSolverScratch {
+    struct Point {
+        int a = 0, b = 0;
+        Vec3 rA, rB, n, t1, t2;
+        double kn = 0, kt1 = 0, kt2 = 0;  // effective masses
+        double target = 0.0;              // wanted normal velocity after the solve
+        double mu = 0.0;
+        double lambdaN = 0.0, lambdaT1 = 0.0, lambdaT2 = 0.0;
+        Vec3 localA, localB, localN;  // for the position passes: A's and B's surface points, n in B
+        double slop = 0.0, size = 0.0;
+        std::uint32_t feature = 0;
+        Vec3 position;
+    };
+    std::vector<Point> points;
+    std::vector<SolverBody> bodies;
+    std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
+    std::vector<ContactMemory> nextMemory;
+};
+
+struct ContactSolverSettings {
+    int iterations = 20;       ///< velocity iterations
+    int positionIterations = 4;
+    double h = 1.0 / 240.0;    ///< the step, for speculative points
+    double restingSpeed = 0.0; ///< below this approach speed, no bounce
+    double touchTolerance = 0.0;  ///< points deeper than minus this are solved
+};
+
+/// Solves the velocities of the contacts and removes their overlap; writes the momenta
+/// and poses of the dynamic bodies, the impulses to remember (State::contacts, keeping
+/// those of sleeping pairs) and the ledger. `sizes`: per body, the bounding radius.
+void solveContacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
+                   const std::vector<double>& sizes, const ContactSolverSettings& settings,
+                   ContactSolverScratch& scratch, EnergyLedger& ledger);
+
+}  // namespace tumble

@@ -1,0 +1,166 @@
+#include "impact.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble {
+
+using collision::Manifold;
+
+namespace {
+
+constexpr int kMaxSweeps = 200;
+
+using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Manifold::kMaxPoints, Manifold::kMaxPoints>;
+using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Manifold::kMaxPoints, 1>;
+
+double restitution(const Model& model, const Manifold& m) {
+    return std::max(model.bodies[m.bodyA].restitution, model.bodies[m.bodyB].restitution);
+}
+
+double friction(const Model& model, const Manifold& m) {
+    return std::sqrt(model.bodies[m.bodyA].friction * model.bodies[m.bodyB].friction);
+}
+
+bool touches(const Manifold& m, double tol) {
+    for (int i = 0; i < m.count; ++i)
+        if (m.points[i].depth >= -tol) return true;
+    return false;
+}
+
+// The manifolds reached from the seed bodies through touching manifolds; dynamic bodies
+// carry the reach on, static and kinematic ones do not.
+void collectIsland(const Model& model, const State& state, const std::vector<Manifold>& contacts,
+                   const std::vector<int>& seeds, double tol, ImpactScratch& s) {
+    s.inIsland.assign(model.bodies.size(), 0);
+    auto carries = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
+    for (int b : seeds)
+        if (carries(b)) s.inIsland[b] = 1;
+    s.manifolds.clear();
+    std::vector<std::uint8_t> taken(contacts.size(), 0);
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (size_t k = 0; k < contacts.size(); ++k) {
+            const Manifold& m = contacts[k];
+            if (taken[k] || !(s.inIsland[m.bodyA] || s.inIsland[m.bodyB]) || !touches(m, tol)) continue;
+            taken[k] = 1;
+            for (int b : {m.bodyA, m.bodyB})
+                if (carries(b) && !s.inIsland[b]) s.inIsland[b] = 1, grew = true;
+        }
+    }
+    for (size_t k = 0; k < contacts.size(); ++k)
+        if (taken[k]) s.manifolds.push_back(static_cast<int>(k));
+}
+
+// One manifold: the approaching touching points solved together. Returns whether any
+// point was approaching.
+bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody>& bodies, double tol,
+                   double approachTol, double restingSpeed, EnergyLedger& ledger) {
+    SolverBody& A = bodies[m.bodyA];
+    SolverBody& B = bodies[m.bodyB];
+    const Vec3& n = m.normal;
+    const double e = restitution(model, m);
+    Vec3 rA[Manifold::kMaxPoints], rB[Manifold::kMaxPoints];
+    double gain[Manifold::kMaxPoints];  // wanted change of the normal velocity
+    int k = 0;
+    for (int i = 0; i < m.count; ++i) {
+        if (m.points[i].depth < -tol) continue;
+        const Vec3 a = m.points[i].position - A.x, b = m.points[i].position - B.x;
+        const double vn = n.dot(relativeVelocity(A, a, B, b));
+        if (vn >= -approachTol) continue;
+        rA[k] = a;
+        rB[k] = b;
+        gain[k] = -(1.0 + (-vn > restingSpeed ? e : 0.0)) * vn;
+        ++k;
+    }
+    if (k == 0) return false;
+
+    // K(i, j): normal velocity change at point i per unit normal impulse at point j.
+    Small K(k, k);
+    for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j)
+            K(i, j) = A.invMass + B.invMass + n.dot((A.invI * rA[j].cross(n)).cross(rA[i])) +
+                      n.dot((B.invI * rB[j].cross(n)).cross(rB[i]));
+    // Least-norm impulses, dropping points that would need to pull (λ < 0) one by one.
+    bool active[Manifold::kMaxPoints];
+    std::fill(active, active + k, true);
+    SmallVec lambda = SmallVec::Zero(k);
+    for (int round = 0; round < k; ++round) {
+        int na = 0, map[Manifold::kMaxPoints];
+        for (int i = 0; i < k; ++i)
+            if (active[i]) map[na++] = i;
+        Small Ks(na, na);
+        SmallVec g(na);
+        for (int i = 0; i < na; ++i) {
+            g[i] = gain[map[i]];
+            for (int j = 0; j < na; ++j) Ks(i, j) = K(map[i], map[j]);
+        }
+        const SmallVec sol = Ks.completeOrthogonalDecomposition().solve(g);
+        lambda.setZero();
+        int worst = -1;
+        for (int i = 0; i < na; ++i) {
+            lambda[map[i]] = sol[i];
+            if (sol[i] < 0.0 && (worst < 0 || sol[i] < lambda[worst])) worst = map[i];
+        }
+        if (worst < 0) break;
+        active[worst] = false;
+        lambda.setZero();
+    }
+    for (int i = 0; i < k; ++i)
+        if (lambda[i] > 0.0) ledger.lostInContacts += applyPairImpulse(A, rA[i], B, rB[i], lambda[i] * n);
+
+    // Coulomb friction at each point that was pushed: stop the sliding, within μ j.
+    const double mu = friction(model, m);
+    if (mu > 0.0) {
+        for (int i = 0; i < k; ++i) {
+            if (lambda[i] <= 0.0) continue;
+            const Vec3 v = relativeVelocity(A, rA[i], B, rB[i]);
+            const Vec3 vt = v - n.dot(v) * n;
+            const double speed = vt.norm();
+            if (speed <= approachTol) continue;
+            const Vec3 t = -vt / speed;
+            const double jt = std::min(speed / inverseEffectiveMass(A, rA[i], B, rB[i], t), mu * lambda[i]);
+            ledger.lostInFriction += applyPairImpulse(A, rA[i], B, rB[i], jt * t);
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<Manifold>& contacts,
+                            const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
+                            ImpactScratch& s, EnergyLedger& ledger) {
+    ImpactResult result;
+    collectIsland(model, state, contacts, seeds, touchTolerance, s);
+    if (s.manifolds.empty()) return result;
+    loadSolverBodies(model, state, s.bodies);
+
+    // "Still approaching" relative to the fastest approach at the start.
+    double scale = 0.0;
+    for (int k : s.manifolds) {
+        const Manifold& m = contacts[k];
+        for (int i = 0; i < m.count; ++i) {
+            const Vec3& p = m.points[i].position;
+            const Vec3 v = relativeVelocity(s.bodies[m.bodyA], p - s.bodies[m.bodyA].x, s.bodies[m.bodyB],
+                                            p - s.bodies[m.bodyB].x);
+            scale = std::max(scale, std::abs(m.normal.dot(v)));
+        }
+    }
+    const double approachTol = 1e-9 * scale + 1e-15;
+
+    for (;;) {
+        bool any = false;
+        for (int k : s.manifolds)
+            any |= solveManifold(model, contacts[k], s.bodies, touchTolerance, approachTol, restingSpeed, ledger);
+        if (!any) break;
+        if (++result.sweeps == kMaxSweeps) {
+            result.limited = true;
+            break;
+        }
+    }
+    storeSolverBodies(model, s.bodies, state);
+    return result;
+}
+
+}  // namespace tumble

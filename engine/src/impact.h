@@ -1,0 +1,46 @@
+// Stage: impulses at a moment of impact, the paper's section 4. The step has been cut at
+// the time of first touch of one or more pairs; here every contact point of the bodies
+// that touch them (directly or through a chain of touching dynamic bodies) that is still
+// approaching gets the impulse j n of (27), with restitution ε = max(εA, εB), and the
+// sweep over the points is repeated until none approaches (or a bound is hit).
+//
+// The points of one manifold are solved together: the impulses that give every
+// approaching point its target velocity -ε v⁻ at once, the least-norm solution when the
+// points are dependent (four corners of a face), so a body landing flat gets the
+// symmetric answer. Different manifolds are taken one after the other, which is what
+// carries an impact down a row of touching balls (Newton's cradle). A point approaching
+// slower than `restingSpeed` gets ε = 0: that is resting contact, not a bounce.
+// Each normal impulse is followed by a Coulomb friction impulse at the point, at most
+// μ j, that stops the sliding if it can.
+#pragma once
+
+#include "solver_body.h"
+
+#include <tumble/collision.h>
+#include <tumble/model.h>
+#include <tumble/world.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace tumble {
+
+struct ImpactScratch {
+    std::vector<SolverBody> bodies;
+    std::vector<std::uint8_t> inIsland;
+    std::vector<int> manifolds;
+};
+
+struct ImpactResult {
+    int sweeps = 0;
+    bool limited = false;  ///< stopped by the bound with points still approaching
+};
+
+/// `contacts`: the manifolds at the moment of impact; `seeds`: the bodies of the pairs that
+/// first touch now. A point counts as touching when its depth is at least -touchTolerance.
+/// Updates the momenta in `state` and the ledger.
+ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
+                            const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
+                            ImpactScratch& scratch, EnergyLedger& ledger);
+
+}  // namespace tumble

@@ -1,0 +1,123 @@
+#include "sleep.h"
+
+#include <algorithm>
+
+namespace tumble {
+
+using collision::Manifold;
+
+namespace {
+
+int root(std::vector<int>& parent, int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+bool touches(const Manifold& m, double tol) {
+    for (int i = 0; i < m.count; ++i)
+        if (m.points[i].depth >= -tol) return true;
+    return false;
+}
+
+bool dynamicBody(const Model& model, int b) { return model.bodies[b].motion == Motion::Dynamic; }
+
+bool forceActs(const Model& model, int body, double t) {
+    for (const ForceTerm& f : model.forces)
+        if (f.body == body && f.activeAt(t)) return true;
+    return false;
+}
+
+void wake(State& state, int b) {
+    state.asleep[b] = 0;
+    state.restTime[b] = 0.0;
+}
+
+}  // namespace
+
+void awakeBodies(const Model& model, const State& state, std::vector<int>& out) {
+    out.clear();
+    for (int i : model.dynamicBodies)
+        if (!state.isAsleep(i)) out.push_back(i);
+}
+
+bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& contacts, double tol, double h,
+                 SleepScratch& s, EnergyLedger& ledger) {
+    const int n = static_cast<int>(model.bodies.size());
+    state.restTime.resize(n, 0.0);
+    state.asleep.resize(n, 0);
+    s.parent.resize(n);
+    for (int i = 0; i < n; ++i) s.parent[i] = i;
+    s.blocked.assign(n, 0);
+
+    for (int i : model.dynamicBodies) {
+        if (state.asleep[i]) continue;
+        const Derived d = derive(model.bodies[i], state.bodies[i]);
+        const bool resting = d.v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
+                             d.omega.squaredNorm() < kSleepSpin * kSleepSpin && !forceActs(model, i, state.time);
+        state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
+    }
+    for (const Manifold& m : contacts) {
+        if (!touches(m, tol)) continue;
+        const int a = m.bodyA, b = m.bodyB;
+        if (dynamicBody(model, a) && dynamicBody(model, b)) {
+            s.parent[root(s.parent, a)] = root(s.parent, b);
+        } else {
+            // Resting on a moving kinematic body keeps the island awake.
+            for (int k : {a, b}) {
+                const BodyModel& o = model.bodies[k];
+                if (o.motion == Motion::Kinematic &&
+                    (o.kinematicVelocity.squaredNorm() > 0.0 || o.kinematicAngularVelocity.squaredNorm() > 0.0))
+                    s.blocked[a == k ? b : a] = 1;
+            }
+        }
+    }
+    s.islandRest.assign(n, 1e300);
+    for (int i : model.dynamicBodies) {
+        if (state.asleep[i]) continue;
+        const int r = root(s.parent, i);
+        s.islandRest[r] = std::min(s.islandRest[r], s.blocked[i] ? 0.0 : state.restTime[i]);
+    }
+    bool fell = false;
+    for (int i : model.dynamicBodies) {
+        if (state.asleep[i] || s.islandRest[root(s.parent, i)] < kTimeToSleep) continue;
+        BodyState& b = state.bodies[i];
+        const Derived d = derive(model.bodies[i], b);
+        ledger.lostInContacts += 0.5 * (d.v.dot(b.P) + d.omega.dot(b.L));  // the little left at rest
+        b.P.setZero();
+        b.L.setZero();
+        state.asleep[i] = 1;
+        fell = true;
+    }
+    return fell;
+}
+
+bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& contacts,
+                 const std::vector<collision::ImpactEvent>& impacts) {
+    if (state.asleep.empty()) return false;
+    std::vector<int> stack;
+    auto active = [&](int b) { return model.bodies[b].motion != Motion::Static && !state.isAsleep(b); };
+    auto touchPair = [&](int a, int b) {
+        if (state.isAsleep(a) && active(b)) stack.push_back(a);
+        if (state.isAsleep(b) && active(a)) stack.push_back(b);
+    };
+    for (const Manifold& m : contacts) touchPair(m.bodyA, m.bodyB);
+    for (const auto& e : impacts) touchPair(e.bodyA, e.bodyB);
+    for (int i : model.dynamicBodies)
+        if (state.isAsleep(i) && forceActs(model, i, state.time)) stack.push_back(i);
+    bool woke = false;
+    while (!stack.empty()) {
+        const int b = stack.back();
+        stack.pop_back();
+        if (!state.isAsleep(b)) continue;
+        wake(state, b);
+        woke = true;
+        // Its sleeping neighbours, from the contacts remembered while they slept.
+        for (const ContactMemory& c : state.contacts) {
+            if (c.bodyA == b && state.isAsleep(c.bodyB)) stack.push_back(c.bodyB);
+            if (c.bodyB == b && state.isAsleep(c.bodyA)) stack.push_back(c.bodyA);
+        }
+    }
+    return woke;
+}
+
+}  // namespace tumble

@@ -1,0 +1,65 @@
+// The velocity view of the bodies that the impulse stages work on: v and ω with the inverse
+// mass and world inverse inertia. Dynamic awake bodies are loaded from (P, L) and written
+// back; kinematic bodies move with their fixed velocities and static or sleeping ones stand
+// still, all three with zero inverse mass so that no impulse moves them.
+#pragma once
+
+#include <tumble/model.h>
+#include <tumble/state.h>
+
+#include <vector>
+
+namespace tumble {
+
+struct SolverBody {
+    Vec3 v = Vec3::Zero();
+    Vec3 w = Vec3::Zero();
+    Vec3 x = Vec3::Zero();  ///< centre of mass, world
+    double invMass = 0.0;
+    Mat3 invI = Mat3::Zero();  ///< world frame
+    bool touched = false;      ///< an impulse was applied: write the momenta back
+};
+
+/// Loads every body of `state` (`out` is resized to the body count).
+void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out);
+
+/// Writes the momenta of the dynamic awake bodies that took an impulse back: P = M v, L = I(t) ω.
+void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state);
+
+inline Vec3 pointVelocity(const SolverBody& b, const Vec3& r) { return b.v + b.w.cross(r); }
+
+/// Applies the impulse J at the offset r from the centre of mass (the paper's (22), (23)).
+inline void applyImpulse(SolverBody& b, const Vec3& r, const Vec3& J) {
+    b.v += b.invMass * J;
+    b.w += b.invI * r.cross(J);
+    b.touched = true;
+}
+
+/// The inverse effective mass of the pair along the unit direction d at the offsets rA, rB:
+/// the denominator of the paper's (27).
+inline double inverseEffectiveMass(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB,
+                                   const Vec3& d) {
+    return a.invMass + b.invMass + d.dot((a.invI * rA.cross(d)).cross(rA)) +
+           d.dot((b.invI * rB.cross(d)).cross(rB));
+}
+
+/// Velocity of A's point relative to B's point at the same world place.
+inline Vec3 relativeVelocity(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB) {
+    return pointVelocity(a, rA) - pointVelocity(b, rB);
+}
+
+/// Applies J to A and -J to B at their offsets and returns the kinetic energy it took out
+/// of the pair: -J·(u⁻ + u⁺)/2 with u the relative point velocity before and after (exact
+/// for an impulse on rigid bodies).
+inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, const Vec3& rB, const Vec3& J) {
+    const Vec3 before = relativeVelocity(a, rA, b, rB);
+    applyImpulse(a, rA, J);
+    applyImpulse(b, rB, -J);
+    const Vec3 after = relativeVelocity(a, rA, b, rB);
+    return -0.5 * J.dot(before + after);
+}
+
+/// Two unit tangents completing n to a right-handed frame.
+void tangentFrame(const Vec3& n, Vec3& t1, Vec3& t2);
+
+}  // namespace tumble
