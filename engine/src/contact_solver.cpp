@@ -33,19 +33,63 @@ void indexMemory(const State& state, ContactSolverScratch& s) {
 const ContactMemory* remembered(const State& state, const ContactSolverScratch& s, const Point& p) {
     const auto it = s.memory.find(pairKey(p.a, p.b));
     if (it == s.memory.end()) return nullptr;
-    const ContactMemory* best = nullptr;
-    double bestD = kMatch * p.size;
+    // The same pair of features if it is still near; else the nearest remembered point
+    // (features are renamed when, say, the reference face passes from one box to the other
+    // in a stack: the impulses at the same corner still hold).
+    const ContactMemory* same = nullptr;
+    const ContactMemory* nearest = nullptr;
+    double nearestD = kMatch * p.size;
     for (int i = it->second.first; i < it->second.second; ++i) {
         const ContactMemory& c = state.contacts[i];
         const double d = (c.position - p.position).norm();
-        if (c.feature == p.feature && d <= bestD) best = &c, bestD = d;
+        if (d > kMatch * p.size) continue;
+        if (c.feature == p.feature) same = &c;
+        if (d <= nearestD) nearest = &c, nearestD = d;
     }
-    return best;
+    return same ? same : nearest;
+}
+
+void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch::Block& block,
+                  const ContactSolverScratch& s) {
+    const int k = block.count;
+    const Point* q = &s.points[block.begin];
+    for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j)
+            block.K(i, j) = A.invMass + B.invMass + q[i].n.dot((A.invI * q[j].rA.cross(q[j].n)).cross(q[i].rA)) +
+                            q[i].n.dot((B.invI * q[j].rB.cross(q[j].n)).cross(q[i].rB));
+    if (k > 1) {
+        const Eigen::MatrixXd Kk = block.K.topLeftCorner(k, k);
+        block.Kinv.topLeftCorner(k, k) = leastNormInverse(Kk);
+    } else {
+        block.Kinv(0, 0) = q[0].kn;
+    }
+    // Friction at the centroid.
+    Vec3 c = Vec3::Zero();
+    for (int i = 0; i < k; ++i) c += q[i].position;
+    c /= k;
+    const Vec3& n = q[0].n;
+    block.rA = c - A.x;
+    block.rB = c - B.x;
+    tangentFrame(n, block.t1, block.t2);
+    // K of the two tangents: velocity change along t_i per unit impulse along t_j.
+    auto response = [&](const Vec3& ti, const Vec3& tj) {
+        return ti.dot(A.invMass * tj + (A.invI * block.rA.cross(tj)).cross(block.rA) + B.invMass * tj +
+                      (B.invI * block.rB.cross(tj)).cross(block.rB));
+    };
+    Eigen::Matrix2d Kt;
+    Kt << response(block.t1, block.t1), response(block.t1, block.t2), response(block.t2, block.t1),
+        response(block.t2, block.t2);
+    block.tangentMass = Kt.inverse();
+    const double twist = n.dot(A.invI * n) + n.dot(B.invI * n);
+    block.twistMass = twist > 0.0 ? 1.0 / twist : 0.0;
+    block.radius = 0.0;
+    for (int i = 0; i < k; ++i) block.radius += (q[i].position - c).norm() / k;
 }
 
 void prepare(const Model& model, const State& state, const std::vector<Manifold>& contacts,
              const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s) {
     s.points.clear();
+    s.blocks.clear();
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
         SolverBody& B = s.bodies[m.bodyB];
@@ -53,9 +97,11 @@ void prepare(const Model& model, const State& state, const std::vector<Manifold>
         const BodyModel& ma = model.bodies[m.bodyA];
         const BodyModel& mb = model.bodies[m.bodyB];
         const double e = std::max(ma.restitution, mb.restitution);
-        const double mu = std::sqrt(ma.friction * mb.friction);
         const Mat3 RA = state.bodies[m.bodyA].q.toRotationMatrix();
         const Mat3 RB = state.bodies[m.bodyB].q.toRotationMatrix();
+        ContactSolverScratch::Block block;
+        block.begin = static_cast<int>(s.points.size());
+        block.mu = std::sqrt(ma.friction * mb.friction);
         for (int i = 0; i < m.count; ++i) {
             const collision::ContactPoint& c = m.points[i];
             if (c.depth < -cfg.touchTolerance) continue;
@@ -63,13 +109,9 @@ void prepare(const Model& model, const State& state, const std::vector<Manifold>
             p.a = m.bodyA;
             p.b = m.bodyB;
             p.n = m.normal;
-            tangentFrame(p.n, p.t1, p.t2);
             p.rA = c.position - A.x;
             p.rB = c.position - B.x;
             p.kn = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.n);
-            p.kt1 = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.t1);
-            p.kt2 = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.t2);
-            p.mu = mu;
             const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
             if (c.depth < 0.0)
                 p.target = c.depth / cfg.h;  // apart: may close the gap within a step, no more
@@ -85,42 +127,138 @@ void prepare(const Model& model, const State& state, const std::vector<Manifold>
             p.position = c.position;
             s.points.push_back(p);
         }
+        block.count = static_cast<int>(s.points.size()) - block.begin;
+        if (block.count == 0) continue;
+        prepareBlock(A, B, block, s);
+        s.blocks.push_back(block);
+    }
+}
+
+void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, const Eigen::Vector2d& dT,
+                   double dTwist, EnergyLedger& ledger) {
+    SolverBody& A = s.bodies[s.points[block.begin].a];
+    SolverBody& B = s.bodies[s.points[block.begin].b];
+    ledger.lostInFriction += applyPairImpulse(A, block.rA, B, block.rB, dT[0] * block.t1 + dT[1] * block.t2);
+    if (dTwist != 0.0) {
+        const Vec3& n = s.points[block.begin].n;
+        const double before = n.dot(A.w - B.w);
+        A.w += A.invI * (dTwist * n);
+        B.w -= B.invI * (dTwist * n);
+        A.touched = A.touched || A.invMass > 0.0;
+        B.touched = B.touched || B.invMass > 0.0;
+        ledger.lostInFriction += -0.5 * dTwist * (before + n.dot(A.w - B.w));
     }
 }
 
 void warmStart(const State& state, ContactSolverScratch& s, EnergyLedger& ledger) {
-    for (Point& p : s.points) {
-        const ContactMemory* c = remembered(state, s, p);
-        if (!c) continue;
-        p.lambdaN = c->normalImpulse;
-        p.lambdaT1 = p.t1.dot(c->tangentImpulse);
-        p.lambdaT2 = p.t2.dot(c->tangentImpulse);
-        SolverBody& A = s.bodies[p.a];
-        SolverBody& B = s.bodies[p.b];
-        ledger.lostInContacts += applyPairImpulse(A, p.rA, B, p.rB, p.lambdaN * p.n);
-        ledger.lostInFriction += applyPairImpulse(A, p.rA, B, p.rB, p.lambdaT1 * p.t1 + p.lambdaT2 * p.t2);
+    for (auto& block : s.blocks) {
+        Vec3 tangent = Vec3::Zero();
+        double twist = 0.0;
+        for (int i = 0; i < block.count; ++i) {
+            Point& p = s.points[block.begin + i];
+            const ContactMemory* c = remembered(state, s, p);
+            if (!c) continue;
+            p.lambdaN = c->normalImpulse;
+            tangent += c->tangentImpulse;
+            twist += c->twistImpulse;
+            ledger.lostInContacts +=
+                applyPairImpulse(s.bodies[p.a], p.rA, s.bodies[p.b], p.rB, p.lambdaN * p.n);
+        }
+        block.lambdaT = Eigen::Vector2d(block.t1.dot(tangent), block.t2.dot(tangent));
+        block.lambdaTwist = twist;
+        applyFriction(s, block, block.lambdaT, twist, ledger);
     }
 }
 
-void iterate(ContactSolverScratch& s, EnergyLedger& ledger) {
-    for (Point& p : s.points) {
-        SolverBody& A = s.bodies[p.a];
-        SolverBody& B = s.bodies[p.b];
-        // Friction first, inside the cone of the current normal impulse.
-        if (p.mu > 0.0) {
-            const Vec3 v = relativeVelocity(A, p.rA, B, p.rB);
-            const double old1 = p.lambdaT1, old2 = p.lambdaT2;
-            double l1 = old1 - p.kt1 * p.t1.dot(v), l2 = old2 - p.kt2 * p.t2.dot(v);
-            const double limit = p.mu * p.lambdaN, len = std::hypot(l1, l2);
-            if (len > limit) l1 *= limit / len, l2 *= limit / len;
-            p.lambdaT1 = l1;
-            p.lambdaT2 = l2;
-            ledger.lostInFriction += applyPairImpulse(A, p.rA, B, p.rB, (l1 - old1) * p.t1 + (l2 - old2) * p.t2);
+void normalPoint(ContactSolverScratch& s, Point& p, EnergyLedger& ledger) {
+    SolverBody& A = s.bodies[p.a];
+    SolverBody& B = s.bodies[p.b];
+    const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
+    const double old = p.lambdaN;
+    p.lambdaN = std::max(0.0, old - p.kn * (vn - p.target));
+    ledger.lostInContacts += applyPairImpulse(A, p.rA, B, p.rB, (p.lambdaN - old) * p.n);
+}
+
+// The normal impulses of one manifold together: the least-norm impulses that give every
+// point its target velocity; a point that would pull is let go (λ = 0) and the others are
+// solved again without it.
+void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, EnergyLedger& ledger) {
+    Point* q = &s.points[block.begin];
+    const int k = block.count;
+    if (k == 1) return normalPoint(s, q[0], ledger);
+    SolverBody& A = s.bodies[q[0].a];
+    SolverBody& B = s.bodies[q[0].b];
+    Eigen::Vector4d lambda = Eigen::Vector4d::Zero(), rhs = Eigen::Vector4d::Zero();
+    for (int i = 0; i < k; ++i) lambda[i] = q[i].lambdaN;
+    for (int i = 0; i < k; ++i) {
+        // What the impulses must add to the velocity the point would have without them.
+        const double vn = q[i].n.dot(relativeVelocity(A, q[i].rA, B, q[i].rB));
+        rhs[i] = q[i].target - (vn - block.K.row(i).head(k).dot(lambda.head(k)));
+    }
+    Eigen::Vector4d wanted = block.Kinv * rhs;
+    // Every point that pulls is let go at once (not the worst first: ties between
+    // symmetric points must not be broken by their order).
+    bool active[4] = {true, true, true, true};
+    for (int round = 1; round < k; ++round) {
+        bool dropped = false;
+        for (int i = 0; i < k; ++i)
+            if (active[i] && wanted[i] < 0.0) active[i] = false, dropped = true;
+        if (!dropped) break;
+        int map[4], na = 0;
+        for (int i = 0; i < k; ++i)
+            if (active[i]) map[na++] = i;
+        wanted.setZero();
+        if (na == 0) break;
+        Eigen::MatrixXd Ks(na, na);
+        Eigen::VectorXd r(na);
+        for (int i = 0; i < na; ++i) {
+            r[i] = rhs[map[i]];
+            for (int j = 0; j < na; ++j) Ks(i, j) = block.K(map[i], map[j]);
         }
-        const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
-        const double old = p.lambdaN;
-        p.lambdaN = std::max(0.0, old - p.kn * (vn - p.target));
-        ledger.lostInContacts += applyPairImpulse(A, p.rA, B, p.rB, (p.lambdaN - old) * p.n);
+        const Eigen::VectorXd sol = leastNormSolve(Ks, r);
+        wanted.setZero();
+        for (int i = 0; i < na; ++i) wanted[map[i]] = sol[i];
+    }
+    for (int i = 0; i < k; ++i) {
+        wanted[i] = std::max(wanted[i], 0.0);  // the last one left may still pull
+        q[i].lambdaN = wanted[i];
+        ledger.lostInContacts += applyPairImpulse(A, q[i].rA, B, q[i].rB, (wanted[i] - lambda[i]) * q[i].n);
+    }
+}
+
+// Friction of one manifold: stop the sliding and the twisting at the centroid, within
+// the Coulomb limits of the current normal impulses.
+void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block, EnergyLedger& ledger) {
+    if (block.mu <= 0.0) return;
+    double normal = 0.0;
+    for (int i = 0; i < block.count; ++i) normal += s.points[block.begin + i].lambdaN;
+    const double limit = block.mu * normal;
+    const Point& p = s.points[block.begin];
+    SolverBody& A = s.bodies[p.a];
+    SolverBody& B = s.bodies[p.b];
+    const Vec3 v = relativeVelocity(A, block.rA, B, block.rB);
+    Eigen::Vector2d l = block.lambdaT - block.tangentMass * Eigen::Vector2d(block.t1.dot(v), block.t2.dot(v));
+    if (l.norm() > limit) l *= limit / l.norm();
+    double tw = block.lambdaTwist;
+    if (block.radius > 0.0 && block.twistMass > 0.0) {
+        tw -= block.twistMass * p.n.dot(A.w - B.w);
+        tw = std::clamp(tw, -limit * block.radius, limit * block.radius);
+    }
+    const Eigen::Vector2d dT = l - block.lambdaT;
+    const double dTwist = tw - block.lambdaTwist;
+    block.lambdaT = l;
+    block.lambdaTwist = tw;
+    applyFriction(s, block, dT, dTwist, ledger);
+}
+
+// One pass over the manifolds, forwards on even passes and backwards on odd ones so that
+// their order leaves no bias.
+void iterate(ContactSolverScratch& s, int pass, EnergyLedger& ledger) {
+    const int nb = static_cast<int>(s.blocks.size());
+    for (int b = 0; b < nb; ++b) {
+        ContactSolverScratch::Block& block = s.blocks[pass % 2 ? nb - 1 - b : b];
+        frictionBlock(s, block, ledger);
+        normalBlock(s, block, ledger);
     }
 }
 
@@ -162,15 +300,20 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes) {
 
 void remember(const Model& model, const State& state, ContactSolverScratch& s) {
     s.nextMemory.clear();
-    for (const Point& p : s.points) {
-        ContactMemory c;
-        c.bodyA = p.a;
-        c.bodyB = p.b;
-        c.feature = p.feature;
-        c.position = p.position;
-        c.normalImpulse = p.lambdaN;
-        c.tangentImpulse = p.lambdaT1 * p.t1 + p.lambdaT2 * p.t2;
-        s.nextMemory.push_back(c);
+    for (const auto& block : s.blocks) {
+        const Vec3 tangent = (block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2) / block.count;
+        for (int i = 0; i < block.count; ++i) {
+            const Point& p = s.points[block.begin + i];
+            ContactMemory c;
+            c.bodyA = p.a;
+            c.bodyB = p.b;
+            c.feature = p.feature;
+            c.position = p.position;
+            c.normalImpulse = p.lambdaN;
+            c.tangentImpulse = tangent;
+            c.twistImpulse = block.lambdaTwist / block.count;
+            s.nextMemory.push_back(c);
+        }
     }
     // Pairs that were not solved because they sleep keep what they had (and tell who
     // rests on whom when something wakes them).
@@ -179,23 +322,40 @@ void remember(const Model& model, const State& state, ContactSolverScratch& s) {
         if (idle(c.bodyA) && idle(c.bodyB)) s.nextMemory.push_back(c);
 }
 
+
+// The pose of every body the solver pushed, from the start of the step with its new
+// velocity (symplectic Euler for the bodies in contact).
+void redoPoses(const Model& model, State& state, const State& before, const ContactSolverScratch& s) {
+    const double h = state.time - before.time;
+    for (int i : model.dynamicBodies) {
+        if (!s.bodies[i].touched || state.isAsleep(i)) continue;
+        BodyState& b = state.bodies[i];
+        b.x = before.bodies[i].x + h * s.bodies[i].v;
+        const Vec3 turn = h * s.bodies[i].w;
+        const double angle = turn.norm();
+        b.q = angle > 0.0 ? (Quat(Eigen::AngleAxisd(angle, turn / angle)) * before.bodies[i].q).normalized()
+                          : before.bodies[i].q;
+    }
+}
+
 }  // namespace
 
-void solveContacts(const Model& model, State& state, const std::vector<Manifold>& contacts,
+void solveContacts(const Model& model, State& state, const State& before, const std::vector<Manifold>& contacts,
                    const std::vector<double>& sizes, const ContactSolverSettings& cfg,
                    ContactSolverScratch& s, EnergyLedger& ledger) {
     loadSolverBodies(model, state, s.bodies);
     prepare(model, state, contacts, sizes, cfg, s);
     indexMemory(state, s);
     warmStart(state, s, ledger);
-    for (int k = 0; k < cfg.iterations; ++k) iterate(s, ledger);
+    for (int k = 0; k < cfg.iterations; ++k) iterate(s, k, ledger);
     storeSolverBodies(model, s.bodies, state);
     remember(model, state, s);
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;
-    const double before = energy(model, state).potential;
-    if (correctPositions(state, s, cfg.positionIterations))
-        ledger.positionCorrection += energy(model, state).potential - before;
+    const double potential = energy(model, state).potential;
+    redoPoses(model, state, before, s);
+    correctPositions(state, s, cfg.positionIterations);
+    ledger.positionCorrection += energy(model, state).potential - potential;
 }
 
 }  // namespace tumble

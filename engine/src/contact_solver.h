@@ -7,7 +7,8 @@
 // |λt| ≤ μ λn), started from the impulses of the same points in the last step (warm
 // starting: a stack needs few iterations because each step starts from the answer of the
 // one before). A point approaching faster than the resting speed bounces with restitution
-// ε (target -ε v⁻); slower, it is resting contact (target 0).
+// ε (target -ε v⁻); slower, it is resting contact (target 0). Friction acts per manifold
+// at the centroid of its points (see Block below).
 //
 // Positions: the overlap left by the step is removed by moving the bodies apart along
 // the normal (a few Gauss-Seidel passes, a fraction of the overlap beyond a small slop
@@ -30,17 +31,34 @@ namespace tumble {
 struct ContactSolverScratch {
     struct Point {
         int a = 0, b = 0;
-        Vec3 rA, rB, n, t1, t2;
-        double kn = 0, kt1 = 0, kt2 = 0;  // effective masses
-        double target = 0.0;              // wanted normal velocity after the solve
-        double mu = 0.0;
-        double lambdaN = 0.0, lambdaT1 = 0.0, lambdaT2 = 0.0;
+        Vec3 rA, rB, n;
+        double kn = 0;           // effective mass along the normal
+        double target = 0.0;     // wanted normal velocity after the solve
+        double lambdaN = 0.0;    // accumulated normal impulse
         Vec3 localA, localB, localN;  // for the position passes: A's and B's surface points, n in B
         double slop = 0.0, size = 0.0;
         std::uint32_t feature = 0;
         Vec3 position;
     };
+    /// One manifold. Its points are solved together along the normal (K: normal velocity
+    /// change at i per unit impulse at j, and its least-norm inverse). Friction acts on the
+    /// manifold as a whole, at the centroid of its points: a tangential impulse inside the
+    /// disc μ Σλn and a twisting impulse about the normal inside μ Σλn × the patch radius.
+    /// Solved per patch, friction has no order among the points to favour, so a symmetric
+    /// stack stays symmetric.
+    struct Block {
+        int begin = 0, count = 0;
+        Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
+        Eigen::Matrix4d Kinv = Eigen::Matrix4d::Zero();
+        double mu = 0.0;
+        Vec3 rA, rB, t1, t2;          // centroid offsets, tangents
+        Eigen::Matrix2d tangentMass;  // inverse of the 2x2 tangential K at the centroid
+        double twistMass = 0.0, radius = 0.0;
+        Eigen::Vector2d lambdaT = Eigen::Vector2d::Zero();
+        double lambdaTwist = 0.0;
+    };
     std::vector<Point> points;
+    std::vector<Block> blocks;
     std::vector<SolverBody> bodies;
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
@@ -57,7 +75,10 @@ struct ContactSolverSettings {
 /// Solves the velocities of the contacts and removes their overlap; writes the momenta
 /// and poses of the dynamic bodies, the impulses to remember (State::contacts, keeping
 /// those of sleeping pairs) and the ledger. `sizes`: per body, the bounding radius.
-void solveContacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
+/// `before`: the state at the start of the (last part of the) step: a body the solver
+/// pushed is moved again from there with its new velocity (x = x0 + h v, q turned by h ω),
+/// so that the motion the contact forbids (sinking, creeping down a slope) never happens.
+void solveContacts(const Model& model, State& state, const State& before, const std::vector<collision::Manifold>& contacts,
                    const std::vector<double>& sizes, const ContactSolverSettings& settings,
                    ContactSolverScratch& scratch, EnergyLedger& ledger);
 

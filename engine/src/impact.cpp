@@ -95,7 +95,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
             g[i] = gain[map[i]];
             for (int j = 0; j < na; ++j) Ks(i, j) = K(map[i], map[j]);
         }
-        const SmallVec sol = Ks.completeOrthogonalDecomposition().solve(g);
+        const Eigen::VectorXd sol = leastNormSolve(Ks, g);
         lambda.setZero();
         int worst = -1;
         for (int i = 0; i < na; ++i) {

@@ -35,6 +35,21 @@ void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies
     }
 }
 
+namespace {
+
+Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decompose(const Eigen::MatrixXd& K) {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-9);
+    cod.compute(K);
+    return cod;
+}
+
+}  // namespace
+
+Eigen::VectorXd leastNormSolve(const Eigen::MatrixXd& K, const Eigen::VectorXd& b) { return decompose(K).solve(b); }
+
+Eigen::MatrixXd leastNormInverse(const Eigen::MatrixXd& K) { return decompose(K).pseudoInverse(); }
+
 void tangentFrame(const Vec3& n, Vec3& t1, Vec3& t2) {
     // The axis least aligned with n gives a well-conditioned first tangent.
     const Vec3 a = std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());

@@ -30,6 +30,7 @@ inline Vec3 pointVelocity(const SolverBody& b, const Vec3& r) { return b.v + b.w
 
 /// Applies the impulse J at the offset r from the centre of mass (the paper's (22), (23)).
 inline void applyImpulse(SolverBody& b, const Vec3& r, const Vec3& J) {
+    if (J.isZero(0.0)) return;
     b.v += b.invMass * J;
     b.w += b.invI * r.cross(J);
     b.touched = true;
@@ -58,6 +59,14 @@ inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, con
     const Vec3 after = relativeVelocity(a, rA, b, rB);
     return -0.5 * J.dot(before + after);
 }
+
+/// The least-norm solution of K x = b for a small symmetric K that may be singular (the
+/// four corners of a face give a rank-3 K): directions whose singular value is below 1e-9
+/// of the largest count as null, so rounding is never divided by almost zero.
+Eigen::VectorXd leastNormSolve(const Eigen::MatrixXd& K, const Eigen::VectorXd& b);
+
+/// The matching pseudo-inverse.
+Eigen::MatrixXd leastNormInverse(const Eigen::MatrixXd& K);
 
 /// Two unit tangents completing n to a right-handed frame.
 void tangentFrame(const Vec3& n, Vec3& t1, Vec3& t2);

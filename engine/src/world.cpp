@@ -127,7 +127,12 @@ void World::impactAt(double t0) {
         s.seeds.push_back(e.bodyB);
     }
     profile_.impactSolve += since(t);
+    // Back to the start of the sub-step, keeping who was woken since.
+    std::vector<double> rest = std::move(state_.restTime);
+    std::vector<std::uint8_t> asleep = std::move(state_.asleep);
     state_ = s.before;
+    state_.restTime = std::move(rest);
+    state_.asleep = std::move(asleep);
     if (first > t0) advance(first - t0);
     state_.time = first;
 
@@ -172,7 +177,7 @@ void World::step(double h) {
     cfg.h = h;
     cfg.restingSpeed = 2.0 * model_.settings.gravity.norm() * model_.settings.dt;
     cfg.touchTolerance = s.touchTolerance;
-    solveContacts(model_, state_, d.contacts, s.sizes, cfg, s.solver, ledger_);
+    solveContacts(model_, state_, s.before, d.contacts, s.sizes, cfg, s.solver, ledger_);
     checkFinite(model_, state_);
     profile_.solve += since(t);
 

@@ -27,7 +27,8 @@ struct ContactMemory {
     std::uint32_t feature = 0;
     Vec3 position = Vec3::Zero();  ///< world, where the point was
     double normalImpulse = 0.0;    ///< N·s, along the manifold normal
-    Vec3 tangentImpulse = Vec3::Zero();  ///< N·s, world, perpendicular to the normal
+    Vec3 tangentImpulse = Vec3::Zero();  ///< N·s, world: this point's share of its manifold's friction
+    double twistImpulse = 0.0;           ///< N·m·s about the normal: this point's share
 };
 
 struct State {

@@ -36,7 +36,7 @@ struct Profile {
 struct EnergyLedger {
     double lostInContacts = 0.0;     ///< kinetic energy taken by normal impulses (restitution < 1)
     double lostInFriction = 0.0;     ///< kinetic energy taken by friction impulses
-    double positionCorrection = 0.0; ///< potential energy of pushing overlapping bodies apart
+    double positionCorrection = 0.0; ///< potential energy of placing pushed bodies (contact positions, overlap removal)
 };
 
 class World {
