@@ -47,10 +47,15 @@ Exit status: 0 success; 2 invalid input (the message names the file and the fiel
 body and the time). On failure no output file is written.
 
 A successful run prints key: value lines: bodies, integrator, dt, frames, steps,
-simulated_time, wall_seconds, energy_start, energy_end, the time of each stage
-(forces_seconds, integrate_seconds, broadphase_seconds, narrowphase_seconds,
-toi_seconds), pairs, contact_points and impacts summed over the steps, and state_hash
-(the same scene and options give the same hash).
+simulated_time, wall_seconds; energy_start and energy_end (kinetic + potential, J) and
+where energy went: energy_lost_contacts, energy_lost_friction (taken by impulses) and
+energy_position_correction (potential energy of placing bodies in contact), so that
+energy_end = energy_start - lost + correction when no force drives the scene; the time
+of each stage (forces_seconds, integrate_seconds, broadphase_seconds,
+narrowphase_seconds, toi_seconds, impact_seconds, solve_seconds, sleep_seconds); pairs,
+contact_points, impacts, impact_moments (the steps were cut there), impact_sweep_limits
+and awake_body_steps summed over the steps; and state_hash (the same scene and options
+give the same hash).
 )";
 
 struct Options {
@@ -221,14 +226,23 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "wall_seconds: " << wall << "\n"
             << "energy_start: " << number(before.total()) << "\n"
             << "energy_end: " << number(after.total()) << "\n"
+            << "energy_lost_contacts: " << number(world->ledger().lostInContacts) << "\n"
+            << "energy_lost_friction: " << number(world->ledger().lostInFriction) << "\n"
+            << "energy_position_correction: " << number(world->ledger().positionCorrection) << "\n"
             << "forces_seconds: " << p.forces << "\n"
             << "integrate_seconds: " << p.integrate << "\n"
             << "broadphase_seconds: " << p.broadphase << "\n"
             << "narrowphase_seconds: " << p.narrowphase << "\n"
             << "toi_seconds: " << p.timeOfImpact << "\n"
+            << "impact_seconds: " << p.impactSolve << "\n"
+            << "solve_seconds: " << p.solve << "\n"
+            << "sleep_seconds: " << p.sleep << "\n"
             << "pairs: " << p.pairs << "\n"
             << "contact_points: " << p.contactPoints << "\n"
             << "impacts: " << p.impacts << "\n"
+            << "impact_moments: " << p.impactMoments << "\n"
+            << "impact_sweep_limits: " << p.impactSweepLimits << "\n"
+            << "awake_body_steps: " << p.awakeBodySteps << "\n"
             << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }
     return kOk;

@@ -57,12 +57,8 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
         for (int j = 0; j < k; ++j)
             block.K(i, j) = A.invMass + B.invMass + q[i].n.dot((A.invI * q[j].rA.cross(q[j].n)).cross(q[i].rA)) +
                             q[i].n.dot((B.invI * q[j].rB.cross(q[j].n)).cross(q[i].rB));
-    if (k > 1) {
-        const Eigen::MatrixXd Kk = block.K.topLeftCorner(k, k);
-        block.Kinv.topLeftCorner(k, k) = leastNormInverse(Kk);
-    } else {
-        block.Kinv(0, 0) = q[0].kn;
-    }
+    block.Kinv = k > 1 ? leastNormInverse(block.K, k) : Eigen::Matrix4d::Zero();
+    if (k == 1) block.Kinv(0, 0) = q[0].kn;
     // Friction at the centroid.
     Vec3 c = Vec3::Zero();
     for (int i = 0; i < k; ++i) c += q[i].position;
@@ -176,54 +172,36 @@ void normalPoint(ContactSolverScratch& s, Point& p, EnergyLedger& ledger) {
     const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
     const double old = p.lambdaN;
     p.lambdaN = std::max(0.0, old - p.kn * (vn - p.target));
-    ledger.lostInContacts += applyPairImpulse(A, p.rA, B, p.rB, (p.lambdaN - old) * p.n);
+    const double d = p.lambdaN - old;
+    applyImpulse(A, p.rA, d * p.n);
+    applyImpulse(B, p.rB, -d * p.n);
+    ledger.lostInContacts -= d * vn + 0.5 * d * d / p.kn;  // the kinetic energy the impulse added
 }
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
-// point its target velocity; a point that would pull is let go (λ = 0) and the others are
-// solved again without it.
+// point its target velocity, none pulling (pushingImpulses).
 void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, EnergyLedger& ledger) {
     Point* q = &s.points[block.begin];
     const int k = block.count;
     if (k == 1) return normalPoint(s, q[0], ledger);
     SolverBody& A = s.bodies[q[0].a];
     SolverBody& B = s.bodies[q[0].b];
-    Eigen::Vector4d lambda = Eigen::Vector4d::Zero(), rhs = Eigen::Vector4d::Zero();
+    Eigen::Vector4d lambda = Eigen::Vector4d::Zero(), rhs = Eigen::Vector4d::Zero(), vn = Eigen::Vector4d::Zero();
     for (int i = 0; i < k; ++i) lambda[i] = q[i].lambdaN;
     for (int i = 0; i < k; ++i) {
         // What the impulses must add to the velocity the point would have without them.
-        const double vn = q[i].n.dot(relativeVelocity(A, q[i].rA, B, q[i].rB));
-        rhs[i] = q[i].target - (vn - block.K.row(i).head(k).dot(lambda.head(k)));
+        vn[i] = q[i].n.dot(relativeVelocity(A, q[i].rA, B, q[i].rB));
+        rhs[i] = q[i].target - (vn[i] - block.K.row(i).dot(lambda));  // zero beyond k
     }
-    Eigen::Vector4d wanted = block.Kinv * rhs;
-    // Every point that pulls is let go at once (not the worst first: ties between
-    // symmetric points must not be broken by their order).
-    bool active[4] = {true, true, true, true};
-    for (int round = 1; round < k; ++round) {
-        bool dropped = false;
-        for (int i = 0; i < k; ++i)
-            if (active[i] && wanted[i] < 0.0) active[i] = false, dropped = true;
-        if (!dropped) break;
-        int map[4], na = 0;
-        for (int i = 0; i < k; ++i)
-            if (active[i]) map[na++] = i;
-        wanted.setZero();
-        if (na == 0) break;
-        Eigen::MatrixXd Ks(na, na);
-        Eigen::VectorXd r(na);
-        for (int i = 0; i < na; ++i) {
-            r[i] = rhs[map[i]];
-            for (int j = 0; j < na; ++j) Ks(i, j) = block.K(map[i], map[j]);
-        }
-        const Eigen::VectorXd sol = leastNormSolve(Ks, r);
-        wanted.setZero();
-        for (int i = 0; i < na; ++i) wanted[map[i]] = sol[i];
-    }
+    const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k);
+    const Eigen::Vector4d d = wanted - lambda;
     for (int i = 0; i < k; ++i) {
-        wanted[i] = std::max(wanted[i], 0.0);  // the last one left may still pull
         q[i].lambdaN = wanted[i];
-        ledger.lostInContacts += applyPairImpulse(A, q[i].rA, B, q[i].rB, (wanted[i] - lambda[i]) * q[i].n);
+        applyImpulse(A, q[i].rA, d[i] * q[i].n);
+        applyImpulse(B, q[i].rB, -d[i] * q[i].n);
     }
+    // The kinetic energy the impulses added: d·v + ½ dᵀ K d, exact for rigid bodies.
+    ledger.lostInContacts -= d.dot(vn) + 0.5 * d.dot(block.K * d);  // all zero beyond k
 }
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within

@@ -24,7 +24,7 @@ void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
     }
 }
 
-void findPairs(const Model& model, const State& state, DetectScratch& s) {
+void findPairs(const Model& model, const State& state, double margin, DetectScratch& s) {
     const size_t n = model.bodies.size();
     s.swept.resize(n);
     s.moving.resize(n);
@@ -33,6 +33,8 @@ void findPairs(const Model& model, const State& state, DetectScratch& s) {
         s.moving[i] = b.motion != Motion::Static && !state.isAsleep(static_cast<int>(i));
         s.swept[i] = bounds(b.collider, s.end[i]);
         if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
+        s.swept[i].min.array() -= margin;
+        s.swept[i].max.array() += margin;
     }
     s.broadphase.update(s.swept, s.moving);
 }
@@ -79,8 +81,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const double size = std::min(boundingRadius(A.collider), boundingRadius(B.collider));
         const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
                                       sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
-        // s = 0: touching at the start already (the first step has no previous contacts).
-        if (hit && hit->s > 0.0) s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
+        if (hit) s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
     }
 }
 

@@ -32,16 +32,18 @@ bool needsContacts(const Model& model);
 /// World pose of each body's frame.
 void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out);
 
-/// Broadphase: pairs whose boxes, swept over the step, overlap. Sleeping bodies stand with
-/// the static ones, so two sleeping bodies (or a sleeping and a static one) never pair.
-void findPairs(const Model& model, const State& state, DetectScratch& s);
+/// Broadphase: pairs whose boxes, swept over the step and grown by `margin`, overlap.
+/// Sleeping bodies stand with the static ones, so two sleeping bodies (or a sleeping and a
+/// static one) never pair.
+void findPairs(const Model& model, const State& state, double margin, DetectScratch& s);
 
 /// Narrowphase: the manifolds of every pair at the end of the step.
 void findContacts(const Model& model, DetectScratch& s, double margin);
 
 /// Time of impact: for pairs that did not touch at the start of the step (no point of
 /// `s.previous` deeper than -touchTolerance), the moment they first come within
-/// `tolerance` × the smaller body's size (t0 = time at the start, h = step).
+/// `tolerance` × the smaller body's size (t0 = time at the start, h = step). A pair that
+/// is that near already at the start has its impact at t0.
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
                  double touchTolerance, double tolerance, DetectScratch& s);
 

@@ -11,8 +11,6 @@ namespace {
 
 constexpr int kMaxSweeps = 200;
 
-using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Manifold::kMaxPoints, Manifold::kMaxPoints>;
-using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Manifold::kMaxPoints, 1>;
 
 double restitution(const Model& model, const Manifold& m) {
     return std::max(model.bodies[m.bodyA].restitution, model.bodies[m.bodyB].restitution);
@@ -76,36 +74,15 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
     if (k == 0) return false;
 
     // K(i, j): normal velocity change at point i per unit normal impulse at point j.
-    Small K(k, k);
-    for (int i = 0; i < k; ++i)
+    Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d g = Eigen::Vector4d::Zero();
+    for (int i = 0; i < k; ++i) {
+        g[i] = gain[i];
         for (int j = 0; j < k; ++j)
             K(i, j) = A.invMass + B.invMass + n.dot((A.invI * rA[j].cross(n)).cross(rA[i])) +
                       n.dot((B.invI * rB[j].cross(n)).cross(rB[i]));
-    // Least-norm impulses, dropping points that would need to pull (λ < 0) one by one.
-    bool active[Manifold::kMaxPoints];
-    std::fill(active, active + k, true);
-    SmallVec lambda = SmallVec::Zero(k);
-    for (int round = 0; round < k; ++round) {
-        int na = 0, map[Manifold::kMaxPoints];
-        for (int i = 0; i < k; ++i)
-            if (active[i]) map[na++] = i;
-        Small Ks(na, na);
-        SmallVec g(na);
-        for (int i = 0; i < na; ++i) {
-            g[i] = gain[map[i]];
-            for (int j = 0; j < na; ++j) Ks(i, j) = K(map[i], map[j]);
-        }
-        const Eigen::VectorXd sol = leastNormSolve(Ks, g);
-        lambda.setZero();
-        int worst = -1;
-        for (int i = 0; i < na; ++i) {
-            lambda[map[i]] = sol[i];
-            if (sol[i] < 0.0 && (worst < 0 || sol[i] < lambda[worst])) worst = map[i];
-        }
-        if (worst < 0) break;
-        active[worst] = false;
-        lambda.setZero();
     }
+    const Eigen::Vector4d lambda = pushingImpulses(K, leastNormInverse(K, k), g, k);
     for (int i = 0; i < k; ++i)
         if (lambda[i] > 0.0) ledger.lostInContacts += applyPairImpulse(A, rA[i], B, rB[i], lambda[i] * n);
 
@@ -127,6 +104,24 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
 }
 
 }  // namespace
+
+void approachingBodies(const Model& model, const State& state, const std::vector<Manifold>& contacts,
+                       double tol, double speed, ImpactScratch& s, std::vector<int>& seeds) {
+    seeds.clear();
+    if (contacts.empty()) return;
+    loadSolverBodies(model, state, s.bodies);
+    for (const Manifold& m : contacts) {
+        const SolverBody& A = s.bodies[m.bodyA];
+        const SolverBody& B = s.bodies[m.bodyB];
+        for (int i = 0; i < m.count; ++i) {
+            const Vec3& p = m.points[i].position;
+            if (m.points[i].depth < -tol || m.normal.dot(relativeVelocity(A, p - A.x, B, p - B.x)) >= -speed) continue;
+            seeds.push_back(m.bodyA);
+            seeds.push_back(m.bodyB);
+            break;
+        }
+    }
+}
 
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,

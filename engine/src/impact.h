@@ -39,6 +39,11 @@ struct ImpactResult {
 /// `contacts`: the manifolds at the moment of impact; `seeds`: the bodies of the pairs that
 /// first touch now. A point counts as touching when its depth is at least -touchTolerance.
 /// Updates the momenta in `state` and the ledger.
+/// The bodies of the touching contacts that approach faster than `speed` (bounces that no
+/// time of impact found, e.g. of bodies touching at the start of the step).
+void approachingBodies(const Model& model, const State& state, const std::vector<collision::Manifold>& contacts,
+                       double touchTolerance, double speed, ImpactScratch& scratch, std::vector<int>& seeds);
+
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
                             ImpactScratch& scratch, EnergyLedger& ledger);

@@ -1,5 +1,7 @@
 #include "solver_body.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 
 namespace tumble {
@@ -35,20 +37,44 @@ void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies
     }
 }
 
-namespace {
-
-Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decompose(const Eigen::MatrixXd& K) {
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-    cod.setThreshold(1e-9);
-    cod.compute(K);
-    return cod;
+Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
+    Eigen::Matrix4d Kk = Eigen::Matrix4d::Zero();
+    Kk.topLeftCorner(k, k) = K.topLeftCorner(k, k);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Kk);
+    const Eigen::Vector4d& l = eig.eigenvalues();
+    const double cut = 1e-9 * l.cwiseAbs().maxCoeff();
+    Eigen::Vector4d inv = Eigen::Vector4d::Zero();
+    for (int i = 0; i < 4; ++i)
+        if (l[i] > cut) inv[i] = 1.0 / l[i];
+    return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
 }
 
-}  // namespace
-
-Eigen::VectorXd leastNormSolve(const Eigen::MatrixXd& K, const Eigen::VectorXd& b) { return decompose(K).solve(b); }
-
-Eigen::MatrixXd leastNormInverse(const Eigen::MatrixXd& K) { return decompose(K).pseudoInverse(); }
+Eigen::Vector4d pushingImpulses(const Eigen::Matrix4d& K, const Eigen::Matrix4d& Kinv, const Eigen::Vector4d& g,
+                                int k) {
+    Eigen::Vector4d lambda = Kinv * g;
+    bool active[4] = {true, true, true, true};
+    for (int round = 1; round < k; ++round) {
+        bool dropped = false;
+        for (int i = 0; i < k; ++i)
+            if (active[i] && lambda[i] < 0.0) active[i] = false, dropped = true;
+        if (!dropped) break;
+        int map[4], na = 0;
+        for (int i = 0; i < k; ++i)
+            if (active[i]) map[na++] = i;
+        lambda.setZero();
+        if (na == 0) break;
+        Eigen::Matrix4d Ks = Eigen::Matrix4d::Zero();
+        Eigen::Vector4d gs = Eigen::Vector4d::Zero();
+        for (int i = 0; i < na; ++i) {
+            gs[i] = g[map[i]];
+            for (int j = 0; j < na; ++j) Ks(i, j) = K(map[i], map[j]);
+        }
+        const Eigen::Vector4d sol = leastNormInverse(Ks, na) * gs;
+        for (int i = 0; i < na; ++i) lambda[map[i]] = sol[i];
+    }
+    for (int i = 0; i < 4; ++i) lambda[i] = i < k ? std::max(lambda[i], 0.0) : 0.0;  // the last one may still pull
+    return lambda;
+}
 
 void tangentFrame(const Vec3& n, Vec3& t1, Vec3& t2) {
     // The axis least aligned with n gives a well-conditioned first tangent.

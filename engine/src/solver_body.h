@@ -60,13 +60,19 @@ inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, con
     return -0.5 * J.dot(before + after);
 }
 
-/// The least-norm solution of K x = b for a small symmetric K that may be singular (the
-/// four corners of a face give a rank-3 K): directions whose singular value is below 1e-9
-/// of the largest count as null, so rounding is never divided by almost zero.
-Eigen::VectorXd leastNormSolve(const Eigen::MatrixXd& K, const Eigen::VectorXd& b);
+/// The pseudo-inverse of the symmetric positive semi-definite K (the normal responses of
+/// up to four contact points; entries outside the top-left k × k are ignored and come back
+/// zero). K may be singular (the four corners of a face give rank 3): eigen-directions
+/// below 1e-9 of the largest eigenvalue count as null, so rounding is never divided by
+/// almost zero and the answer is the least-norm one, symmetric for symmetric points.
+Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k);
 
-/// The matching pseudo-inverse.
-Eigen::MatrixXd leastNormInverse(const Eigen::MatrixXd& K);
+/// Impulses λ ≥ 0 for k points with K λ = g where they push: the least-norm solution
+/// (Kinv = leastNormInverse(K, k)); every point whose impulse would pull is let go at once
+/// (λ = 0; not the worst first, so that ties between symmetric points are not broken by
+/// their order) and the others are solved again without it.
+Eigen::Vector4d pushingImpulses(const Eigen::Matrix4d& K, const Eigen::Matrix4d& Kinv, const Eigen::Vector4d& g,
+                                int k);
 
 /// Two unit tangents completing n to a right-handed frame.
 void tangentFrame(const Vec3& n, Vec3& t1, Vec3& t2);

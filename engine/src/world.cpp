@@ -31,6 +31,10 @@ using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// Contacts approaching slower than this are resting, not bouncing: twice what gravity adds
+// in a step, so a body resting under gravity never bounces on its support.
+double restingSpeed(const Model& model) { return 2.0 * model.settings.gravity.norm() * model.settings.dt; }
+
 }  // namespace
 
 struct World::Scratch {
@@ -45,6 +49,7 @@ struct World::Scratch {
     std::vector<int> seeds;
     std::vector<collision::ImpactEvent> impacts;  // of the whole step
     double touchTolerance = 0.0;
+    bool knowsContacts = false;  // detect.contacts holds the contacts of the current state
 };
 
 World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
@@ -64,6 +69,7 @@ World::World(Model model, State state)
 void World::setState(const State& state) {
     state_ = state;
     scratch_->detect.contacts.clear();
+    scratch_->knowsContacts = false;
 }
 
 void World::advance(double h) {
@@ -89,7 +95,7 @@ void World::detect(double t0, double h) {
     auto t = Clock::now();
     bodyPoses(model_, s.before, d.start);
     bodyPoses(model_, state_, d.end);
-    findPairs(model_, state_, d);
+    findPairs(model_, state_, s.touchTolerance, d);
     profile_.broadphase += since(t);
     profile_.pairs += static_cast<long>(d.broadphase.pairs().size());
 
@@ -105,7 +111,7 @@ void World::detect(double t0, double h) {
     // with the woken bodies among the moving ones.
     if (model_.settings.sleeping && wakeTouched(model_, state_, d.contacts, d.impacts)) {
         t = Clock::now();
-        findPairs(model_, state_, d);
+        findPairs(model_, state_, s.touchTolerance, d);
         findContacts(model_, d, s.touchTolerance);
         profile_.narrowphase += since(t);
     }
@@ -139,9 +145,8 @@ void World::impactAt(double t0) {
     const auto t2 = Clock::now();
     bodyPoses(model_, state_, d.end);
     findContacts(model_, d, s.touchTolerance);
-    const double restingSpeed = 2.0 * model_.settings.gravity.norm() * model_.settings.dt;
-    const ImpactResult r =
-        resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, restingSpeed, s.impact, ledger_);
+    const ImpactResult r = resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance,
+                                          restingSpeed(model_), s.impact, ledger_);
     ++profile_.impactMoments;
     if (r.limited) ++profile_.impactSweepLimits;
     std::swap(d.previous, d.contacts);  // the contacts at the start of the rest of the step
@@ -158,6 +163,14 @@ void World::step(double h) {
         return;
     }
     if (model_.settings.sleeping) wakeTouched(model_, state_, {}, {});  // forces switching on
+    if (!s.knowsContacts) {
+        // The first step from a state: what touches already is resting contact, not an impact.
+        bodyPoses(model_, state_, d.start);
+        d.end = d.start;
+        findPairs(model_, state_, s.touchTolerance, d);
+        findContacts(model_, d, s.touchTolerance);
+        s.knowsContacts = true;
+    }
     std::swap(d.previous, d.contacts);  // the last step's contacts: pairs touching at the start
     s.impacts.clear();
     for (int cut = 0;; ++cut) {
@@ -171,11 +184,24 @@ void World::step(double h) {
         impactAt(t0);
     }
 
+    // Bounces that no time of impact found (bodies that touched at the start of the step
+    // and now approach fast) get the same impact loop, at the end of the step.
+    const double resting = restingSpeed(model_);
     auto t = Clock::now();
+    approachingBodies(model_, state_, d.contacts, s.touchTolerance, resting, s.impact, s.seeds);
+    if (!s.seeds.empty()) {
+        const ImpactResult r =
+            resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, resting, s.impact, ledger_);
+        ++profile_.impactMoments;
+        if (r.limited) ++profile_.impactSweepLimits;
+    }
+    profile_.impactSolve += since(t);
+
+    t = Clock::now();
     ContactSolverSettings cfg;
     cfg.iterations = model_.settings.solverIterations;
     cfg.h = h;
-    cfg.restingSpeed = 2.0 * model_.settings.gravity.norm() * model_.settings.dt;
+    cfg.restingSpeed = resting;
     cfg.touchTolerance = s.touchTolerance;
     solveContacts(model_, state_, s.before, d.contacts, s.sizes, cfg, s.solver, ledger_);
     checkFinite(model_, state_);
