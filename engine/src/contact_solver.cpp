@@ -82,10 +82,11 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
     for (int i = 0; i < k; ++i) block.radius += (q[i].position - c).norm() / k;
 }
 
-void prepare(const Model& model, const State& state, const std::vector<Manifold>& contacts,
+void prepare(const Model& model, const State& state, const State& before, const std::vector<Manifold>& contacts,
              const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s) {
     s.points.clear();
     s.blocks.clear();
+    loadSolverBodies(model, before, s.start);
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
         SolverBody& B = s.bodies[m.bodyB];
@@ -109,10 +110,11 @@ void prepare(const Model& model, const State& state, const std::vector<Manifold>
             p.rB = c.position - B.x;
             p.kn = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.n);
             const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
+            const double vn0 = p.n.dot(relativeVelocity(s.start[m.bodyA], p.rA, s.start[m.bodyB], p.rB));
             if (c.depth < 0.0)
                 p.target = c.depth / cfg.h;  // apart: may close the gap within a step, no more
             else
-                p.target = vn < -cfg.restingSpeed ? -e * vn : 0.0;
+                p.target = vn < -cfg.restingSpeed && vn0 < -cfg.restingSpeed ? -e * vn : 0.0;
             // A's deepest point is half the depth below the midpoint, B's half above.
             p.localA = RA.transpose() * (p.rA - 0.5 * c.depth * p.n);
             p.localB = RB.transpose() * (p.rB + 0.5 * c.depth * p.n);
@@ -146,7 +148,9 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
     }
 }
 
-void warmStart(const State& state, ContactSolverScratch& s, EnergyLedger& ledger) {
+// Starts from the remembered impulses, scaled to this step's length (a short step to land
+// on a frame needs proportionally less).
+void warmStart(const State& state, double h, ContactSolverScratch& s, EnergyLedger& ledger) {
     for (auto& block : s.blocks) {
         Vec3 tangent = Vec3::Zero();
         double twist = 0.0;
@@ -154,9 +158,10 @@ void warmStart(const State& state, ContactSolverScratch& s, EnergyLedger& ledger
             Point& p = s.points[block.begin + i];
             const ContactMemory* c = remembered(state, s, p);
             if (!c) continue;
-            p.lambdaN = c->normalImpulse;
-            tangent += c->tangentImpulse;
-            twist += c->twistImpulse;
+            const double scale = c->step > 0.0 ? std::min(h / c->step, 100.0) : 1.0;
+            p.lambdaN = scale * c->normalImpulse;
+            tangent += scale * c->tangentImpulse;
+            twist += scale * c->twistImpulse;
             ledger.lostInContacts +=
                 applyPairImpulse(s.bodies[p.a], p.rA, s.bodies[p.b], p.rB, p.lambdaN * p.n);
         }
@@ -217,11 +222,10 @@ void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
     const Vec3 v = relativeVelocity(A, block.rA, B, block.rB);
     Eigen::Vector2d l = block.lambdaT - block.tangentMass * Eigen::Vector2d(block.t1.dot(v), block.t2.dot(v));
     if (l.norm() > limit) l *= limit / l.norm();
-    double tw = block.lambdaTwist;
-    if (block.radius > 0.0 && block.twistMass > 0.0) {
-        tw -= block.twistMass * p.n.dot(A.w - B.w);
-        tw = std::clamp(tw, -limit * block.radius, limit * block.radius);
-    }
+    // The twist is always clamped: a one-point patch (radius 0) may hold none, whatever
+    // was remembered.
+    double tw = block.lambdaTwist - block.twistMass * p.n.dot(A.w - B.w);
+    tw = std::clamp(tw, -limit * block.radius, limit * block.radius);
     const Eigen::Vector2d dT = l - block.lambdaT;
     const double dTwist = tw - block.lambdaTwist;
     block.lambdaT = l;
@@ -276,7 +280,7 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes) {
     return moved;
 }
 
-void remember(const Model& model, const State& state, ContactSolverScratch& s) {
+void remember(const Model& model, const State& state, double h, ContactSolverScratch& s) {
     s.nextMemory.clear();
     for (const auto& block : s.blocks) {
         const Vec3 tangent = (block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2) / block.count;
@@ -290,12 +294,13 @@ void remember(const Model& model, const State& state, ContactSolverScratch& s) {
             c.normalImpulse = p.lambdaN;
             c.tangentImpulse = tangent;
             c.twistImpulse = block.lambdaTwist / block.count;
+            c.step = h;
             s.nextMemory.push_back(c);
         }
     }
     // Pairs that were not solved because they sleep keep what they had (and tell who
     // rests on whom when something wakes them).
-    auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].motion == Motion::Static; };
+    auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill(); };
     for (const ContactMemory& c : state.contacts)
         if (idle(c.bodyA) && idle(c.bodyB)) s.nextMemory.push_back(c);
 }
@@ -322,18 +327,20 @@ void solveContacts(const Model& model, State& state, const State& before, const 
                    const std::vector<double>& sizes, const ContactSolverSettings& cfg,
                    ContactSolverScratch& s, EnergyLedger& ledger) {
     loadSolverBodies(model, state, s.bodies);
-    prepare(model, state, contacts, sizes, cfg, s);
+    prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
-    warmStart(state, s, ledger);
+    warmStart(state, cfg.h, s, ledger);
     for (int k = 0; k < cfg.iterations; ++k) iterate(s, k, ledger);
-    storeSolverBodies(model, s.bodies, state);
-    remember(model, state, s);
+    remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;
+    storeSolverBodies(model, s.bodies, state);  // P (and L, set again below)
     const double potential = energy(model, state).potential;
     redoPoses(model, state, before, s);
     correctPositions(state, s, cfg.positionIterations);
     ledger.positionCorrection += energy(model, state).potential - potential;
+    // Turning a body changes I(t): keep its ω, hence its kinetic energy, by setting L again.
+    storeSolverBodies(model, s.bodies, state);
 }
 
 }  // namespace tumble

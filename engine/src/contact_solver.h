@@ -6,8 +6,10 @@
 // normal impulse never pulls; the friction impulse stays inside the Coulomb cone
 // |λt| ≤ μ λn), started from the impulses of the same points in the last step (warm
 // starting: a stack needs few iterations because each step starts from the answer of the
-// one before). A point approaching faster than the resting speed bounces with restitution
-// ε (target -ε v⁻); slower, it is resting contact (target 0). Friction acts per manifold
+// one before). A point approaching faster than the resting speed, both now and with the
+// velocities at the start of the step, bounces with restitution ε (target -ε v⁻); else it
+// is resting contact (target 0): a body pressed onto its support by a force does not
+// bounce on it. Friction acts per manifold
 // at the centroid of its points (see Block below).
 //
 // Positions: the overlap left by the step is removed by moving the bodies apart along
@@ -60,6 +62,7 @@ struct ContactSolverScratch {
     std::vector<Point> points;
     std::vector<Block> blocks;
     std::vector<SolverBody> bodies;
+    std::vector<SolverBody> start;  // velocities at the start of the step
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
 };
@@ -67,7 +70,7 @@ struct ContactSolverScratch {
 struct ContactSolverSettings {
     int iterations = 20;       ///< velocity iterations
     int positionIterations = 4;
-    double h = 1.0 / 240.0;    ///< the step, for speculative points
+    double h = 1.0 / 240.0;    ///< the (last part of the) step, for speculative points and warm starting
     double restingSpeed = 0.0; ///< below this approach speed, no bounce
     double touchTolerance = 0.0;  ///< points deeper than minus this are solved
 };

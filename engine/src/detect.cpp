@@ -30,7 +30,7 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
     s.moving.resize(n);
     for (size_t i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
-        s.moving[i] = b.motion != Motion::Static && !state.isAsleep(static_cast<int>(i));
+        s.moving[i] = !b.standsStill() && !state.isAsleep(static_cast<int>(i));
         s.swept[i] = bounds(b.collider, s.end[i]);
         if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
         s.swept[i].min.array() -= margin;

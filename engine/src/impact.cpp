@@ -105,17 +105,23 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
 
 }  // namespace
 
-void approachingBodies(const Model& model, const State& state, const std::vector<Manifold>& contacts,
-                       double tol, double speed, ImpactScratch& s, std::vector<int>& seeds) {
+void approachingBodies(const Model& model, const State& before, const State& state,
+                       const std::vector<Manifold>& contacts, double tol, double speed, ImpactScratch& s,
+                       std::vector<int>& seeds) {
     seeds.clear();
     if (contacts.empty()) return;
     loadSolverBodies(model, state, s.bodies);
+    loadSolverBodies(model, before, s.start);
     for (const Manifold& m : contacts) {
         const SolverBody& A = s.bodies[m.bodyA];
         const SolverBody& B = s.bodies[m.bodyB];
+        const SolverBody& A0 = s.start[m.bodyA];
+        const SolverBody& B0 = s.start[m.bodyB];
         for (int i = 0; i < m.count; ++i) {
             const Vec3& p = m.points[i].position;
-            if (m.points[i].depth < -tol || m.normal.dot(relativeVelocity(A, p - A.x, B, p - B.x)) >= -speed) continue;
+            if (m.points[i].depth < -tol || m.normal.dot(relativeVelocity(A, p - A.x, B, p - B.x)) >= -speed ||
+                m.normal.dot(relativeVelocity(A0, p - A.x, B0, p - B.x)) >= -speed)
+                continue;
             seeds.push_back(m.bodyA);
             seeds.push_back(m.bodyB);
             break;

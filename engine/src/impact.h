@@ -27,6 +27,7 @@ namespace tumble {
 
 struct ImpactScratch {
     std::vector<SolverBody> bodies;
+    std::vector<SolverBody> start;  // the velocities at the start of the step
     std::vector<std::uint8_t> inIsland;
     std::vector<int> manifolds;
 };
@@ -39,10 +40,13 @@ struct ImpactResult {
 /// `contacts`: the manifolds at the moment of impact; `seeds`: the bodies of the pairs that
 /// first touch now. A point counts as touching when its depth is at least -touchTolerance.
 /// Updates the momenta in `state` and the ledger.
-/// The bodies of the touching contacts that approach faster than `speed` (bounces that no
-/// time of impact found, e.g. of bodies touching at the start of the step).
-void approachingBodies(const Model& model, const State& state, const std::vector<collision::Manifold>& contacts,
-                       double touchTolerance, double speed, ImpactScratch& scratch, std::vector<int>& seeds);
+/// The bodies of the touching contacts that approach faster than `speed`, now and with the
+/// velocities of `before` (the start of the step): bounces that no time of impact found,
+/// e.g. of bodies touching at the start of the step. A contact that approaches only
+/// because of this step's forces (a body pressed onto its support) is resting, not bouncing.
+void approachingBodies(const Model& model, const State& before, const State& state,
+                       const std::vector<collision::Manifold>& contacts, double touchTolerance, double speed,
+                       ImpactScratch& scratch, std::vector<int>& seeds);
 
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,

@@ -63,12 +63,9 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
             s.parent[root(s.parent, a)] = root(s.parent, b);
         } else {
             // Resting on a moving kinematic body keeps the island awake.
-            for (int k : {a, b}) {
-                const BodyModel& o = model.bodies[k];
-                if (o.motion == Motion::Kinematic &&
-                    (o.kinematicVelocity.squaredNorm() > 0.0 || o.kinematicAngularVelocity.squaredNorm() > 0.0))
+            for (int k : {a, b})
+                if (model.bodies[k].motion == Motion::Kinematic && !model.bodies[k].standsStill())
                     s.blocked[a == k ? b : a] = 1;
-            }
         }
     }
     s.islandRest.assign(n, 1e300);
@@ -95,7 +92,7 @@ bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& 
                  const std::vector<collision::ImpactEvent>& impacts) {
     if (state.asleep.empty()) return false;
     std::vector<int> stack;
-    auto active = [&](int b) { return model.bodies[b].motion != Motion::Static && !state.isAsleep(b); };
+    auto active = [&](int b) { return !model.bodies[b].standsStill() && !state.isAsleep(b); };
     auto touchPair = [&](int a, int b) {
         if (state.isAsleep(a) && active(b)) stack.push_back(a);
         if (state.isAsleep(b) && active(a)) stack.push_back(b);

@@ -64,12 +64,21 @@ World::World(Model model, State state)
         if (std::isfinite(scratch_->sizes.back())) largest = std::max(largest, scratch_->sizes.back());
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
+    forgetSleepUnlessSleeping();
+}
+
+// With sleeping off every body is simulated: sleep flags brought in by a state are dropped.
+void World::forgetSleepUnlessSleeping() {
+    if (model_.settings.sleeping) return;
+    state_.asleep.clear();
+    state_.restTime.clear();
 }
 
 void World::setState(const State& state) {
     state_ = state;
     scratch_->detect.contacts.clear();
     scratch_->knowsContacts = false;
+    forgetSleepUnlessSleeping();
 }
 
 void World::advance(double h) {
@@ -188,7 +197,7 @@ void World::step(double h) {
     // and now approach fast) get the same impact loop, at the end of the step.
     const double resting = restingSpeed(model_);
     auto t = Clock::now();
-    approachingBodies(model_, state_, d.contacts, s.touchTolerance, resting, s.impact, s.seeds);
+    approachingBodies(model_, s.before, state_, d.contacts, s.touchTolerance, resting, s.impact, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r =
             resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, resting, s.impact, ledger_);
@@ -200,7 +209,7 @@ void World::step(double h) {
     t = Clock::now();
     ContactSolverSettings cfg;
     cfg.iterations = model_.settings.solverIterations;
-    cfg.h = h;
+    cfg.h = tEnd - s.before.time;  // the last part of the step, after any cut
     cfg.restingSpeed = resting;
     cfg.touchTolerance = s.touchTolerance;
     solveContacts(model_, state_, s.before, d.contacts, s.sizes, cfg, s.solver, ledger_);

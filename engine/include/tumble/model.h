@@ -51,6 +51,12 @@ struct BodyModel {
     double angularDamping = 0.0;
     Vec3 kinematicVelocity = Vec3::Zero();         ///< kinematic bodies: constant, world
     Vec3 kinematicAngularVelocity = Vec3::Zero();  ///< kinematic bodies: constant, world
+
+    /// Static, or kinematic at zero velocity: never moves, so never wakes or pairs like a moving body.
+    bool standsStill() const {
+        return motion == Motion::Static ||
+               (motion == Motion::Kinematic && kinematicVelocity.isZero(0.0) && kinematicAngularVelocity.isZero(0.0));
+    }
 };
 
 struct Model {

@@ -29,6 +29,7 @@ struct ContactMemory {
     double normalImpulse = 0.0;    ///< N·s, along the manifold normal
     Vec3 tangentImpulse = Vec3::Zero();  ///< N·s, world: this point's share of its manifold's friction
     double twistImpulse = 0.0;           ///< N·m·s about the normal: this point's share
+    double step = 0.0;                   ///< s, the step these impulses were for
 };
 
 struct State {

@@ -69,6 +69,7 @@ private:
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
     void impactAt(double t0);          // cut the step at the first impact and resolve it
+    void forgetSleepUnlessSleeping();
 
     Model model_;
     State state_;
