@@ -63,9 +63,8 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
     return w;
 }
 
-bool touching(const std::vector<Manifold>& contacts, int a, int b, double tol) {
-    return std::any_of(contacts.begin(), contacts.end(),
-                       [&](const Manifold& m) { return m.bodyA == a && m.bodyB == b && m.maxDepth() >= -tol; });
+std::uint64_t pairKey(int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
 }  // namespace
@@ -73,8 +72,13 @@ bool touching(const std::vector<Manifold>& contacts, int a, int b, double tol) {
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
                  double touchTolerance, double tolerance, DetectScratch& s) {
     s.impacts.clear();
+    s.touchingPairs.clear();
+    for (const Manifold& m : s.previous)
+        if (m.maxDepth() >= -touchTolerance) s.touchingPairs.push_back(pairKey(m.bodyA, m.bodyB));
+    std::sort(s.touchingPairs.begin(), s.touchingPairs.end());
     for (const auto& [a, b] : s.broadphase.pairs()) {
-        if (touching(s.previous, a, b, touchTolerance)) continue;  // in contact already: no new impact
+        // In contact already: no new impact.
+        if (std::binary_search(s.touchingPairs.begin(), s.touchingPairs.end(), pairKey(a, b))) continue;
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.

@@ -23,6 +23,7 @@ struct DetectScratch {
     std::vector<collision::Manifold> contacts;
     std::vector<collision::Manifold> previous;  // last step's contacts: pairs already touching
     std::vector<collision::ImpactEvent> impacts;
+    std::vector<std::uint64_t> touchingPairs;  // sorted keys of the pairs touching in `previous`
 };
 
 /// True when the model has two bodies that could ever touch (at least one not static);
