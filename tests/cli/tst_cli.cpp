@@ -203,6 +203,33 @@ private slots:
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // wrote nothing
     }
 
+    // The collision samples (no driving force) run headless and report where their energy
+    // went: energy_end = energy_start - lost + correction, and the end is never above the start.
+    void samplesBalanceTheirEnergy_data() {
+        QTest::addColumn<QString>("scene");
+        for (const char* name : {"bouncing-ball", "head-on", "tilted-box-impact", "newtons-cradle", "sliding-block",
+                                 "rolling-sphere", "incline", "mass-ratio-stack", "sleeping-wake"})
+            QTest::newRow(name) << QString(TUMBLE_SCENES_DIR "/%1.json").arg(name);
+    }
+    void samplesBalanceTheirEnergy() {
+        QFETCH(QString, scene);
+        RUN(r, {"--headless", scene, "--duration", "3"});
+        QCOMPARE(r.code, 0);
+        const QMap<QString, QString> kv = report(r.out);
+        for (const char* key : {"energy_start", "energy_end", "energy_lost_contacts", "energy_lost_friction",
+                                "energy_position_correction", "impact_moments", "solve_seconds", "awake_body_steps"})
+            QVERIFY2(kv.contains(key), key);
+        const double start = kv["energy_start"].toDouble(), end = kv["energy_end"].toDouble();
+        const double lost = kv["energy_lost_contacts"].toDouble() + kv["energy_lost_friction"].toDouble();
+        const double correction = kv["energy_position_correction"].toDouble();
+        QVERIFY2(lost >= 0.0, qPrintable(r.out));
+        // The ledger balances to 1e-6 of the energy that moved (the integrators' own error in
+        // these scenes is far below that).
+        const double scale = std::abs(start) + lost + std::abs(correction);
+        QVERIFY2(std::abs(end - (start - lost + correction)) <= 1e-6 * scale, qPrintable(r.out));
+        QVERIFY2(end <= start + 1e-9 * std::abs(start), qPrintable(r.out));
+    }
+
     void quiet() {
         RUN(r, {"--headless", "box.json", "--quiet"});
         QCOMPARE(r.code, 0);
