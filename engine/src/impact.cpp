@@ -65,10 +65,12 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
         if (m.points[i].depth < -tol) continue;
         const Vec3 a = m.points[i].position - A.x, b = m.points[i].position - B.x;
         const double vn = n.dot(relativeVelocity(A, a, B, b));
-        if (vn >= -approachTol) continue;
+        // Slower than the resting speed is settling, left to the contact solver (which
+        // converges on it far faster than this loop, warm started).
+        if (vn >= -std::max(approachTol, restingSpeed)) continue;
         rA[k] = a;
         rB[k] = b;
-        gain[k] = -(1.0 + (-vn > restingSpeed ? e : 0.0)) * vn;
+        gain[k] = -(1.0 + e) * vn;
         ++k;
     }
     if (k == 0) return false;

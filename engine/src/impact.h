@@ -9,7 +9,8 @@
 // points are dependent (four corners of a face), so a body landing flat gets the
 // symmetric answer. Different manifolds are taken one after the other, which is what
 // carries an impact down a row of touching balls (Newton's cradle). A point approaching
-// slower than `restingSpeed` gets ε = 0: that is resting contact, not a bounce.
+// slower than `restingSpeed` is settling, not bouncing: the loop leaves it to the contact
+// solver.
 // Each normal impulse is followed by a Coulomb friction impulse at the point, at most
 // μ j, that stops the sliding if it can.
 #pragma once
