@@ -1,0 +1,100 @@
+// The scene document: the SceneDesc the editor edits, its file, its undo stack and the
+// selection. Every change goes through an undo command on the one QUndoStack (principle 8
+// of DESIGN.md): panels, the scene tree and the viewport never write the scene directly.
+//
+// Edits are whole-value replacements (a body, the settings), which keeps every command the
+// same small shape: "before" and "after". Consecutive edits with the same merge id (a drag,
+// a spin-box scrub) merge into one undo step; compound edits are macros.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <QList>
+#include <QObject>
+#include <QString>
+
+class QUndoStack;
+
+namespace tumble::ui {
+
+class Document : public QObject {
+    Q_OBJECT
+public:
+    explicit Document(QObject* parent = nullptr);
+    ~Document() override;
+
+    const SceneDesc& scene() const { return scene_; }
+    int bodyCount() const { return static_cast<int>(scene_.bodies.size()); }
+    const BodyDesc& body(int index) const { return scene_.bodies.at(static_cast<size_t>(index)); }
+    QUndoStack* undoStack() const { return undo_; }
+
+    // ---- Files. Messages name the file and, for bad content, the field.
+
+    /// An empty scene (default settings and a ground plane), no file, nothing to undo.
+    void newScene();
+    /// Reads a scene file, or a ":/scenes/..." sample (which then has no file: Save asks).
+    /// On failure the current scene is untouched and `error` says why.
+    bool open(const QString& path, QString* error);
+    /// Writes the scene atomically (QSaveFile) to `path` and makes it the document's file.
+    bool saveAs(const QString& path, QString* error);
+    /// The scene file, empty when the scene has never been saved (new or a sample).
+    const QString& filePath() const { return path_; }
+    /// A name for the title bar: the file name, or "untitled".
+    QString displayName() const;
+    /// Changed since it was opened or saved (the undo stack is not at its clean index).
+    bool isModified() const;
+    /// Replaces the whole scene (recovery, revert), as one undoable step when `undoable`.
+    void replaceScene(const SceneDesc& scene, const QString& text, bool undoable);
+
+    // ---- Edits (each an undo command).
+
+    /// Replaces body `index`. Consecutive calls with the same nonzero `mergeId` on the same
+    /// body merge into one undo step (a drag, a scrub).
+    void setBody(int index, const BodyDesc& body, const QString& text, int mergeId = 0);
+    void setSettings(const Settings& settings, const QString& text, int mergeId = 0);
+    /// Inserts `body` at `index` (-1: at the end) with a name made unique; returns its index.
+    int addBody(const BodyDesc& body, int index = -1);
+    /// Removes the bodies (one undo step), and from the selection.
+    void removeBodies(QList<int> indices);
+    /// Copies of the bodies, named uniquely, placed after the last one; selects the copies.
+    void duplicateBodies(QList<int> indices);
+    /// Groups the edits between begin and end into one undo step named `text`.
+    void beginMacro(const QString& text);
+    void endMacro();
+
+    /// `base` if no body has that name, else base-2, base-3, ...
+    QString uniqueName(const QString& base) const;
+
+    // ---- Selection (shared by the scene tree, the property panel and the viewport).
+    const QList<int>& selection() const { return selection_; }
+    void setSelection(QList<int> indices);
+
+    // ---- Used by the undo commands only.
+    void applyBody(int index, const BodyDesc& body);
+    void applySettings(const Settings& settings);
+    void applyInsert(int index, const BodyDesc& body);
+    void applyRemove(int index);
+    void applyScene(const SceneDesc& scene);
+
+signals:
+    void bodyChanged(int index);
+    void bodyInserted(int index);
+    void bodyRemoved(int index);
+    void settingsChanged();
+    /// Everything may have changed (open, new, revert, recovery).
+    void sceneReset();
+    void selectionChanged();
+    /// The file, its name or the modified state changed (for the title bar).
+    void fileStateChanged();
+
+private:
+    SceneDesc scene_;
+    QString path_;
+    QList<int> selection_;
+    QUndoStack* undo_ = nullptr;
+};
+
+/// The default empty scene: default settings and a static ground plane.
+SceneDesc emptyScene();
+
+}  // namespace tumble::ui
