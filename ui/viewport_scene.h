@@ -1,0 +1,40 @@
+// The Qt3D side of the viewport: one entity per body, the shared meshes and materials they
+// use, the ground grid, the axes and the lights. Kept apart from the widget (input, camera)
+// and out of every other header: Qt3D headers are heavy.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <QList>
+
+#include <memory>
+
+namespace Qt3DCore {
+class QEntity;
+}
+
+namespace tumble::ui {
+
+class ViewportScene {
+public:
+    /// Builds the grid, axes and lights under `root`; bodies come with rebuild/insert.
+    explicit ViewportScene(Qt3DCore::QEntity* root);
+    ~ViewportScene();
+    ViewportScene(const ViewportScene&) = delete;
+    ViewportScene& operator=(const ViewportScene&) = delete;
+
+    /// Drops every body entity and makes one per body of `scene`.
+    void rebuild(const SceneDesc& scene);
+    void insert(int index, const BodyDesc& body);
+    void update(int index, const BodyDesc& body);
+    void remove(int index);
+    /// Highlights exactly these bodies.
+    void setSelection(const QList<int>& indices);
+    int count() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> d_;
+};
+
+}  // namespace tumble::ui
