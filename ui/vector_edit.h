@@ -1,0 +1,40 @@
+// Three spin boxes (x, y, z) with a unit suffix. Each component is edited on its own,
+// so a multi-selection edit of x keeps each body's own y and z.
+#pragma once
+
+#include <tumble/math.h>
+
+#include <QWidget>
+
+#include <array>
+#include <optional>
+
+namespace tumble::ui {
+
+class PropertySpinBox;
+
+class VectorEdit : public QWidget {
+    Q_OBJECT
+public:
+    /// Child spin boxes are named `<objectName>.x`, `.y`, `.z` (set the name first, or call
+    /// setObjectName later: the children follow).
+    explicit VectorEdit(const QString& name, const QString& suffix, QWidget* parent = nullptr);
+
+    /// Shows one value per component; an empty component shows "—" (the bodies differ).
+    void showValue(const std::array<std::optional<double>, 3>& v);
+    void showValue(const Vec3& v);
+    void setRange(double min, double max);
+    void setSuffix(const QString& suffix);
+    void setSingleStep(double step);
+    PropertySpinBox* component(int k) const { return spins_[static_cast<size_t>(k)]; }
+    Vec3 value() const;
+
+signals:
+    void componentEdited(int k, double value);
+    void editingFinished();
+
+private:
+    std::array<PropertySpinBox*, 3> spins_{};
+};
+
+}  // namespace tumble::ui
