@@ -271,8 +271,8 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes) {
             const double k = inverseEffectiveMass(A, rA, B, rB, n);
             if (k <= 0.0) continue;
             const Vec3 J = (C / k) * n;
-            if (A.invMass > 0.0) nudge(A, a, rA, J);
-            if (B.invMass > 0.0) nudge(B, b, rB, -J);
+            if (A.invMass > 0.0) nudge(A, a, rA, J), s.bodies[p.a].touched = true;
+            if (B.invMass > 0.0) nudge(B, b, rB, -J), s.bodies[p.b].touched = true;
             moved = true;
         }
         if (worst <= 0.0) break;
@@ -334,13 +334,21 @@ void solveContacts(const Model& model, State& state, const State& before, const 
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;
-    storeSolverBodies(model, s.bodies, state);  // P (and L, set again below)
+    storeSolverBodies(model, s.bodies, state);
+    // Re-placing turns bodies. Their spin is carried along in body axes (ω_body fixed), so
+    // ½ ω_bodyᵀ I_body ω_body, the kinetic energy, is exactly what the solver left; L is set
+    // again at the new orientation.
+    s.bodySpin.resize(model.bodies.size());
+    for (int i : model.dynamicBodies) s.bodySpin[i] = state.bodies[i].q.conjugate() * s.bodies[i].w;
     const double potential = energy(model, state).potential;
     redoPoses(model, state, before, s);
     correctPositions(state, s, cfg.positionIterations);
     ledger.positionCorrection += energy(model, state).potential - potential;
-    // Turning a body changes I(t): keep its ω, hence its kinetic energy, by setting L again.
-    storeSolverBodies(model, s.bodies, state);
+    for (int i : model.dynamicBodies) {
+        if (!s.bodies[i].touched || state.isAsleep(i)) continue;
+        BodyState& b = state.bodies[i];
+        b.L = b.q * (model.bodies[i].inertia * s.bodySpin[i]);
+    }
 }
 
 }  // namespace tumble

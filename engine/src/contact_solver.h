@@ -63,6 +63,7 @@ struct ContactSolverScratch {
     std::vector<Block> blocks;
     std::vector<SolverBody> bodies;
     std::vector<SolverBody> start;  // velocities at the start of the step
+    std::vector<Vec3> bodySpin;     // ω in body axes, kept while bodies are re-placed
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
 };
