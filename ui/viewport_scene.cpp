@@ -51,8 +51,8 @@ Qt3DExtras::QPhongMaterial* makeMaterial(const QColor& diffuse, Qt3DCore::QNode*
     auto* m = new Qt3DExtras::QPhongMaterial(parent);
     m->setDiffuse(diffuse);
     m->setAmbient(diffuse.darker(350));
-    m->setSpecular(QColor(60, 60, 60));
-    m->setShininess(40.0f);
+    m->setSpecular(QColor(40, 40, 40));
+    m->setShininess(20.0f);
     return m;
 }
 
@@ -99,6 +99,7 @@ struct ViewportScene::Impl {
     Qt3DExtras::QPhongMaterial* staticMat = nullptr;
     Qt3DExtras::QPhongMaterial* kinematicMat = nullptr;
     Qt3DExtras::QPhongMaterial* selectedMat = nullptr;
+    Qt3DExtras::QPhongMaterial* groundMat = nullptr;  // planes: dark and matte, under the grid
     // One geometry per loaded mesh (the shared_ptr keeps the key alive).
     std::map<const TriangleMesh*,
              std::pair<std::shared_ptr<const TriangleMesh>, Qt3DRender::QGeometryRenderer*>>
@@ -110,13 +111,15 @@ struct ViewportScene::Impl {
         std::vector<Qt3DCore::QEntity*> parts;
         Qt3DExtras::QPhongMaterial* material = nullptr;  // the one in use
         Motion motion = Motion::Dynamic;
+        bool plane = false;
         bool selected = false;
     };
     std::vector<Body> bodies;
 
-    Qt3DExtras::QPhongMaterial* materialFor(Motion m, bool selected) const {
-        if (selected) return selectedMat;
-        switch (m) {
+    Qt3DExtras::QPhongMaterial* materialFor(const Body& b) const {
+        if (b.selected) return selectedMat;
+        if (b.plane) return groundMat;
+        switch (b.motion) {
             case Motion::Static: return staticMat;
             case Motion::Kinematic: return kinematicMat;
             case Motion::Dynamic: break;
@@ -170,8 +173,9 @@ struct ViewportScene::Impl {
         b.transform = new Qt3DCore::QTransform(b.entity);
         b.entity->addComponent(b.transform);
         b.motion = desc.motion;
+        b.plane = desc.shape.type == ShapeType::Plane;
         b.selected = selected;
-        b.material = materialFor(desc.motion, selected);
+        b.material = materialFor(b);
         fill(b, desc);
         return b;
     }
@@ -228,7 +232,7 @@ struct ViewportScene::Impl {
         const float e = float(kGridHalf);
         for (int i = -kGridHalf; i <= kGridHalf; ++i) {
             if (i == 0) continue;  // the axes take these
-            const QColor c = (i % 5 == 0) ? QColor(120, 120, 128) : QColor(88, 88, 96);
+            const QColor c = (i % 5 == 0) ? QColor(150, 152, 162) : QColor(112, 114, 124);
             line(grid, QVector3D(float(i), kGridLift, -e), QVector3D(float(i), kGridLift, e), c);
             line(grid, QVector3D(-e, kGridLift, float(i)), QVector3D(e, kGridLift, float(i)), c);
         }
@@ -282,6 +286,9 @@ ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl
     d.kinematicMat = makeMaterial(QColor(90, 140, 215), root);
     d.selectedMat = makeMaterial(QColor(255, 214, 60), root);
     d.selectedMat->setAmbient(QColor(110, 90, 20));
+    d.groundMat = makeMaterial(QColor(78, 80, 88), root);
+    d.groundMat->setSpecular(QColor(0, 0, 0));
+    d.groundMat->setAmbient(QColor(40, 41, 46));
     d.buildLights();
     d.buildGridAndAxes();
 }
@@ -305,7 +312,8 @@ void ViewportScene::update(int index, const BodyDesc& body) {
     if (index < 0 || index >= count()) return;
     Impl::Body& b = d_->bodies[size_t(index)];
     b.motion = body.motion;
-    b.material = d_->materialFor(b.motion, b.selected);
+    b.plane = body.shape.type == ShapeType::Plane;
+    b.material = d_->materialFor(b);
     d_->fill(b, body);
 }
 
@@ -319,7 +327,7 @@ void ViewportScene::setSelection(const QList<int>& indices) {
     for (int i = 0; i < count(); ++i) {
         Impl::Body& b = d_->bodies[size_t(i)];
         b.selected = indices.contains(i);
-        d_->setMaterial(b, d_->materialFor(b.motion, b.selected));
+        d_->setMaterial(b, d_->materialFor(b));
     }
 }
 

@@ -272,19 +272,35 @@ private slots:
         QVERIFY(!rayShape(down, mesh, Vec3::Zero(), Quat::Identity()));
     }
 
-    void showSampleForScreenshot() {
-        // Under TUMBLE_VIEWPORT_SHOW_MS the viewport stays up with a sample scene for a
-        // screenshot (docs/); otherwise this only checks the sample's entities.
-        Document doc;
-        QString error;
-        QVERIFY2(doc.open(":/scenes/newtons-cradle.json", &error), qPrintable(error));
+    void everyShapeKindIsDrawnAndPickedAtItsCentre() {
+        // Under TUMBLE_VIEWPORT_SHOW_MS the view stays up that long, for a screenshot.
+        auto tetra = std::make_shared<TriangleMesh>();
+        tetra->vertices = {Vec3(0.6, -0.4, 0.6), Vec3(-0.6, -0.4, 0.6), Vec3(0, -0.4, -0.7), Vec3(0, 0.7, 0)};
+        tetra->triangles = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};  // outward
+        Document doc;                                                     // the ground plane is body 0
+        doc.addBody(body("sphere", ShapeType::Sphere, Vec3(-3, 0.5, 0)));
+        BodyDesc box = body("box", ShapeType::Box, Vec3(-1.5, 0.5, 0));
+        box.orientation = Quat(Eigen::AngleAxisd(0.5, Vec3::UnitY()));
+        doc.addBody(box);
+        BodyDesc capsule = body("capsule", ShapeType::Capsule, Vec3(0, 1.0, 0));
+        capsule.shape.radius = 0.4;
+        doc.addBody(capsule);
+        doc.addBody(body("cylinder", ShapeType::Cylinder, Vec3(1.5, 0.5, 0)));
+        BodyDesc mesh = body("mesh", ShapeType::Mesh, Vec3(3, 0.4, 0));
+        mesh.shape.file = "tetra.obj";
+        mesh.shape.meshData = tetra;
+        doc.addBody(mesh);
+
         Viewport view(&doc);
         view.resize(960, 640);
         view.show();
         QVERIFY(QTest::qWaitForWindowExposed(&view));
-        view.frameAll();
-        doc.setSelection({1});
-        QCOMPARE(view.entityCount(), doc.bodyCount());
+        view.setCamera(QVector3D(0, 0.5f, 0), 9.0f, 20.0f, 25.0f);
+        doc.setSelection({3});
+        QCOMPARE(view.entityCount(), 6);
+        for (int i = 1; i < doc.bodyCount(); ++i) {
+            QCOMPARE(view.bodyAt(projected(view, doc.body(i).position)), i);
+        }
         const int ms = qEnvironmentVariableIntValue("TUMBLE_VIEWPORT_SHOW_MS");
         if (ms > 0) QTest::qWait(ms);
     }
