@@ -1,0 +1,19 @@
+// The bodies the scene tree's Add menu creates: 1 kg, unit-sized, placed above what the
+// scene already holds so that a new body never starts inside another one.
+#pragma once
+
+#include <tumble/scene.h>
+
+namespace tumble::ui {
+
+/// A body of `type` with the editor's defaults (name = the shape's name, 1 kg, restitution
+/// and friction 0.5), dropped above every body of `scene`: its lowest point sits 0.5 m over
+/// the highest point of the others, and never below y = 0.5 m. A plane is a static floor
+/// through the origin. A mesh body has no file yet: the import dialog fills it in.
+BodyDesc presetBody(ShapeType type, const SceneDesc& scene);
+
+/// Half the height of a body's bounding box along the world y axis, about its position
+/// (a bound: the box of a rotated shape is taken from its bounding sphere). 0 for planes.
+double halfHeightAboveOrigin(const BodyDesc& body);
+
+}  // namespace tumble::ui

@@ -1,0 +1,63 @@
+// The scene tree dock: the bodies in a list with extended selection shared with the
+// document (and so with the viewport and the property panel), and the actions that add,
+// duplicate, delete and rename bodies, in a tool bar and a context menu.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <QDockWidget>
+#include <QMap>
+
+class QAction;
+class QLabel;
+class QMenu;
+class QTreeView;
+
+namespace tumble::ui {
+
+class Document;
+class SceneTreeModel;
+
+class SceneTreeDock : public QDockWidget {
+    Q_OBJECT
+public:
+    SceneTreeDock(Document* doc, QWidget* parent);
+
+    SceneTreeModel* model() const { return model_; }
+    QTreeView* view() const { return view_; }
+
+    /// The actions, for the main window's menus. Add > Mesh... emits importMeshRequested.
+    QMenu* addMenu() const { return addMenu_; }
+    QAction* addBodyAction(ShapeType type) const { return addActions_.value(type); }
+    QAction* duplicateAction() const { return duplicate_; }
+    QAction* deleteAction() const { return delete_; }
+    QAction* renameAction() const { return rename_; }
+
+    /// Adds a body of that shape with the editor's defaults (body_presets.h) and selects it.
+    /// A mesh emits importMeshRequested instead: the mesh comes from a file.
+    void addBody(ShapeType type);
+
+signals:
+    void importMeshRequested();
+
+private:
+    void selectionFromDocument();
+    void selectionFromView();
+    void updateActions();
+    void showMessage(const QString& text);
+
+    Document* doc_;
+    SceneTreeModel* model_;
+    QTreeView* view_;
+    QLabel* message_;
+    QMenu* addMenu_;
+    QMap<ShapeType, QAction*> addActions_;
+    QAction* duplicate_;
+    QAction* delete_;
+    QAction* rename_;
+    // Set while the selection is being copied one way, or while rows move: the other
+    // direction then stays quiet (no feedback loop, no stale row numbers).
+    bool syncing_ = false;
+};
+
+}  // namespace tumble::ui
