@@ -265,11 +265,12 @@ struct PropertyDock::Impl {
 
     // Applies `change` to every selected body, if the result is a valid scene. `key` names the
     // field (its error label); `merge` makes consecutive edits of it one undo step.
-    bool apply(const QString& key, const QString& text, const Change& change, bool merge = true) {
+    bool apply(const QString& key, const QString& text, const Change& change, bool merge = true,
+               const QString& mergeKey = QString()) {
         const QList<int> sel = doc->selection();
         if (sel.isEmpty()) return false;
         QUndoStack* stack = doc->undoStack();
-        const int mergeId = merge ? mergeIdFor(key) : 0;
+        const int mergeId = merge ? mergeIdFor(mergeKey.isEmpty() ? key : mergeKey) : 0;
         bool undone = false;
         if (sel.size() > 1 && mergeId && lastMacro.mergeId == mergeId && lastMacro.selection == sel &&
             stack->index() == lastMacro.index && stack->index() > 0 && !stack->canRedo() &&
@@ -395,12 +396,14 @@ struct PropertyDock::Impl {
         QWidget* row = withError(edit, key);
         form->addRow(label, row);
         QObject::connect(edit, &VectorEdit::componentEdited, q, [this, key, text, set](int k, double v) {
-            apply(key, text, [&](BodyDesc& b, int) { set(b, k, v); });
+            apply(
+                key, text, [&](BodyDesc& b, int) { set(b, k, v); }, true, key + "." + QString::number(k));
         });
         refreshers.push_back([form, row, edit, get](const std::vector<const BodyDesc*>& bodies) {
             const Shared<Vec3> s = sharedOf<Vec3>(bodies, get);
             form->setRowVisible(row, s.applies);
-            if (s.applies) edit->showValue(componentsOf(bodies, get));
+            if (s.applies)
+                edit->showValue(componentsOf(bodies, get), get(*bodies.front()).value_or(Vec3::Zero()));
         });
         return edit;
     }
@@ -504,8 +507,8 @@ void PropertyDock::Impl::build() {
             if (t == ShapeType::Plane) setMotion(b, index, Motion::Static);  // planes are static
         });
     type->setToolTip(QObject::tr("A plane makes the body static; a mesh comes from File > Import Mesh"));
-    auto has = [](std::initializer_list<ShapeType> types) {
-        return [types](const BodyDesc& b) {
+    auto has = [](std::initializer_list<ShapeType> list) {
+        return [types = std::vector<ShapeType>(list)](const BodyDesc& b) {
             for (ShapeType t : types)
                 if (b.shape.type == t) return true;
             return false;
@@ -711,7 +714,8 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
         if (value.value)
             mass->showValue(*value.value);
         else
-            mass->showMixed();
+            mass->showMixed(bodies.front()->density ? *bodies.front()->density
+                                                    : bodies.front()->mass.value_or(0.0));
         const auto total = sharedOf<double>(bodies, [this](const BodyDesc& b) -> std::optional<double> {
             const auto c = computed(b);
             return c ? std::optional(c->mass) : std::nullopt;
@@ -748,12 +752,15 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             false);
     });
     QObject::connect(com, &VectorEdit::componentEdited, q, [this](int k, double value) {
-        apply("center_of_mass", QObject::tr("Set centre of mass"), [&](BodyDesc& b, int) {
-            const auto c = computed(b);
-            Vec3 p = b.centerOfMass.value_or(c ? c->centerOfMass : Vec3::Zero());
-            p[k] = value;
-            b.centerOfMass = p;
-        });
+        apply(
+            "center_of_mass", QObject::tr("Set centre of mass"),
+            [&](BodyDesc& b, int) {
+                const auto c = computed(b);
+                Vec3 p = b.centerOfMass.value_or(c ? c->centerOfMass : Vec3::Zero());
+                p[k] = value;
+                b.centerOfMass = p;
+            },
+            true, QStringLiteral("center_of_mass.%1").arg(k));
     });
 
     inertia = new InertiaEdit("inertia");
@@ -776,11 +783,14 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             false);
     });
     QObject::connect(inertia, &InertiaEdit::cellEdited, q, [this, start](int i, int j, double value) {
-        apply("inertia", QObject::tr("Set inertia"), [&](BodyDesc& b, int) {
-            Mat3 m = start(b);
-            m(i, j) = m(j, i) = value;
-            b.inertia = m;
-        });
+        apply(
+            "inertia", QObject::tr("Set inertia"),
+            [&](BodyDesc& b, int) {
+                Mat3 m = start(b);
+                m(i, j) = m(j, i) = value;
+                b.inertia = m;
+            },
+            true, QStringLiteral("inertia.%1%2").arg(std::min(i, j)).arg(std::max(i, j)));
     });
 
     refreshers.push_back([this, form, comRow, inertiaRow](const std::vector<const BodyDesc*>& bodies) {
@@ -836,7 +846,8 @@ void PropertyDock::Impl::buildForces(QVBoxLayout* layout) {
     QObject::connect(forces, &ForcesEdit::forcesEdited, q,
                      [this](const std::vector<ForceDesc>& list, const QString& text, const QString& field) {
                          apply(
-                             "forces", text, [&](BodyDesc& b, int) { b.forces = list; }, !field.isEmpty());
+                             "forces", text, [&](BodyDesc& b, int) { b.forces = list; }, !field.isEmpty(),
+                             field);
                      });
     QObject::connect(forces, &ForcesEdit::editingFinished, q, [this] { ++generation; });
     refreshers.push_back([this](const std::vector<const BodyDesc*>& bodies) {

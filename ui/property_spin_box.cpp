@@ -18,6 +18,16 @@ PropertySpinBox::PropertySpinBox(QWidget* parent) : QDoubleSpinBox(parent) {
     setAccelerated(true);
     setCorrectionMode(QAbstractSpinBox::CorrectToPreviousValue);
     connect(this, &QDoubleSpinBox::valueChanged, this, [this] { mixed_ = false; });
+    // Typing the number the box holds under "—" changes no value, but it is still an edit:
+    // the user wants every selected body to take it.
+    connect(this, &QAbstractSpinBox::editingFinished, this, [this] {
+        if (!mixed_ || stripped(text()) == mixedText()) return;
+        bool ok = false;
+        locale().toDouble(stripped(text()), &ok);
+        if (!ok) return;
+        mixed_ = false;
+        emit valueChanged(value());
+    });
 }
 
 void PropertySpinBox::showValue(double value) {
@@ -31,7 +41,7 @@ void PropertySpinBox::showMixed(double base) {
     const QSignalBlocker block(this);
     setValue(base);
     mixed_ = true;
-    lineEdit()->setText(mixedText());
+    lineEdit()->setText(prefix() + mixedText() + suffix());
 }
 
 QString PropertySpinBox::mixedText() {
@@ -70,7 +80,7 @@ QValidator::State PropertySpinBox::validate(QString& text, int&) const {
 }
 
 void PropertySpinBox::fixup(QString& input) const {
-    if (mixed_) input = mixedText();
+    if (mixed_) input = prefix() + mixedText() + suffix();
 }
 
 }  // namespace tumble::ui

@@ -26,12 +26,12 @@ VectorEdit::VectorEdit(const QString& name, const QString& suffix, QWidget* pare
     }
 }
 
-void VectorEdit::showValue(const std::array<std::optional<double>, 3>& v) {
+void VectorEdit::showValue(const std::array<std::optional<double>, 3>& v, const Vec3& base) {
     for (size_t k = 0; k < 3; ++k) {
         if (v[k])
             spins_[k]->showValue(*v[k]);
         else
-            spins_[k]->showMixed();
+            spins_[k]->showMixed(base[static_cast<int>(k)]);
     }
 }
 

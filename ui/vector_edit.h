@@ -21,7 +21,8 @@ public:
     explicit VectorEdit(const QString& name, const QString& suffix, QWidget* parent = nullptr);
 
     /// Shows one value per component; an empty component shows "—" (the bodies differ).
-    void showValue(const std::array<std::optional<double>, 3>& v);
+    /// `base` is where stepping a "—" component starts from.
+    void showValue(const std::array<std::optional<double>, 3>& v, const Vec3& base = Vec3::Zero());
     void showValue(const Vec3& v);
     void setRange(double min, double max);
     void setSuffix(const QString& suffix);

@@ -78,6 +78,11 @@ struct Fixture {
     }
 };
 
+// "—" (and the unit): the selected bodies disagree.
+bool showsMixed(const PropertySpinBox* spin) {
+    return spin->isMixed() && spin->text().startsWith(PropertySpinBox::mixedText());
+}
+
 }  // namespace
 
 class TestPropertyDock : public QObject {
@@ -424,11 +429,11 @@ private slots:
     void multiSelectionEditsAllInOneStep() {
         Fixture f;
         f.doc.setSelection({f.ballIndex, f.crateIndex});
-        QCOMPARE(f.spin("restitution")->text(), PropertySpinBox::mixedText());  // 0.5 and 0.2
-        QCOMPARE(f.spin("friction")->value(), 0.5);                             // both 0.5
+        QVERIFY(showsMixed(f.spin("restitution")));  // 0.5 and 0.2
+        QCOMPARE(f.spin("friction")->value(), 0.5);  // both 0.5
         QVERIFY(!f.spin("friction")->isMixed());
         QCOMPARE(f.spin("position.z")->value(), 0.0);
-        QCOMPARE(f.spin("position.x")->text(), PropertySpinBox::mixedText());
+        QVERIFY(showsMixed(f.spin("position.x")));
         QVERIFY(!f.find<QLineEdit>("name")->isEnabled());
 
         const int steps = f.steps();
@@ -440,7 +445,7 @@ private slots:
         f.doc.undoStack()->undo();
         QCOMPARE(f.ballBody().restitution, 0.5);
         QCOMPARE(f.crateBody().restitution, 0.2);
-        QCOMPARE(f.spin("restitution")->text(), PropertySpinBox::mixedText());
+        QVERIFY(showsMixed(f.spin("restitution")));
 
         // One component of a vector: each body keeps its own other components.
         f.spin("position.y")->setValue(5.0);
@@ -462,7 +467,7 @@ private slots:
     void multiSelectionInvalidIsRefusedForAll() {
         Fixture f;
         f.doc.setSelection({f.ballIndex, f.crateIndex});
-        QCOMPARE(f.spin("mass")->text(), PropertySpinBox::mixedText());  // a mass and a density
+        QVERIFY(showsMixed(f.spin("mass")));  // a mass and a density
         const SceneDesc before = f.doc.scene();
         const int steps = f.steps();
         f.spin("mass")->setValue(0.0);
