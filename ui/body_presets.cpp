@@ -71,15 +71,22 @@ BodyDesc presetBody(ShapeType type, const SceneDesc& scene) {
     }
     b.mass = 1.0;
 
-    // The top of the pile: the highest point of every body that is not a plane.
+    return placedAbove(b, pileTop(scene));
+}
+
+double pileTop(const SceneDesc& scene) {
     double top = 0.0;
     for (const BodyDesc& other : scene.bodies) {
         if (other.shape.type == ShapeType::Plane) continue;
         top = std::max(top, other.position.y() + halfHeightAboveOrigin(other));
     }
-    const double half = halfHeightAboveOrigin(b);
-    b.position = Vec3(0.0, std::max(top + 0.5, 0.5) + half, 0.0);
-    return b;
+    return top;
+}
+
+BodyDesc placedAbove(BodyDesc body, double top) {
+    if (body.shape.type == ShapeType::Plane) return body;
+    body.position.y() = top + 0.5 + halfHeightAboveOrigin(body);
+    return body;
 }
 
 }  // namespace tumble::ui

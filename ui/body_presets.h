@@ -12,6 +12,13 @@ namespace tumble::ui {
 /// through the origin. A mesh body has no file yet: the import dialog fills it in.
 BodyDesc presetBody(ShapeType type, const SceneDesc& scene);
 
+/// The highest world y reached by a body of `scene` other than a plane (0 when none is).
+double pileTop(const SceneDesc& scene);
+
+/// `body` moved straight up (x, z and orientation kept) so that its lowest point sits
+/// 0.5 m over `top`. Planes are returned as they are.
+BodyDesc placedAbove(BodyDesc body, double top);
+
 /// Half the height of a body's bounding box along the world y axis, about its position
 /// (a bound: the box of a rotated shape is taken from its bounding sphere). 0 for planes.
 double halfHeightAboveOrigin(const BodyDesc& body);

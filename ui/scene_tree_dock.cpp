@@ -60,7 +60,7 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     duplicate_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_D));
     duplicate_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
     duplicate_->setStatusTip(tr("Copy the selected bodies"));
-    connect(duplicate_, &QAction::triggered, this, [this] { doc_->duplicateBodies(doc_->selection()); });
+    connect(duplicate_, &QAction::triggered, this, &SceneTreeDock::duplicateSelection);
 
     delete_ = new QAction(tr("&Delete"), this);
     delete_->setShortcut(QKeySequence::Delete);
@@ -144,6 +144,26 @@ void SceneTreeDock::addBody(ShapeType type) {
     message_->hide();
     const int index = doc_->addBody(presetBody(type, doc_->scene()));
     doc_->setSelection({index});
+}
+
+void SceneTreeDock::duplicateSelection() {
+    const QList<int> rows = doc_->selection();
+    if (rows.isEmpty()) return;
+    message_->hide();
+    double top = pileTop(doc_->scene());
+    QList<BodyDesc> copies;
+    for (int i : rows) {
+        BodyDesc copy = placedAbove(doc_->body(i), top);
+        if (copy.shape.type != ShapeType::Plane) top = copy.position.y() + halfHeightAboveOrigin(copy);
+        copies.append(std::move(copy));
+    }
+    doc_->beginMacro(rows.size() == 1
+                         ? tr("Duplicate %1").arg(QString::fromStdString(doc_->body(rows[0]).name))
+                         : tr("Duplicate %n bodies", nullptr, int(rows.size())));
+    QList<int> added;
+    for (const BodyDesc& copy : copies) added.append(doc_->addBody(copy));
+    doc_->endMacro();
+    doc_->setSelection(added);
 }
 
 void SceneTreeDock::selectionFromDocument() {

@@ -37,6 +37,10 @@ public:
     /// A mesh emits importMeshRequested instead: the mesh comes from a file.
     void addBody(ShapeType type);
 
+    /// Copies of the selected bodies, each moved straight up above everything else (a copy
+    /// in the same place would start inside its original), as one undo step; selects them.
+    void duplicateSelection();
+
 signals:
     void importMeshRequested();
 

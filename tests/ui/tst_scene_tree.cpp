@@ -97,6 +97,16 @@ private slots:
                  QStringList({"ground", "sphere", "box", "capsule", "cylinder", "sphere-2", "box-2"}));
         QCOMPARE(doc.selection(), QList<int>({5, 6}));
         QCOMPARE(viewRows(dock.view()), QList<int>({5, 6}));
+        QCOMPARE(doc.undoStack()->undoText(), QString("Duplicate 2 bodies"));
+        // The copies keep everything but their height: they start above the pile.
+        for (int k : {0, 1}) {
+            const BodyDesc& original = doc.body(1 + k);
+            const BodyDesc& copy = doc.body(5 + k);
+            QCOMPARE(copy.shape, original.shape);
+            QCOMPARE(copy.position.x(), original.position.x());
+            QCOMPARE(copy.mass, original.mass);
+            for (int i = 1; i < 5 + k; ++i) QVERIFY(bottom(copy) > top(doc.body(i)));
+        }
 
         // Delete box and capsule.
         doc.setSelection({2, 3});
