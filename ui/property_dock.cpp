@@ -709,6 +709,10 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             massKind->setCurrentIndex(kind.value ? *kind.value : -1);
         }
         mass->setSuffix(kind.value && *kind.value == 1 ? " kg/m³" : " kg");
+        // Some give a mass, some a density: one number cannot mean both. Choose first.
+        mass->setEnabled(kind.value.has_value());
+        mass->setToolTip(kind.value ? QString()
+                                    : QObject::tr("Some bodies give a mass, some a density: choose one"));
         const auto value =
             sharedOf<double>(bodies, [](const BodyDesc& b) { return b.density ? b.density : b.mass; });
         if (value.value)

@@ -467,7 +467,15 @@ private slots:
     void multiSelectionInvalidIsRefusedForAll() {
         Fixture f;
         f.doc.setSelection({f.ballIndex, f.crateIndex});
-        QVERIFY(showsMixed(f.spin("mass")));  // a mass and a density
+        // A mass and a density: one number cannot be both, so the value waits for a choice.
+        QVERIFY(showsMixed(f.spin("mass")));
+        QVERIFY(!f.spin("mass")->isEnabled());
+        f.choose("mass.kind", "Mass");  // the crate keeps its 800 kg as a mass
+        QCOMPARE(f.crateBody().mass.value_or(0.0), 800.0);
+        QVERIFY(!f.crateBody().density);
+        QVERIFY(f.spin("mass")->isEnabled());
+        QCOMPARE(f.spin("mass")->suffix(), QString(" kg"));
+
         const SceneDesc before = f.doc.scene();
         const int steps = f.steps();
         f.spin("mass")->setValue(0.0);
@@ -477,6 +485,21 @@ private slots:
         f.spin("restitution")->setValue(1.5);
         QCOMPARE(f.doc.scene(), before);
         QVERIFY(f.dock.fieldError("restitution").contains("between 0 and 1"));
+    }
+
+    void typingTheHeldValueUnderADashAppliesIt() {
+        Fixture f;
+        f.doc.setSelection({f.ballIndex, f.crateIndex});
+        auto* restitution = f.spin("restitution");
+        QVERIFY(showsMixed(restitution));
+        QCOMPARE(restitution->value(), 0.5);  // held from the first body, shown as "—"
+        auto* line = restitution->findChild<QLineEdit*>();
+        QVERIFY(line);
+        line->setText("0.5");
+        emit restitution->editingFinished();
+        QCOMPARE(f.ballBody().restitution, 0.5);
+        QCOMPARE(f.crateBody().restitution, 0.5);
+        QVERIFY(!showsMixed(restitution));
     }
 
     void multiSelectionHidesWhatDoesNotApplyToAll() {
