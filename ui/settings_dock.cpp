@@ -10,7 +10,6 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
-#include <QHBoxLayout>
 #include <QLabel>
 #include <QScrollArea>
 #include <QSignalBlocker>
@@ -44,6 +43,7 @@ QWidget* withMessage(QWidget* field, QLabel* message) {
     layout->setSpacing(1);
     layout->addWidget(field);
     layout->addWidget(message);
+    box->setFocusProxy(field);  // the label's mnemonic reaches the field
     return box;
 }
 
@@ -69,9 +69,11 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
     auto* form = new QFormLayout;
     form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
 
-    // Gravity: three components, each its own field for merging, one message.
+    // Gravity: three components, one above the other (a row of three is too wide for a
+    // dock), each its own field for merging, one message.
     auto* gravityRow = new QWidget;
-    auto* gravityLayout = new QHBoxLayout(gravityRow);
+    auto* gravityLayout = new QVBoxLayout(gravityRow);
+    gravityLayout->setSpacing(2);
     gravityLayout->setContentsMargins(0, 0, 0, 0);
     const char* axes[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
@@ -81,6 +83,7 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
         gravity_[k]->setToolTip(tr("Gravity, %1 component (m/s²)").arg(QLatin1String(axes[k])));
         gravityLayout->addWidget(gravity_[k]);
     }
+    gravityRow->setFocusProxy(gravity_[0]);
     gravityMessage_ = newMessage(QStringLiteral("gravityMessage"));
     form->addRow(tr("&Gravity"), withMessage(gravityRow, gravityMessage_));
 
