@@ -1,93 +1,383 @@
 #include "main_window.h"
+
+#include "document.h"
 #include "editor_main.h"
+#include "property_dock.h"
+#include "scene_tree_dock.h"
+#include "settings_dock.h"
+#include "viewport.h"
 
+#include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
-#include <tumble/model.h>
 
+#include <QAction>
 #include <QApplication>
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDir>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QHeaderView>
-#include <QLabel>
+#include <QFormLayout>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QMimeData>
+#include <QSaveFile>
+#include <QSettings>
+#include <QStandardPaths>
 #include <QStatusBar>
-#include <QTreeWidget>
-#include <QVBoxLayout>
+#include <QTimer>
+#include <QUndoStack>
+#include <QUndoView>
 
 namespace tumble::ui {
 
-MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
-    auto* central = new QWidget(this);
-    auto* layout = new QVBoxLayout(central);
-    summary_ = new QLabel(central);
-    bodies_ = new QTreeWidget(central);
-    bodies_->setHeaderLabels({tr("Body"), tr("Motion"), tr("Shape"), tr("Mass (kg)")});
-    bodies_->setRootIsDecorated(false);
-    bodies_->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
-    layout->addWidget(summary_);
-    layout->addWidget(bodies_);
-    setCentralWidget(central);
+namespace {
 
-    QMenu* file = menuBar()->addMenu(tr("&File"));
-    file->addAction(tr("&Open..."), QKeySequence::Open, this, &MainWindow::chooseScene);
-    file->addSeparator();
-    file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
-    resize(720, 480);
+const char* const kSamples[] = {"tumbling-box",     "spring-pendulum",   "projectile",     "bouncing-ball",
+                                "head-on",          "tilted-box-impact", "newtons-cradle", "sliding-block",
+                                "incline",          "rolling-sphere",    "tower-20",       "pyramid-15",
+                                "mass-ratio-stack", "sleeping-wake"};
+
+bool isSceneFile(const QString& path) {
+    return path.endsWith(".json", Qt::CaseInsensitive);
 }
 
-QString MainWindow::defaultScenePath() { return QStringLiteral(":/scenes/tumbling-box.json"); }
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document(this)) {
+    setObjectName("MainWindow");
+    viewport_ = new Viewport(doc_, this);
+    setCentralWidget(viewport_);
+
+    tree_ = new SceneTreeDock(doc_, this);
+    auto* tree = tree_;
+    tree->setObjectName("SceneTreeDock");
+    addDockWidget(Qt::LeftDockWidgetArea, tree);
+    connect(tree, &SceneTreeDock::importMeshRequested, this, &MainWindow::importDialog);
+
+    auto* properties = new PropertyDock(doc_, this);
+    properties->setObjectName("PropertyDock");
+    addDockWidget(Qt::RightDockWidgetArea, properties);
+
+    auto* settings = new SettingsDock(doc_, this);
+    settings->setObjectName("SettingsDock");
+    addDockWidget(Qt::RightDockWidgetArea, settings);
+    tabifyDockWidget(properties, settings);
+    properties->raise();
+
+    auto* history = new QDockWidget(tr("Undo History"), this);
+    history->setObjectName("UndoHistoryDock");
+    history->setWidget(new QUndoView(doc_->undoStack(), history));
+    addDockWidget(Qt::LeftDockWidgetArea, history);
+
+    buildMenus();
+    setAcceptDrops(true);
+    connect(doc_, &Document::fileStateChanged, this, &MainWindow::updateTitle);
+    statusBar();
+
+    autosaveTimer_ = new QTimer(this);
+    autosaveTimer_->setInterval(60 * 1000);
+    connect(autosaveTimer_, &QTimer::timeout, this, &MainWindow::autosave);
+    autosaveTimer_->start();
+
+    resize(1280, 800);
+    QSettings s;
+    restoreGeometry(s.value("window/geometry").toByteArray());
+    restoreState(s.value("window/state").toByteArray());
+    updateTitle();
+}
+
+MainWindow::~MainWindow() = default;
+
+const SceneDesc& MainWindow::scene() const {
+    return doc_->scene();
+}
+
+QString MainWindow::defaultScenePath() {
+    return QStringLiteral(":/scenes/tumbling-box.json");
+}
+
+void MainWindow::buildMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(tr("&New"), QKeySequence::New, this, &MainWindow::newScene);
+    file->addAction(tr("&Open..."), QKeySequence::Open, this, &MainWindow::openDialog);
+    recentMenu_ = file->addMenu(tr("Open &Recent"));
+    connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
+    QMenu* samples = file->addMenu(tr("&Samples"));
+    for (const char* name : kSamples) {
+        const QString path = QStringLiteral(":/scenes/%1.json").arg(name);
+        samples->addAction(QString(name), this, [this, path] { openPath(path); });
+    }
+    file->addSeparator();
+    file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save);
+    file->addAction(tr("Save &As..."), QKeySequence::SaveAs, this, &MainWindow::saveAsDialog);
+    file->addAction(tr("Re&vert"), this, &MainWindow::revert);
+    file->addSeparator();
+    file->addAction(tr("&Import Mesh..."), QKeySequence(tr("Ctrl+I")), this, &MainWindow::importDialog);
+    file->addSeparator();
+    file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    QAction* undo = doc_->undoStack()->createUndoAction(this, tr("&Undo"));
+    undo->setShortcut(QKeySequence::Undo);
+    QAction* redo = doc_->undoStack()->createRedoAction(this, tr("&Redo"));
+    redo->setShortcut(QKeySequence::Redo);
+    edit->addAction(undo);
+    edit->addAction(redo);
+    edit->addSeparator();
+    // The scene tree's own actions (their shortcuts live there; a second action with the
+    // same key would make both ambiguous).
+    edit->addMenu(tree_->addMenu());
+    edit->addAction(tree_->duplicateAction());
+    edit->addAction(tree_->deleteAction());
+    edit->addAction(tree_->renameAction());
+    edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
+        QList<int> all;
+        for (int i = 0; i < doc_->bodyCount(); ++i) all.append(i);
+        doc_->setSelection(all);
+    });
+
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->addAction(tr("&Frame Selection"), this, [this] { viewport_->frameSelection(); });
+    view->addAction(tr("Frame &All"), this, [this] { viewport_->frameAll(); });
+    view->addSeparator();
+    for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+}
+
+void MainWindow::updateTitle() {
+    QString name = doc_->displayName();
+    if (doc_->filePath().isEmpty() && source_.startsWith(":/")) name = QFileInfo(source_).fileName();
+    setWindowTitle(tr("%1[*] - Tumble").arg(name));
+    setWindowModified(doc_->isModified());
+}
 
 bool MainWindow::openScene(const QString& path, QString* error) {
+    if (!doc_->open(path, error)) return false;
+    source_ = path;
+    if (!path.startsWith(":/")) addRecent(path);
+    updateTitle();
+    viewport_->frameAll();
+    return true;
+}
+
+void MainWindow::openPath(const QString& path) {
+    if (!maybeSave()) return;
+    QString error;
+    if (!openScene(path, &error)) QMessageBox::warning(this, tr("Open scene"), error);
+}
+
+bool MainWindow::maybeSave() {
+    if (!doc_->isModified()) return true;
+    const auto answer = QMessageBox::warning(
+        this, tr("Unsaved changes"), tr("%1 has unsaved changes. Save them?").arg(doc_->displayName()),
+        QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+    if (answer == QMessageBox::Cancel) return false;
+    if (answer == QMessageBox::Save) return save();
+    return true;
+}
+
+void MainWindow::newScene() {
+    if (!maybeSave()) return;
+    doc_->newScene();
+    source_.clear();
+    updateTitle();
+}
+
+void MainWindow::openDialog() {
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open scene"), QString(), tr("Tumble scenes (*.json)"));
+    if (!path.isEmpty()) openPath(path);
+}
+
+bool MainWindow::save() {
+    if (doc_->filePath().isEmpty()) return saveAsDialog();
+    QString error;
+    if (!doc_->saveAs(doc_->filePath(), &error)) {
+        QMessageBox::warning(this, tr("Save"), error);
+        return false;
+    }
+    QFile::remove(autosavePath());
+    statusBar()->showMessage(tr("Saved %1").arg(doc_->filePath()), 3000);
+    return true;
+}
+
+bool MainWindow::saveAsDialog() {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save scene as"), doc_->filePath(),
+                                                      tr("Tumble scenes (*.json)"));
+    if (path.isEmpty()) return false;
+    QString error;
+    if (!doc_->saveAs(path, &error)) {
+        QMessageBox::warning(this, tr("Save"), error);
+        return false;
+    }
+    source_ = path;
+    addRecent(path);
+    QFile::remove(autosavePath());
+    updateTitle();
+    return true;
+}
+
+void MainWindow::revert() {
+    if (source_.isEmpty() || !doc_->isModified()) return;
+    if (QMessageBox::question(this, tr("Revert"), tr("Discard the changes and reload %1?").arg(source_)) !=
+        QMessageBox::Yes)
+        return;
+    QString error;
+    if (!openScene(source_, &error)) QMessageBox::warning(this, tr("Revert"), error);
+}
+
+bool MainWindow::importMesh(const QString& path, bool convexHull, double scale, QString* error) {
+    BodyDesc body;
+    try {
+        body.shape.type = ShapeType::Mesh;
+        body.shape.scale = Vec3::Constant(scale);
+        body.shape.collision = convexHull ? MeshCollision::ConvexHull : MeshCollision::Triangles;
+        body.shape.meshData =
+            std::make_shared<const TriangleMesh>(io::importMesh(path.toStdString(), body.shape.scale));
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return false;
+    }
+    // The scene stores the path relative to the scene's folder when it has one.
+    const QString base = doc_->filePath().isEmpty() ? QString() : QFileInfo(doc_->filePath()).absolutePath();
+    body.shape.file =
+        (base.isEmpty() ? QFileInfo(path).absoluteFilePath() : QDir(base).relativeFilePath(path))
+            .toStdString();
+    body.name = QFileInfo(path).completeBaseName().toStdString();
+    body.density = 1000.0;
+    body.mass.reset();
+    const QVector3D at = viewport_->cameraTarget();
+    body.position = Vec3(at.x(), std::max(static_cast<double>(at.y()), 1.0), at.z());
+    const int index = doc_->addBody(body);
+    doc_->setSelection({index});
+    return true;
+}
+
+void MainWindow::importDialog() {
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Import mesh"), QString(),
+        tr("Meshes (*.obj *.stl *.ply *.off *.gltf *.glb *.fbx *.dae *.3ds *.blend);;All files (*)"));
+    if (path.isEmpty()) return;
+    QDialog dialog(this);
+    dialog.setWindowTitle(tr("Import %1").arg(QFileInfo(path).fileName()));
+    auto* form = new QFormLayout(&dialog);
+    auto* collision = new QComboBox(&dialog);
+    collision->addItems({tr("Convex hull"), tr("Triangles (concave allowed)")});
+    auto* scale = new QDoubleSpinBox(&dialog);
+    scale->setRange(1e-6, 1e6);
+    scale->setDecimals(6);
+    scale->setValue(1.0);
+    form->addRow(tr("Collision"), collision);
+    form->addRow(tr("Scale"), scale);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+    form->addRow(buttons);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    if (dialog.exec() != QDialog::Accepted) return;
+    QString error;
+    if (!importMesh(path, collision->currentIndex() == 0, scale->value(), &error))
+        QMessageBox::warning(this, tr("Import mesh"), error);
+}
+
+void MainWindow::addRecent(const QString& path) {
+    QSettings s;
+    QStringList recent = s.value("recentFiles").toStringList();
+    recent.removeAll(path);
+    recent.prepend(path);
+    while (recent.size() > 10) recent.removeLast();
+    s.setValue("recentFiles", recent);
+}
+
+void MainWindow::fillRecentMenu() {
+    recentMenu_->clear();
+    const QStringList recent = QSettings().value("recentFiles").toStringList();
+    for (const QString& path : recent) recentMenu_->addAction(path, this, [this, path] { openPath(path); });
+    recentMenu_->setEnabled(!recent.isEmpty());
+}
+
+QString MainWindow::autosavePath() {
+    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/autosave.json";
+}
+
+void MainWindow::autosave() {
+    const QString path = autosavePath();
+    if (!doc_->isModified()) {
+        QFile::remove(path);
+        return;
+    }
+    QDir().mkpath(QFileInfo(path).absolutePath());
+    QSaveFile file(path);
+    if (!file.open(QIODevice::WriteOnly)) return;
+    const std::string text = io::sceneToJson(doc_->scene());
+    file.write(text.data(), static_cast<qint64>(text.size()));
+    file.commit();
+}
+
+void MainWindow::offerRecovery() {
+    if (!QFileInfo::exists(autosavePath())) return;
+    const auto answer = QMessageBox::question(
+        this, tr("Recover"), tr("Tumble did not close cleanly last time. Recover the unsaved scene?"),
+        QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes);
+    QString error;
+    if (answer == QMessageBox::Yes && !recoverAutosave(&error))
+        QMessageBox::warning(this, tr("Recover"), error);
+    QFile::remove(autosavePath());
+}
+
+bool MainWindow::recoverAutosave(QString* error) {
+    const QString path = autosavePath();
     QFile file(path);
-    const QString name = path.startsWith(":/") ? QFileInfo(path).fileName() : path;
     if (!file.open(QIODevice::ReadOnly)) {
-        if (error) *error = tr("%1: cannot be read (%2)").arg(name, file.errorString());
+        if (error) *error = tr("%1: cannot be read (%2)").arg(path, file.errorString());
         return false;
     }
     try {
         const QByteArray text = file.readAll();
-        scene_ = io::parseScene(std::string_view(text.constData(), size_t(text.size())), name.toStdString());
-    } catch (const io::InputError& e) {
+        const SceneDesc scene =
+            io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
+                           path.toStdString(), std::filesystem::path("."));
+        doc_->replaceScene(scene, tr("Recover unsaved scene"), true);
+    } catch (const std::exception& e) {
         if (error) *error = QString::fromStdString(e.what());
         return false;
     }
-    path_ = path;
-    showScene();
     return true;
 }
 
-void MainWindow::showScene() {
-    setWindowTitle(tr("%1 - Tumble").arg(QFileInfo(path_).fileName()));
-    bodies_->clear();
-    Model model;
-    try {
-        model = compile(scene_);
-    } catch (const std::exception& e) {
-        statusBar()->showMessage(QString::fromStdString(e.what()));
+void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!maybeSave()) {
+        event->ignore();
+        return;
     }
-    for (size_t i = 0; i < scene_.bodies.size(); ++i) {
-        const BodyDesc& b = scene_.bodies[i];
-        const QString mass = i < model.bodies.size() && b.motion == Motion::Dynamic
-                                 ? QString::number(model.bodies[i].mass, 'g', 6)
-                                 : QStringLiteral("-");
-        new QTreeWidgetItem(bodies_, {QString::fromStdString(b.name), toString(b.motion), toString(b.shape.type), mass});
-    }
-    const Settings& s = scene_.settings;
-    const int n = int(scene_.bodies.size());
-    summary_->setText((n == 1 ? tr("1 body") : tr("%1 bodies").arg(n)) +
-                      tr("; %1 s at a step of %2 s, %3 frames per second")
-                          .arg(s.duration)
-                          .arg(s.dt)
-                          .arg(s.frameRate));
+    QFile::remove(autosavePath());  // a clean end: nothing to recover
+    QSettings s;
+    s.setValue("window/geometry", saveGeometry());
+    s.setValue("window/state", saveState());
+    event->accept();
 }
 
-void MainWindow::chooseScene() {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), QString(), tr("Tumble scenes (*.json)"));
-    if (path.isEmpty()) return;
-    QString error;
-    if (!openScene(path, &error)) QMessageBox::warning(this, tr("Open scene"), error);
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+    if (event->mimeData()->hasUrls()) event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+    for (const QUrl& url : event->mimeData()->urls()) {
+        const QString path = url.toLocalFile();
+        if (path.isEmpty()) continue;
+        if (isSceneFile(path)) {
+            openPath(path);
+            return;  // one scene at a time
+        }
+        QString error;
+        if (!importMesh(path, true, 1.0, &error)) QMessageBox::warning(this, tr("Import mesh"), error);
+    }
 }
 
 int runEditor(int argc, char** argv) {
@@ -103,6 +393,7 @@ int runEditor(int argc, char** argv) {
         if (!window.openScene(MainWindow::defaultScenePath(), &error)) return 1;
     }
     window.show();
+    window.offerRecovery();
     return app.exec();
 }
 

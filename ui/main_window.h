@@ -1,5 +1,6 @@
-// The editor's main window. For now it opens a scene and lists its bodies; the docks,
-// the viewport and undo come with the editor issue.
+// The editor's main window: the viewport in the centre, the scene tree, properties, scene
+// settings and undo history as docks, and the File, Edit and View menus. It owns the
+// document; every dock and the viewport work on the document, never on each other.
 #pragma once
 
 #include <tumble/scene.h>
@@ -7,34 +8,75 @@
 #include <QMainWindow>
 #include <QString>
 
-class QTreeWidget;
-class QLabel;
+class QMenu;
+class QTimer;
 
 namespace tumble::ui {
+
+class Document;
+class SceneTreeDock;
+class Viewport;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
 public:
     explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
 
-    /// Loads a scene file (or a ":/scenes/..." resource). On failure returns false,
-    /// keeps the current scene and puts the message in `error`.
+    Document* document() const { return doc_; }
+    Viewport* viewport() const { return viewport_; }
+
+    /// Loads a scene file (or a ":/scenes/..." sample). On failure returns false, keeps the
+    /// current scene and puts the message (file and field) in `error`. Does not ask about
+    /// unsaved changes: the menu actions do that first.
     bool openScene(const QString& path, QString* error);
+    const SceneDesc& scene() const;
+    /// The file or sample the scene came from ("" for a new scene).
+    const QString& scenePath() const { return source_; }
 
-    const SceneDesc& scene() const { return scene_; }
-    const QString& scenePath() const { return path_; }
+    /// Imports a mesh file as a new body in front of the camera (one undo step). On failure
+    /// the scene is untouched and `error` names the file and the reason.
+    bool importMesh(const QString& path, bool convexHull, double scale, QString* error);
+
+    /// Writes the autosave file now if the scene has unsaved changes (the timer calls it
+    /// every minute); removes it when there is nothing unsaved.
+    void autosave();
+    /// Where the autosave goes: the standard app-data location.
+    static QString autosavePath();
+    /// If an autosave from a session that did not end cleanly exists, offers to recover it.
+    void offerRecovery();
+    /// Loads the autosave as one undoable step (the scene shows as modified); false with
+    /// the reason when it cannot be read.
+    bool recoverAutosave(QString* error);
 
     /// The sample scene opened when no scene is given.
     static QString defaultScenePath();
 
-private:
-    void showScene();
-    void chooseScene();
+protected:
+    void closeEvent(QCloseEvent* event) override;
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
 
-    SceneDesc scene_;
-    QString path_;
-    QTreeWidget* bodies_ = nullptr;
-    QLabel* summary_ = nullptr;
+private:
+    void buildMenus();
+    void updateTitle();
+    bool maybeSave();  // false: the user cancelled
+    void newScene();
+    void openDialog();
+    bool save();
+    bool saveAsDialog();
+    void revert();
+    void importDialog();
+    void addRecent(const QString& path);
+    void fillRecentMenu();
+    void openPath(const QString& path);
+
+    Document* doc_ = nullptr;
+    Viewport* viewport_ = nullptr;
+    SceneTreeDock* tree_ = nullptr;
+    QString source_;
+    QMenu* recentMenu_ = nullptr;
+    QTimer* autosaveTimer_ = nullptr;
 };
 
 }  // namespace tumble::ui
