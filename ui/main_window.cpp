@@ -88,6 +88,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
     autosaveTimer_->start();
 
     resize(1280, 800);
+    // Room for three-component fields with their units in the properties.
+    resizeDocks({properties, tree}, {440, 260}, Qt::Horizontal);
     QSettings s;
     restoreGeometry(s.value("window/geometry").toByteArray());
     restoreState(s.value("window/state").toByteArray());

@@ -35,6 +35,7 @@ void PropertySpinBox::showValue(double value) {
     mixed_ = false;
     setValue(value);
     lineEdit()->setText(textFromValue(this->value()) + suffix());
+    lineEdit()->setCursorPosition(0);  // a long number shows its first digits, not its unit
 }
 
 void PropertySpinBox::showMixed(double base) {
