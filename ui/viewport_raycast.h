@@ -1,6 +1,7 @@
-// Exact ray casts against the scene's shapes, for picking in the viewport. Qt-free and
-// deterministic: the click that selects a body is a function of the camera and the scene
-// only, so tests can aim at a body and know what they will hit.
+// Exact ray casts against the scene's shapes, for picking in the viewport: an adapter over
+// the engine's ray cast (tumble/raycast.h, RayStart::Surface). Qt-free and deterministic:
+// the click that selects a body is a function of the camera and the scene only, so tests
+// can aim at a body and know what they will hit.
 #pragma once
 
 #include <tumble/scene.h>
