@@ -6,21 +6,33 @@
 
 #include "document.h"
 #include "viewport_camera.h"
+#include "viewport_gizmo.h"
+#include "viewport_handles.h"
 #include "viewport_raycast.h"
 #include "viewport_scene.h"
 
 #include <tumble/mass.h>
 
 #include <Qt3DCore/QEntity>
-#include <Qt3DExtras/QForwardRenderer>
 #include <Qt3DExtras/Qt3DWindow>
 #include <Qt3DRender/QCamera>
+#include <Qt3DRender/QCameraSelector>
+#include <Qt3DRender/QClearBuffers>
+#include <Qt3DRender/QCullFace>
+#include <Qt3DRender/QDepthTest>
+#include <Qt3DRender/QLayer>
+#include <Qt3DRender/QLayerFilter>
 #include <Qt3DRender/QRenderSettings>
+#include <Qt3DRender/QRenderStateSet>
+#include <Qt3DRender/QRenderSurfaceSelector>
+#include <Qt3DRender/QViewport>
 
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QUndoStack>
 #include <QVBoxLayout>
 #include <QWheelEvent>
+#include <QtMath>
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +43,32 @@ namespace {
 
 // How far the press may move before it is a drag rather than a click (pixels).
 constexpr int kClickSlop = 4;
+// How near a handle the cursor must be to grab it (pixels).
+constexpr double kHandleGrabPx = 8.0;
+// Handle size: this fraction of the distance from the camera (about a sixth of the view).
+constexpr float kHandleScale = 0.13f;
+// Merge ids of handle drags: a new one per drag, in a range of their own.
+constexpr int kDragMergeBase = 0x48000000;
+
+Vec3 toVec(const QVector3D& v) {
+    return Vec3(v.x(), v.y(), v.z());
+}
+QVector3D toQt(const Vec3& v) {
+    return QVector3D(float(v.x()), float(v.y()), float(v.z()));
+}
+
+double distanceToSegment(const QPointF& p, const QPointF& a, const QPointF& b) {
+    const QPointF ab = b - a;
+    const double len2 = QPointF::dotProduct(ab, ab);
+    double t = len2 > 0 ? QPointF::dotProduct(p - a, ab) / len2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    const QPointF d = p - (a + t * ab);
+    return std::hypot(d.x(), d.y());
+}
+
+bool onScreen(const QVector3D& projected) {
+    return projected.z() >= -1.0f && projected.z() <= 1.0f;
+}
 
 // A bounding sphere of a body's shape in world space; false for planes (unbounded).
 bool boundingSphere(const BodyDesc& b, Vec3* centre, double* radius) {
@@ -70,17 +108,75 @@ struct Viewport::Impl {
     QPoint pressPos;
     QPoint lastPos;
     bool dragged = false;
+
+    // Handles.
+    std::unique_ptr<ViewportGizmo> gizmo;
+    TransformMode mode = TransformMode::Move;
+    bool handlesShown = false;
+    Vec3 handlesOrigin = Vec3::Zero();
+    float handlesSize = 1.0f;
+    int hover = -1;
+    bool snapping = false;
+    double moveStep = 0.1;
+    double turnStepDegrees = 15.0;
+    // A handle drag: the axis (-1: none), where it started, the bodies as they were.
+    int dragAxis = -1;
+    Vec3 dragOrigin = Vec3::Zero();
+    double dragStartParameter = 0.0;
+    Vec3 dragStartVector = Vec3::Zero();
+    std::vector<std::pair<int, BodyDesc>> dragStart;
+    int dragMergeId = 0;
+    int dragCounter = 0;
+    const QUndoCommand* dragMacro = nullptr;  // a multi-body drag's step so far
+
+    /// The selected bodies a handle can move (planes cannot).
+    QList<int> movableSelection() const {
+        QList<int> out;
+        for (int i : doc->selection()) {
+            if (i >= 0 && i < doc->bodyCount() && doc->body(i).shape.type != ShapeType::Plane) out.append(i);
+        }
+        return out;
+    }
 };
 
 Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(std::make_unique<Impl>()) {
     d_->doc = document;
     d_->window = new Qt3DExtras::Qt3DWindow();
-    d_->window->defaultFrameGraph()->setClearColor(QColor(48, 50, 56));
     d_->window->renderSettings()->setRenderPolicy(Qt3DRender::QRenderSettings::OnDemand);
     d_->window->installEventFilter(this);
 
     d_->root = new Qt3DCore::QEntity();
     d_->scene = std::make_unique<ViewportScene>(d_->root);
+    d_->gizmo = std::make_unique<ViewportGizmo>(d_->root);
+
+    // Two passes: the scene, then the overlay layer (the handles) with no depth test and
+    // back faces culled, so no body hides them. (The RHI renderer ignores depth-range
+    // states, and a depth-only clear between the passes loses the clear colour.)
+    auto* overlay = new Qt3DRender::QLayer(d_->root);
+    overlay->setRecursive(true);
+    d_->gizmo->entity()->addComponent(overlay);
+    auto* surface = new Qt3DRender::QRenderSurfaceSelector();
+    surface->setSurface(d_->window);
+    auto* viewport = new Qt3DRender::QViewport(surface);
+    auto* cameraSelector = new Qt3DRender::QCameraSelector(viewport);
+    cameraSelector->setCamera(d_->window->camera());
+    auto* clearAll = new Qt3DRender::QClearBuffers(cameraSelector);
+    clearAll->setBuffers(Qt3DRender::QClearBuffers::ColorDepthBuffer);
+    clearAll->setClearColor(QColor(48, 50, 56));
+    auto* sceneFilter = new Qt3DRender::QLayerFilter(clearAll);
+    sceneFilter->addLayer(overlay);
+    sceneFilter->setFilterMode(Qt3DRender::QLayerFilter::DiscardAnyMatchingLayers);
+    auto* overlayStates = new Qt3DRender::QRenderStateSet(cameraSelector);
+    auto* always = new Qt3DRender::QDepthTest(overlayStates);
+    always->setDepthFunction(Qt3DRender::QDepthTest::Always);
+    overlayStates->addRenderState(always);
+    auto* cull = new Qt3DRender::QCullFace(overlayStates);
+    cull->setMode(Qt3DRender::QCullFace::Back);
+    overlayStates->addRenderState(cull);
+    auto* overlayFilter = new Qt3DRender::QLayerFilter(overlayStates);
+    overlayFilter->addLayer(overlay);
+    overlayFilter->setFilterMode(Qt3DRender::QLayerFilter::AcceptAnyMatchingLayers);
+    d_->window->setActiveFrameGraph(surface);
     d_->window->setRootEntity(d_->root);
 
     d_->container = QWidget::createWindowContainer(d_->window, this);
@@ -92,22 +188,38 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     setFocusPolicy(Qt::StrongFocus);
     setFocusProxy(d_->container);
 
-    connect(document, &Document::sceneReset, this, [this] {
+    // A drag in progress ends when the bodies it holds may be gone.
+    auto cancelDrag = [this] {
+        d_->dragAxis = -1;
+        d_->dragStart.clear();
+        d_->dragMacro = nullptr;
+    };
+    connect(document, &Document::sceneReset, this, [this, cancelDrag] {
+        cancelDrag();
         d_->scene->rebuild(d_->doc->scene());
         d_->scene->setSelection(d_->doc->selection());
+        updateHandles();
     });
-    connect(document, &Document::bodyInserted, this, [this](int i) {
+    connect(document, &Document::bodyInserted, this, [this, cancelDrag](int i) {
+        cancelDrag();
         d_->scene->insert(i, d_->doc->body(i));
         d_->scene->setSelection(d_->doc->selection());
+        updateHandles();
     });
-    connect(document, &Document::bodyRemoved, this, [this](int i) {
+    connect(document, &Document::bodyRemoved, this, [this, cancelDrag](int i) {
+        cancelDrag();
         d_->scene->remove(i);
         d_->scene->setSelection(d_->doc->selection());
+        updateHandles();
     });
-    connect(document, &Document::bodyChanged, this,
-            [this](int i) { d_->scene->update(i, d_->doc->body(i)); });
-    connect(document, &Document::selectionChanged, this,
-            [this] { d_->scene->setSelection(d_->doc->selection()); });
+    connect(document, &Document::bodyChanged, this, [this](int i) {
+        d_->scene->update(i, d_->doc->body(i));
+        updateHandles();
+    });
+    connect(document, &Document::selectionChanged, this, [this] {
+        d_->scene->setSelection(d_->doc->selection());
+        updateHandles();
+    });
 
     d_->scene->rebuild(document->scene());
     d_->scene->setSelection(document->selection());
@@ -117,6 +229,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
 Viewport::~Viewport() {
     // The scene's entities belong to the root, which the window owns once set; the window
     // belongs to the container. Drop our bookkeeping first.
+    d_->gizmo.reset();
     d_->scene.reset();
 }
 
@@ -152,16 +265,21 @@ void Viewport::syncCamera() {
     cam->setPosition(d_->camera.eye());
     cam->setViewCenter(d_->camera.target());
     cam->setUpVector(d_->camera.up());
+    updateHandles();  // their size follows the distance
 }
 
 QVector3D Viewport::projectToWidget(const QVector3D& world) const {
     return d_->camera.project(world, float(std::max(1, width())), float(std::max(1, height())));
 }
 
+void Viewport::rayAt(const QPoint& widgetPos, QVector3D* origin, QVector3D* direction) const {
+    d_->camera.rayThrough(float(widgetPos.x()), float(widgetPos.y()), float(std::max(1, width())),
+                          float(std::max(1, height())), origin, direction);
+}
+
 int Viewport::bodyAt(const QPoint& widgetPos) const {
     QVector3D o, dir;
-    d_->camera.rayThrough(float(widgetPos.x()), float(widgetPos.y()), float(std::max(1, width())),
-                          float(std::max(1, height())), &o, &dir);
+    rayAt(widgetPos, &o, &dir);
     const Ray ray{Vec3(o.x(), o.y(), o.z()), Vec3(dir.x(), dir.y(), dir.z())};
     int best = -1;
     double bestT = 0;
@@ -242,6 +360,8 @@ bool Viewport::handleKey(QKeyEvent* event) {
     const float step = (event->modifiers() & Qt::ShiftModifier) ? 2.0f : 10.0f;
     switch (event->key()) {
         case Qt::Key_F: frameSelection(); return true;
+        case Qt::Key_W: setTransformMode(TransformMode::Move); return true;
+        case Qt::Key_E: setTransformMode(TransformMode::Rotate); return true;
         case Qt::Key_A:
         case Qt::Key_Home: frameAll(); return true;
         case Qt::Key_Left: cam.orbit(-step, 0); break;
@@ -262,7 +382,13 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
     switch (event->type()) {
         case QEvent::MouseButtonPress: {
             auto* e = static_cast<QMouseEvent*>(event);
-            if (d_->dragButton == Qt::NoButton) {
+            const QPoint p = e->position().toPoint();
+            if (d_->dragButton == Qt::NoButton && e->button() == Qt::LeftButton &&
+                !(e->modifiers() & Qt::ShiftModifier) && beginHandleDrag(handleAt(p), p)) {
+                d_->dragButton = Qt::LeftButton;
+                d_->pressPos = d_->lastPos = p;
+                d_->dragged = true;  // never a click
+            } else if (d_->dragButton == Qt::NoButton) {
                 d_->dragButton = e->button();
                 d_->pressPos = d_->lastPos = e->position().toPoint();
                 d_->dragged = false;
@@ -272,8 +398,16 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
         }
         case QEvent::MouseMove: {
             auto* e = static_cast<QMouseEvent*>(event);
-            if (d_->dragButton == Qt::NoButton) return false;
             const QPoint p = e->position().toPoint();
+            if (d_->dragAxis >= 0) {
+                dragHandle(p, e->modifiers());
+                return true;
+            }
+            if (d_->dragButton == Qt::NoButton) {
+                const int h = handleAt(p);
+                if (h != d_->hover) d_->gizmo->setHighlight(d_->hover = h);
+                return false;
+            }
             if (!d_->dragged && (p - d_->pressPos).manhattanLength() < kClickSlop) return true;
             d_->dragged = true;
             const QPoint delta = p - d_->lastPos;
@@ -293,7 +427,10 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
         case QEvent::MouseButtonRelease: {
             auto* e = static_cast<QMouseEvent*>(event);
             if (e->button() != d_->dragButton) return true;
-            if (!d_->dragged && d_->dragButton == Qt::LeftButton) {
+            if (d_->dragAxis >= 0) {
+                dragHandle(e->position().toPoint(), e->modifiers());  // where and how it ends
+                endHandleDrag();
+            } else if (!d_->dragged && d_->dragButton == Qt::LeftButton) {
                 clickAt(e->position().toPoint(), e->modifiers());
             }
             d_->dragButton = Qt::NoButton;
@@ -308,6 +445,193 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
         case QEvent::KeyPress: return handleKey(static_cast<QKeyEvent*>(event));
         default: return false;
     }
+}
+
+// ---- Handles.
+
+Viewport::TransformMode Viewport::transformMode() const {
+    return d_->mode;
+}
+
+void Viewport::setTransformMode(TransformMode mode) {
+    if (mode == d_->mode) return;
+    d_->mode = mode;
+    d_->gizmo->setMode(mode == TransformMode::Move ? ViewportGizmo::Mode::Move : ViewportGizmo::Mode::Rotate);
+    emit transformModeChanged(mode);
+}
+
+bool Viewport::handlesVisible() const {
+    return d_->handlesShown;
+}
+QVector3D Viewport::handlesOrigin() const {
+    return toQt(d_->handlesOrigin);
+}
+float Viewport::handlesSize() const {
+    return d_->handlesSize;
+}
+bool Viewport::snapping() const {
+    return d_->snapping;
+}
+void Viewport::setSnapping(bool on) {
+    d_->snapping = on;
+}
+double Viewport::translationSnap() const {
+    return d_->moveStep;
+}
+void Viewport::setTranslationSnap(double metres) {
+    if (metres > 0) d_->moveStep = metres;
+}
+double Viewport::rotationSnapDegrees() const {
+    return d_->turnStepDegrees;
+}
+void Viewport::setRotationSnapDegrees(double degrees) {
+    if (degrees > 0) d_->turnStepDegrees = degrees;
+}
+
+void Viewport::updateHandles() {
+    if (!d_->gizmo) return;
+    const QList<int> movable = d_->movableSelection();
+    d_->handlesShown = !movable.isEmpty();
+    if (d_->handlesShown) {
+        Vec3 sum = Vec3::Zero();
+        for (int i : movable) sum += d_->doc->body(i).position;
+        d_->handlesOrigin = sum / double(movable.size());
+        const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
+        d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
+        d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
+    }
+    d_->gizmo->setVisible(d_->handlesShown);
+}
+
+int Viewport::handleAt(const QPoint& widgetPos) const {
+    if (!d_->handlesShown) return -1;
+    const QPointF p(widgetPos);
+    const QVector3D o = toQt(d_->handlesOrigin);
+    const float size = d_->handlesSize;
+    const QVector3D e[3] = {QVector3D(1, 0, 0), QVector3D(0, 1, 0), QVector3D(0, 0, 1)};
+    int best = -1;
+    double bestDistance = kHandleGrabPx;
+    for (int axis = 0; axis < 3; ++axis) {
+        double distance = 1e300;
+        if (d_->mode == TransformMode::Move) {
+            const QVector3D a = projectToWidget(o), b = projectToWidget(o + size * e[axis]);
+            if (!onScreen(a) || !onScreen(b)) continue;
+            // An axis seen end-on cannot be dragged along: leave it to the others.
+            if (std::hypot(b.x() - a.x(), b.y() - a.y()) < 2 * kHandleGrabPx) continue;
+            distance = distanceToSegment(p, a.toPointF(), b.toPointF());
+        } else {
+            // The ring's polygon, as drawn (viewport_gizmo.cpp).
+            const QVector3D u = e[(axis + 1) % 3], w = e[(axis + 2) % 3];
+            QVector3D prev;
+            for (int i = 0; i <= ViewportGizmo::kRingSegments; ++i) {
+                const float t = 2.0f * float(M_PI) * float(i) / ViewportGizmo::kRingSegments;
+                const QVector3D q = projectToWidget(o + size * (std::cos(t) * u + std::sin(t) * w));
+                if (i > 0 && onScreen(prev) && onScreen(q)) {
+                    distance = std::min(distance, distanceToSegment(p, prev.toPointF(), q.toPointF()));
+                }
+                prev = q;
+            }
+        }
+        if (distance < bestDistance) {
+            bestDistance = distance;
+            best = axis;
+        }
+    }
+    return best;
+}
+
+bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
+    if (axis < 0 || axis > 2 || !d_->handlesShown) return false;
+    QVector3D o, dir;
+    rayAt(pos, &o, &dir);
+    const Vec3 a = Vec3::Unit(axis);
+    const Vec3 origin = d_->handlesOrigin;
+    if (d_->mode == TransformMode::Move) {
+        const auto s = handles::axisParameter(toVec(o), toVec(dir), origin, a);
+        if (!s) return false;
+        d_->dragStartParameter = *s;
+    } else {
+        const auto hit = handles::planeHit(toVec(o), toVec(dir), origin, a);
+        if (!hit || (*hit - origin).norm() < 1e-6) return false;
+        d_->dragStartVector = *hit - origin;
+    }
+    d_->dragAxis = axis;
+    d_->dragOrigin = origin;
+    d_->dragStart.clear();
+    for (int i : d_->movableSelection()) d_->dragStart.emplace_back(i, d_->doc->body(i));
+    d_->dragMergeId = kDragMergeBase + (++d_->dragCounter & 0xffffff);
+    d_->dragMacro = nullptr;
+    d_->gizmo->setHighlight(axis);
+    return true;
+}
+
+void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
+    if (d_->dragAxis < 0 || d_->dragStart.empty()) return;
+    QVector3D o, dir;
+    rayAt(pos, &o, &dir);
+    const Vec3 a = Vec3::Unit(d_->dragAxis);
+    const bool snap = d_->snapping || (modifiers & Qt::ControlModifier);
+    const bool move = d_->mode == TransformMode::Move;
+    double amount = 0;  // metres or radians
+    if (move) {
+        const auto s = handles::axisParameter(toVec(o), toVec(dir), d_->dragOrigin, a);
+        if (!s) return;
+        amount = *s - d_->dragStartParameter;
+        if (snap) amount = handles::snap(amount, d_->moveStep);
+    } else {
+        const auto hit = handles::planeHit(toVec(o), toVec(dir), d_->dragOrigin, a);
+        if (!hit || (*hit - d_->dragOrigin).norm() < 1e-6) return;  // edge-on or at the centre
+        amount = handles::signedAngle(d_->dragStartVector, *hit - d_->dragOrigin, a);
+        if (snap) amount = handles::snap(amount, qDegreesToRadians(d_->turnStepDegrees));
+    }
+    auto apply = [&](const BodyDesc& b) {
+        return move ? handles::moved(b, a, amount) : handles::rotated(b, d_->dragOrigin, a, amount);
+    };
+    const QString verb = move ? tr("Move") : tr("Rotate");
+    Document* doc = d_->doc;
+    if (d_->dragStart.size() == 1) {
+        // One body: consecutive edits with this drag's merge id are one undo step.
+        const auto& [index, before] = d_->dragStart.front();
+        doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(before.name)),
+                     d_->dragMergeId);
+        return;
+    }
+    // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
+    QUndoStack* stack = doc->undoStack();
+    if (d_->dragMacro && !stack->canRedo() && stack->index() > 0 &&
+        stack->command(stack->index() - 1) == d_->dragMacro) {
+        stack->undo();
+    }
+    const QString text = tr("%1 %n bodies", nullptr, int(d_->dragStart.size())).arg(verb);
+    doc->beginMacro(text);
+    for (const auto& [index, before] : d_->dragStart) doc->setBody(index, apply(before), text);
+    doc->endMacro();
+    d_->dragMacro = stack->command(stack->index() - 1);
+}
+
+void Viewport::endHandleDrag() {
+    d_->dragAxis = -1;
+    d_->dragStart.clear();
+    d_->dragMacro = nullptr;
+    d_->gizmo->setHighlight(-1);
+    d_->hover = -1;
+    updateHandles();
+}
+
+// ---- Collision shapes.
+
+bool Viewport::showCollisionShapes() const {
+    return d_->scene->showCollisionShapes();
+}
+
+int Viewport::collisionShapeCount() const {
+    return d_->scene->collisionShapeCount();
+}
+
+void Viewport::setShowCollisionShapes(bool show) {
+    if (show == d_->scene->showCollisionShapes()) return;
+    d_->scene->setShowCollisionShapes(show);
+    emit showCollisionShapesChanged(show);
 }
 
 }  // namespace tumble::ui

@@ -1,6 +1,7 @@
 // The 3D view of the document: every body drawn and lit, a ground grid and axes, an orbit
-// camera (mouse and keyboard), click to select. Qt3D stays behind the pimpl: this header is
-// included by the main window and must stay light.
+// camera (mouse and keyboard), click to select, move and rotate handles on the selection
+// (W, E; Ctrl while dragging snaps), the collision shapes as a wireframe on demand. Qt3D stays behind the
+// pimpl: this header is included by the main window and must stay light.
 #pragma once
 
 #include <QPoint>
@@ -18,6 +19,10 @@ class Document;
 class Viewport : public QWidget {
     Q_OBJECT
 public:
+    /// What the handles on the selection do.
+    enum class TransformMode { Move, Rotate };
+    Q_ENUM(TransformMode)
+
     explicit Viewport(Document* document, QWidget* parent = nullptr);
     ~Viewport() override;
 
@@ -41,12 +46,48 @@ public:
 
     /// The Qt3D window inside the container (it receives the mouse and keys).
     QWindow* renderWindow() const;
+    /// The world ray through a widget point (direction of unit length).
+    void rayAt(const QPoint& widgetPos, QVector3D* origin, QVector3D* direction) const;
+
+    // ---- Handles. They sit at the mean position of the selected bodies that can move
+    // (planes cannot); a drag on one moves along, or turns about, that world axis through
+    // there. Each drag is one undo step, however many bodies it moves.
+    TransformMode transformMode() const;
+    /// Whether the handles are shown (something movable is selected).
+    bool handlesVisible() const;
+    /// Their centre, and their size in metres (arrow length, ring radius): a constant
+    /// fraction of the distance to the camera, so they keep their size on screen.
+    QVector3D handlesOrigin() const;
+    float handlesSize() const;
+    /// The handle under a widget point: 0, 1, 2 for the x, y, z axis, or -1.
+    int handleAt(const QPoint& widgetPos) const;
+    /// Snapping always on (else only while Ctrl is held during a drag).
+    bool snapping() const;
+    /// Steps: metres for a move, degrees for a turn.
+    double translationSnap() const;
+    double rotationSnapDegrees() const;
+
+    // ---- Collision shapes.
+    bool showCollisionShapes() const;
+    /// Wireframe entities drawn (one per body with a bounded shape, while shown).
+    int collisionShapeCount() const;
 
 public slots:
     /// Looks at the selected bodies (all of them when nothing is selected).
     void frameSelection();
     /// Looks at every body (planes excluded: they are infinite).
     void frameAll();
+    void setTransformMode(tumble::ui::Viewport::TransformMode mode);
+    void setSnapping(bool on);
+    void setTranslationSnap(double metres);
+    void setRotationSnapDegrees(double degrees);
+    /// Draws each body's collision shape (a mesh: its convex hull, or its triangles when it
+    /// collides by them) as lines over the render meshes.
+    void setShowCollisionShapes(bool show);
+
+signals:
+    void transformModeChanged(tumble::ui::Viewport::TransformMode mode);
+    void showCollisionShapesChanged(bool show);
 
 protected:
     bool eventFilter(QObject* watched, QEvent* event) override;
@@ -57,6 +98,10 @@ private:
     bool handleKey(QKeyEvent* event);
     void frameBodies(const QList<int>& indices);
     void syncCamera();
+    void updateHandles();
+    bool beginHandleDrag(int axis, const QPoint& pos);
+    void dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers);
+    void endHandleDrag();
 
     struct Impl;
     std::unique_ptr<Impl> d_;

@@ -6,6 +6,9 @@
 // by every body that uses the same loaded mesh.
 #include "viewport_scene.h"
 
+#include "viewport_overlay.h"
+#include "viewport_wire.h"
+
 #include <tumble/mass.h>
 
 #include <Qt3DCore/QAttribute>
@@ -21,11 +24,13 @@
 #include <Qt3DExtras/QSphereMesh>
 #include <Qt3DRender/QDirectionalLight>
 #include <Qt3DRender/QGeometryRenderer>
+#include <Qt3DRender/QMaterial>
 
 #include <QColor>
 #include <QQuaternion>
 #include <QVector3D>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <vector>
@@ -37,6 +42,7 @@ namespace {
 constexpr float kPlaneSize = 40.0f;  // drawn extent of an (infinite) plane, m
 constexpr int kGridHalf = 10;        // grid lines from -10 m to 10 m, every metre
 constexpr float kGridLift = 0.002f;  // above y = 0 so the ground plane does not hide it
+constexpr double kWireLift = 1.004;  // collision wireframes, scaled about the body origin
 
 QVector3D toQt(const Vec3& v) {
     return QVector3D(float(v.x()), float(v.y()), float(v.z()));
@@ -99,7 +105,13 @@ struct ViewportScene::Impl {
     Qt3DExtras::QPhongMaterial* staticMat = nullptr;
     Qt3DExtras::QPhongMaterial* kinematicMat = nullptr;
     Qt3DExtras::QPhongMaterial* selectedMat = nullptr;
-    Qt3DExtras::QPhongMaterial* groundMat = nullptr;  // planes: dark and matte, under the grid
+    Qt3DExtras::QPhongMaterial* groundMat = nullptr;         // planes: dark and matte, under the grid
+    Qt3DExtras::QPerVertexColorMaterial* wireMat = nullptr;  // collision shapes
+    bool showWire = false;
+    // One wireframe per loaded mesh and collision kind, like the render meshes.
+    std::map<std::pair<const TriangleMesh*, MeshCollision>,
+             std::pair<std::shared_ptr<const TriangleMesh>, Qt3DRender::QGeometryRenderer*>>
+        meshWires;
     // One geometry per loaded mesh (the shared_ptr keeps the key alive).
     std::map<const TriangleMesh*,
              std::pair<std::shared_ptr<const TriangleMesh>, Qt3DRender::QGeometryRenderer*>>
@@ -110,6 +122,8 @@ struct ViewportScene::Impl {
         Qt3DCore::QTransform* transform = nullptr;
         std::vector<Qt3DCore::QEntity*> parts;
         Qt3DExtras::QPhongMaterial* material = nullptr;  // the one in use
+        Qt3DCore::QEntity* wire = nullptr;               // the collision shape, when shown
+        ShapeDesc shape;                                 // what the parts draw
         Motion motion = Motion::Dynamic;
         bool plane = false;
         bool selected = false;
@@ -180,12 +194,56 @@ struct ViewportScene::Impl {
         return b;
     }
 
+    static bool sameShape(const ShapeDesc& a, const ShapeDesc& b) {
+        return a == b && a.meshData == b.meshData;
+    }
+
+    void pose(Body& b, const BodyDesc& desc) {
+        b.transform->setTranslation(toQt(desc.position));
+        b.transform->setRotation(toQt(desc.orientation));
+    }
+
+    Qt3DRender::QGeometryRenderer* wireRenderer(const ShapeDesc& s, Qt3DCore::QNode* owner) {
+        auto build = [](const ShapeDesc& shape) {
+            std::vector<float> data;
+            const QColor c(70, 235, 200);
+            // A hair outside the surface, so the lines on it win the depth test and the ones
+            // behind it stay hidden.
+            for (const Vec3& q : collisionWire(shape)) {
+                const Vec3 p = q * kWireLift;
+                data.insert(data.end(), {float(p.x()), float(p.y()), float(p.z()), float(c.redF()),
+                                         float(c.greenF()), float(c.blueF())});
+            }
+            return data;
+        };
+        if (s.type != ShapeType::Mesh) {
+            return makeColouredRenderer(build(s), Qt3DRender::QGeometryRenderer::Lines, owner);
+        }
+        const auto key = std::make_pair(s.meshData.get(), s.collision);
+        auto it = meshWires.find(key);
+        if (it != meshWires.end()) return it->second.second;
+        auto* r = makeColouredRenderer(build(s), Qt3DRender::QGeometryRenderer::Lines, root);
+        meshWires.emplace(key, std::make_pair(s.meshData, r));
+        return r;
+    }
+
+    void setWire(Body& b) {
+        delete b.wire;
+        b.wire = nullptr;
+        if (!showWire || b.shape.type == ShapeType::Plane) return;
+        if (b.shape.type == ShapeType::Mesh && !b.shape.meshData) return;
+        b.wire = new Qt3DCore::QEntity(b.entity);
+        b.wire->addComponent(wireRenderer(b.shape, b.wire));
+        b.wire->addComponent(wireMat);
+    }
+
     // Pose and parts from the description (parts are rebuilt: the shape may have changed).
     void fill(Body& b, const BodyDesc& desc) {
         for (auto* p : b.parts) delete p;
         b.parts.clear();
-        b.transform->setTranslation(toQt(desc.position));
-        b.transform->setRotation(toQt(desc.orientation));
+        pose(b, desc);
+        b.shape = desc.shape;
+        setWire(b);
         const ShapeDesc& s = desc.shape;
         const float r = float(s.radius);
         const float h = float(s.halfHeight);
@@ -289,6 +347,7 @@ ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl
     d.groundMat = makeMaterial(QColor(78, 80, 88), root);
     d.groundMat->setSpecular(QColor(0, 0, 0));
     d.groundMat->setAmbient(QColor(40, 41, 46));
+    d.wireMat = new Qt3DExtras::QPerVertexColorMaterial(root);
     d.buildLights();
     d.buildGridAndAxes();
 }
@@ -300,6 +359,8 @@ void ViewportScene::rebuild(const SceneDesc& scene) {
     d_->bodies.clear();
     for (auto& [key, value] : d_->meshes) delete value.second;
     d_->meshes.clear();
+    for (auto& [key, value] : d_->meshWires) delete value.second;
+    d_->meshWires.clear();
     for (const BodyDesc& desc : scene.bodies) d_->bodies.push_back(d_->make(desc, false));
 }
 
@@ -313,6 +374,11 @@ void ViewportScene::update(int index, const BodyDesc& body) {
     Impl::Body& b = d_->bodies[size_t(index)];
     b.motion = body.motion;
     b.plane = body.shape.type == ShapeType::Plane;
+    if (Impl::sameShape(b.shape, body.shape)) {  // a move or a turn (a drag): keep the parts
+        d_->setMaterial(b, d_->materialFor(b));
+        d_->pose(b, body);
+        return;
+    }
     b.material = d_->materialFor(b);
     d_->fill(b, body);
 }
@@ -333,6 +399,21 @@ void ViewportScene::setSelection(const QList<int>& indices) {
 
 int ViewportScene::count() const {
     return static_cast<int>(d_->bodies.size());
+}
+
+void ViewportScene::setShowCollisionShapes(bool show) {
+    if (show == d_->showWire) return;
+    d_->showWire = show;
+    for (auto& b : d_->bodies) d_->setWire(b);
+}
+
+bool ViewportScene::showCollisionShapes() const {
+    return d_->showWire;
+}
+
+int ViewportScene::collisionShapeCount() const {
+    return int(
+        std::count_if(d_->bodies.begin(), d_->bodies.end(), [](const Impl::Body& b) { return b.wire; }));
 }
 
 }  // namespace tumble::ui

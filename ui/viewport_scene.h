@@ -31,6 +31,11 @@ public:
     /// Highlights exactly these bodies.
     void setSelection(const QList<int>& indices);
     int count() const;
+    /// Draws each body's collision shape (viewport_wire.h) as lines over it.
+    void setShowCollisionShapes(bool show);
+    bool showCollisionShapes() const;
+    /// Wireframe entities present (bodies with a shape to outline, while shown).
+    int collisionShapeCount() const;
 
 private:
     struct Impl;

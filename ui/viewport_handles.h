@@ -1,0 +1,35 @@
+// The math of the viewport's move and rotate handles, apart from Qt3D and the widget: a
+// drag is a function of the mouse rays at press and now, the handle's axis and origin, and
+// the snapping step, so tests can compute what a drag must do and compare.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <optional>
+
+namespace tumble::ui::handles {
+
+/// The parameter s of the point origin + s * axis (axis of unit length) nearest to the ray
+/// rayOrigin + t * rayDir (t free); nothing when the ray is (nearly) parallel to the axis,
+/// where a drag along it is not defined.
+std::optional<double> axisParameter(const Vec3& rayOrigin, const Vec3& rayDir, const Vec3& origin,
+                                    const Vec3& axis);
+
+/// Where the ray meets the plane through `origin` with normal `axis` (t >= 0); nothing when
+/// the ray runs (nearly) along the plane or points away from it.
+std::optional<Vec3> planeHit(const Vec3& rayOrigin, const Vec3& rayDir, const Vec3& origin, const Vec3& axis);
+
+/// The right-handed angle about `axis` (unit) that turns `from` towards `to`, both taken in
+/// the plane normal to `axis`, in (-pi, pi].
+double signedAngle(const Vec3& from, const Vec3& to, const Vec3& axis);
+
+/// `value` rounded to the nearest multiple of `step`; `value` itself when step <= 0.
+double snap(double value, double step);
+
+/// The body moved by `distance` along `axis`.
+BodyDesc moved(const BodyDesc& body, const Vec3& axis, double distance);
+/// The body turned by `angle` (radians) about the world line through `pivot` along `axis`:
+/// its orientation turns, and its position turns about the pivot.
+BodyDesc rotated(const BodyDesc& body, const Vec3& pivot, const Vec3& axis, double angle);
+
+}  // namespace tumble::ui::handles
