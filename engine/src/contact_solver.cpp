@@ -1,5 +1,7 @@
 #include "contact_solver.h"
 
+#include "pair_key.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -15,9 +17,6 @@ constexpr double kBaumgarte = 0.2;      // share of the overlap beyond the slop 
 constexpr double kMaxCorrection = 0.1;  // largest move per pass, × size
 constexpr double kMatch = 0.1;          // a remembered point is the same within this × size
 
-std::uint64_t pairKey(int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 void indexMemory(const State& state, ContactSolverScratch& s) {
     s.memory.clear();

@@ -3,6 +3,8 @@
 #include "collision/narrowphase.h"
 #include "collision/toi.h"
 
+#include "pair_key.h"
+
 #include <algorithm>
 
 namespace tumble {
@@ -63,9 +65,6 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
     return w;
 }
 
-std::uint64_t pairKey(int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 }  // namespace
 

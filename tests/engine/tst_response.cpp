@@ -22,32 +22,6 @@ constexpr double kG = 9.81;
 constexpr double kDt = 1.0 / 240.0;  // the default step
 
 // The static ground: the plane y = 0, free side up.
-BodyDesc groundPlane(double restitution, double friction) {
-    BodyDesc b;
-    b.name = "ground";
-    b.motion = Motion::Static;
-    b.shape.type = ShapeType::Plane;
-    b.shape.normal = Vec3::UnitY();
-    b.shape.distance = 0.0;
-    b.restitution = restitution;
-    b.friction = friction;
-    return b;
-}
-
-BodyDesc material(BodyDesc b, double restitution, double friction) {
-    b.restitution = restitution;
-    b.friction = friction;
-    return b;
-}
-
-Vec3 velocityOf(const World& w, int i) {
-    return w.state().bodies[i].P * w.model().bodies[i].invMass;
-}
-
-Vec3 omegaOf(const World& w, int i) {
-    return derive(w.model().bodies[i], w.state().bodies[i]).omega;
-}
-
 Quat about(const Vec3& axis, double angle) {
     return Quat(Eigen::AngleAxisd(angle, axis.normalized()));
 }

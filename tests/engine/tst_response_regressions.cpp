@@ -17,33 +17,6 @@ namespace {
 constexpr double kG = 9.81;
 constexpr double kDt = 1.0 / 240.0;  // the default step
 
-// The static ground: the plane y = distance, free side up.
-BodyDesc groundPlane(double restitution, double friction, double distance = 0.0) {
-    BodyDesc b;
-    b.name = "ground";
-    b.motion = Motion::Static;
-    b.shape.type = ShapeType::Plane;
-    b.shape.normal = Vec3::UnitY();
-    b.shape.distance = distance;
-    b.restitution = restitution;
-    b.friction = friction;
-    return b;
-}
-
-BodyDesc material(BodyDesc b, double restitution, double friction) {
-    b.restitution = restitution;
-    b.friction = friction;
-    return b;
-}
-
-Vec3 velocityOf(const World& w, int i) {
-    return w.state().bodies[i].P * w.model().bodies[i].invMass;
-}
-
-Vec3 omegaOf(const World& w, int i) {
-    return derive(w.model().bodies[i], w.state().bodies[i]).omega;
-}
-
 // Kinetic plus gravitational energy of one dynamic body (J).
 double bodyEnergy(const Model& model, const State& state, int i) {
     const BodyModel& b = model.bodies[i];
