@@ -11,6 +11,7 @@
 #include <tumble/io/scene_file.h>
 
 #include <QAction>
+#include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QComboBox>
@@ -149,6 +150,30 @@ void MainWindow::buildMenus() {
     QMenu* view = menuBar()->addMenu(tr("&View"));
     view->addAction(tr("&Frame Selection"), this, [this] { viewport_->frameSelection(); });
     view->addAction(tr("Frame &All"), this, [this] { viewport_->frameAll(); });
+    view->addSeparator();
+    // The viewport's own keys (W, E, F, A) work while it has the focus; these are the same
+    // switches for the menu.
+    auto* modes = new QActionGroup(this);
+    QAction* move = view->addAction(tr("&Move Handles"), this,
+                                    [this] { viewport_->setTransformMode(Viewport::TransformMode::Move); });
+    QAction* rotate = view->addAction(tr("&Rotate Handles"), this,
+                                      [this] { viewport_->setTransformMode(Viewport::TransformMode::Rotate); });
+    for (QAction* a : {move, rotate}) a->setCheckable(true), modes->addAction(a);
+    move->setChecked(viewport_->transformMode() == Viewport::TransformMode::Move);
+    rotate->setChecked(!move->isChecked());
+    connect(viewport_, &Viewport::transformModeChanged, this,
+            [move, rotate](Viewport::TransformMode m) {
+                move->setChecked(m == Viewport::TransformMode::Move);
+                rotate->setChecked(m == Viewport::TransformMode::Rotate);
+            });
+    QAction* snap = view->addAction(tr("S&nap Handles (0.1 m, 15°)"));
+    snap->setCheckable(true);
+    snap->setChecked(viewport_->snapping());
+    connect(snap, &QAction::toggled, viewport_, &Viewport::setSnapping);
+    QAction* shapes = view->addAction(tr("Show &Collision Shapes"));
+    shapes->setCheckable(true);
+    shapes->setChecked(viewport_->showCollisionShapes());
+    connect(shapes, &QAction::toggled, viewport_, &Viewport::setShowCollisionShapes);
     view->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 }
