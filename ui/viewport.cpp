@@ -4,6 +4,8 @@
 // document, never of what the render thread last drew.
 #include "viewport.h"
 
+#include <tumble/raycast.h>
+
 #include "document.h"
 #include "viewport_camera.h"
 #include "viewport_gizmo.h"
@@ -280,19 +282,10 @@ void Viewport::rayAt(const QPoint& widgetPos, QVector3D* origin, QVector3D* dire
 int Viewport::bodyAt(const QPoint& widgetPos) const {
     QVector3D o, dir;
     rayAt(widgetPos, &o, &dir);
-    const Ray ray{Vec3(o.x(), o.y(), o.z()), Vec3(dir.x(), dir.y(), dir.z())};
-    int best = -1;
-    double bestT = 0;
-    const SceneDesc& scene = d_->doc->scene();
-    for (size_t i = 0; i < scene.bodies.size(); ++i) {
-        const BodyDesc& b = scene.bodies[i];
-        const auto t = rayShape(ray, b.shape, b.position, b.orientation);
-        if (t && (best < 0 || *t < bestT)) {
-            best = int(i);
-            bestT = *t;
-        }
-    }
-    return best;
+    // The engine's ray cast: nearest body, ties to the lower index.
+    const auto hit =
+        rayCastScene(d_->doc->scene(), Vec3(o.x(), o.y(), o.z()), Vec3(dir.x(), dir.y(), dir.z()));
+    return hit ? hit->body : -1;
 }
 
 void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers) {
