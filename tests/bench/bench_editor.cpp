@@ -351,7 +351,7 @@ int main(int argc, char** argv) {
                 runs, frames);
     std::printf(
         "| set-up        |     N | entities | load: drained | load: first frame | frame | slowest frame "
-        "| select | select: frame | move | move: frame | pick | idle CPU % |\n");
+        "| select | select: frame | move | move: frame | pick | idle CPU %% |\n");
     std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
 
     QSize viewportSize;
