@@ -26,6 +26,8 @@
 #include "collision/reference.h"
 #include "mesh/convex_hull.h"
 
+#include "test_random.h"
+
 #include <QtTest>
 
 #include <cstdint>
@@ -41,27 +43,7 @@ namespace {
 
 const double kSnapCos = 0.985;  // the convex path's face-snapping cone (clip.cpp)
 
-struct Rng {
-    std::uint64_t s;
-    double uniform(double lo = 0.0, double hi = 1.0) {
-        std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-    }
-    Vec3 vec(double lo, double hi) { return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
-    Vec3 direction() {
-        for (;;) {
-            const Vec3 v = vec(-1, 1);
-            if (v.squaredNorm() > 1e-4 && v.squaredNorm() <= 1.0) return v.normalized();
-        }
-    }
-    Mat3 rotation() {
-        Quat q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        return q.normalized().toRotationMatrix();
-    }
-};
+using test::Rng;
 
 double maxPlaneValue(const ref::Polyhedron& body, const Vec3& p) {
     double e = -1e300;

@@ -6,6 +6,8 @@
 #include "collision/mesh_pairs.h"
 #include "collision/reference.h"
 
+#include "test_random.h"
+
 #include <QtTest>
 
 #include <cstdint>
@@ -17,21 +19,7 @@ namespace ref = tumble::collision::reference;
 
 namespace {
 
-struct Rng {
-    std::uint64_t s;
-    double uniform(double lo = 0.0, double hi = 1.0) {
-        std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        z ^= z >> 31;
-        return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-    }
-    Vec3 vec(double lo, double hi) { return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
-    Mat3 rotation() {
-        Quat q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        return q.normalized().toRotationMatrix();
-    }
-};
+using test::Rng;
 
 // A closed prism: the polygon (counter-clockwise in xy) with its cap triangulation,
 // extruded from z0 to z1, as a Mesh shape with its BVH.

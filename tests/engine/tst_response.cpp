@@ -5,6 +5,8 @@
 // at rest sleeps, energy never rises). Only the public API is used.
 #include "scene_builders.h"
 
+#include "test_random.h"
+
 #include <QtTest>
 
 #include <algorithm>
@@ -59,17 +61,7 @@ QString num(double v) {
     return QString::number(v, 'g', 17);
 }
 
-// A small portable generator (std::uniform_real_distribution differs between libraries).
-struct SplitMix {
-    std::uint64_t s;
-    double uniform(double lo, double hi) {
-        std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        z ^= z >> 31;
-        return lo + (hi - lo) * double(z >> 11) * 0x1.0p-53;
-    }
-};
+using SplitMix = test::Rng;
 
 // Largest horizontal and vertical displacement and tilt of bodies first..end-1 from `start`.
 struct Drift {
