@@ -1,11 +1,14 @@
-// Every body is an entity with its pose as a transform, over one or more parts (a capsule
-// is a cylinder and two spheres) that scale shared unit meshes. Meshes and materials are
-// shared: one unit sphere, box, cylinder and plane for the whole scene, one material per
-// motion kind plus one for the selection, so hundreds of bodies cost hundreds of small
-// transforms and nothing more. Imported meshes get one geometry per TriangleMesh, shared
-// by every body that uses the same loaded mesh.
+// Bodies of the primitive shapes (sphere, box, cylinder, capsule, plane) are drawn by
+// instancing (viewport_instances.h): one draw per shape kind, whatever the number of bodies,
+// each body a copy of a shared unit mesh with its own matrix and colours. Qt3D's cost is per
+// entity (its jobs, a draw call and a uniform upload each), so one entity per body made a
+// frame cost about a millisecond a body on a software renderer. Changes are gathered and
+// handed to the renderer once per pass of the event loop. Imported meshes keep an entity
+// each (their own geometry, one per TriangleMesh shared by every body that uses it, with
+// Qt3D's Phong materials), and so do collision wireframes while shown.
 #include "viewport_scene.h"
 
+#include "viewport_instances.h"
 #include "viewport_overlay.h"
 #include "viewport_wire.h"
 
@@ -16,21 +19,20 @@
 #include <Qt3DCore/QEntity>
 #include <Qt3DCore/QGeometry>
 #include <Qt3DCore/QTransform>
-#include <Qt3DExtras/QCuboidMesh>
-#include <Qt3DExtras/QCylinderMesh>
 #include <Qt3DExtras/QPerVertexColorMaterial>
 #include <Qt3DExtras/QPhongMaterial>
-#include <Qt3DExtras/QPlaneMesh>
-#include <Qt3DExtras/QSphereMesh>
 #include <Qt3DRender/QDirectionalLight>
 #include <Qt3DRender/QGeometryRenderer>
 #include <Qt3DRender/QMaterial>
 
 #include <QColor>
+#include <QMatrix4x4>
 #include <QQuaternion>
+#include <QTimer>
 #include <QVector3D>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <vector>
@@ -53,11 +55,18 @@ QQuaternion toQt(const Quat& q) {
     return QQuaternion(float(n.w()), float(n.x()), float(n.y()), float(n.z()));
 }
 
-Qt3DExtras::QPhongMaterial* makeMaterial(const QColor& diffuse, Qt3DCore::QNode* parent) {
+// Phong colours; the ambient is the diffuse's, darker, unless given.
+ViewportInstances::Look look(const QColor& diffuse, const QColor& specular,
+                             const QColor& ambient = QColor()) {
+    return {diffuse, ambient.isValid() ? ambient : diffuse.darker(350), float(specular.redF())};
+}
+
+Qt3DExtras::QPhongMaterial* makeMaterial(const ViewportInstances::Look& look, Qt3DCore::QNode* parent) {
     auto* m = new Qt3DExtras::QPhongMaterial(parent);
-    m->setDiffuse(diffuse);
-    m->setAmbient(diffuse.darker(350));
-    m->setSpecular(QColor(40, 40, 40));
+    m->setDiffuse(look.diffuse);
+    m->setAmbient(look.ambient);
+    const int grey = int(std::lround(look.specular * 255.0f));
+    m->setSpecular(QColor(grey, grey, grey));
     m->setShininess(20.0f);
     return m;
 }
@@ -95,17 +104,14 @@ Qt3DRender::QGeometryRenderer* makeRenderer(const std::vector<float>& data,
 
 struct ViewportScene::Impl {
     Qt3DCore::QEntity* root = nullptr;
-    // Shared unit meshes.
-    Qt3DExtras::QSphereMesh* sphere = nullptr;
-    Qt3DExtras::QCuboidMesh* box = nullptr;
-    Qt3DExtras::QCylinderMesh* cylinder = nullptr;
-    Qt3DExtras::QPlaneMesh* plane = nullptr;
-    // Shared materials.
+    // The primitive bodies, drawn by instancing.
+    std::unique_ptr<ViewportInstances> instances;
+    ViewportInstances::Look dynamicLook, staticLook, kinematicLook, selectedLook, groundLook;
+    // Mesh bodies: shared materials, the same colours as the looks.
     Qt3DExtras::QPhongMaterial* dynamicMat = nullptr;
     Qt3DExtras::QPhongMaterial* staticMat = nullptr;
     Qt3DExtras::QPhongMaterial* kinematicMat = nullptr;
     Qt3DExtras::QPhongMaterial* selectedMat = nullptr;
-    Qt3DExtras::QPhongMaterial* groundMat = nullptr;         // planes: dark and matte, under the grid
     Qt3DExtras::QPerVertexColorMaterial* wireMat = nullptr;  // collision shapes
     bool showWire = false;
     // One wireframe per loaded mesh and collision kind, like the render meshes.
@@ -118,27 +124,94 @@ struct ViewportScene::Impl {
         meshes;
 
     struct Body {
-        Qt3DCore::QEntity* entity = nullptr;
+        Qt3DCore::QEntity* entity = nullptr;  // a mesh body's entity (others are instances)
         Qt3DCore::QTransform* transform = nullptr;
-        std::vector<Qt3DCore::QEntity*> parts;
+        Qt3DCore::QEntity* part = nullptr;               // its mesh
         Qt3DExtras::QPhongMaterial* material = nullptr;  // the one in use
         Qt3DCore::QEntity* wire = nullptr;               // the collision shape, when shown
-        ShapeDesc shape;                                 // what the parts draw
+        Qt3DCore::QTransform* wireTransform = nullptr;
+        ShapeDesc shape;  // what is drawn
+        QVector3D position;
+        QQuaternion orientation;
         Motion motion = Motion::Dynamic;
         bool plane = false;
         bool selected = false;
     };
     std::vector<Body> bodies;
 
+    // The instances are rebuilt from `bodies` once per pass of the event loop after a change.
+    QObject timerContext;
+    bool flushPending = false;
+
+    void changed() {
+        if (flushPending) return;
+        flushPending = true;
+        QTimer::singleShot(0, &timerContext, [this] { flush(); });
+    }
+
+    const ViewportInstances::Look& lookFor(const Body& b) const {
+        if (b.selected) return selectedLook;
+        if (b.plane) return groundLook;
+        switch (b.motion) {
+            case Motion::Static: return staticLook;
+            case Motion::Kinematic: return kinematicLook;
+            case Motion::Dynamic: break;
+        }
+        return dynamicLook;
+    }
+
     Qt3DExtras::QPhongMaterial* materialFor(const Body& b) const {
         if (b.selected) return selectedMat;
-        if (b.plane) return groundMat;
         switch (b.motion) {
             case Motion::Static: return staticMat;
             case Motion::Kinematic: return kinematicMat;
             case Motion::Dynamic: break;
         }
         return dynamicMat;
+    }
+
+    void flush() {
+        flushPending = false;
+        using K = ViewportInstances::Kind;
+        instances->clear();
+        for (const Body& b : bodies) {
+            const ShapeDesc& s = b.shape;
+            if (s.type == ShapeType::Mesh) continue;
+            QMatrix4x4 pose;
+            pose.translate(b.position);
+            pose.rotate(b.orientation);
+            const ViewportInstances::Look& look = lookFor(b);
+            auto part = [&](K kind, const QVector3D& scale, const QVector3D& translation = QVector3D(),
+                            const QQuaternion& rotation = QQuaternion()) {
+                QMatrix4x4 m = pose;
+                m.translate(translation);
+                m.rotate(rotation);
+                m.scale(scale);
+                instances->add(kind, m, look);
+            };
+            const float r = float(s.radius);
+            const float h = float(s.halfHeight);
+            switch (s.type) {
+                case ShapeType::Sphere: part(K::Sphere, QVector3D(r, r, r)); break;
+                case ShapeType::Box: part(K::Box, 2.0f * toQt(s.halfExtents)); break;
+                case ShapeType::Cylinder: part(K::Cylinder, QVector3D(r, 2 * h, r)); break;
+                case ShapeType::Capsule:
+                    part(K::Cylinder, QVector3D(r, 2 * h, r));
+                    part(K::Sphere, QVector3D(r, r, r), QVector3D(0, h, 0));
+                    part(K::Sphere, QVector3D(r, r, r), QVector3D(0, -h, 0));
+                    break;
+                case ShapeType::Plane: {
+                    QVector3D n = toQt(s.normal);
+                    if (n.isNull()) n = QVector3D(0, 1, 0);
+                    n.normalize();
+                    part(K::Plane, QVector3D(kPlaneSize, 1, kPlaneSize), n * float(s.distance),
+                         QQuaternion::rotationTo(QVector3D(0, 1, 0), n));
+                    break;
+                }
+                case ShapeType::Mesh: break;
+            }
+        }
+        instances->commit();
     }
 
     Qt3DRender::QGeometryRenderer* meshRenderer(const std::shared_ptr<const TriangleMesh>& mesh) {
@@ -166,30 +239,11 @@ struct ViewportScene::Impl {
         return r;
     }
 
-    Qt3DCore::QEntity* addPart(Body& b, Qt3DCore::QComponent* mesh, const QVector3D& scale,
-                               const QVector3D& translation = QVector3D(),
-                               const QQuaternion& rotation = QQuaternion()) {
-        auto* part = new Qt3DCore::QEntity(b.entity);
-        auto* t = new Qt3DCore::QTransform(part);
-        t->setScale3D(scale);
-        t->setTranslation(translation);
-        t->setRotation(rotation);
-        part->addComponent(mesh);
-        part->addComponent(t);
-        part->addComponent(b.material);
-        b.parts.push_back(part);
-        return part;
-    }
-
     Body make(const BodyDesc& desc, bool selected) {
         Body b;
-        b.entity = new Qt3DCore::QEntity(root);
-        b.transform = new Qt3DCore::QTransform(b.entity);
-        b.entity->addComponent(b.transform);
         b.motion = desc.motion;
         b.plane = desc.shape.type == ShapeType::Plane;
         b.selected = selected;
-        b.material = materialFor(b);
         fill(b, desc);
         return b;
     }
@@ -199,8 +253,14 @@ struct ViewportScene::Impl {
     }
 
     void pose(Body& b, const BodyDesc& desc) {
-        b.transform->setTranslation(toQt(desc.position));
-        b.transform->setRotation(toQt(desc.orientation));
+        b.position = toQt(desc.position);
+        b.orientation = toQt(desc.orientation);
+        for (auto* t : {b.transform, b.wireTransform}) {
+            if (!t) continue;
+            t->setTranslation(b.position);
+            t->setRotation(b.orientation);
+        }
+        if (b.shape.type != ShapeType::Mesh) changed();
     }
 
     Qt3DRender::QGeometryRenderer* wireRenderer(const ShapeDesc& s, Qt3DCore::QNode* owner) {
@@ -230,51 +290,55 @@ struct ViewportScene::Impl {
     void setWire(Body& b) {
         delete b.wire;
         b.wire = nullptr;
+        b.wireTransform = nullptr;
         if (!showWire || b.shape.type == ShapeType::Plane) return;
         if (b.shape.type == ShapeType::Mesh && !b.shape.meshData) return;
-        b.wire = new Qt3DCore::QEntity(b.entity);
+        b.wire = new Qt3DCore::QEntity(root);
+        b.wireTransform = new Qt3DCore::QTransform(b.wire);
+        b.wireTransform->setTranslation(b.position);
+        b.wireTransform->setRotation(b.orientation);
+        b.wire->addComponent(b.wireTransform);
         b.wire->addComponent(wireRenderer(b.shape, b.wire));
         b.wire->addComponent(wireMat);
     }
 
-    // Pose and parts from the description (parts are rebuilt: the shape may have changed).
+    static void drop(Body& b) {
+        delete b.entity;
+        delete b.wire;
+        b.entity = nullptr;
+        b.transform = nullptr;
+        b.part = nullptr;
+        b.wire = nullptr;
+        b.wireTransform = nullptr;
+    }
+
+    // Pose and drawing from the description (rebuilt: the shape may have changed).
     void fill(Body& b, const BodyDesc& desc) {
-        for (auto* p : b.parts) delete p;
-        b.parts.clear();
-        pose(b, desc);
+        const bool wasInstanced = b.shape.type != ShapeType::Mesh;
+        drop(b);
         b.shape = desc.shape;
-        setWire(b);
         const ShapeDesc& s = desc.shape;
-        const float r = float(s.radius);
-        const float h = float(s.halfHeight);
-        switch (s.type) {
-            case ShapeType::Sphere: addPart(b, sphere, QVector3D(r, r, r)); break;
-            case ShapeType::Box: addPart(b, box, 2.0f * toQt(s.halfExtents)); break;
-            case ShapeType::Cylinder: addPart(b, cylinder, QVector3D(r, 2 * h, r)); break;
-            case ShapeType::Capsule:
-                addPart(b, cylinder, QVector3D(r, 2 * h, r));
-                addPart(b, sphere, QVector3D(r, r, r), QVector3D(0, h, 0));
-                addPart(b, sphere, QVector3D(r, r, r), QVector3D(0, -h, 0));
-                break;
-            case ShapeType::Plane: {
-                QVector3D n = toQt(s.normal);
-                if (n.isNull()) n = QVector3D(0, 1, 0);
-                n.normalize();
-                addPart(b, plane, QVector3D(kPlaneSize, 1, kPlaneSize), n * float(s.distance),
-                        QQuaternion::rotationTo(QVector3D(0, 1, 0), n));
-                break;
+        if (s.type == ShapeType::Mesh) {
+            b.entity = new Qt3DCore::QEntity(root);
+            b.transform = new Qt3DCore::QTransform(b.entity);
+            b.entity->addComponent(b.transform);
+            b.material = materialFor(b);
+            if (s.meshData) {
+                b.part = new Qt3DCore::QEntity(b.entity);
+                b.part->addComponent(meshRenderer(s.meshData));
+                b.part->addComponent(b.material);
             }
-            case ShapeType::Mesh:
-                if (s.meshData) addPart(b, meshRenderer(s.meshData), QVector3D(1, 1, 1));
-                break;
+            if (wasInstanced) changed();  // it leaves the instances
         }
+        pose(b, desc);
+        setWire(b);
     }
 
     void setMaterial(Body& b, Qt3DExtras::QPhongMaterial* m) {
         if (b.material == m) return;
-        for (auto* p : b.parts) {
-            p->removeComponent(b.material);
-            p->addComponent(m);
+        if (b.part) {
+            b.part->removeComponent(b.material);
+            b.part->addComponent(m);
         }
         b.material = m;
     }
@@ -326,27 +390,18 @@ struct ViewportScene::Impl {
 ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl>()) {
     Impl& d = *d_;
     d.root = root;
-    d.sphere = new Qt3DExtras::QSphereMesh(root);
-    d.sphere->setRadius(1.0f);
-    d.sphere->setRings(24);
-    d.sphere->setSlices(32);
-    d.box = new Qt3DExtras::QCuboidMesh(root);  // 1 x 1 x 1
-    d.cylinder = new Qt3DExtras::QCylinderMesh(root);
-    d.cylinder->setRadius(1.0f);
-    d.cylinder->setLength(1.0f);
-    d.cylinder->setRings(2);
-    d.cylinder->setSlices(32);
-    d.plane = new Qt3DExtras::QPlaneMesh(root);
-    d.plane->setWidth(1.0f);
-    d.plane->setHeight(1.0f);
-    d.dynamicMat = makeMaterial(QColor(214, 140, 70), root);
-    d.staticMat = makeMaterial(QColor(140, 144, 150), root);
-    d.kinematicMat = makeMaterial(QColor(90, 140, 215), root);
-    d.selectedMat = makeMaterial(QColor(255, 214, 60), root);
-    d.selectedMat->setAmbient(QColor(110, 90, 20));
-    d.groundMat = makeMaterial(QColor(78, 80, 88), root);
-    d.groundMat->setSpecular(QColor(0, 0, 0));
-    d.groundMat->setAmbient(QColor(40, 41, 46));
+    d.instances = std::make_unique<ViewportInstances>(root);
+    const QColor specular(40, 40, 40);
+    d.dynamicLook = look(QColor(214, 140, 70), specular);
+    d.staticLook = look(QColor(140, 144, 150), specular);
+    d.kinematicLook = look(QColor(90, 140, 215), specular);
+    d.selectedLook = look(QColor(255, 214, 60), specular, QColor(110, 90, 20));
+    // The colour the ground had as a Phong-lit QPlaneMesh, (79, 81, 91) on screen.
+    d.groundLook = look(QColor(42, 43, 48), QColor(0, 0, 0), QColor(35, 36, 40));
+    d.dynamicMat = makeMaterial(d.dynamicLook, root);
+    d.staticMat = makeMaterial(d.staticLook, root);
+    d.kinematicMat = makeMaterial(d.kinematicLook, root);
+    d.selectedMat = makeMaterial(d.selectedLook, root);
     d.wireMat = new Qt3DExtras::QPerVertexColorMaterial(root);
     d.buildLights();
     d.buildGridAndAxes();
@@ -355,18 +410,21 @@ ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl
 ViewportScene::~ViewportScene() = default;  // the entities belong to the root
 
 void ViewportScene::rebuild(const SceneDesc& scene) {
-    for (auto& b : d_->bodies) delete b.entity;
+    for (auto& b : d_->bodies) Impl::drop(b);
     d_->bodies.clear();
     for (auto& [key, value] : d_->meshes) delete value.second;
     d_->meshes.clear();
     for (auto& [key, value] : d_->meshWires) delete value.second;
     d_->meshWires.clear();
+    d_->bodies.reserve(scene.bodies.size());
     for (const BodyDesc& desc : scene.bodies) d_->bodies.push_back(d_->make(desc, false));
+    d_->changed();
 }
 
 void ViewportScene::insert(int index, const BodyDesc& body) {
     if (index < 0 || index > count()) index = count();
     d_->bodies.insert(d_->bodies.begin() + index, d_->make(body, false));
+    d_->changed();
 }
 
 void ViewportScene::update(int index, const BodyDesc& body) {
@@ -374,27 +432,36 @@ void ViewportScene::update(int index, const BodyDesc& body) {
     Impl::Body& b = d_->bodies[size_t(index)];
     b.motion = body.motion;
     b.plane = body.shape.type == ShapeType::Plane;
-    if (Impl::sameShape(b.shape, body.shape)) {  // a move or a turn (a drag): keep the parts
+    if (Impl::sameShape(b.shape, body.shape)) {  // a move or a turn (a drag): keep the entities
         d_->setMaterial(b, d_->materialFor(b));
         d_->pose(b, body);
         return;
     }
-    b.material = d_->materialFor(b);
     d_->fill(b, body);
+    d_->changed();
 }
 
 void ViewportScene::remove(int index) {
     if (index < 0 || index >= count()) return;
-    delete d_->bodies[size_t(index)].entity;
+    Impl::drop(d_->bodies[size_t(index)]);
     d_->bodies.erase(d_->bodies.begin() + index);
+    d_->changed();
 }
 
 void ViewportScene::setSelection(const QList<int>& indices) {
+    bool any = false;
     for (int i = 0; i < count(); ++i) {
         Impl::Body& b = d_->bodies[size_t(i)];
-        b.selected = indices.contains(i);
-        d_->setMaterial(b, d_->materialFor(b));
+        const bool selected = indices.contains(i);
+        if (selected == b.selected) continue;
+        b.selected = selected;
+        if (b.shape.type == ShapeType::Mesh) {
+            d_->setMaterial(b, d_->materialFor(b));
+        } else {
+            any = true;
+        }
     }
+    if (any) d_->changed();
 }
 
 int ViewportScene::count() const {

@@ -1,6 +1,6 @@
-// The Qt3D side of the viewport: one entity per body, the shared meshes and materials they
-// use, the ground grid, the axes and the lights. Kept apart from the widget (input, camera)
-// and out of every other header: Qt3D headers are heavy.
+// The Qt3D side of the viewport: the bodies (primitive shapes drawn by instancing, one draw
+// per shape kind; imported meshes an entity each), the ground grid, the axes and the lights. Kept apart from
+// the widget (input, camera) and out of every other header: Qt3D headers are heavy.
 #pragma once
 
 #include <tumble/scene.h>
@@ -23,13 +23,14 @@ public:
     ViewportScene(const ViewportScene&) = delete;
     ViewportScene& operator=(const ViewportScene&) = delete;
 
-    /// Drops every body entity and makes one per body of `scene`.
+    /// Drops every body and draws those of `scene`.
     void rebuild(const SceneDesc& scene);
     void insert(int index, const BodyDesc& body);
     void update(int index, const BodyDesc& body);
     void remove(int index);
     /// Highlights exactly these bodies.
     void setSelection(const QList<int>& indices);
+    /// Bodies drawn (one per body of the document, however they are drawn).
     int count() const;
     /// Draws each body's collision shape (viewport_wire.h) as lines over it.
     void setShowCollisionShapes(bool show);
