@@ -33,7 +33,8 @@ public:
     /// clears the selection (Ctrl: leaves it). What a left click does.
     void clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers = Qt::NoModifier);
 
-    /// Bodies drawn in the 3D scene (primitives are instanced: one draw per shape kind) (one per body of the document).
+    /// Bodies drawn in the 3D scene, one per body of the document (primitives are instanced:
+    /// one draw per shape kind).
     int entityCount() const;
     /// Where a world point appears, in widget pixels (z: depth, in [-1, 1] when visible).
     QVector3D projectToWidget(const QVector3D& world) const;
