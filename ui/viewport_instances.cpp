@@ -77,6 +77,29 @@ void main()
 }
 )";
 
+// Qt3D's per-view uniform block under the RHI renderer (its layout is fixed by Qt3D).
+const char* const kViewUniforms = R"(layout(std140, binding = 0) uniform qt3d_render_view_uniforms {
+  mat4 viewMatrix;
+  mat4 projectionMatrix;
+  mat4 uncorrectedProjectionMatrix;
+  mat4 clipCorrectionMatrix;
+  mat4 viewProjectionMatrix;
+  mat4 inverseViewMatrix;
+  mat4 inverseProjectionMatrix;
+  mat4 inverseViewProjectionMatrix;
+  mat4 viewportMatrix;
+  mat4 inverseViewportMatrix;
+  vec4 textureTransformMatrix;
+  vec3 eyePosition;
+  float aspectRatio;
+  float gamma;
+  float exposure;
+  float time;
+  float yUpInNDC;
+  float yUpInFBO;
+};
+)";
+
 QByteArray rhiVertex() {
     return QByteArray(R"(#version 450
 layout(location = 0) in vec3 vertexPosition;
@@ -91,27 +114,7 @@ layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 diffuseColor;
 layout(location = 3) out vec4 ambientColor;
-layout(std140, binding = 0) uniform qt3d_render_view_uniforms {
-  mat4 viewMatrix;
-  mat4 projectionMatrix;
-  mat4 uncorrectedProjectionMatrix;
-  mat4 clipCorrectionMatrix;
-  mat4 viewProjectionMatrix;
-  mat4 inverseViewMatrix;
-  mat4 inverseProjectionMatrix;
-  mat4 inverseViewProjectionMatrix;
-  mat4 viewportMatrix;
-  mat4 inverseViewportMatrix;
-  vec4 textureTransformMatrix;
-  vec3 eyePosition;
-  float aspectRatio;
-  float gamma;
-  float exposure;
-  float time;
-  float yUpInNDC;
-  float yUpInFBO;
-};
-)") + kVertexBody;
+)") + kViewUniforms + kVertexBody;
 }
 
 QByteArray rhiFragment() {
@@ -121,27 +124,7 @@ layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 diffuseColor;
 layout(location = 3) in vec4 ambientColor;
 layout(location = 0) out vec4 fragColor;
-layout(std140, binding = 0) uniform qt3d_render_view_uniforms {
-  mat4 viewMatrix;
-  mat4 projectionMatrix;
-  mat4 uncorrectedProjectionMatrix;
-  mat4 clipCorrectionMatrix;
-  mat4 viewProjectionMatrix;
-  mat4 inverseViewMatrix;
-  mat4 inverseProjectionMatrix;
-  mat4 inverseViewProjectionMatrix;
-  mat4 viewportMatrix;
-  mat4 inverseViewportMatrix;
-  vec4 textureTransformMatrix;
-  vec3 eyePosition;
-  float aspectRatio;
-  float gamma;
-  float exposure;
-  float time;
-  float yUpInNDC;
-  float yUpInFBO;
-};
-)") + kFragmentBody;
+)") + kViewUniforms + kFragmentBody;
 }
 
 QByteArray glVertex() {
