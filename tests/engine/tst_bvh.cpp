@@ -9,6 +9,8 @@
 //   the pose, and nothing outside the box of its rotated box grown by 1e-9.
 #include "collision/bvh.h"
 
+#include "test_meshes.h"
+
 #include <QtTest>
 
 #include <algorithm>
@@ -22,10 +24,7 @@ using namespace tumble::collision;
 
 namespace {
 
-struct Mesh {
-    std::vector<Vec3> vertices;
-    std::vector<std::array<int, 3>> triangles;
-};
+using Mesh = TriangleMesh;
 
 Aabb triangleBox(const Mesh& m, int t, const Pose& pose = Pose{}) {
     Aabb b;
@@ -33,34 +32,7 @@ Aabb triangleBox(const Mesh& m, int t, const Pose& pose = Pose{}) {
     return b;
 }
 
-// Closed UV sphere of radius r: rings between the poles, counter-clockwise from outside.
-Mesh sphere(double r, int rings, int segments) {
-    using std::numbers::pi;
-    Mesh m;
-    m.vertices.emplace_back(0, -r, 0);
-    for (int i = 1; i < rings; ++i) {
-        const double phi = pi * i / rings - pi / 2;
-        for (int s = 0; s < segments; ++s) {
-            const double a = 2 * pi * s / segments;
-            m.vertices.emplace_back(r * std::cos(phi) * std::cos(a), r * std::sin(phi),
-                                    -r * std::cos(phi) * std::sin(a));
-        }
-    }
-    m.vertices.emplace_back(0, r, 0);
-    const int top = static_cast<int>(m.vertices.size()) - 1;
-    auto id = [&](int ring, int s) { return 1 + (ring - 1) * segments + (s % segments); };
-    for (int s = 0; s < segments; ++s) {
-        m.triangles.push_back({0, id(1, s + 1), id(1, s)});
-        m.triangles.push_back({top, id(rings - 1, s), id(rings - 1, s + 1)});
-    }
-    for (int i = 1; i + 1 < rings; ++i) {
-        for (int s = 0; s < segments; ++s) {
-            m.triangles.push_back({id(i, s), id(i, s + 1), id(i + 1, s + 1)});
-            m.triangles.push_back({id(i, s), id(i + 1, s + 1), id(i + 1, s)});
-        }
-    }
-    return m;
-}
+Mesh sphere(double r, int rings, int segments) { return test::uvSphere(r, rings, segments); }
 
 class Random {
 public:
