@@ -114,7 +114,8 @@ layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 diffuseColor;
 layout(location = 3) out vec4 ambientColor;
-)") + kViewUniforms + kVertexBody;
+)") + kViewUniforms +
+           kVertexBody;
 }
 
 QByteArray rhiFragment() {
@@ -124,7 +125,8 @@ layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 diffuseColor;
 layout(location = 3) in vec4 ambientColor;
 layout(location = 0) out vec4 fragColor;
-)") + kViewUniforms + kFragmentBody;
+)") + kViewUniforms +
+           kFragmentBody;
 }
 
 QByteArray glVertex() {
@@ -183,7 +185,50 @@ Qt3DRender::QMaterial* makeMaterial(Qt3DCore::QNode* parent) {
     return material;
 }
 
+// Level of detail by count. On a software renderer (llvmpipe) a frame of many bodies costs
+// about what its triangles cost to transform and set up, and the instanced draw calls are
+// few, so the sphere and cylinder meshes get coarser as their copies grow in number: the
+// finest level whose copies stay within a budget of about 250 000 triangles per kind, never
+// coarser than the last. With everything in view, hundreds of bodies are a few tens of
+// pixels across each and thousands a few pixels, where 24 rings look no rounder than 8.
+// (A sphere of r rings and s slices has 2 s (r - 1) triangles, a cylinder of 2 rings 4 s.)
+// The thresholds, in copies: spheres 169 / 347 / 710 / 1 488, cylinders 1 953 / 3 906 /
+// 5 208; a few bodies always get full detail.
+constexpr long kTriangleBudget = 250000;
+struct Detail {
+    int rings;
+    int slices;
+};
+constexpr Detail kSphereDetail[] = {{24, 32}, {16, 24}, {12, 16}, {8, 12}, {6, 10}};
+constexpr Detail kCylinderDetail[] = {{2, 32}, {2, 16}, {2, 12}, {2, 8}};
+
+long sphereTriangles(const Detail& d) {
+    return 2L * d.slices * (d.rings - 1);
+}
+long cylinderTriangles(const Detail& d) {
+    return 2L * d.slices * (d.rings - 1) + 2L * d.slices;
+}
+
+template <size_t N>
+Detail detailFor(const Detail (&levels)[N], long (*triangles)(const Detail&), int copies) {
+    for (const Detail& d : levels) {
+        if (long(copies) * triangles(d) <= kTriangleBudget) return d;
+    }
+    return levels[N - 1];
+}
+
 }  // namespace
+
+int ViewportInstances::trianglesPerCopy(Kind kind, int copies) {
+    switch (kind) {
+        case Sphere: return int(sphereTriangles(detailFor(kSphereDetail, sphereTriangles, copies)));
+        case Cylinder: return int(cylinderTriangles(detailFor(kCylinderDetail, cylinderTriangles, copies)));
+        case Box: return 12;
+        case Plane: return 2;
+        case KindCount: break;
+    }
+    return 0;
+}
 
 struct ViewportInstances::Impl {
     struct Batch {
@@ -194,6 +239,9 @@ struct ViewportInstances::Impl {
         std::vector<float> data;  // being filled
         QByteArray uploaded;      // what the buffer holds
         int count = 0;            // drawn
+        Qt3DCore::QAttribute* index = nullptr;
+        Qt3DExtras::QSphereGeometry* sphere = nullptr;  // the kinds whose detail varies
+        Qt3DExtras::QCylinderGeometry* cylinder = nullptr;
     };
     std::array<Batch, KindCount> batches;
 };
@@ -210,10 +258,11 @@ ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_uni
             case Sphere: {
                 auto* g = new Qt3DExtras::QSphereGeometry(b.renderer);
                 g->setRadius(1.0f);
-                g->setRings(24);
-                g->setSlices(32);
+                g->setRings(kSphereDetail[0].rings);
+                g->setSlices(kSphereDetail[0].slices);
                 geometry = g;
                 index = g->indexAttribute();
+                b.sphere = g;
                 break;
             }
             case Box: {
@@ -226,10 +275,11 @@ ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_uni
                 auto* g = new Qt3DExtras::QCylinderGeometry(b.renderer);
                 g->setRadius(1.0f);
                 g->setLength(1.0f);
-                g->setRings(2);
-                g->setSlices(32);
+                g->setRings(kCylinderDetail[0].rings);
+                g->setSlices(kCylinderDetail[0].slices);
                 geometry = g;
                 index = g->indexAttribute();
+                b.cylinder = g;
                 break;
             }
             case Plane: {
@@ -256,6 +306,7 @@ ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_uni
         }
         b.renderer->setGeometry(geometry);
         b.renderer->setPrimitiveType(Qt3DRender::QGeometryRenderer::Triangles);
+        b.index = index;
         b.renderer->setVertexCount(index ? int(index->count()) : 0);
         b.renderer->setInstanceCount(1);
         b.entity->addComponent(b.renderer);
@@ -286,6 +337,19 @@ void ViewportInstances::commit() {
         b.count = n;
         b.entity->setEnabled(n > 0);
         if (n == 0) continue;  // not drawn: the buffer keeps its last copies
+        // The detail for this many copies (the geometry regenerates only when it changes).
+        if (b.sphere) {
+            const Detail d = detailFor(kSphereDetail, sphereTriangles, n);
+            b.sphere->setRings(d.rings);
+            b.sphere->setSlices(d.slices);
+        } else if (b.cylinder) {
+            const Detail d = detailFor(kCylinderDetail, cylinderTriangles, n);
+            b.cylinder->setRings(d.rings);
+            b.cylinder->setSlices(d.slices);
+        }
+        if (b.index && b.renderer->vertexCount() != int(b.index->count())) {
+            b.renderer->setVertexCount(int(b.index->count()));
+        }
         QByteArray bytes(qsizetype(b.data.size() * sizeof(float)), Qt::Uninitialized);
         std::memcpy(bytes.data(), b.data.data(), size_t(bytes.size()));
         if (bytes == b.uploaded) continue;
@@ -298,6 +362,12 @@ void ViewportInstances::commit() {
 
 int ViewportInstances::count(Kind kind) const {
     return kind >= 0 && kind < KindCount ? d_->batches[size_t(kind)].count : 0;
+}
+
+int ViewportInstances::drawnTrianglesPerCopy(Kind kind) const {
+    if (kind < 0 || kind >= KindCount) return 0;
+    const Impl::Batch& b = d_->batches[size_t(kind)];
+    return b.index ? int(b.index->count()) / 3 : 0;
 }
 
 }  // namespace tumble::ui

@@ -40,6 +40,11 @@ public:
     void commit();
     /// Copies drawn of a kind (as of the last commit).
     int count(Kind kind) const;
+    /// Triangles of the mesh each copy of a kind is drawn with (as of the last commit): spheres
+    /// and cylinders get coarser as their copies grow in number (see trianglesPerCopy).
+    int drawnTrianglesPerCopy(Kind kind) const;
+    /// The triangles of one copy of a kind when `copies` of it are drawn.
+    static int trianglesPerCopy(Kind kind, int copies);
 
 private:
     struct Impl;

@@ -22,8 +22,10 @@
 // and undo history docks), and the viewport alone (a Document and a Viewport of the same
 // size as the main window's viewport), so the docks' share of a cost can be told apart.
 //
-// Usage: tumble-bench-editor [--quick] [--pieces] [--sizes 100,1000,5000] [--runs R] [--frames F]
+// Usage: tumble-bench-editor [--quick] [--pieces] [--viewport-only] [--sizes 100,1000,5000] [--runs R]
+//                            [--frames F]
 //   --quick   100 and 1000 bodies, fewer runs (a smoke run)
+//   --viewport-only  only the viewport alone (888 x 959, the editor's viewport at 1600 x 1000)
 //   --pieces  also the property dock alone and the scene tree dock alone (with a Document,
 //             no viewport): their share of load, selection and move
 #include "document.h"
@@ -324,6 +326,7 @@ int main(int argc, char** argv) {
     std::vector<int> sizes = {100, 1000, 5000};
     int runs = 3, frames = 15;
     bool pieces = false;
+    bool viewportOnly = false;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--quick")) {
             sizes = {100, 1000};
@@ -331,6 +334,8 @@ int main(int argc, char** argv) {
             frames = 10;
         } else if (!std::strcmp(argv[i], "--pieces")) {
             pieces = true;
+        } else if (!std::strcmp(argv[i], "--viewport-only")) {
+            viewportOnly = true;
         } else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
             sizes.clear();
             for (const QString& part : QString(argv[++i]).split(',')) sizes.push_back(part.toInt());
@@ -339,9 +344,11 @@ int main(int argc, char** argv) {
         } else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) {
             frames = std::atoi(argv[++i]);
         } else {
-            std::fprintf(stderr,
-                         "usage: %s [--quick] [--pieces] [--sizes 100,1000,5000] [--runs R] [--frames F]\n",
-                         argv[0]);
+            std::fprintf(
+                stderr,
+                "usage: %s [--quick] [--pieces] [--viewport-only] [--sizes 100,1000,5000] [--runs R] "
+                "[--frames F]\n",
+                argv[0]);
             return 2;
         }
     }
@@ -354,8 +361,8 @@ int main(int argc, char** argv) {
         "| select | select: frame | move | move: frame | pick | idle CPU %% |\n");
     std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
 
-    QSize viewportSize;
-    {
+    QSize viewportSize(888, 959);  // the editor's, at 1600 x 1000
+    if (!viewportOnly) {
         auto s = makeWindow();
         if (!showAndWait(*s)) {
             std::fprintf(stderr, "the viewport never became exposed (is there a display?)\n");
@@ -373,6 +380,8 @@ int main(int argc, char** argv) {
     {
         auto s = makeViewportOnly(viewportSize);
         if (!showAndWait(*s)) return 1;
+        std::printf("    (GL renderer: %s; samples per pixel: %d)\n", qPrintable(Viewport::glRenderer()),
+                    s->view->samples());
         installCapture(*s);
         drain();
         waitFrame(*s);
