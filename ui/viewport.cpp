@@ -31,6 +31,10 @@
 
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QOffscreenSurface>
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
+#include <QSurfaceFormat>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <QWheelEvent>
@@ -95,7 +99,47 @@ bool boundingSphere(const BodyDesc& b, Vec3* centre, double* radius) {
     return false;
 }
 
+// The GL renderer's name, asked once of a throwaway context on an offscreen surface (the
+// same platform and driver Qt3D's context will get). Empty when no context can be made.
+QString queryGlRenderer() {
+    QOffscreenSurface surface;
+    surface.setFormat(QSurfaceFormat::defaultFormat());
+    surface.create();
+    QOpenGLContext context;
+    context.setFormat(QSurfaceFormat::defaultFormat());
+    if (!surface.isValid() || !context.create() || !context.makeCurrent(&surface)) return {};
+    const auto* name = reinterpret_cast<const char*>(context.functions()->glGetString(GL_RENDERER));
+    const QString renderer = name ? QString::fromLatin1(name) : QString();
+    context.doneCurrent();
+    return renderer;
+}
+
+// Samples per pixel for the 3D view: 4 (Qt3DWindow's own choice), or none on a software
+// renderer, where multisampling multiplies the cost of every pixel (llvmpipe rasterises and
+// shades each sample on the CPU). TUMBLE_VIEWPORT_SAMPLES=n overrides (for measurements).
+int viewportSamples() {
+    static const int samples = [] {
+        bool set = false;
+        const int forced = qEnvironmentVariableIntValue("TUMBLE_VIEWPORT_SAMPLES", &set);
+        if (set) return std::max(0, forced);
+        return Viewport::isSoftwareRenderer(Viewport::glRenderer()) ? 0 : 4;
+    }();
+    return samples;
+}
+
 }  // namespace
+
+QString Viewport::glRenderer() {
+    static const QString renderer = queryGlRenderer();
+    return renderer;
+}
+
+bool Viewport::isSoftwareRenderer(const QString& renderer) {
+    for (const char* name : {"llvmpipe", "softpipe", "swrast", "Software Rasterizer", "SwiftShader"}) {
+        if (renderer.contains(QLatin1String(name), Qt::CaseInsensitive)) return true;
+    }
+    return false;
+}
 
 struct Viewport::Impl {
     Document* doc = nullptr;
@@ -129,7 +173,7 @@ struct Viewport::Impl {
     std::vector<std::pair<int, BodyDesc>> dragStart;
     int dragMergeId = 0;
     int dragCounter = 0;
-    const QUndoCommand* dragMacro = nullptr;  // a multi-body drag's step so far
+    const QUndoCommand* dragCommand = nullptr;  // the drag's undo step so far (null: none yet)
 
     /// The selected bodies a handle can move (planes cannot).
     QList<int> movableSelection() const {
@@ -144,6 +188,16 @@ struct Viewport::Impl {
 Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(std::make_unique<Impl>()) {
     d_->doc = document;
     d_->window = new Qt3DExtras::Qt3DWindow();
+    // Qt3DWindow asks for 4x multisampling (and makes it the default format); that is kept
+    // on a GPU and dropped on a software renderer (viewportSamples), before the window's
+    // surface exists.
+    const int samples = viewportSamples();
+    if (d_->window->format().samples() != samples) {
+        QSurfaceFormat format = d_->window->format();
+        format.setSamples(samples);
+        d_->window->setFormat(format);
+        QSurfaceFormat::setDefaultFormat(format);
+    }
     d_->window->renderSettings()->setRenderPolicy(Qt3DRender::QRenderSettings::OnDemand);
     d_->window->installEventFilter(this);
 
@@ -194,7 +248,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     auto cancelDrag = [this] {
         d_->dragAxis = -1;
         d_->dragStart.clear();
-        d_->dragMacro = nullptr;
+        d_->dragCommand = nullptr;
     };
     connect(document, &Document::sceneReset, this, [this, cancelDrag] {
         cancelDrag();
@@ -233,6 +287,10 @@ Viewport::~Viewport() {
     // belongs to the container. Drop our bookkeeping first.
     d_->gizmo.reset();
     d_->scene.reset();
+}
+
+int Viewport::samples() const {
+    return d_->window->format().samples();
 }
 
 QWindow* Viewport::renderWindow() const {
@@ -352,6 +410,10 @@ bool Viewport::handleKey(QKeyEvent* event) {
     OrbitCamera& cam = d_->camera;
     const float step = (event->modifiers() & Qt::ShiftModifier) ? 2.0f : 10.0f;
     switch (event->key()) {
+        case Qt::Key_Escape:
+            if (d_->dragAxis < 0) return false;
+            cancelHandleDrag();
+            return true;
         case Qt::Key_F: frameSelection(); return true;
         case Qt::Key_W: setTransformMode(TransformMode::Move); return true;
         case Qt::Key_E: setTransformMode(TransformMode::Rotate); return true;
@@ -553,7 +615,7 @@ bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
     d_->dragStart.clear();
     for (int i : d_->movableSelection()) d_->dragStart.emplace_back(i, d_->doc->body(i));
     d_->dragMergeId = kDragMergeBase + (++d_->dragCounter & 0xffffff);
-    d_->dragMacro = nullptr;
+    d_->dragCommand = nullptr;
     d_->gizmo->setHighlight(axis);
     return true;
 }
@@ -582,30 +644,54 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
     };
     const QString verb = move ? tr("Move") : tr("Rotate");
     Document* doc = d_->doc;
+    QUndoStack* stack = doc->undoStack();
+    auto top = [stack]() -> const QUndoCommand* {
+        return stack->index() > 0 ? stack->command(stack->index() - 1) : nullptr;
+    };
+    // An edit that changes nothing pushes nothing: only a new step on top is the drag's.
+    const QUndoCommand* topBefore = top();
+    const int countBefore = stack->count();
     if (d_->dragStart.size() == 1) {
         // One body: consecutive edits with this drag's merge id are one undo step.
         const auto& [index, before] = d_->dragStart.front();
         doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(before.name)),
                      d_->dragMergeId);
-        return;
+    } else {
+        // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
+        if (dragCommandOnTop()) stack->undo();
+        const QString text = tr("%1 %n bodies", nullptr, int(d_->dragStart.size())).arg(verb);
+        doc->beginMacro(text);
+        for (const auto& [index, before] : d_->dragStart) doc->setBody(index, apply(before), text);
+        doc->endMacro();
     }
-    // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
-    QUndoStack* stack = doc->undoStack();
-    if (d_->dragMacro && !stack->canRedo() && stack->index() > 0 &&
-        stack->command(stack->index() - 1) == d_->dragMacro) {
+    if (top() != topBefore || stack->count() != countBefore) d_->dragCommand = top();
+}
+
+bool Viewport::dragCommandOnTop() const {
+    const QUndoStack* stack = d_->doc->undoStack();
+    return d_->dragCommand && !stack->canRedo() && stack->index() > 0 &&
+           stack->command(stack->index() - 1) == d_->dragCommand;
+}
+
+void Viewport::cancelHandleDrag() {
+    if (d_->dragAxis < 0) return;
+    // The drag's step is undone (the bodies go back) and then dropped from the stack: an
+    // obsolete command is deleted by QUndoStack::redo() instead of being redone, so neither
+    // an undo nor a redo step is left behind.
+    if (dragCommandOnTop()) {
+        QUndoStack* stack = d_->doc->undoStack();
         stack->undo();
+        const_cast<QUndoCommand*>(stack->command(stack->index()))->setObsolete(true);
+        stack->redo();
     }
-    const QString text = tr("%1 %n bodies", nullptr, int(d_->dragStart.size())).arg(verb);
-    doc->beginMacro(text);
-    for (const auto& [index, before] : d_->dragStart) doc->setBody(index, apply(before), text);
-    doc->endMacro();
-    d_->dragMacro = stack->command(stack->index() - 1);
+    d_->dragButton = Qt::NoButton;  // the button's release is then ignored
+    endHandleDrag();
 }
 
 void Viewport::endHandleDrag() {
     d_->dragAxis = -1;
     d_->dragStart.clear();
-    d_->dragMacro = nullptr;
+    d_->dragCommand = nullptr;
     d_->gizmo->setHighlight(-1);
     d_->hover = -1;
     updateHandles();

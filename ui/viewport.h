@@ -1,10 +1,11 @@
 // The 3D view of the document: every body drawn and lit, a ground grid and axes, an orbit
 // camera (mouse and keyboard), click to select, move and rotate handles on the selection
-// (W, E; Ctrl while dragging snaps), the collision shapes as a wireframe on demand. Qt3D stays behind the
-// pimpl: this header is included by the main window and must stay light.
+// (W, E; Ctrl while dragging snaps, Escape cancels a drag), the collision shapes as a wireframe on demand.
+// Qt3D stays behind the pimpl: this header is included by the main window and must stay light.
 #pragma once
 
 #include <QPoint>
+#include <QString>
 #include <QVector3D>
 #include <QWidget>
 
@@ -44,6 +45,15 @@ public:
     QVector3D cameraTarget() const;
     float cameraDistance() const;
     void setCamera(const QVector3D& target, float distance, float yawDegrees, float pitchDegrees);
+
+    /// Samples per pixel the 3D view asks for: 4, or 0 (no multisampling) when the GL
+    /// renderer is a software one, where it costs too much.
+    int samples() const;
+    /// The OpenGL renderer's name (GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"),
+    /// asked once of a throwaway context; empty if none could be made.
+    static QString glRenderer();
+    /// Whether a GL_RENDERER names a software rasteriser (llvmpipe, softpipe, swrast, ...).
+    static bool isSoftwareRenderer(const QString& renderer);
 
     /// The Qt3D window inside the container (it receives the mouse and keys).
     QWindow* renderWindow() const;
@@ -103,6 +113,9 @@ private:
     bool beginHandleDrag(int axis, const QPoint& pos);
     void dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers);
     void endHandleDrag();
+    /// Escape during a drag: the bodies go back to where they were, no undo step is left.
+    void cancelHandleDrag();
+    bool dragCommandOnTop() const;
 
     struct Impl;
     std::unique_ptr<Impl> d_;

@@ -1,12 +1,17 @@
 // The viewport: one entity per body that follows edits and undo; a click at a body's
 // projected position selects it, Ctrl+click toggles, the sky selects nothing; framing puts
-// the selection in the middle; the picking ray casts against closed-form hits.
+// the selection in the middle; the picking ray casts against closed-form hits; spheres and
+// cylinders are drawn coarser when there are many; no multisampling on a software renderer.
 #include "document.h"
 #include "viewport.h"
+#include "viewport_instances.h"
 #include "viewport_raycast.h"
 
 #include <tumble/mass.h>
 
+#include <Qt3DCore/QEntity>
+
+#include <QMatrix4x4>
 #include <QUndoStack>
 #include <QWindow>
 #include <QtTest>
@@ -303,6 +308,68 @@ private slots:
         }
         const int ms = qEnvironmentVariableIntValue("TUMBLE_VIEWPORT_SHOW_MS");
         if (ms > 0) QTest::qWait(ms);
+    }
+
+    void spheresAndCylindersGetCoarserAsTheyGrowInNumber() {
+        using K = ViewportInstances::Kind;
+        // A few: full detail (a sphere of 24 rings and 32 slices, a cylinder of 32 slices).
+        QCOMPARE(ViewportInstances::trianglesPerCopy(K::Sphere, 1), 2 * 32 * 23);
+        QCOMPARE(ViewportInstances::trianglesPerCopy(K::Sphere, 100), 2 * 32 * 23);
+        QCOMPARE(ViewportInstances::trianglesPerCopy(K::Cylinder, 100), 4 * 32);
+        QCOMPARE(ViewportInstances::trianglesPerCopy(K::Box, 5000), 12);  // boxes never change
+        // Never finer as the count grows; within the budget of 250 000 triangles a kind
+        // until the coarsest level (6 rings, 10 slices; 8 slices).
+        for (K kind : {K::Sphere, K::Cylinder}) {
+            int previous = ViewportInstances::trianglesPerCopy(kind, 1);
+            for (int n = 1; n <= 20000; n += 1 + n / 8) {
+                const int t = ViewportInstances::trianglesPerCopy(kind, n);
+                QVERIFY(t <= previous);
+                QVERIFY(long(n) * t <= 250000 || t == (kind == K::Sphere ? 2 * 10 * 5 : 4 * 8));
+                previous = t;
+            }
+        }
+        QVERIFY(ViewportInstances::trianglesPerCopy(K::Sphere, 1000) < 2 * 32 * 23 / 4);
+
+        // What is drawn follows the count at each commit, back up to full detail too.
+        Qt3DCore::QEntity root;
+        ViewportInstances instances(&root);
+        for (int n : {3, 400, 3000, 2}) {
+            instances.clear();
+            for (int i = 0; i < n; ++i) {
+                QMatrix4x4 m;
+                m.translate(float(i), 0, 0);
+                instances.add(K::Sphere, m, {Qt::red, Qt::darkRed, 0.5f});
+                instances.add(K::Cylinder, m, {Qt::red, Qt::darkRed, 0.5f});
+            }
+            instances.commit();
+            QCOMPARE(instances.count(K::Sphere), n);
+            QCOMPARE(instances.drawnTrianglesPerCopy(K::Sphere),
+                     ViewportInstances::trianglesPerCopy(K::Sphere, n));
+            QCOMPARE(instances.drawnTrianglesPerCopy(K::Cylinder),
+                     ViewportInstances::trianglesPerCopy(K::Cylinder, n));
+        }
+    }
+
+    void multisamplingIsOffOnASoftwareRenderer() {
+        for (const char* name :
+             {"llvmpipe (LLVM 15.0.6, 256 bits)", "softpipe", "Software Rasterizer", "Mesa X11 swrast"}) {
+            QVERIFY2(Viewport::isSoftwareRenderer(name), name);
+        }
+        for (const char* name :
+             {"Mesa Intel(R) UHD Graphics 620 (KBL GT2)", "NVIDIA GeForce RTX 3060/PCIe/SSE2",
+              "AMD Radeon RX 6600 (navy_flounder, LLVM 15.0.6, DRM 3.49, 6.1.0)", ""}) {
+            QVERIFY2(!Viewport::isSoftwareRenderer(name), name);
+        }
+        if (qEnvironmentVariableIsSet("TUMBLE_VIEWPORT_SAMPLES")) return;  // set by hand
+        Document doc;
+        Viewport view(&doc);
+        view.resize(320, 240);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        const QString renderer = Viewport::glRenderer();
+        QVERIFY(!renderer.isEmpty());
+        QCOMPARE(view.samples(), Viewport::isSoftwareRenderer(renderer) ? 0 : 4);
+        QCOMPARE(view.renderWindow()->format().samples(), view.samples());
     }
 };
 

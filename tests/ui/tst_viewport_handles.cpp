@@ -1,8 +1,8 @@
 // The viewport's handles and collision wireframes: a drag on an axis handle moves the
 // selection along that axis by the distance between the mouse rays' nearest points on the
 // axis, a drag on a ring turns it by the angle between the rays' hits on the ring's plane,
-// both snapped on request, each drag one undo step; planes stay where they are; the
-// collision shapes appear and disappear as line entities.
+// both snapped on request, each drag one undo step, Escape cancels one and leaves no step;
+// planes stay where they are; the collision shapes appear and disappear as line entities.
 #include "document.h"
 #include "viewport.h"
 #include "viewport_handles.h"
@@ -268,6 +268,82 @@ private slots:
         QCOMPARE(f.doc.body(2).position, Vec3(2, 0.5, 0));
         f.doc.undoStack()->redo();
         QVERIFY(std::abs(f.doc.body(2).position.x() - (2.0 + expected)) < 1e-9);
+    }
+
+    void escapeDuringADragPutsTheBodiesBackAndLeavesNoStep() {
+        Fixture f;
+        QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
+        QWindow* w = f.view->renderWindow();
+        f.doc.setSelection({1});
+        const double L = f.size();
+        // A first, finished drag: one step, kept.
+        drag(*f.view, projected(*f.view, f.origin() + 0.6 * L * Vec3::UnitX()),
+             projected(*f.view, f.origin() + (0.6 * L + 0.7) * Vec3::UnitX()));
+        QCOMPARE(f.doc.undoStack()->count(), 1);
+        const BodyDesc afterFirst = f.doc.body(1);
+        QVERIFY(afterFirst.position.x() > 0.5);
+
+        // A second drag, cancelled half way: the body is back where the first one left it.
+        const Vec3 o = f.origin();
+        const QPoint from = projected(*f.view, o + 0.6 * L * Vec3::UnitX());
+        const QPoint to = projected(*f.view, o + (0.6 * L - 1.5) * Vec3::UnitX());
+        QCOMPARE(f.view->handleAt(from), 0);
+        QTest::mousePress(w, Qt::LeftButton, Qt::NoModifier, from);
+        QTest::mouseMove(w, (from + to) / 2);
+        QTest::mouseMove(w, to);
+        QVERIFY(f.doc.body(1).position.x() < afterFirst.position.x() - 1.0);  // it was moving
+        QCOMPARE(f.doc.undoStack()->count(), 2);
+        QTest::keyClick(w, Qt::Key_Escape);
+        QVERIFY(f.doc.body(1) == afterFirst);
+        QCOMPARE(f.doc.undoStack()->count(), 1);  // no undo step
+        QVERIFY(!f.doc.undoStack()->canRedo());   // and no redo step
+        QCOMPARE(f.doc.undoStack()->undoText(), f.doc.undoStack()->text(0));
+        // The rest of the gesture does nothing: no move, no click.
+        QTest::mouseMove(w, from);
+        QTest::mouseRelease(w, Qt::LeftButton, Qt::NoModifier, from);
+        QVERIFY(f.doc.body(1) == afterFirst);
+        QCOMPARE(f.doc.selection(), QList<int>({1}));
+        QCOMPARE(f.doc.undoStack()->count(), 1);
+        // The first drag still undoes to the start.
+        f.doc.undoStack()->undo();
+        QCOMPARE(f.doc.body(1).position, Vec3(0, 1, 0));
+        QVERIFY(f.doc.undoStack()->isClean());
+    }
+
+    void escapeCancelsAMultiSelectionDragAndAnUnmovedOne() {
+        Fixture f;
+        QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
+        QWindow* w = f.view->renderWindow();
+        f.doc.setSelection({1, 2});
+        const BodyDesc ball = f.doc.body(1), crate = f.doc.body(2);
+        const Vec3 o = f.origin();
+        const double L = f.size();
+        const QPoint from = projected(*f.view, o + 0.6 * L * Vec3::UnitX());
+        const QPoint to = projected(*f.view, o + (0.6 * L + 1.0) * Vec3::UnitX());
+        QTest::mousePress(w, Qt::LeftButton, Qt::NoModifier, from);
+        for (int i = 1; i <= 3; ++i) QTest::mouseMove(w, from + (to - from) * i / 3);
+        QVERIFY(f.doc.body(2).position.x() > 2.5);
+        QCOMPARE(f.doc.undoStack()->count(), 1);  // the macro so far
+        QTest::keyClick(w, Qt::Key_Escape);
+        QVERIFY(f.doc.body(1) == ball);
+        QVERIFY(f.doc.body(2) == crate);
+        QCOMPARE(f.doc.undoStack()->count(), 0);
+        QVERIFY(f.doc.undoStack()->isClean());
+        QTest::mouseRelease(w, Qt::LeftButton, Qt::NoModifier, to);
+        QCOMPARE(f.doc.undoStack()->count(), 0);
+
+        // Pressed on a handle and not moved: Escape leaves the stack as it was.
+        f.doc.setSelection({1});
+        const QPoint grip = projected(*f.view, f.origin() + 0.6 * L * Vec3::UnitX());
+        QTest::mousePress(w, Qt::LeftButton, Qt::NoModifier, grip);
+        QTest::keyClick(w, Qt::Key_Escape);
+        QTest::mouseRelease(w, Qt::LeftButton, Qt::NoModifier, grip);
+        QVERIFY(f.doc.body(1) == ball);
+        QCOMPARE(f.doc.undoStack()->count(), 0);
+        // With no drag, Escape is left to others (it does not reach the handles).
+        f.doc.addBody(body("extra", ShapeType::Box, Vec3(-2, 0.5, 0)));
+        QTest::keyClick(w, Qt::Key_Escape);
+        QCOMPARE(f.doc.undoStack()->count(), 1);  // the add stays
     }
 
     // ---- Collision shapes.
