@@ -1,26 +1,86 @@
 // The editor window, as a user sees it: it opens the samples, refuses a bad scene without
-// losing the open one, imports meshes as undoable bodies, autosaves and recovers, and its
-// viewport shows one entity per body.
+// losing the open one, imports meshes as undoable bodies, autosaves and recovers, asks
+// before closing over unsaved changes, opens a dropped scene and imports a dropped mesh, and
+// its viewport shows one entity per body.
 #include "document.h"
 #include "main_window.h"
 #include "viewport.h"
 
 #include <tumble/mass.h>
 
+#include <QAbstractButton>
+#include <QApplication>
 #include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFile>
+#include <QMessageBox>
+#include <QMimeData>
 #include <QStandardPaths>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <QUndoStack>
+#include <QUrl>
 #include <QtTest>
+
+#include <functional>
+#include <memory>
 
 using namespace tumble;
 using namespace tumble::ui;
 
+namespace {
+
+// Answers the next modal message box with `button` once it is up (polling, since it opens
+// inside the call under test), and records its text.
+void answerNextMessageBox(QMessageBox::StandardButton button, QString* text) {
+    auto attempt = std::make_shared<std::function<void(int)>>();
+    *attempt = [button, text, attempt](int left) {
+        if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+            if (text) *text = box->text();
+            if (QAbstractButton* b = box->button(button)) QTest::mouseClick(b, Qt::LeftButton);
+            *attempt = nullptr;  // break the cycle
+            return;
+        }
+        if (left > 0) {
+            QTimer::singleShot(20, [attempt, left] {
+                if (*attempt) (*attempt)(left - 1);
+            });
+        } else {
+            *attempt = nullptr;
+        }
+    };
+    QTimer::singleShot(0, [attempt] {
+        if (*attempt) (*attempt)(250);
+    });  // up to 5 s
+}
+
+// A drop on the window, as a file manager makes it; whether the drag's enter was accepted.
+bool drop(QWidget* target, const QMimeData& mime) {
+    const QPoint at(target->width() / 2, target->height() / 2);
+    QDragEnterEvent enter(at, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &enter);
+    if (!enter.isAccepted()) return false;
+    QDropEvent dropped(QPointF(at), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &dropped);
+    return true;
+}
+
+bool dropUrls(QWidget* target, const QList<QUrl>& urls) {
+    QMimeData mime;
+    mime.setUrls(urls);
+    return drop(target, mime);
+}
+
+}  // namespace
+
 class TestMainWindow : public QObject {
     Q_OBJECT
 private slots:
-    void initTestCase() { QStandardPaths::setTestModeEnabled(true); }
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);
+        QApplication::setQuitOnLastWindowClosed(false);  // the close tests close windows
+    }
 
     void opensTheDefaultSample() {
         MainWindow w;
@@ -141,6 +201,110 @@ private slots:
         next.document()->undoStack()->undo();
         QCOMPARE(next.document()->bodyCount(), 1);  // back to the new scene
         QFile::remove(MainWindow::autosavePath());
+    }
+
+    void closingWithUnsavedChangesAsks() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("ball.json");
+        MainWindow w;
+        QString error;
+        QVERIFY2(w.openScene(":/scenes/bouncing-ball.json", &error), qPrintable(error));
+        QVERIFY2(w.document()->saveAs(path, &error), qPrintable(error));
+        QFile file(path);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QByteArray onDisk = file.readAll();
+        file.close();
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        // Nothing unsaved: it closes without asking.
+        QVERIFY(w.close());
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+
+        BodyDesc ball;
+        ball.name = "extra";
+        ball.mass = 1.0;
+        ball.position = Vec3(0, 4, 0);
+        w.document()->addBody(ball);
+        QVERIFY(w.isWindowModified());
+        const SceneDesc edited = w.scene();
+
+        // Cancel: the window stays, with the scene as it was.
+        QString asked;
+        answerNextMessageBox(QMessageBox::Cancel, &asked);
+        QVERIFY(!w.close());
+        QVERIFY2(asked.contains("ball.json"), qPrintable(asked));
+        QVERIFY(w.isVisible());
+        QCOMPARE(w.scene(), edited);
+        QVERIFY(w.isWindowModified());
+        QCOMPARE(w.document()->undoStack()->count(), 1);
+
+        // Discard: it closes, and the file on disk is as it was saved.
+        asked.clear();
+        answerNextMessageBox(QMessageBox::Discard, &asked);
+        QVERIFY(w.close());
+        QVERIFY2(asked.contains("ball.json"), qPrintable(asked));
+        QVERIFY(!w.isVisible());
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        QCOMPARE(file.readAll(), onDisk);
+    }
+
+    void droppingASceneFileOpensIt() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("dropped.json");
+        SceneDesc saved;
+        {
+            MainWindow source;
+            QString error;
+            QVERIFY(source.openScene(":/scenes/newtons-cradle.json", &error));
+            QVERIFY2(source.document()->saveAs(path, &error), qPrintable(error));
+            saved = source.scene();
+        }
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(path)}));
+        QCOMPARE(w.scenePath(), path);
+        QCOMPARE(w.scene(), saved);
+        QVERIFY(!w.isWindowModified());
+        QVERIFY2(w.windowTitle().startsWith("dropped.json"), qPrintable(w.windowTitle()));
+        QCOMPARE(w.viewport()->entityCount(), int(saved.bodies.size()));
+
+        // With unsaved changes it asks first; Cancel keeps the open scene and its changes.
+        w.document()->removeBodies({1});
+        const SceneDesc edited = w.scene();
+        answerNextMessageBox(QMessageBox::Cancel, nullptr);
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/projectile.json")}));
+        QCOMPARE(w.scenePath(), path);
+        QCOMPARE(w.scene(), edited);
+    }
+
+    void droppingAMeshFileImportsItAsOneStep() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        const SceneDesc before = w.scene();
+        const int bodies = w.document()->bodyCount();
+        const int steps = w.document()->undoStack()->count();
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/box.stl")}));
+        QCOMPARE(w.document()->bodyCount(), bodies + 1);
+        const BodyDesc& b = w.document()->body(bodies);
+        QCOMPARE(b.name, std::string("box"));
+        QCOMPARE(b.shape.type, ShapeType::Mesh);
+        QCOMPARE(b.shape.collision, MeshCollision::ConvexHull);  // the drop's defaults
+        QCOMPARE(b.shape.scale, Vec3(1, 1, 1));
+        QVERIFY(b.shape.meshData);
+        QCOMPARE(int(b.shape.meshData->triangles.size()), 12);
+        QCOMPARE(w.document()->selection(), QList<int>({bodies}));
+        QCOMPARE(w.viewport()->entityCount(), bodies + 1);
+        QCOMPARE(w.document()->undoStack()->count(), steps + 1);
+        w.document()->undoStack()->undo();
+        QCOMPARE(w.scene(), before);
+        // Something that is no file is refused at the door.
+        QMimeData text;
+        text.setText("box.stl");
+        QVERIFY(!drop(&w, text));
+        QCOMPARE(w.scene(), before);
     }
 
     void saveAndReopen() {
