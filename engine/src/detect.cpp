@@ -68,16 +68,19 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
 
 }  // namespace
 
+void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance, std::vector<std::uint64_t>& out) {
+    out.clear();
+    for (const Manifold& m : contacts)
+        if (m.maxDepth() >= -touchTolerance) out.push_back(pairKey(m.bodyA, m.bodyB));
+    std::sort(out.begin(), out.end());
+}
+
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double touchTolerance, double tolerance, DetectScratch& s) {
+                 double tolerance, DetectScratch& s) {
     s.impacts.clear();
-    s.touchingPairs.clear();
-    for (const Manifold& m : s.previous)
-        if (m.maxDepth() >= -touchTolerance) s.touchingPairs.push_back(pairKey(m.bodyA, m.bodyB));
-    std::sort(s.touchingPairs.begin(), s.touchingPairs.end());
     for (const auto& [a, b] : s.broadphase.pairs()) {
         // In contact already: no new impact.
-        if (std::binary_search(s.touchingPairs.begin(), s.touchingPairs.end(), pairKey(a, b))) continue;
+        if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) continue;
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.

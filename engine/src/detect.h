@@ -21,9 +21,8 @@ struct DetectScratch {
     std::vector<std::uint8_t> moving;
     collision::Broadphase broadphase;
     std::vector<collision::Manifold> contacts;
-    std::vector<collision::Manifold> previous;  // last step's contacts: pairs already touching
     std::vector<collision::ImpactEvent> impacts;
-    std::vector<std::uint64_t> touchingPairs;  // sorted keys of the pairs touching in `previous`
+    std::vector<std::uint64_t> touching;  // sorted keys of the pairs touching at the start of the step
 };
 
 /// True when the model has two bodies that could ever touch (at least one not static);
@@ -41,11 +40,15 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
 /// Narrowphase: the manifolds of every pair at the end of the step.
 void findContacts(const Model& model, DetectScratch& s, double margin);
 
-/// Time of impact: for pairs that did not touch at the start of the step (no point of
-/// `s.previous` deeper than -touchTolerance), the moment they first come within
+/// The sorted keys of the pairs with a point deeper than -touchTolerance.
+void touchingPairs(const std::vector<collision::Manifold>& contacts, double touchTolerance,
+                   std::vector<std::uint64_t>& out);
+
+/// Time of impact: for pairs that did not touch at the start of the step (not in
+/// `s.touching`), the moment they first come within
 /// `tolerance` × the smaller body's size (t0 = time at the start, h = step). A pair that
 /// is that near already at the start has its impact at t0.
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double touchTolerance, double tolerance, DetectScratch& s);
+                 double tolerance, DetectScratch& s);
 
 }  // namespace tumble

@@ -31,17 +31,22 @@ long advanceTo(World& world, double end, double dt) {
 
 }  // namespace
 
-RunResult simulate(World& world, const std::function<void(int, const State&)>& onFrame) {
+long advanceFrame(World& world, int frame) {
     const Settings& s = world.model().settings;
     const std::vector<double>& switches = world.model().forceSwitchTimes;
+    const double frameTime = static_cast<double>(frame) / s.frameRate;
+    long steps = 0;
+    auto it = std::upper_bound(switches.begin(), switches.end(), world.state().time);
+    for (; it != switches.end() && *it < frameTime; ++it) steps += advanceTo(world, *it, s.dt);
+    return steps + advanceTo(world, frameTime, s.dt);
+}
+
+RunResult simulate(World& world, const std::function<void(int, const State&)>& onFrame) {
     RunResult r;
-    r.frames = frameCount(s);
+    r.frames = frameCount(world.model().settings);
     onFrame(0, world.state());
     for (int k = 1; k < r.frames; ++k) {
-        const double frameTime = static_cast<double>(k) / s.frameRate;
-        auto it = std::upper_bound(switches.begin(), switches.end(), world.state().time);
-        for (; it != switches.end() && *it < frameTime; ++it) r.steps += advanceTo(world, *it, s.dt);
-        r.steps += advanceTo(world, frameTime, s.dt);
+        r.steps += advanceFrame(world, k);
         onFrame(k, world.state());
     }
     return r;

@@ -49,7 +49,6 @@ struct World::Scratch {
     std::vector<int> seeds;
     std::vector<collision::ImpactEvent> impacts;  // of the whole step
     double touchTolerance = 0.0;
-    bool knowsContacts = false;  // detect.contacts holds the contacts of the current state
 };
 
 World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
@@ -70,6 +69,8 @@ World::World(Model model, State state)
 // With sleeping off every body is simulated: sleep flags brought in by a state are dropped.
 void World::forgetSleepUnlessSleeping() {
     if (model_.settings.sleeping) return;
+    // Pairs of sleeping bodies were never tested, so they are missing from `touching`.
+    if (std::find(state_.asleep.begin(), state_.asleep.end(), 1) != state_.asleep.end()) state_.touchingKnown = false;
     state_.asleep.clear();
     state_.restTime.clear();
 }
@@ -77,7 +78,6 @@ void World::forgetSleepUnlessSleeping() {
 void World::setState(const State& state) {
     state_ = state;
     scratch_->detect.contacts.clear();
-    scratch_->knowsContacts = false;
     forgetSleepUnlessSleeping();
 }
 
@@ -113,7 +113,7 @@ void World::detect(double t0, double h) {
     profile_.narrowphase += since(t);
 
     t = Clock::now();
-    findImpacts(model_, s.before, state_, t0, h, s.touchTolerance, kImpactTolerance, d);
+    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, d);
     profile_.timeOfImpact += since(t);
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again
@@ -158,7 +158,7 @@ void World::impactAt(double t0) {
                                           restingSpeed(model_), s.impact, ledger_);
     ++profile_.impactMoments;
     if (r.limited) ++profile_.impactSweepLimits;
-    std::swap(d.previous, d.contacts);  // the contacts at the start of the rest of the step
+    touchingPairs(d.contacts, s.touchTolerance, d.touching);  // at the start of the rest of the step
     profile_.impactSolve += since(t2);
 }
 
@@ -172,15 +172,16 @@ void World::step(double h) {
         return;
     }
     if (model_.settings.sleeping) wakeTouched(model_, state_, {}, {});  // forces switching on
-    if (!s.knowsContacts) {
+    if (state_.touchingKnown) {
+        d.touching = state_.touching;  // the last step's: pairs touching at the start
+    } else {
         // The first step from a state: what touches already is resting contact, not an impact.
         bodyPoses(model_, state_, d.start);
         d.end = d.start;
         findPairs(model_, state_, s.touchTolerance, d);
         findContacts(model_, d, s.touchTolerance);
-        s.knowsContacts = true;
+        touchingPairs(d.contacts, s.touchTolerance, d.touching);
     }
-    std::swap(d.previous, d.contacts);  // the last step's contacts: pairs touching at the start
     s.impacts.clear();
     for (int cut = 0;; ++cut) {
         s.before = state_;
@@ -221,6 +222,8 @@ void World::step(double h) {
         updateSleep(model_, state_, d.contacts, s.touchTolerance, h, s.sleep, ledger_);
         profile_.sleep += since(t);
     }
+    touchingPairs(d.contacts, s.touchTolerance, state_.touching);
+    state_.touchingKnown = true;
     for (const auto& m : d.contacts) profile_.contactPoints += m.count;
     profile_.impacts += static_cast<long>(s.impacts.size());
 }

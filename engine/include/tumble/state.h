@@ -39,6 +39,13 @@ struct State {
     std::vector<double> restTime;       ///< s the body has been slow enough to sleep
     std::vector<std::uint8_t> asleep;   ///< 1: not simulated until something touches it
     std::vector<ContactMemory> contacts;  ///< warm-start impulses of the last step
+    /// The pairs in contact at the end of the last step (sorted pair keys, see touchingKey):
+    /// the next step finds no impact between them. With it a run continued from a copy of
+    /// the state is bit-for-bit the run that made the copy (the timeline re-simulates from
+    /// keyframes). Unknown (a state made from a scene, or edited) means "found at the first
+    /// step", where what touches already is resting contact.
+    std::vector<std::uint64_t> touching;
+    bool touchingKnown = false;
 
     bool isAsleep(int body) const { return !asleep.empty() && asleep[body] != 0; }
 };

@@ -48,7 +48,8 @@ public:
     const Model& model() const { return model_; }
     const State& state() const { return state_; }
     /// Replaces the state (a frame of the timeline, an edit); the contacts found so far are
-    /// forgotten, the remembered impulses and sleep data come with `state`.
+    /// forgotten, the remembered impulses, touching pairs and sleep data come with `state`,
+    /// so stepping on from a recorded state repeats the recorded run exactly.
     void setState(const State& state);
     void setTime(double t) { state_.time = t; }
     const Profile& profile() const { return profile_; }
@@ -93,5 +94,10 @@ RunResult simulate(World& world, const std::function<void(int frame, const State
 
 /// The number of recorded frames of a run: round(duration * frame_rate) + 1.
 int frameCount(const Settings& settings);
+
+/// Advances the world from frame `frame - 1` (the world is at that frame's time) to frame
+/// `frame`, with exactly the steps simulate() takes there; returns the number of steps.
+/// Re-simulating from a recorded frame with it gives the recorded frames bit for bit.
+long advanceFrame(World& world, int frame);
 
 }  // namespace tumble
