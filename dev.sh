@@ -13,7 +13,7 @@ cd "$(dirname "$0")"
 BUILD_DIR=${BUILD_DIR:-build}
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
-  qt6-base-dev qt6-base-dev-tools qt6-qpa-plugins qt6-3d-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri fonts-dejavu-core
+  qt6-base-dev qt6-base-dev-tools qt6-qpa-plugins qt6-3d-dev qt6-charts-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri fonts-dejavu-core
   libeigen3-dev nlohmann-json3-dev libassimp-dev libqhull-dev
   assimp-testmodels
   xvfb xauth
