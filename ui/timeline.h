@@ -131,8 +131,8 @@ private:
     void markStale();
     void startRun();
     void retire();
-    void onWorkerProgress(Run* run);
-    void onWorkerFinished(Run* run);
+    void onWorkerProgress(int runId);
+    void onWorkerFinished(int runId);
     void advancePlayback();
     void loadCurrent();
 
