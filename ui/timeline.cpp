@@ -33,13 +33,13 @@ struct Timeline::Run {
     int frames = 0;
     double frameRate = 60.0;
     mutable std::mutex mutex;
-    Recording recording;                  // guarded
-    std::shared_ptr<const Model> model;   // guarded; set once compiled
-    Profile profile;                      // guarded
-    std::string error;                    // guarded
-    bool failed = false;                  // guarded
-    mutable std::unique_ptr<World> scrub; // guarded: re-simulates thinned frames
-    double wallSeconds = 0.0;             // guarded
+    Recording recording;                   // guarded
+    std::shared_ptr<const Model> model;    // guarded; set once compiled
+    Profile profile;                       // guarded
+    std::string error;                     // guarded
+    bool failed = false;                   // guarded
+    mutable std::unique_ptr<World> scrub;  // guarded: re-simulates thinned frames
+    double wallSeconds = 0.0;              // guarded
     std::atomic<bool> cancel{false};
     std::atomic<bool> finished{false};
     std::atomic<bool> notifyPending{false};
@@ -91,7 +91,9 @@ int Timeline::framesDone() const {
     return run_->recording.framesDone();
 }
 
-double Timeline::frameRate() const { return run_ ? run_->frameRate : doc_->scene().settings.frameRate; }
+double Timeline::frameRate() const {
+    return run_ ? run_->frameRate : doc_->scene().settings.frameRate;
+}
 
 double Timeline::speed() const {
     if (!run_) return 0.0;
@@ -146,7 +148,8 @@ std::vector<FrameSummary> Timeline::summaries() const {
     return out;
 }
 
-void Timeline::bodyTrack(int body, std::vector<int>* frames, std::vector<BodyState>* states, int lastFrame) const {
+void Timeline::bodyTrack(int body, std::vector<int>* frames, std::vector<BodyState>* states,
+                         int lastFrame) const {
     frames->clear();
     states->clear();
     if (!run_) return;
@@ -182,11 +185,15 @@ std::size_t Timeline::recordingBytes() const {
 
 void Timeline::setAutoSimulate(bool on) {
     auto_ = on;
-    if (!on) restart_->stop();
-    else if (stale_) restart_->start();
+    if (!on)
+        restart_->stop();
+    else if (stale_)
+        restart_->start();
 }
 
-bool Timeline::isPlaying() const { return playTimer_->isActive(); }
+bool Timeline::isPlaying() const {
+    return playTimer_->isActive();
+}
 
 void Timeline::markStale() {
     if (!stale_) {
@@ -245,7 +252,8 @@ void Timeline::startRun() {
             if (!force && std::chrono::duration<double>(now - lastNotify).count() < kProgressInterval) return;
             lastNotify = now;
             if (!force && r->notifyPending.exchange(true)) return;
-            QMetaObject::invokeMethod(this, [this, id] { onWorkerProgress(id); }, Qt::QueuedConnection);
+            QMetaObject::invokeMethod(
+                this, [this, id] { onWorkerProgress(id); }, Qt::QueuedConnection);
         };
         try {
             auto model = std::make_shared<const Model>(compile(r->scene));
@@ -259,9 +267,11 @@ void Timeline::startRun() {
             for (int k = 1; k < r->frames && !r->cancel; ++k) {
                 const long steps = advanceFrame(world, k);
                 const FrameSummary summary = summarize(*model, world.state(), steps);
-                std::lock_guard lock(r->mutex);
-                r->recording.append(world.state(), summary);
-                r->profile = world.profile();
+                {
+                    std::lock_guard lock(r->mutex);
+                    r->recording.append(world.state(), summary);
+                    r->profile = world.profile();
+                }
                 notify(false);
             }
         } catch (const std::exception& e) {
@@ -271,7 +281,8 @@ void Timeline::startRun() {
         }
         notify(true);
         r->finished = true;
-        QMetaObject::invokeMethod(this, [this, id] { onWorkerFinished(id); }, Qt::QueuedConnection);
+        QMetaObject::invokeMethod(
+            this, [this, id] { onWorkerFinished(id); }, Qt::QueuedConnection);
     });
 }
 
@@ -316,7 +327,9 @@ void Timeline::seek(int frame) {
     loadCurrent();
 }
 
-void Timeline::toEnd() { seek(framesDone() - 1); }
+void Timeline::toEnd() {
+    seek(framesDone() - 1);
+}
 
 void Timeline::loadCurrent() {
     hasCurrent_ = frameState(frame_, &current_);
@@ -339,11 +352,17 @@ void Timeline::pause() {
     emit playingChanged(false);
 }
 
-void Timeline::togglePlay() { isPlaying() ? pause() : play(); }
+void Timeline::togglePlay() {
+    isPlaying() ? pause() : play();
+}
 
-void Timeline::setLoop(bool on) { loop_ = on; }
+void Timeline::setLoop(bool on) {
+    loop_ = on;
+}
 
-void Timeline::setPlaybackSpeed(double rate) { rate_ = std::clamp(rate, 0.1, 4.0); }
+void Timeline::setPlaybackSpeed(double rate) {
+    rate_ = std::clamp(rate, 0.1, 4.0);
+}
 
 // Real time (times the playback rate) decides the frame; frames not yet simulated are
 // waited for, and a finished run ends playback or loops.

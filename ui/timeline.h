@@ -71,7 +71,8 @@ public:
     /// Body `body`'s state at every kept frame up to `lastFrame` (-1: all done), with the
     /// frame numbers: every frame while keyframeInterval() is 1, else the keyframes (no
     /// re-simulation). For plots and trails.
-    void bodyTrack(int body, std::vector<int>* frames, std::vector<BodyState>* states, int lastFrame = -1) const;
+    void bodyTrack(int body, std::vector<int>* frames, std::vector<BodyState>* states,
+                   int lastFrame = -1) const;
 
     /// The memory cap of the recording (bytes). Lowering it thins a recording at once.
     std::size_t memoryCap() const { return cap_; }
@@ -144,10 +145,10 @@ private:
     bool auto_ = true;
     QString error_;
     std::size_t cap_ = std::size_t(512) << 20;
-    QTimer* restart_ = nullptr;   // the pause after an edit before a new run
+    QTimer* restart_ = nullptr;  // the pause after an edit before a new run
     QTimer* playTimer_ = nullptr;
     QElapsedTimer playClock_;
-    double playOrigin_ = 0.0;     // simulated time at playClock_ start
+    double playOrigin_ = 0.0;  // simulated time at playClock_ start
     int frame_ = 0;
     State current_;
     bool hasCurrent_ = false;

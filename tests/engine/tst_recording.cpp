@@ -122,7 +122,8 @@ private slots:
         for (int k : order) {
             const State* s = rec.state(k, w);
             QVERIFY(s);
-            if (!sameBits(*s, frames[static_cast<std::size_t>(k)])) QFAIL(qPrintable(QString("frame %1").arg(k)));
+            if (!sameBits(*s, frames[static_cast<std::size_t>(k)]))
+                QFAIL(qPrintable(QString("frame %1").arg(k)));
         }
         QVERIFY(rec.state(n, w) == nullptr);
     }

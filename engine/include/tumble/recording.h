@@ -23,11 +23,11 @@ struct Model;
 /// Numbers every frame keeps, whatever is thinned: what the plots draw.
 struct FrameSummary {
     double time = 0.0;
-    double kinetic = 0.0;     ///< J
-    double potential = 0.0;   ///< J: gravity and springs
-    double momentum = 0.0;    ///< |sum P| of the dynamic bodies, kg·m/s
+    double kinetic = 0.0;          ///< J
+    double potential = 0.0;        ///< J: gravity and springs
+    double momentum = 0.0;         ///< |sum P| of the dynamic bodies, kg·m/s
     double angularMomentum = 0.0;  ///< |sum (x × P + L)| about the origin, kg·m²/s
-    long steps = 0;           ///< steps taken since the previous frame
+    long steps = 0;                ///< steps taken since the previous frame
 };
 
 /// Approximate heap and inline bytes of one snapshot.
