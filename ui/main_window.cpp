@@ -5,6 +5,8 @@
 #include "property_dock.h"
 #include "scene_tree_dock.h"
 #include "settings_dock.h"
+#include "timeline.h"
+#include "timeline_dock.h"
 #include "viewport.h"
 
 #include <tumble/io/mesh_import.h>
@@ -54,6 +56,7 @@ bool isSceneFile(const QString& path) {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document(this)) {
     setObjectName("MainWindow");
+    timeline_ = new Timeline(doc_, this);
     viewport_ = new Viewport(doc_, this);
     setCentralWidget(viewport_);
 
@@ -77,6 +80,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
     history->setObjectName("UndoHistoryDock");
     history->setWidget(new QUndoView(doc_->undoStack(), history));
     addDockWidget(Qt::LeftDockWidgetArea, history);
+
+    timelineDock_ = new TimelineDock(timeline_, this);
+    addDockWidget(Qt::BottomDockWidgetArea, timelineDock_);
 
     buildMenus();
     setAcceptDrops(true);
@@ -147,6 +153,19 @@ void MainWindow::buildMenus() {
         doc_->setSelection(all);
     });
 
+    // The timeline's keys (Space, Left, Right, Home, End) work anywhere in the window; a
+    // text field that has the focus keeps its own use of them.
+    QMenu* simulation = menuBar()->addMenu(tr("&Simulation"));
+    simulation->addAction(timelineDock_->simulateAction());
+    simulation->addAction(timelineDock_->cancelAction());
+    simulation->addSeparator();
+    for (QAction* a :
+         {timelineDock_->playAction(), timelineDock_->stepBackAction(), timelineDock_->stepForwardAction(),
+          timelineDock_->toStartAction(), timelineDock_->toEndAction(), timelineDock_->loopAction()})
+        simulation->addAction(a);
+    simulation->addSeparator();
+    simulation->addAction(timelineDock_->useFrameAction());
+
     QMenu* view = menuBar()->addMenu(tr("&View"));
     view->addAction(tr("&Frame Selection"), this, [this] { viewport_->frameSelection(); });
     view->addAction(tr("Frame &All"), this, [this] { viewport_->frameAll(); });
@@ -156,16 +175,16 @@ void MainWindow::buildMenus() {
     auto* modes = new QActionGroup(this);
     QAction* move = view->addAction(tr("&Move Handles"), this,
                                     [this] { viewport_->setTransformMode(Viewport::TransformMode::Move); });
-    QAction* rotate = view->addAction(tr("&Rotate Handles"), this,
-                                      [this] { viewport_->setTransformMode(Viewport::TransformMode::Rotate); });
+    QAction* rotate = view->addAction(tr("&Rotate Handles"), this, [this] {
+        viewport_->setTransformMode(Viewport::TransformMode::Rotate);
+    });
     for (QAction* a : {move, rotate}) a->setCheckable(true), modes->addAction(a);
     move->setChecked(viewport_->transformMode() == Viewport::TransformMode::Move);
     rotate->setChecked(!move->isChecked());
-    connect(viewport_, &Viewport::transformModeChanged, this,
-            [move, rotate](Viewport::TransformMode m) {
-                move->setChecked(m == Viewport::TransformMode::Move);
-                rotate->setChecked(m == Viewport::TransformMode::Rotate);
-            });
+    connect(viewport_, &Viewport::transformModeChanged, this, [move, rotate](Viewport::TransformMode m) {
+        move->setChecked(m == Viewport::TransformMode::Move);
+        rotate->setChecked(m == Viewport::TransformMode::Rotate);
+    });
     QAction* snap = view->addAction(tr("S&nap Handles (0.1 m, 15°)"));
     snap->setCheckable(true);
     snap->setChecked(viewport_->snapping());

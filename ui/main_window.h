@@ -15,6 +15,8 @@ namespace tumble::ui {
 
 class Document;
 class SceneTreeDock;
+class Timeline;
+class TimelineDock;
 class Viewport;
 
 class MainWindow : public QMainWindow {
@@ -25,6 +27,8 @@ public:
 
     Document* document() const { return doc_; }
     Viewport* viewport() const { return viewport_; }
+    Timeline* timeline() const { return timeline_; }
+    TimelineDock* timelineDock() const { return timelineDock_; }
 
     /// Loads a scene file (or a ":/scenes/..." sample). On failure returns false, keeps the
     /// current scene and puts the message (file and field) in `error`. Does not ask about
@@ -72,8 +76,10 @@ private:
     void openPath(const QString& path);
 
     Document* doc_ = nullptr;
+    Timeline* timeline_ = nullptr;
     Viewport* viewport_ = nullptr;
     SceneTreeDock* tree_ = nullptr;
+    TimelineDock* timelineDock_ = nullptr;
     QString source_;
     QMenu* recentMenu_ = nullptr;
     QTimer* autosaveTimer_ = nullptr;

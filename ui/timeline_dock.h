@@ -1,0 +1,72 @@
+// The timeline dock: transport buttons, the scrub slider with time and frame number, loop
+// and playback speed; the run's progress (frames done, simulated time, speed) with Cancel;
+// "Use Frame as Start"; the recording's memory cap. Its actions carry the keyboard
+// shortcuts (Space, Left, Right, Home, End) and the main window puts them in a menu so
+// they work anywhere in the window.
+#pragma once
+
+#include <QDockWidget>
+
+class QAction;
+class QCheckBox;
+class QComboBox;
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QSlider;
+class QSpinBox;
+class QToolButton;
+
+namespace tumble::ui {
+
+class Timeline;
+
+class TimelineDock : public QDockWidget {
+    Q_OBJECT
+public:
+    explicit TimelineDock(Timeline* timeline, QWidget* parent = nullptr);
+
+    Timeline* timeline() const { return timeline_; }
+
+    QAction* playAction() const { return play_; }
+    QAction* stepBackAction() const { return back_; }
+    QAction* stepForwardAction() const { return forward_; }
+    QAction* toStartAction() const { return start_; }
+    QAction* toEndAction() const { return end_; }
+    QAction* loopAction() const { return loop_; }
+    QAction* simulateAction() const { return simulate_; }
+    QAction* cancelAction() const { return cancel_; }
+    QAction* useFrameAction() const { return useFrame_; }
+
+    /// The scrub slider (its value is the playhead's frame).
+    QSlider* slider() const { return slider_; }
+    /// "t = 1.250 s   frame 75 / 121".
+    QString positionText() const;
+    /// The progress line: frames done, simulated time, speed, stale or failed.
+    QString statusText() const;
+
+private:
+    void updateRange();
+    void updatePosition();
+    void updateStatus();
+
+    Timeline* timeline_;
+    QAction* play_;
+    QAction* back_;
+    QAction* forward_;
+    QAction* start_;
+    QAction* end_;
+    QAction* loop_;
+    QAction* simulate_;
+    QAction* cancel_;
+    QAction* useFrame_;
+    QSlider* slider_;
+    QLabel* position_;
+    QComboBox* speed_;
+    QProgressBar* progress_;
+    QLabel* status_;
+    QSpinBox* cap_;
+    QCheckBox* auto_;
+};
+
+}  // namespace tumble::ui
