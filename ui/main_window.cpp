@@ -68,6 +68,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
 
     auto* properties = new PropertyDock(doc_, this);
     properties->setObjectName("PropertyDock");
+    properties->setTimeline(timeline_);
     addDockWidget(Qt::RightDockWidgetArea, properties);
 
     auto* settings = new SettingsDock(doc_, this);

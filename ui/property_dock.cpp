@@ -7,6 +7,8 @@
 // PropertySpinBox::showValue and friends), so showing a value never edits it back.
 #include "property_dock_impl.h"
 
+#include "live_state_box.h"
+
 namespace tumble::ui {
 
 void PropertyDock::Impl::build() {
@@ -236,6 +238,13 @@ PropertyDock::~PropertyDock() = default;
 
 void PropertyDock::refresh() {
     d_->refresh();
+}
+
+void PropertyDock::setTimeline(Timeline* timeline) {
+    if (auto* old = findChild<LiveStateBox*>()) delete old;
+    if (!timeline) return;
+    auto* layout = static_cast<QVBoxLayout*>(d_->page->layout());
+    layout->insertWidget(0, new LiveStateBox(d_->doc, timeline));
 }
 
 QString PropertyDock::fieldError(const QString& field) const {

@@ -13,6 +13,7 @@
 namespace tumble::ui {
 
 class Document;
+class Timeline;
 
 class PropertyDock : public QDockWidget {
     Q_OBJECT
@@ -23,6 +24,10 @@ public:
     /// The message beside a field (its key, e.g. "shape.radius", "mass", "inertia"), or
     /// empty when the field has none.
     QString fieldError(const QString& field) const;
+
+    /// Shows the selected body's state at the timeline's playhead, read-only, above the
+    /// editable fields (see LiveStateBox).
+    void setTimeline(Timeline* timeline);
 
 public slots:
     /// Shows the selected bodies again (called on every document change that concerns them).
