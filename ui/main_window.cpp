@@ -52,6 +52,24 @@ bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);
 }
 
+// The mesh formats offered by Import Mesh and accepted by a drop (assimp reads more; the
+// import dialog's "All files" reaches them).
+const char* const kMeshExtensions[] = {"obj", "stl", "ply", "off", "gltf",
+                                       "glb", "fbx", "dae", "3ds", "blend"};
+
+bool isMeshFile(const QString& path) {
+    const QString suffix = QFileInfo(path).suffix().toLower();
+    for (const char* e : kMeshExtensions)
+        if (suffix == QLatin1String(e)) return true;
+    return false;
+}
+
+QString meshFilter() {
+    QStringList patterns;
+    for (const char* e : kMeshExtensions) patterns << QStringLiteral("*.%1").arg(e);
+    return QObject::tr("Meshes (%1);;All files (*)").arg(patterns.join(' '));
+}
+
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document(this)) {
@@ -198,10 +216,13 @@ void MainWindow::buildMenus() {
     for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 }
 
+QString MainWindow::sceneName() const {
+    if (doc_->filePath().isEmpty() && source_.startsWith(":/")) return QFileInfo(source_).fileName();
+    return doc_->displayName();
+}
+
 void MainWindow::updateTitle() {
-    QString name = doc_->displayName();
-    if (doc_->filePath().isEmpty() && source_.startsWith(":/")) name = QFileInfo(source_).fileName();
-    setWindowTitle(tr("%1[*] - Tumble").arg(name));
+    setWindowTitle(tr("%1[*] - Tumble").arg(sceneName()));
     setWindowModified(doc_->isModified());
 }
 
@@ -223,7 +244,7 @@ void MainWindow::openPath(const QString& path) {
 bool MainWindow::maybeSave() {
     if (!doc_->isModified()) return true;
     const auto answer = QMessageBox::warning(
-        this, tr("Unsaved changes"), tr("%1 has unsaved changes. Save them?").arg(doc_->displayName()),
+        this, tr("Unsaved changes"), tr("%1 has unsaved changes. Save them?").arg(sceneName()),
         QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
     if (answer == QMessageBox::Cancel) return false;
     if (answer == QMessageBox::Save) return save();
@@ -308,9 +329,7 @@ bool MainWindow::importMesh(const QString& path, bool convexHull, double scale, 
 }
 
 void MainWindow::importDialog() {
-    const QString path = QFileDialog::getOpenFileName(
-        this, tr("Import mesh"), QString(),
-        tr("Meshes (*.obj *.stl *.ply *.off *.gltf *.glb *.fbx *.dae *.3ds *.blend);;All files (*)"));
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import mesh"), QString(), meshFilter());
     if (path.isEmpty()) return;
     QDialog dialog(this);
     dialog.setWindowTitle(tr("Import %1").arg(QFileInfo(path).fileName()));
@@ -410,21 +429,41 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     event->accept();
 }
 
+// Only local scene and mesh files are taken; anything else shows no drop cursor.
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
-    if (event->mimeData()->hasUrls()) event->acceptProposedAction();
+    for (const QUrl& url : event->mimeData()->urls()) {
+        const QString path = url.toLocalFile();
+        if (!path.isEmpty() && (isSceneFile(path) || isMeshFile(path))) {
+            event->acceptProposedAction();
+            return;
+        }
+    }
 }
 
+// A dropped scene opens (the first one; meshes beside it are ignored). Dropped meshes are
+// imported together as one undo step.
 void MainWindow::dropEvent(QDropEvent* event) {
+    QStringList meshes;
     for (const QUrl& url : event->mimeData()->urls()) {
         const QString path = url.toLocalFile();
         if (path.isEmpty()) continue;
         if (isSceneFile(path)) {
+            event->acceptProposedAction();
             openPath(path);
-            return;  // one scene at a time
+            return;
         }
-        QString error;
-        if (!importMesh(path, true, 1.0, &error)) QMessageBox::warning(this, tr("Import mesh"), error);
+        if (isMeshFile(path)) meshes << path;
     }
+    if (meshes.isEmpty()) return;
+    event->acceptProposedAction();
+    if (meshes.size() > 1) doc_->beginMacro(tr("Import %1 Meshes").arg(meshes.size()));
+    QStringList errors;
+    for (const QString& path : meshes) {
+        QString error;
+        if (!importMesh(path, true, 1.0, &error)) errors << error;
+    }
+    if (meshes.size() > 1) doc_->endMacro();
+    if (!errors.isEmpty()) QMessageBox::warning(this, tr("Import mesh"), errors.join("\n\n"));
 }
 
 int runEditor(int argc, char** argv) {

@@ -64,6 +64,8 @@ protected:
 private:
     void buildMenus();
     void updateTitle();
+    /// The file name of the scene, or of the sample it came from, or "untitled".
+    QString sceneName() const;
     bool maybeSave();  // false: the user cancelled
     void newScene();
     void openDialog();

@@ -304,7 +304,36 @@ private slots:
         QMimeData text;
         text.setText("box.stl");
         QVERIFY(!drop(&w, text));
+        // Nor is a file of no known kind, or a remote one.
+        QVERIFY(!dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/README.md")}));
+        QVERIFY(!dropUrls(&w, {QUrl("https://example.org/box.stl")}));
         QCOMPARE(w.scene(), before);
+
+        // Two meshes dropped together: one undo step.
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/box.stl"),
+                              QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/tetrahedron.off")}));
+        QCOMPARE(w.document()->bodyCount(), bodies + 2);
+        QCOMPARE(w.document()->undoStack()->count(), steps + 1);
+        QCOMPARE(w.document()->undoStack()->undoText(), QString("Import 2 Meshes"));
+        w.document()->undoStack()->undo();
+        QCOMPARE(w.scene(), before);
+    }
+
+    // The question on closing names the sample the scene came from, as the title does.
+    void closingAnEditedSampleNamesIt() {
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(":/scenes/bouncing-ball.json", &error));
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        BodyDesc b = w.document()->body(1);
+        b.restitution = 0.3;
+        w.document()->setBody(1, b, "Restitution");
+        QString asked;
+        answerNextMessageBox(QMessageBox::Cancel, &asked);
+        QVERIFY(!w.close());
+        QVERIFY2(asked.contains("bouncing-ball.json"), qPrintable(asked));
+        QVERIFY(w.windowTitle().startsWith("bouncing-ball.json"));
     }
 
     void saveAndReopen() {
