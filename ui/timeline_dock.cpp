@@ -9,6 +9,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QProgressBar>
+#include <QSettings>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QSpinBox>
@@ -109,6 +110,9 @@ TimelineDock::TimelineDock(Timeline* timeline, QWidget* parent)
     cap_->setRange(16, 65536);
     cap_->setSingleStep(64);
     cap_->setSuffix(tr(" MB"));
+    // The cap is the user's choice for their machine: it persists.
+    const int savedCap = QSettings().value(QStringLiteral("timeline/memoryCapMB"), 0).toInt();
+    if (savedCap >= 16) timeline_->setMemoryCap(std::size_t(savedCap) << 20);
     cap_->setValue(static_cast<int>(timeline_->memoryCap() >> 20));
     cap_->setKeyboardTracking(false);
     cap_->setToolTip(
@@ -116,6 +120,7 @@ TimelineDock::TimelineDock(Timeline* timeline, QWidget* parent)
            "between are re-simulated when shown."));
     connect(cap_, &QSpinBox::valueChanged, timeline_, [this](int mb) {
         timeline_->setMemoryCap(std::size_t(mb) << 20);
+        QSettings().setValue(QStringLiteral("timeline/memoryCapMB"), mb);
         updateStatus();
     });
     auto_ = new QCheckBox(tr("Re-simulate on edit"));

@@ -10,6 +10,7 @@
 #include <QAction>
 #include <QLabel>
 #include <QProgressBar>
+#include <QSettings>
 #include <QSlider>
 #include <QSpinBox>
 #include <QUndoStack>
@@ -141,6 +142,7 @@ private slots:
     }
 
     void memoryCapField() {
+        QSettings().remove("timeline/memoryCapMB");
         Document doc;
         Timeline t(&doc);
         TimelineDock dock(&t);
@@ -148,6 +150,12 @@ private slots:
         QCOMPARE(cap->value(), 512);
         cap->setValue(64);
         QCOMPARE(t.memoryCap(), std::size_t(64) << 20);
+        // Remembered for the next window.
+        Timeline t2(&doc);
+        TimelineDock dock2(&t2);
+        QCOMPARE(t2.memoryCap(), std::size_t(64) << 20);
+        QCOMPARE(dock2.findChild<QSpinBox*>("memoryCap")->value(), 64);
+        cap->setValue(512);
     }
 };
 
