@@ -7,9 +7,11 @@
 #include <tumble/raycast.h>
 
 #include "document.h"
+#include "timeline.h"
 #include "viewport_camera.h"
 #include "viewport_gizmo.h"
 #include "viewport_handles.h"
+#include "viewport_overlays.h"
 #include "viewport_raycast.h"
 #include "viewport_scene.h"
 
@@ -34,6 +36,7 @@
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
+#include <QPointer>
 #include <QSurfaceFormat>
 #include <QUndoStack>
 #include <QVBoxLayout>
@@ -41,6 +44,7 @@
 #include <QtMath>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace tumble::ui {
@@ -62,6 +66,10 @@ Vec3 toVec(const QVector3D& v) {
 QVector3D toQt(const Vec3& v) {
     return QVector3D(float(v.x()), float(v.y()), float(v.z()));
 }
+QQuaternion toQt(const Quat& q) {
+    const Quat n = q.normalized();
+    return QQuaternion(float(n.w()), float(n.x()), float(n.y()), float(n.z()));
+}
 
 double distanceToSegment(const QPointF& p, const QPointF& a, const QPointF& b) {
     const QPointF ab = b - a;
@@ -76,10 +84,11 @@ bool onScreen(const QVector3D& projected) {
     return projected.z() >= -1.0f && projected.z() <= 1.0f;
 }
 
-// A bounding sphere of a body's shape in world space; false for planes (unbounded).
-bool boundingSphere(const BodyDesc& b, Vec3* centre, double* radius) {
+// A bounding sphere of a body's shape in world space, its frame at `position`; false for
+// planes (unbounded).
+bool boundingSphere(const BodyDesc& b, const Vec3& position, Vec3* centre, double* radius) {
     const ShapeDesc& s = b.shape;
-    *centre = b.position;
+    *centre = position;
     switch (s.type) {
         case ShapeType::Sphere: *radius = s.radius; return true;
         case ShapeType::Box: *radius = s.halfExtents.norm(); return true;
@@ -175,6 +184,30 @@ struct Viewport::Impl {
     int dragCounter = 0;
     const QUndoCommand* dragCommand = nullptr;  // the drag's undo step so far (null: none yet)
 
+    // Playback.
+    QPointer<Timeline> timeline;
+    std::vector<QMetaObject::Connection> timelineConnections;
+    int shownFrame = 0;  // > 0: the timeline's frame is drawn
+    std::unique_ptr<ViewportOverlays> overlays;
+    std::array<bool, kOverlayCount> overlayOn{};
+    int asleepCount = 0;
+    // Trails: each body's centre-of-mass track as far as it was asked of the timeline (the
+    // frames and positions), dropped when a new run starts.
+    std::vector<std::vector<int>> trackFrames;
+    std::vector<std::vector<Vec3>> trackPoints;
+    std::vector<std::vector<Vec3>> trails;  // as drawn
+
+    /// The timeline's state at the playhead when it can be drawn over the document: a
+    /// model with the document's number of bodies.
+    const State* frameState() const {
+        if (!timeline || !timeline->hasCurrentState()) return nullptr;
+        const auto model = timeline->model();
+        const State& state = timeline->currentState();
+        const size_t n = size_t(doc->bodyCount());
+        if (!model || model->bodies.size() != n || state.bodies.size() != n) return nullptr;
+        return &state;
+    }
+
     /// The selected bodies a handle can move (planes cannot).
     QList<int> movableSelection() const {
         QList<int> out;
@@ -204,6 +237,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     d_->root = new Qt3DCore::QEntity();
     d_->scene = std::make_unique<ViewportScene>(d_->root);
     d_->gizmo = std::make_unique<ViewportGizmo>(d_->root);
+    d_->overlays = std::make_unique<ViewportOverlays>(d_->root);
 
     // Two passes: the scene, then the overlay layer (the handles) with no depth test and
     // back faces culled, so no body hides them. (The RHI renderer ignores depth-range
@@ -211,6 +245,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     auto* overlay = new Qt3DRender::QLayer(d_->root);
     overlay->setRecursive(true);
     d_->gizmo->entity()->addComponent(overlay);
+    d_->overlays->entity()->addComponent(overlay);
     auto* surface = new Qt3DRender::QRenderSurfaceSelector();
     surface->setSurface(d_->window);
     auto* viewport = new Qt3DRender::QViewport(surface);
@@ -254,18 +289,21 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
         cancelDrag();
         d_->scene->rebuild(d_->doc->scene());
         d_->scene->setSelection(d_->doc->selection());
+        refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyInserted, this, [this, cancelDrag](int i) {
         cancelDrag();
         d_->scene->insert(i, d_->doc->body(i));
         d_->scene->setSelection(d_->doc->selection());
+        refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyRemoved, this, [this, cancelDrag](int i) {
         cancelDrag();
         d_->scene->remove(i);
         d_->scene->setSelection(d_->doc->selection());
+        refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyChanged, this, [this](int i) {
@@ -285,6 +323,8 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
 Viewport::~Viewport() {
     // The scene's entities belong to the root, which the window owns once set; the window
     // belongs to the container. Drop our bookkeeping first.
+    for (const auto& c : d_->timelineConnections) disconnect(c);
+    d_->overlays.reset();
     d_->gizmo.reset();
     d_->scene.reset();
 }
@@ -340,9 +380,15 @@ void Viewport::rayAt(const QPoint& widgetPos, QVector3D* origin, QVector3D* dire
 int Viewport::bodyAt(const QPoint& widgetPos) const {
     QVector3D o, dir;
     rayAt(widgetPos, &o, &dir);
-    // The engine's ray cast: nearest body, ties to the lower index.
-    const auto hit =
-        rayCastScene(d_->doc->scene(), Vec3(o.x(), o.y(), o.z()), Vec3(dir.x(), dir.y(), dir.z()));
+    // The engine's ray cast: nearest body, ties to the lower index. At a recorded frame,
+    // against the bodies where they are drawn.
+    if (d_->shownFrame > 0) {
+        if (const State* state = d_->frameState()) {
+            const auto hit = rayCast(*d_->timeline->model(), *state, toVec(o), toVec(dir));
+            return hit ? hit->body : -1;
+        }
+    }
+    const auto hit = rayCastScene(d_->doc->scene(), toVec(o), toVec(dir));
     return hit ? hit->body : -1;
 }
 
@@ -374,6 +420,9 @@ void Viewport::frameAll() {
 
 void Viewport::frameBodies(const QList<int>& indices) {
     const SceneDesc& scene = d_->doc->scene();
+    // Where the bodies are drawn: the document, or the frame at the playhead.
+    const State* state = d_->shownFrame > 0 ? d_->frameState() : nullptr;
+    const auto model = state ? d_->timeline->model() : nullptr;
     // The bounding box of the bodies' bounding spheres, then its enclosing sphere.
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     bool any = false;
@@ -381,7 +430,9 @@ void Viewport::frameBodies(const QList<int>& indices) {
         if (!indices.isEmpty() && !indices.contains(int(i))) continue;
         Vec3 c;
         double r;
-        if (!boundingSphere(scene.bodies[i], &c, &r)) continue;
+        const Vec3 position =
+            state ? bodyFramePosition(model->bodies[i], state->bodies[i]) : scene.bodies[i].position;
+        if (!boundingSphere(scene.bodies[i], position, &c, &r)) continue;
         lo = lo.cwiseMin(c - Vec3::Constant(r));
         hi = hi.cwiseMax(c + Vec3::Constant(r));
         any = true;
@@ -408,7 +459,10 @@ void Viewport::keyPressEvent(QKeyEvent* event) {
 
 bool Viewport::handleKey(QKeyEvent* event) {
     OrbitCamera& cam = d_->camera;
-    const float step = (event->modifiers() & Qt::ShiftModifier) ? 2.0f : 10.0f;
+    // Left, Right, Home, End and Space belong to the timeline (the main window's shortcuts):
+    // the keyboard orbit is Shift + arrows (plain Up and Down too).
+    constexpr float step = 10.0f;
+    const bool shift = event->modifiers() & Qt::ShiftModifier;
     switch (event->key()) {
         case Qt::Key_Escape:
             if (d_->dragAxis < 0) return false;
@@ -417,10 +471,15 @@ bool Viewport::handleKey(QKeyEvent* event) {
         case Qt::Key_F: frameSelection(); return true;
         case Qt::Key_W: setTransformMode(TransformMode::Move); return true;
         case Qt::Key_E: setTransformMode(TransformMode::Rotate); return true;
-        case Qt::Key_A:
-        case Qt::Key_Home: frameAll(); return true;
-        case Qt::Key_Left: cam.orbit(-step, 0); break;
-        case Qt::Key_Right: cam.orbit(step, 0); break;
+        case Qt::Key_A: frameAll(); return true;
+        case Qt::Key_Left:
+            if (!shift) return false;
+            cam.orbit(-step, 0);
+            break;
+        case Qt::Key_Right:
+            if (!shift) return false;
+            cam.orbit(step, 0);
+            break;
         case Qt::Key_Up: cam.orbit(0, step); break;
         case Qt::Key_Down: cam.orbit(0, -step); break;
         case Qt::Key_Plus:
@@ -546,7 +605,8 @@ void Viewport::setRotationSnapDegrees(double degrees) {
 void Viewport::updateHandles() {
     if (!d_->gizmo) return;
     const QList<int> movable = d_->movableSelection();
-    d_->handlesShown = !movable.isEmpty();
+    // Edits are to the initial state: no handles while a later frame is drawn.
+    d_->handlesShown = !movable.isEmpty() && d_->shownFrame == 0;
     if (d_->handlesShown) {
         Vec3 sum = Vec3::Zero();
         for (int i : movable) sum += d_->doc->body(i).position;
@@ -711,6 +771,176 @@ void Viewport::setShowCollisionShapes(bool show) {
     if (show == d_->scene->showCollisionShapes()) return;
     d_->scene->setShowCollisionShapes(show);
     emit showCollisionShapesChanged(show);
+}
+
+// ---- Playback and overlays.
+
+Timeline* Viewport::timeline() const {
+    return d_->timeline;
+}
+
+void Viewport::setTimeline(Timeline* timeline) {
+    if (timeline == d_->timeline) return;
+    for (const auto& c : d_->timelineConnections) disconnect(c);
+    d_->timelineConnections.clear();
+    d_->timeline = timeline;
+    d_->trackFrames.clear();
+    d_->trackPoints.clear();
+    if (timeline) {
+        auto& c = d_->timelineConnections;
+        c.push_back(connect(timeline, &Timeline::currentFrameChanged, this, [this] { refreshPlayback(); }));
+        c.push_back(connect(timeline, &Timeline::recordingReset, this, [this] {
+            d_->trackFrames.clear();
+            d_->trackPoints.clear();
+            refreshPlayback();
+        }));
+        c.push_back(connect(timeline, &Timeline::staleChanged, this, [this] { refreshPlayback(); }));
+        c.push_back(connect(timeline, &QObject::destroyed, this, [this] {
+            d_->timelineConnections.clear();
+            refreshPlayback();
+        }));
+    }
+    refreshPlayback();
+}
+
+int Viewport::shownFrame() const {
+    return d_->shownFrame;
+}
+
+QMatrix4x4 Viewport::drawnTransform(int index) const {
+    return d_->scene->drawnTransform(index);
+}
+
+void Viewport::refreshPlayback() {
+    const State* state = d_->frameState();
+    const int frame = state ? d_->timeline->currentFrame() : 0;
+    if (frame > 0) {
+        const Model& model = *d_->timeline->model();
+        for (size_t i = 0; i < state->bodies.size(); ++i) {
+            const BodyState& s = state->bodies[i];
+            d_->scene->setShownPose(int(i), toQt(bodyFramePosition(model.bodies[i], s)), toQt(s.q));
+        }
+    } else {
+        d_->scene->clearShownPoses();
+    }
+    if (frame != d_->shownFrame) {
+        const bool handlesChange = (frame > 0) != (d_->shownFrame > 0);
+        d_->shownFrame = frame;
+        if (handlesChange) {
+            if (frame > 0 && d_->dragAxis >= 0) cancelHandleDrag();  // playback began mid-drag
+            updateHandles();
+        }
+    }
+    refreshOverlays();
+}
+
+void Viewport::refreshOverlays() {
+    ViewportOverlays& o = *d_->overlays;
+    // The frame at the playhead, unless it is frame 0 of a stale recording (the document
+    // was edited since: the recording's start is no longer what is drawn).
+    const State* state = d_->frameState();
+    if (state && d_->shownFrame == 0 && d_->timeline->isStale()) state = nullptr;
+    const std::shared_ptr<const Model> model = state ? d_->timeline->model() : nullptr;
+    auto on = [this, state](Overlay which) { return state && d_->overlayOn[size_t(which)]; };
+    using K = ViewportOverlays::Kind;
+    auto draw = [&](Overlay which, K kind, overlays::Lines (*compute)(const Model&, const State&)) {
+        if (on(which)) {
+            o.set(kind, compute(*model, *state));
+        } else {
+            o.clear(kind);
+        }
+    };
+    draw(Overlay::Contacts, K::Contacts, &overlays::contacts);
+    draw(Overlay::Velocities, K::Velocities, &overlays::velocities);
+    draw(Overlay::AngularVelocities, K::AngularVelocities, &overlays::angularVelocities);
+    draw(Overlay::Forces, K::Forces, &overlays::forces);
+    draw(Overlay::CentresOfMass, K::CentresOfMass, &overlays::centresOfMass);
+
+    // Trails: each dynamic body's centre of mass from frame 0 to the playhead. The tracks
+    // are asked of the timeline as far as it has recorded, and again only when the
+    // playhead passes their end.
+    d_->trails.clear();
+    if (on(Overlay::Trails)) {
+        const int frame = d_->timeline->currentFrame();
+        const size_t n = model->bodies.size();
+        d_->trackFrames.resize(n);
+        d_->trackPoints.resize(n);
+        d_->trails.resize(n);
+        for (int i : model->dynamicBodies) {
+            std::vector<int>& frames = d_->trackFrames[size_t(i)];
+            std::vector<Vec3>& points = d_->trackPoints[size_t(i)];
+            if (frames.empty() || frames.back() < frame) {
+                std::vector<BodyState> states;
+                d_->timeline->bodyTrack(i, &frames, &states, -1);
+                points.clear();
+                points.reserve(states.size());
+                for (const BodyState& s : states) points.push_back(s.x);
+            }
+            const size_t end = size_t(std::upper_bound(frames.begin(), frames.end(), frame) - frames.begin());
+            std::vector<Vec3> upTo(points.begin(),
+                                   points.begin() + std::ptrdiff_t(std::min(end, points.size())));
+            // The keyframes may stop short of the playhead: the trail ends where the body is.
+            if (upTo.empty() || end == 0 || frames[end - 1] != frame)
+                upTo.push_back(state->bodies[size_t(i)].x);
+            d_->trails[size_t(i)] = overlays::thinned(upTo, overlays::kMaxTrailPoints);
+        }
+        o.set(K::Trails, overlays::trails(d_->trails));
+    } else {
+        o.clear(K::Trails);
+    }
+
+    // Sleeping bodies tinted.
+    const bool tint = on(Overlay::Sleeping);
+    for (int i = 0; i < d_->scene->count(); ++i) d_->scene->setAsleep(i, tint && state->isAsleep(i));
+}
+
+bool Viewport::overlay(Overlay which) const {
+    return d_->overlayOn[size_t(which)];
+}
+
+void Viewport::setOverlay(Overlay which, bool on) {
+    if (d_->overlayOn[size_t(which)] == on) return;
+    d_->overlayOn[size_t(which)] = on;
+    if (!on && which == Overlay::Trails) {  // nothing kept that is not drawn
+        d_->trackFrames.clear();
+        d_->trackPoints.clear();
+    }
+    refreshOverlays();
+    emit overlayChanged(which, on);
+}
+
+int Viewport::overlayItemCount(Overlay which) const {
+    using K = ViewportOverlays::Kind;
+    switch (which) {
+        case Overlay::Trails: return d_->overlays->count(K::Trails);
+        case Overlay::Contacts: return d_->overlays->count(K::Contacts);
+        case Overlay::Velocities: return d_->overlays->count(K::Velocities);
+        case Overlay::AngularVelocities: return d_->overlays->count(K::AngularVelocities);
+        case Overlay::Forces: return d_->overlays->count(K::Forces);
+        case Overlay::CentresOfMass: return d_->overlays->count(K::CentresOfMass);
+        case Overlay::Sleeping: return d_->scene->asleepCount();
+    }
+    return 0;
+}
+
+QList<QVector3D> Viewport::trailPoints(int index) const {
+    QList<QVector3D> out;
+    if (index < 0 || size_t(index) >= d_->trails.size()) return out;
+    for (const Vec3& p : d_->trails[size_t(index)]) out.append(toQt(p));
+    return out;
+}
+
+QString Viewport::overlayText(Overlay which) {
+    switch (which) {
+        case Overlay::Trails: return tr("Trails");
+        case Overlay::Contacts: return tr("Contact Points");
+        case Overlay::Velocities: return tr("Velocities");
+        case Overlay::AngularVelocities: return tr("Angular Velocities");
+        case Overlay::Forces: return tr("Applied Forces");
+        case Overlay::CentresOfMass: return tr("Centres of Mass");
+        case Overlay::Sleeping: return tr("Sleeping Bodies");
+    }
+    return {};
 }
 
 }  // namespace tumble::ui

@@ -1,9 +1,12 @@
 // The 3D view of the document: every body drawn and lit, a ground grid and axes, an orbit
 // camera (mouse and keyboard), click to select, move and rotate handles on the selection
 // (W, E; Ctrl while dragging snaps, Escape cancels a drag), the collision shapes as a wireframe on demand.
+// With a timeline, the recorded frame at the playhead is drawn (frame 0: the document), with
+// overlays on request (trails, contacts, velocity and force arrows, centres of mass, sleep).
 // Qt3D stays behind the pimpl: this header is included by the main window and must stay light.
 #pragma once
 
+#include <QMatrix4x4>
 #include <QPoint>
 #include <QString>
 #include <QVector3D>
@@ -16,6 +19,7 @@ class QWindow;
 namespace tumble::ui {
 
 class Document;
+class Timeline;
 
 class Viewport : public QWidget {
     Q_OBJECT
@@ -23,6 +27,10 @@ public:
     /// What the handles on the selection do.
     enum class TransformMode { Move, Rotate };
     Q_ENUM(TransformMode)
+    /// What can be drawn over a recorded frame (each a toggle, all off at first).
+    enum class Overlay { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Sleeping };
+    Q_ENUM(Overlay)
+    static constexpr int kOverlayCount = 7;
 
     explicit Viewport(Document* document, QWidget* parent = nullptr);
     ~Viewport() override;
@@ -78,12 +86,40 @@ public:
     double translationSnap() const;
     double rotationSnapDegrees() const;
 
+    // ---- Playback. With a timeline whose playhead is at a recorded frame k > 0 (of a
+    // recording with as many bodies as the document), every body is drawn at frame k's pose;
+    // at frame 0, without a frame, or when the body counts differ, the document's poses.
+    // While a frame k > 0 is shown the handles are hidden (edits are to the initial state)
+    // and picking hits the bodies where they are drawn.
+    Timeline* timeline() const;
+    /// The frame drawn: the playhead's k > 0, or 0 when the document's poses are drawn.
+    int shownFrame() const;
+    /// The pose body `index` is drawn at (its frame origin, body to world):
+    /// translation(position) * rotation(orientation), in floats as handed to the renderer.
+    QMatrix4x4 drawnTransform(int index) const;
+
+    // ---- Overlays, drawn over the frame at the playhead (frame 0 too, unless the recording
+    // is stale); each computed only while it is on.
+    bool overlay(Overlay overlay) const;
+    /// What an overlay draws now: Trails: polylines (one per dynamic body, from frame 0 to
+    /// the playhead); Contacts: contact points; Velocities, AngularVelocities, Forces:
+    /// arrows; CentresOfMass: markers; Sleeping: bodies tinted. 0 while off.
+    int overlayItemCount(Overlay overlay) const;
+    /// The points of body `index`'s trail as drawn (empty without one).
+    QList<QVector3D> trailPoints(int index) const;
+    /// The menu text of an overlay ("Trails", "Contact Points", ...).
+    static QString overlayText(Overlay overlay);
+
     // ---- Collision shapes.
     bool showCollisionShapes() const;
     /// Wireframe entities drawn (one per body with a bounded shape, while shown).
     int collisionShapeCount() const;
 
 public slots:
+    /// Draws the timeline's frame at the playhead (null: the document only). The viewport
+    /// does not own it.
+    void setTimeline(tumble::ui::Timeline* timeline);
+    void setOverlay(tumble::ui::Viewport::Overlay overlay, bool on);
     /// Looks at the selected bodies (all of them when nothing is selected).
     void frameSelection();
     /// Looks at every body (planes excluded: they are infinite).
@@ -99,6 +135,7 @@ public slots:
 signals:
     void transformModeChanged(tumble::ui::Viewport::TransformMode mode);
     void showCollisionShapesChanged(bool show);
+    void overlayChanged(tumble::ui::Viewport::Overlay overlay, bool on);
 
 protected:
     bool eventFilter(QObject* watched, QEvent* event) override;
@@ -116,6 +153,9 @@ private:
     /// Escape during a drag: the bodies go back to where they were, no undo step is left.
     void cancelHandleDrag();
     bool dragCommandOnTop() const;
+    /// Draws the playhead's frame or the document's poses, and the overlays that are on.
+    void refreshPlayback();
+    void refreshOverlays();
 
     struct Impl;
     std::unique_ptr<Impl> d_;

@@ -106,12 +106,13 @@ struct ViewportScene::Impl {
     Qt3DCore::QEntity* root = nullptr;
     // The primitive bodies, drawn by instancing.
     std::unique_ptr<ViewportInstances> instances;
-    ViewportInstances::Look dynamicLook, staticLook, kinematicLook, selectedLook, groundLook;
+    ViewportInstances::Look dynamicLook, staticLook, kinematicLook, selectedLook, groundLook, asleepLook;
     // Mesh bodies: shared materials, the same colours as the looks.
     Qt3DExtras::QPhongMaterial* dynamicMat = nullptr;
     Qt3DExtras::QPhongMaterial* staticMat = nullptr;
     Qt3DExtras::QPhongMaterial* kinematicMat = nullptr;
     Qt3DExtras::QPhongMaterial* selectedMat = nullptr;
+    Qt3DExtras::QPhongMaterial* asleepMat = nullptr;
     Qt3DExtras::QPerVertexColorMaterial* wireMat = nullptr;  // collision shapes
     bool showWire = false;
     // One wireframe per loaded mesh and collision kind, like the render meshes.
@@ -130,12 +131,16 @@ struct ViewportScene::Impl {
         Qt3DExtras::QPhongMaterial* material = nullptr;  // the one in use
         Qt3DCore::QEntity* wire = nullptr;               // the collision shape, when shown
         Qt3DCore::QTransform* wireTransform = nullptr;
-        ShapeDesc shape;  // what is drawn
-        QVector3D position;
+        ShapeDesc shape;     // what is drawn
+        QVector3D position;  // drawn (the document's, or a recorded frame's)
         QQuaternion orientation;
+        QVector3D docPosition;  // the document's
+        QQuaternion docOrientation;
+        bool shown = false;  // drawn at a recorded frame's pose, not the document's
         Motion motion = Motion::Dynamic;
         bool plane = false;
         bool selected = false;
+        bool asleep = false;
     };
     std::vector<Body> bodies;
 
@@ -152,6 +157,7 @@ struct ViewportScene::Impl {
     const ViewportInstances::Look& lookFor(const Body& b) const {
         if (b.selected) return selectedLook;
         if (b.plane) return groundLook;
+        if (b.asleep) return asleepLook;
         switch (b.motion) {
             case Motion::Static: return staticLook;
             case Motion::Kinematic: return kinematicLook;
@@ -162,6 +168,7 @@ struct ViewportScene::Impl {
 
     Qt3DExtras::QPhongMaterial* materialFor(const Body& b) const {
         if (b.selected) return selectedMat;
+        if (b.asleep) return asleepMat;
         switch (b.motion) {
             case Motion::Static: return staticMat;
             case Motion::Kinematic: return kinematicMat;
@@ -253,8 +260,19 @@ struct ViewportScene::Impl {
     }
 
     void pose(Body& b, const BodyDesc& desc) {
-        b.position = toQt(desc.position);
-        b.orientation = toQt(desc.orientation);
+        b.docPosition = toQt(desc.position);
+        b.docOrientation = toQt(desc.orientation);
+        // While a recorded frame is drawn the body stays there: the edit shows at frame 0.
+        if (b.shown) {
+            place(b, b.position, b.orientation);
+        } else {
+            place(b, b.docPosition, b.docOrientation);
+        }
+    }
+
+    void place(Body& b, const QVector3D& position, const QQuaternion& orientation) {
+        b.position = position;
+        b.orientation = orientation;
         for (auto* t : {b.transform, b.wireTransform}) {
             if (!t) continue;
             t->setTranslation(b.position);
@@ -402,6 +420,9 @@ ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl
     d.staticMat = makeMaterial(d.staticLook, root);
     d.kinematicMat = makeMaterial(d.kinematicLook, root);
     d.selectedMat = makeMaterial(d.selectedLook, root);
+    // Asleep (the Sleeping overlay): a cold, dim blue grey.
+    d.asleepLook = look(QColor(96, 118, 150), specular);
+    d.asleepMat = makeMaterial(d.asleepLook, root);
     d.wireMat = new Qt3DExtras::QPerVertexColorMaterial(root);
     d.buildLights();
     d.buildGridAndAxes();
@@ -466,6 +487,48 @@ void ViewportScene::setSelection(const QList<int>& indices) {
 
 int ViewportScene::count() const {
     return static_cast<int>(d_->bodies.size());
+}
+
+void ViewportScene::setShownPose(int index, const QVector3D& position, const QQuaternion& orientation) {
+    if (index < 0 || index >= count()) return;
+    Impl::Body& b = d_->bodies[size_t(index)];
+    if (b.shown && b.position == position && b.orientation == orientation) return;
+    b.shown = true;
+    d_->place(b, position, orientation);
+}
+
+void ViewportScene::clearShownPoses() {
+    for (Impl::Body& b : d_->bodies) {
+        if (!b.shown) continue;
+        b.shown = false;
+        d_->place(b, b.docPosition, b.docOrientation);
+    }
+}
+
+void ViewportScene::setAsleep(int index, bool asleep) {
+    if (index < 0 || index >= count()) return;
+    Impl::Body& b = d_->bodies[size_t(index)];
+    if (b.asleep == asleep) return;
+    b.asleep = asleep;
+    if (b.shape.type == ShapeType::Mesh) {
+        d_->setMaterial(b, d_->materialFor(b));
+    } else {
+        d_->changed();
+    }
+}
+
+int ViewportScene::asleepCount() const {
+    return int(std::count_if(d_->bodies.begin(), d_->bodies.end(),
+                             [](const Impl::Body& b) { return b.asleep && !b.plane; }));
+}
+
+QMatrix4x4 ViewportScene::drawnTransform(int index) const {
+    QMatrix4x4 m;
+    if (index < 0 || index >= count()) return m;
+    const Impl::Body& b = d_->bodies[size_t(index)];
+    m.translate(b.position);
+    m.rotate(b.orientation);
+    return m;
 }
 
 void ViewportScene::setShowCollisionShapes(bool show) {

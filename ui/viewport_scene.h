@@ -6,6 +6,9 @@
 #include <tumble/scene.h>
 
 #include <QList>
+#include <QMatrix4x4>
+#include <QQuaternion>
+#include <QVector3D>
 
 #include <memory>
 
@@ -32,6 +35,20 @@ public:
     void setSelection(const QList<int>& indices);
     /// Bodies drawn (one per body of the document, however they are drawn).
     int count() const;
+
+    // ---- Playback: a recorded frame drawn instead of the document's initial poses.
+    /// Draws body `index` at this pose (its frame origin, body to world) until
+    /// clearShownPoses(); only the transforms change (no entity is rebuilt), and edits of
+    /// the body keep this pose.
+    void setShownPose(int index, const QVector3D& position, const QQuaternion& orientation);
+    /// Back to the document's poses.
+    void clearShownPoses();
+    /// Tints a body as asleep (the Sleeping overlay).
+    void setAsleep(int index, bool asleep);
+    /// Bodies tinted as asleep.
+    int asleepCount() const;
+    /// The pose body `index` is drawn at: translation(position) * rotation(orientation).
+    QMatrix4x4 drawnTransform(int index) const;
     /// Draws each body's collision shape (viewport_wire.h) as lines over it.
     void setShowCollisionShapes(bool show);
     bool showCollisionShapes() const;
