@@ -182,6 +182,13 @@ private slots:
         QCOMPARE(f.view->shownFrame(), 0);
         QVERIFY(f.drawsDocument());
         QCOMPARE(f.view->overlayItemCount(O::Velocities), 0);
+        // A timeline deleted under the viewport: the document too.
+        f.view->setTimeline(f.timeline.get());
+        QCOMPARE(f.view->shownFrame(), 31);
+        f.timeline.reset();
+        QCOMPARE(f.view->shownFrame(), 0);
+        QVERIFY(f.drawsDocument());
+        QCOMPARE(f.view->timeline(), nullptr);
     }
 
     void overlaysAreTogglesAndOffCountsNothing() {
