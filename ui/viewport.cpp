@@ -866,6 +866,7 @@ void Viewport::refreshOverlays() {
         d_->trackFrames.resize(n);
         d_->trackPoints.resize(n);
         d_->trails.resize(n);
+        const int cap = overlays::trailCap(int(model->dynamicBodies.size()));
         for (int i : model->dynamicBodies) {
             std::vector<int>& frames = d_->trackFrames[size_t(i)];
             std::vector<Vec3>& points = d_->trackPoints[size_t(i)];
@@ -882,7 +883,7 @@ void Viewport::refreshOverlays() {
             // The keyframes may stop short of the playhead: the trail ends where the body is.
             if (upTo.empty() || end == 0 || frames[end - 1] != frame)
                 upTo.push_back(state->bodies[size_t(i)].x);
-            d_->trails[size_t(i)] = overlays::thinned(upTo, overlays::kMaxTrailPoints);
+            d_->trails[size_t(i)] = overlays::thinned(upTo, cap);
         }
         o.set(K::Trails, overlays::trails(d_->trails));
     } else {

@@ -184,6 +184,10 @@ Lines trails(const std::vector<std::vector<Vec3>>& tracks) {
     return lines;
 }
 
+int trailCap(int trails) {
+    return std::clamp(kMaxTrailPointsTotal / std::max(1, trails), kMinTrailPoints, kMaxTrailPoints);
+}
+
 std::vector<Vec3> thinned(const std::vector<Vec3>& points, int cap) {
     const size_t n = points.size();
     if (cap < 2 || n <= size_t(cap)) return points;

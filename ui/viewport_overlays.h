@@ -34,6 +34,12 @@ inline constexpr double kForceSeconds2 = 0.05;
 inline constexpr double kSmallest = 1e-9;
 /// Points kept per trail: longer tracks are thinned evenly (the newest point always kept).
 inline constexpr int kMaxTrailPoints = 4096;
+/// Points of all trails together: with many bodies each trail gets its share (but never
+/// fewer than kMinTrailPoints), so that a frame's trails stay a few megabytes at most.
+inline constexpr int kMaxTrailPointsTotal = 200000;
+inline constexpr int kMinTrailPoints = 64;
+/// The points a trail may have when `trails` are drawn.
+int trailCap(int trails);
 
 /// Lines to draw: six floats a vertex (position, colour 0..1), two vertices a segment.
 struct Lines {

@@ -7,6 +7,7 @@
 #include "document.h"
 #include "timeline.h"
 #include "viewport.h"
+#include "viewport_overlays.h"
 
 #include <tumble/model.h>
 
@@ -243,6 +244,23 @@ private slots:
                 QVERIFY((trail[j] - toQt(f.frame(j).bodies[1].x)).length() < 1e-6f);
             }
         }
+    }
+
+    void longTrailsThinnedEvenlyKeepingTheEnds() {
+        std::vector<Vec3> points;
+        for (int i = 0; i < 10001; ++i) points.push_back(Vec3(i, 0, 0));
+        const std::vector<Vec3> thin = overlays::thinned(points, 4096);
+        QCOMPARE(int(thin.size()), 4096);
+        QCOMPARE(thin.front().x(), 0.0);
+        QCOMPARE(thin.back().x(), 10000.0);
+        for (size_t k = 1; k < thin.size(); ++k) {
+            const double gap = thin[k].x() - thin[k - 1].x();
+            QVERIFY(gap == 2.0 || gap == 3.0);  // 10000 / 4095 = 2.44
+        }
+        QCOMPARE(int(overlays::thinned(points, 20000).size()), 10001);  // short enough
+        QCOMPARE(overlays::trailCap(1), overlays::kMaxTrailPoints);
+        QCOMPARE(overlays::trailCap(1000), 200);
+        QCOMPARE(overlays::trailCap(100000), overlays::kMinTrailPoints);
     }
 
     void contactsOfABoxSlidingOnTheGround() {
