@@ -208,8 +208,24 @@ void PlotsDock::seekTo(double time) {
     if (k >= 0) timeline_->seek(k);
 }
 
+// QXYSeries::append(QList) adds the points one by one, and the chart recomputes the whole
+// curve's geometry after each (quadratic: seconds for a few thousand frames). replace()
+// recomputes it once, and shares our list (implicitly shared, no copy).
+void PlotsDock::extend(Series which, const QList<QPointF>& pts) {
+    if (pts.isEmpty()) return;
+    const auto i = static_cast<std::size_t>(idx(which));
+    data_[i].append(pts);
+    series_[i]->replace(data_[i]);
+}
+
+void PlotsDock::clearSeries(Series which) {
+    const auto i = static_cast<std::size_t>(idx(which));
+    data_[i].clear();
+    series_[i]->clear();
+}
+
 void PlotsDock::reset() {
-    for (QLineSeries* s : series_) s->clear();
+    for (int i = 0; i < kSeriesCount; ++i) clearSeries(static_cast<Series>(i));
     times_.clear();
     bodyFrames_.clear();
     for (Range& r : ranges_) r = Range();
@@ -254,16 +270,16 @@ void PlotsDock::appendSummaries() {
     }
     const Series order[5] = {Series::Kinetic, Series::Potential, Series::Total, Series::Momentum,
                              Series::AngularMomentum};
-    for (int i = 0; i < 5; ++i) series_[static_cast<std::size_t>(idx(order[i]))]->append(pts[i]);
     fitAxis(valueAxes_[idx(Chart::Energy)], ranges_[idx(Chart::Energy)]);
     fitAxis(valueAxes_[idx(Chart::Momentum)], ranges_[idx(Chart::Momentum)]);
     fitAxis(valueAxes_[kAngularAxis], ranges_[kAngularAxis]);
+    for (int i = 0; i < 5; ++i) extend(order[i], pts[i]);
 }
 
 void PlotsDock::clearBodySeries() {
     for (Series s : {Series::PositionX, Series::PositionY, Series::PositionZ, Series::VelocityX,
                      Series::VelocityY, Series::VelocityZ})
-        series_[static_cast<std::size_t>(idx(s))]->clear();
+        clearSeries(s);
     bodyFrames_.clear();
     ranges_[idx(Chart::Position)] = Range();
     ranges_[idx(Chart::Velocity)] = Range();
@@ -319,10 +335,10 @@ void PlotsDock::updateBodySeries(bool rebuild) {
     }
     const Series order[6] = {Series::PositionX, Series::PositionY, Series::PositionZ,
                              Series::VelocityX, Series::VelocityY, Series::VelocityZ};
-    for (int i = 0; i < 6; ++i) series_[static_cast<std::size_t>(idx(order[i]))]->append(pts[i]);
-    bodyFrames_.insert(bodyFrames_.end(), frames.begin() + static_cast<std::ptrdiff_t>(from), frames.end());
     fitAxis(valueAxes_[idx(Chart::Position)], pr);
     fitAxis(valueAxes_[idx(Chart::Velocity)], vr);
+    for (int i = 0; i < 6; ++i) extend(order[i], pts[i]);
+    bodyFrames_.insert(bodyFrames_.end(), frames.begin() + static_cast<std::ptrdiff_t>(from), frames.end());
 }
 
 void PlotsDock::onSelection() {

@@ -110,6 +110,8 @@ private:
     void appendSummaries();
     void updateBodySeries(bool rebuild);
     void clearBodySeries();
+    void extend(Series which, const QList<QPointF>& pts);
+    void clearSeries(Series which);
     void updateTimeAxis();
     void updateProfile();
     void fitAxis(QValueAxis* axis, const Range& range);
@@ -119,6 +121,7 @@ private:
     QTabWidget* tabs_ = nullptr;
     std::array<PlotChartView*, kChartCount> views_{};
     std::array<QLineSeries*, kSeriesCount> series_{};
+    std::array<QList<QPointF>, kSeriesCount> data_;  // the series' points (shared with them)
     QValueAxis* timeAxes_[kChartCount] = {};
     QValueAxis* valueAxes_[kChartCount + 1] = {};  // energy, momentum, position, velocity, angular momentum
     Range ranges_[kChartCount + 1];

@@ -122,6 +122,40 @@ private slots:
         }
     }
 
+    void pointsArriveWithTheFramesAndStayPut() {
+        // A long free fall (many progress reports while it runs).
+        SceneDesc scene = freeFall(1.0);
+        scene.settings.duration = 60.0;
+        scene.settings.frameRate = 60.0;
+        Document doc;
+        doc.replaceScene(scene, "free fall", false);
+        doc.setSelection({0});
+        Timeline timeline(&doc);
+        PlotsDock dock(&timeline);
+        QList<int> counts;
+        QList<QPointF> first;  // the points drawn at the first report
+        connect(&timeline, &Timeline::progress, &dock, [&](int framesDone, int frameCount) {
+            const int n = dock.pointCount(Series::Kinetic);
+            QVERIFY(n >= framesDone && n <= frameCount);
+            QCOMPARE(dock.pointCount(Series::Total), n);
+            QVERIFY(dock.pointCount(Series::PositionY) >= framesDone);
+            if (counts.isEmpty()) first = dock.points(Series::Kinetic);
+            counts << n;
+        });
+        QVERIFY(runToCompletion(timeline));
+        QCOMPARE(timeline.frameCount(), 3601);
+        QVERIFY(!counts.isEmpty());
+        QCOMPARE(counts.last(), timeline.frameCount());
+        for (int i = 1; i < counts.size(); ++i) QVERIFY(counts[i] >= counts[i - 1]);
+        // What was drawn early is still drawn, unchanged.
+        const QList<QPointF> all = dock.points(Series::Kinetic);
+        QVERIFY(!first.isEmpty());
+        QCOMPARE(all.mid(0, first.size()), first);
+        QCOMPARE(dock.pointCount(Series::PositionY), timeline.frameCount());
+        // Frame k is at t = k / 60 s, the last at the scene's duration.
+        QVERIFY(close(all.last().x(), 60.0, 1e-9));
+    }
+
     void selectedBodyPositionAndVelocityAreItsRecordedStates() {
         const double m = 1.5;
         Document doc;
