@@ -27,7 +27,7 @@ struct Rgb {
 };
 
 constexpr Rgb kContactPoint{1.0f, 0.25f, 0.2f};
-constexpr Rgb kContactNormal{1.0f, 0.85f, 0.3f};
+constexpr Rgb kContactNormal{1.0f, 0.55f, 0.45f};
 constexpr Rgb kVelocity{0.3f, 0.9f, 0.35f};
 constexpr Rgb kAngular{0.75f, 0.45f, 1.0f};
 constexpr Rgb kForce{1.0f, 0.4f, 0.75f};
@@ -96,10 +96,16 @@ Lines contacts(const Model& model, const State& state) {
         double size =
             std::min(radiusOf(model.bodies[size_t(m.bodyA)]), radiusOf(model.bodies[size_t(m.bodyB)]));
         if (!std::isfinite(size) || size <= 0) size = 0.1;
+        // The manifold's normal points out of B towards A; drawn into the body it pushes
+        // away from one that stands still, else out of the lower-numbered body.
+        const bool stillA = model.bodies[size_t(m.bodyA)].standsStill();
+        const bool stillB = model.bodies[size_t(m.bodyB)].standsStill();
+        const bool intoA = stillA != stillB ? stillB : m.bodyA > m.bodyB;
+        const Vec3 normal = intoA ? m.normal : Vec3(-m.normal);
         for (int k = 0; k < m.count; ++k) {
             const Vec3& p = m.points[size_t(k)].position;
             cross(lines.xyzrgb, p, size / 6.0, kContactPoint);
-            segment(lines.xyzrgb, p, p + 0.6 * size * m.normal, kContactNormal);
+            segment(lines.xyzrgb, p, p + 0.6 * size * normal, kContactNormal);
             ++lines.items;
         }
     }
@@ -163,8 +169,9 @@ Lines trails(const std::vector<std::vector<Vec3>>& tracks) {
     for (size_t t = 0; t < tracks.size(); ++t) {
         const std::vector<Vec3>& track = tracks[t];
         if (track.size() < 2) continue;
-        // A hue per body, so that crossing trails stay apart.
-        const float hue = float((t * 47) % 360) / 360.0f;
+        // A hue per body (137° apart: the first dynamic body after a ground is cyan), so that
+        // crossing trails stay apart.
+        const float hue = float((43 + t * 137) % 360) / 360.0f;
         const float h6 = hue * 6.0f;
         const float x = 1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f);
         std::array<float, 3> rgb{};
