@@ -3,7 +3,7 @@
 #include <tumble/errors.h>
 #include <tumble/io/atomic_file.h>
 #include <tumble/io/scene_file.h>
-#include <tumble/io/trajectory_csv.h>
+#include <tumble/io/trajectory_writer.h>
 #include <tumble/world.h>
 
 #include <chrono>
@@ -38,7 +38,9 @@ Options for --headless:
   --dt S              the step, seconds (overrides settings.dt)
   --integrator NAME   overrides settings.integrator; see --list-integrators
   --frame-rate HZ     recorded frames per second (overrides settings.frame_rate)
-  --out FILE          writes the trajectory; the format follows the extension: .csv
+  --out FILE          writes the trajectory; the format follows the extension:
+                      .csv, .json (docs/export.md), .gltf (with FILE's .bin beside it) or
+                      .glb (glTF 2.0: the bodies' meshes and their motion as an animation)
   --save-scene FILE   writes the scene as run (options applied), normalised
   --quiet             prints nothing but errors
 
@@ -110,12 +112,6 @@ Options parse(const std::vector<std::string>& args) {
     return o;
 }
 
-std::string extensionOf(const std::string& file) {
-    std::string ext = std::filesystem::path(file).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 // The command-line flag that overrode a setting, so that a bad value names the flag.
 std::string flagFor(const std::string& path, const Options& o) {
     static const std::map<std::string, std::string> flags = {{"settings.duration", "--duration"},
@@ -149,11 +145,9 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (o.frameRate) scene.settings.frameRate = *o.frameRate;
     if (o.integrator) scene.settings.integrator = *o.integrator;
 
-    const std::string ext = extensionOf(o.out);
-    if (!o.out.empty() && ext != ".csv") {
-        err << "tumble: --out: '" << o.out << "': the trajectory formats are .csv"
-            << (ext == ".json" || ext == ".gltf" || ext == ".glb" ? " (" + ext + " export is not built yet)" : "")
-            << "\n";
+    io::TrajectoryFormat format = io::TrajectoryFormat::Csv;
+    if (!o.out.empty() && !io::trajectoryFormatFor(o.out, format)) {
+        err << "tumble: --out: '" << o.out << "': " << io::trajectoryFormatsText() << "\n";
         return kInvalid;
     }
 
@@ -170,11 +164,12 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         for (const std::string& note : world->model().notes) err << "tumble: note: " << note << "\n";
     }
 
-    std::unique_ptr<io::AtomicFile> trajectory;
+    std::unique_ptr<io::TrajectoryWriter> trajectory;
     try {
         if (!o.out.empty()) {
-            trajectory = std::make_unique<io::AtomicFile>(o.out);
-            trajectory->stream() << io::kTrajectoryCsvHeader << "\n";
+            trajectory = io::makeTrajectoryWriter(format, o.out);
+            trajectory->begin(world->model(), scene, frameCount(world->model().settings),
+                              world->model().settings.frameRate);
         }
     } catch (const std::exception& e) {
         err << "tumble: --out: " << e.what() << "\n";
@@ -191,22 +186,24 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     }
 
     const Energy before = energy(world->model(), world->state());
-    const double frameRate = world->model().settings.frameRate;
     const auto t0 = std::chrono::steady_clock::now();
     RunResult result;
     try {
         result = simulate(*world, [&](int k, const State& s) {
-            if (trajectory) io::writeCsvFrame(trajectory->stream(), world->model(), s, k / frameRate);
+            if (trajectory) trajectory->frame(k, s);
         });
     } catch (const SimulationError& e) {
         err << "tumble: " << o.scene << ": " << e.what() << "\n";
+        return kFailure;
+    } catch (const std::exception& e) {
+        err << "tumble: --out: " << e.what() << "\n";
         return kFailure;
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     try {
         if (savedScene) savedScene->stream() << io::sceneToJson(scene);
-        if (trajectory) trajectory->commit();
+        if (trajectory) trajectory->finish();
         if (savedScene) savedScene->commit();
     } catch (const std::exception& e) {
         err << "tumble: " << e.what() << "\n";
