@@ -282,6 +282,48 @@ private slots:
         QCOMPARE(f.view->overlayItemCount(O::Contacts), 0);
     }
 
+    void overlayGeometryFollowsTheStatedScales() {
+        // Six floats a vertex, two vertices a segment.
+        auto vertexAt = [](const overlays::Lines& l, int v) {
+            const float* p = l.xyzrgb.data() + 6 * v;
+            return Vec3(p[0], p[1], p[2]);
+        };
+        Fixture f(":/scenes/sliding-block.json");
+        QVERIFY(f.ok);
+        const State s = f.frame(30);
+        const BodyState& block = s.bodies[1];
+        // Contacts: per point a cross (three segments) and the normal, up into the block.
+        const overlays::Lines c = overlays::contacts(f.model(), s);
+        QCOMPARE(c.items, 4);
+        QCOMPARE(int(c.xyzrgb.size()), 4 * 4 * 2 * 6);
+        for (int k = 0; k < 4; ++k) {
+            const Vec3 p = vertexAt(c, 8 * k + 6), tip = vertexAt(c, 8 * k + 7);
+            QVERIFY(std::abs(p.y()) < 1e-3);  // on the ground
+            QVERIFY(std::abs(p.x() - block.x.x()) < 0.2 + 1e-3 &&
+                    std::abs(p.z() - block.x.z()) < 0.15 + 1e-3);
+            QVERIFY(tip.y() - p.y() > 0.1);  // up
+            QVERIFY(std::abs(tip.x() - p.x()) < 1e-6 && std::abs(tip.z() - p.z()) < 1e-6);
+        }
+        // Velocity: from the centre of mass, the distance travelled in 0.1 s.
+        const overlays::Lines v = overlays::velocities(f.model(), s);
+        QCOMPARE(v.items, 1);
+        const Vec3 velocity = block.P / 2.0;  // 2 kg
+        QVERIFY((vertexAt(v, 0) - block.x).norm() < 1e-6);
+        QVERIFY((vertexAt(v, 1) - (block.x + 0.1 * velocity)).norm() < 1e-6);
+
+        // Force: the spring at frame 0 (at rest, no damping force), F/m times 0.05 s².
+        Fixture g(":/scenes/spring-pendulum.json");
+        QVERIFY(g.ok);
+        const State s0 = g.frame(0);
+        const BodyState& bob = s0.bodies[0];
+        const Vec3 d = bob.x + bob.q * Vec3(-0.2, 0.1, 0) - Vec3(0, 2, 0);
+        const Vec3 spring = -200.0 * (d.norm() - 1.5) * d.normalized();
+        const overlays::Lines F = overlays::forces(g.model(), s0);
+        QCOMPARE(F.items, 1);
+        QVERIFY((vertexAt(F, 0) - bob.x).norm() < 1e-6);
+        QVERIFY((vertexAt(F, 1) - (bob.x + 0.05 / 2.0 * spring)).norm() < 1e-5);
+    }
+
     void springForceAndSpinArrows() {
         Fixture f(":/scenes/spring-pendulum.json");
         QVERIFY(f.ok);
