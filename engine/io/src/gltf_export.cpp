@@ -142,10 +142,6 @@ void GltfTrajectoryWriter::writeFrame(int k, const State& state) {
 }
 
 void GltfTrajectoryWriter::close() {
-    if (static_cast<int>(times_.size()) != selectedFrameCount()) {
-        throw std::runtime_error(file().string() + ": " + std::to_string(times_.size()) + " of " +
-                                 std::to_string(selectedFrameCount()) + " frames given; not written");
-    }
     // A plane is drawn as a square that covers every exported position, and 10 m at least.
     double reach = 0.0;
     for (const auto& body : poses_) {

@@ -62,6 +62,8 @@ void TrajectoryWriter::begin(const Model& model, const SceneDesc& scene, int fra
     model_ = &model;
     scene_ = &scene;
     frameRate_ = frameRate;
+    written_ = 0;
+    lastWritten_ = -1;
     open();
 }
 
@@ -75,14 +77,23 @@ int TrajectoryWriter::selectedFrameCount() const {
 
 void TrajectoryWriter::frame(int k, const State& state) {
     if (!model_) throw std::logic_error("TrajectoryWriter::frame before begin");
-    if (state.bodies.size() != model_->bodies.size())
+    if (state.bodies.size() != model_->bodies.size()) {
         throw std::invalid_argument("export: the state does not fit the model");
-    if (selected(k)) writeFrame(k, state);
+    }
+    if (!selected(k)) return;
+    if (k <= lastWritten_) throw std::invalid_argument("export: frames must come in order");
+    writeFrame(k, state);
+    lastWritten_ = k;
+    ++written_;
 }
 
 void TrajectoryWriter::finish() {
     if (!model_) throw std::logic_error("TrajectoryWriter::finish before begin");
     if (finished_) return;
+    if (written_ != selectedFrameCount()) {
+        throw std::runtime_error(file_.string() + ": " + std::to_string(written_) + " of " +
+                                 std::to_string(selectedFrameCount()) + " frames given; not written");
+    }
     close();
     finished_ = true;
 }
@@ -151,7 +162,7 @@ protected:
     }
     void writeFrame(int k, const State& state) override {
         std::ostream& out = out_->stream();
-        out << (written_++ ? ",\n" : "\n") << "    {\"frame\": " << k
+        out << (framesOut_++ ? ",\n" : "\n") << "    {\"frame\": " << k
             << ", \"time\": " << num(k / frameRate()) << ", \"bodies\": [";
         for (size_t n = 0; n < bodies().size(); ++n) {
             const int i = bodies()[n];
@@ -159,27 +170,34 @@ protected:
             const BodyState& s = state.bodies[i];
             const Derived d = derive(b, s);
             const Vec3 p = bodyFramePosition(b, s);
-            auto vec = [](const Vec3& v) {
-                return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]";
+            auto list = [&](std::initializer_list<double> values) {
+                const char* sep = "[";
+                for (double v : values) {
+                    out << sep << num(v);
+                    sep = ", ";
+                }
+                out << ']';
             };
-            out << (n ? ",\n" : "\n") << "      {\"position\": " << vec(p) << ", \"orientation\": ["
-                << num(s.q.w()) << ", " << num(s.q.x()) << ", " << num(s.q.y()) << ", " << num(s.q.z())
-                << "], \"velocity\": " << vec(d.v) << ", \"angular_velocity\": " << vec(d.omega) << "}";
+            out << (n ? ",\n" : "\n") << "      {\"position\": ";
+            list({p.x(), p.y(), p.z()});
+            out << ", \"orientation\": ";
+            list({s.q.w(), s.q.x(), s.q.y(), s.q.z()});
+            out << ", \"velocity\": ";
+            list({d.v.x(), d.v.y(), d.v.z()});
+            out << ", \"angular_velocity\": ";
+            list({d.omega.x(), d.omega.y(), d.omega.z()});
+            out << "}";
         }
         out << (bodies().empty() ? "]}" : "\n    ]}");
     }
     void close() override {
-        if (written_ != selectedFrameCount()) {
-            throw std::runtime_error(file().string() + ": " + std::to_string(written_) + " of " +
-                                     std::to_string(selectedFrameCount()) + " frames given; not written");
-        }
-        out_->stream() << (written_ ? "\n  ]\n}\n" : "]\n}\n");
+        out_->stream() << (framesOut_ ? "\n  ]\n}\n" : "]\n}\n");
         out_->commit();
     }
 
 private:
     std::unique_ptr<AtomicFile> out_;
-    int written_ = 0;
+    int framesOut_ = 0;
 };
 
 }  // namespace

@@ -51,9 +51,9 @@ public:
     /// the selected ones only; those outside the options are skipped here.
     void frame(int k, const State& state);
 
-    /// Writes what remains and makes the file(s) appear; throws std::runtime_error when
-    /// writing failed (then nothing new is left behind, except that of a .gltf whose .bin
-    /// was already in place the .bin stays).
+    /// Writes what remains and makes the file(s) appear; throws std::runtime_error when a
+    /// selected frame was not given, or when writing failed (then nothing new is left behind, except that of
+    /// a .gltf whose .bin was already in place the .bin stays).
     void finish();
 
     /// Whether frame k is exported (after begin()).
@@ -85,6 +85,7 @@ private:
     double frameRate_ = 0.0;
     int first_ = 0, last_ = -1;
     std::vector<int> bodies_;
+    int written_ = 0, lastWritten_ = -1;
     bool finished_ = false;
 };
 
