@@ -30,6 +30,7 @@
 #include <QFormLayout>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QMetaEnum>
 #include <QMimeData>
 #include <QSaveFile>
 #include <QSettings>
@@ -76,6 +77,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
     setObjectName("MainWindow");
     timeline_ = new Timeline(doc_, this);
     viewport_ = new Viewport(doc_, this);
+    viewport_->setTimeline(timeline_);
     setCentralWidget(viewport_);
 
     tree_ = new SceneTreeDock(doc_, this);
@@ -212,6 +214,25 @@ void MainWindow::buildMenus() {
     shapes->setCheckable(true);
     shapes->setChecked(viewport_->showCollisionShapes());
     connect(shapes, &QAction::toggled, viewport_, &Viewport::setShowCollisionShapes);
+    // Overlays of the simulation at the playhead, each computed only while shown.
+    QMenu* overlays = view->addMenu(tr("&Overlays"));
+    for (int i = 0; i < Viewport::kOverlayCount; ++i) {
+        const auto which = static_cast<Viewport::Overlay>(i);
+        QAction* a = overlays->addAction(Viewport::overlayText(which));
+        a->setObjectName(QStringLiteral("overlay%1").arg(i));
+        a->setCheckable(true);
+        const QString key =
+            QStringLiteral("view/overlay/%1").arg(QMetaEnum::fromType<Viewport::Overlay>().key(i));
+        viewport_->setOverlay(which, QSettings().value(key, viewport_->overlay(which)).toBool());
+        a->setChecked(viewport_->overlay(which));
+        connect(a, &QAction::toggled, viewport_, [this, which, key](bool on) {
+            viewport_->setOverlay(which, on);
+            QSettings().setValue(key, on);  // the user's choice for the next session
+        });
+        connect(viewport_, &Viewport::overlayChanged, a, [a, which](Viewport::Overlay o, bool on) {
+            if (o == which) a->setChecked(on);
+        });
+    }
     view->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 }

@@ -9,6 +9,7 @@
 #include <tumble/mass.h>
 
 #include <QAbstractButton>
+#include <QAction>
 #include <QApplication>
 #include <QDockWidget>
 #include <QDragEnterEvent>
@@ -334,6 +335,30 @@ private slots:
         QVERIFY(!w.close());
         QVERIFY2(asked.contains("bouncing-ball.json"), qPrintable(asked));
         QVERIFY(w.windowTitle().startsWith("bouncing-ball.json"));
+    }
+
+    // The View menu's overlays switch the viewport's, and the next window remembers them.
+    void overlaysFromTheViewMenu() {
+        {
+            MainWindow w;
+            QCOMPARE(w.viewport()->timeline(), w.timeline());
+            auto* contacts =
+                w.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)));
+            QVERIFY(contacts);
+            QCOMPARE(contacts->text(), Viewport::overlayText(Viewport::Overlay::Contacts));
+            QVERIFY(!w.viewport()->overlay(Viewport::Overlay::Contacts));
+            contacts->trigger();
+            QVERIFY(w.viewport()->overlay(Viewport::Overlay::Contacts));
+            w.viewport()->setOverlay(Viewport::Overlay::Contacts,
+                                     false);  // from elsewhere: the check follows
+            QVERIFY(!contacts->isChecked());
+            contacts->trigger();
+        }
+        MainWindow again;
+        QVERIFY(again.viewport()->overlay(Viewport::Overlay::Contacts));
+        QVERIFY(!again.viewport()->overlay(Viewport::Overlay::Trails));
+        again.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)))
+            ->trigger();
     }
 
     void saveAndReopen() {
