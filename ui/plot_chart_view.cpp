@@ -16,8 +16,6 @@ PlotChartView::PlotChartView(QChart* chart, QWidget* parent)
     setRenderHint(QPainter::Antialiasing);
     setRubberBand(QChartView::NoRubberBand);
     setMinimumSize(240, 160);
-    // The cursor is drawn over everything: repaint the whole view when it moves.
-    setViewportUpdateMode(QGraphicsView::FullViewportUpdate);
 }
 
 QValueAxis* PlotChartView::timeAxis() const {
@@ -31,8 +29,14 @@ QRectF PlotChartView::plotRect() const {
 
 void PlotChartView::setCursorTime(double time) {
     if (time == cursor_ || (std::isnan(time) && std::isnan(cursor_))) return;
+    // Repaint only the strips under the old and the new line: the curves beneath are then
+    // rasterised in those strips only (a whole chart of 10 000-point curves takes ~10 ms).
+    const int before = std::isnan(cursor_) ? -1 : viewportPosition(cursor_).x();
     cursor_ = time;
-    viewport()->update();
+    const int after = std::isnan(cursor_) ? -1 : viewportPosition(cursor_).x();
+    const int h = viewport()->height();
+    if (before >= 0) viewport()->update(QRect(before - 3, 0, 7, h));
+    if (after >= 0) viewport()->update(QRect(after - 3, 0, 7, h));
 }
 
 QPoint PlotChartView::viewportPosition(double time) const {

@@ -7,10 +7,12 @@
 #include <tumble/model.h>
 
 #include <QChart>
+#include <QElapsedTimer>
 #include <QHeaderView>
 #include <QLineSeries>
 #include <QTabWidget>
 #include <QTableWidget>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <QValueAxis>
 
@@ -157,6 +159,12 @@ PlotsDock::PlotsDock(Timeline* timeline, QWidget* parent)
     layout->addWidget(tabs_);
     setWidget(body);
 
+    syncTimer_ = new QTimer(this);
+    syncTimer_->setSingleShot(true);
+    connect(syncTimer_, &QTimer::timeout, this, &PlotsDock::syncCharts);
+    connect(tabs_, &QTabWidget::currentChanged, this, &PlotsDock::syncCharts);
+    // Queued: when the dock is shown its children are visible only after the show event.
+    connect(this, &QDockWidget::visibilityChanged, this, &PlotsDock::syncCharts, Qt::QueuedConnection);
     connect(timeline_, &Timeline::recordingReset, this, &PlotsDock::reset);
     connect(timeline_, &Timeline::progress, this, &PlotsDock::onProgress);
     connect(timeline_, &Timeline::currentFrameChanged, this, &PlotsDock::onCurrentFrame);
@@ -171,11 +179,15 @@ PlotsDock::PlotsDock(Timeline* timeline, QWidget* parent)
 PlotsDock::~PlotsDock() = default;
 
 int PlotsDock::pointCount(Series which) const {
-    return series_[static_cast<std::size_t>(idx(which))]->count();
+    return static_cast<int>(data_[static_cast<std::size_t>(idx(which))].size());
 }
 
 QList<QPointF> PlotsDock::points(Series which) const {
-    return series_[static_cast<std::size_t>(idx(which))]->points();
+    return data_[static_cast<std::size_t>(idx(which))];
+}
+
+int PlotsDock::drawnPointCount(Series which) const {
+    return series_[static_cast<std::size_t>(idx(which))]->count();
 }
 
 double PlotsDock::cursorTime() const {
@@ -208,20 +220,72 @@ void PlotsDock::seekTo(double time) {
     if (k >= 0) timeline_->seek(k);
 }
 
-// QXYSeries::append(QList) adds the points one by one, and the chart recomputes the whole
-// curve's geometry after each (quadratic: seconds for a few thousand frames). replace()
-// recomputes it once, and shares our list (implicitly shared, no copy).
 void PlotsDock::extend(Series which, const QList<QPointF>& pts) {
     if (pts.isEmpty()) return;
-    const auto i = static_cast<std::size_t>(idx(which));
-    data_[i].append(pts);
-    series_[i]->replace(data_[i]);
+    data_[static_cast<std::size_t>(idx(which))].append(pts);
+    dirty_[static_cast<std::size_t>(idx(chartOf(which)))] = true;
 }
 
 void PlotsDock::clearSeries(Series which) {
-    const auto i = static_cast<std::size_t>(idx(which));
-    data_[i].clear();
-    series_[i]->clear();
+    data_[static_cast<std::size_t>(idx(which))].clear();
+    dirty_[static_cast<std::size_t>(idx(chartOf(which)))] = true;
+}
+
+PlotsDock::Chart PlotsDock::chartOf(Series which) {
+    switch (which) {
+        case Series::Kinetic:
+        case Series::Potential:
+        case Series::Total: return Chart::Energy;
+        case Series::Momentum:
+        case Series::AngularMomentum: return Chart::Momentum;
+        case Series::PositionX:
+        case Series::PositionY:
+        case Series::PositionZ: return Chart::Position;
+        default: return Chart::Velocity;
+    }
+}
+
+// Whatever changes, a chart recomputes the geometry of its whole curves (Qt Charts keeps no
+// partial paths): a few ms per thousand points. So the points are handed to a chart only
+// while it is on screen, and while a run goes on at most every syncInterval_, which grows
+// with what a sync costs, keeping the UI thread mostly free for a 10 000-frame run.
+void PlotsDock::scheduleSync() {
+    const bool running = timeline_->status() == Timeline::Status::Running;
+    const qint64 since = lastSync_.isValid() ? lastSync_.elapsed() : std::numeric_limits<qint64>::max();
+    if (!running || since >= syncInterval_) {
+        syncTimer_->stop();
+        syncCharts();
+    } else if (!syncTimer_->isActive()) {
+        syncTimer_->start(static_cast<int>(syncInterval_ - since));
+    }
+}
+
+void PlotsDock::syncCharts() {
+    QElapsedTimer cost;
+    cost.start();
+    bool any = false;
+    for (int c = 0; c < kChartCount; ++c) {
+        const auto ci = static_cast<std::size_t>(c);
+        if (!dirty_[ci] || !isVisible() || tabs_->currentIndex() != c) continue;
+        // Axes first, while the curves are still the shorter old ones.
+        fitAxis(valueAxes_[c], ranges_[c]);
+        if (c == idx(Chart::Momentum)) fitAxis(valueAxes_[kAngularAxis], ranges_[kAngularAxis]);
+        for (int s = 0; s < kSeriesCount; ++s) {
+            if (chartOf(static_cast<Series>(s)) != static_cast<Chart>(c)) continue;
+            const auto si = static_cast<std::size_t>(s);
+            // QXYSeries::append(QList) adds points one at a time, recomputing the curve after
+            // each (quadratic); replace() recomputes once and shares the list (no copy).
+            if (data_[si].isEmpty())
+                series_[si]->clear();
+            else
+                series_[si]->replace(data_[si]);
+        }
+        dirty_[ci] = false;
+        any = true;
+    }
+    if (!any) return;
+    lastSync_.start();
+    syncInterval_ = std::clamp<qint64>(4 * cost.elapsed(), 100, 2000);
 }
 
 void PlotsDock::reset() {
@@ -229,10 +293,10 @@ void PlotsDock::reset() {
     times_.clear();
     bodyFrames_.clear();
     for (Range& r : ranges_) r = Range();
-    for (int a = 0; a <= kChartCount; ++a) fitAxis(valueAxes_[a], ranges_[a]);
     for (PlotChartView* v : views_) v->setCursorTime(kNaN);
     updateTimeAxis();
     updateProfile();
+    syncCharts();  // empty charts at once: cheap, and the old run must not linger
 }
 
 void PlotsDock::onProgress() {
@@ -244,6 +308,7 @@ void PlotsDock::onProgress() {
     updateBodySeries(false);
     updateProfile();
     onCurrentFrame(timeline_->currentFrame());
+    scheduleSync();
 }
 
 void PlotsDock::appendSummaries() {
@@ -270,9 +335,6 @@ void PlotsDock::appendSummaries() {
     }
     const Series order[5] = {Series::Kinetic, Series::Potential, Series::Total, Series::Momentum,
                              Series::AngularMomentum};
-    fitAxis(valueAxes_[idx(Chart::Energy)], ranges_[idx(Chart::Energy)]);
-    fitAxis(valueAxes_[idx(Chart::Momentum)], ranges_[idx(Chart::Momentum)]);
-    fitAxis(valueAxes_[kAngularAxis], ranges_[kAngularAxis]);
     for (int i = 0; i < 5; ++i) extend(order[i], pts[i]);
 }
 
@@ -283,8 +345,6 @@ void PlotsDock::clearBodySeries() {
     bodyFrames_.clear();
     ranges_[idx(Chart::Position)] = Range();
     ranges_[idx(Chart::Velocity)] = Range();
-    fitAxis(valueAxes_[idx(Chart::Position)], ranges_[idx(Chart::Position)]);
-    fitAxis(valueAxes_[idx(Chart::Velocity)], ranges_[idx(Chart::Velocity)]);
 }
 
 void PlotsDock::updateBodySeries(bool rebuild) {
@@ -335,8 +395,6 @@ void PlotsDock::updateBodySeries(bool rebuild) {
     }
     const Series order[6] = {Series::PositionX, Series::PositionY, Series::PositionZ,
                              Series::VelocityX, Series::VelocityY, Series::VelocityZ};
-    fitAxis(valueAxes_[idx(Chart::Position)], pr);
-    fitAxis(valueAxes_[idx(Chart::Velocity)], vr);
     for (int i = 0; i < 6; ++i) extend(order[i], pts[i]);
     bodyFrames_.insert(bodyFrames_.end(), frames.begin() + static_cast<std::ptrdiff_t>(from), frames.end());
 }
@@ -347,6 +405,7 @@ void PlotsDock::onSelection() {
     if (body == body_ && !bodyFrames_.empty()) return;
     body_ = body;
     updateBodySeries(true);
+    syncCharts();
 }
 
 void PlotsDock::onCurrentFrame(int frame) {

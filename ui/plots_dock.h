@@ -8,6 +8,7 @@
 #pragma once
 
 #include <QDockWidget>
+#include <QElapsedTimer>
 #include <QList>
 #include <QPointF>
 
@@ -17,6 +18,7 @@
 class QLabel;
 class QTabWidget;
 class QTableWidget;
+class QTimer;
 
 QT_BEGIN_NAMESPACE
 class QLineSeries;
@@ -77,9 +79,13 @@ public:
 
     Timeline* timeline() const { return timeline_; }
 
-    // ---- What is drawn (for tests and tools).
+    // ---- What is plotted (for tests and tools). A chart receives its points while it is on
+    // screen (its tab current, the dock shown), at most a few times a second during a run.
     int pointCount(Series which) const;
     QList<QPointF> points(Series which) const;
+    /// Points the chart's series holds now (pointCount once the chart has been shown).
+    int drawnPointCount(Series which) const;
+    static Chart chartOf(Series which);
     /// The body the position and velocity charts show (-1: none selected).
     int plottedBody() const { return body_; }
     /// The playhead's time (s) drawn in every chart; NaN when nothing is recorded.
@@ -116,12 +122,18 @@ private:
     void updateProfile();
     void fitAxis(QValueAxis* axis, const Range& range);
     void seekTo(double time);
+    void scheduleSync();
+    void syncCharts();
 
     Timeline* timeline_;
     QTabWidget* tabs_ = nullptr;
     std::array<PlotChartView*, kChartCount> views_{};
     std::array<QLineSeries*, kSeriesCount> series_{};
     std::array<QList<QPointF>, kSeriesCount> data_;  // the series' points (shared with them)
+    std::array<bool, kChartCount> dirty_{};          // data_ has points the chart does not
+    QTimer* syncTimer_ = nullptr;
+    QElapsedTimer lastSync_;
+    qint64 syncInterval_ = 100;  // ms between chart updates during a run
     QValueAxis* timeAxes_[kChartCount] = {};
     QValueAxis* valueAxes_[kChartCount + 1] = {};  // energy, momentum, position, velocity, angular momentum
     Range ranges_[kChartCount + 1];

@@ -237,6 +237,9 @@ private slots:
             dock.showChart(chart);
             QWidget* view = dock.chartView(chart);
             QVERIFY(view->isVisible());
+            // The chart on screen draws every frame's point.
+            for (int i = 0; i < PlotsDock::kSeriesCount; ++i)
+                if (PlotsDock::chartOf(Series(i)) == chart) QCOMPARE(dock.drawnPointCount(Series(i)), n);
             QWidget* viewport = qobject_cast<QAbstractScrollArea*>(view)->viewport();
             QVERIFY(viewport);
             for (int k : {7, 0, n - 1, 19}) {
