@@ -226,7 +226,8 @@ void TimelineDock::updateStatus() {
     }
     if (done > 0) {
         text += tr(" · %1 s simulated").arg(simulated, 0, 'f', 2);
-        if (const double v = timeline_->speed(); v > 0) text += tr(" · %1× real time").arg(v, 0, 'g', 3);
+        if (const double v = timeline_->speed(); v > 0)
+            text += tr(" · %1× real time").arg(v, 0, 'f', v >= 100 ? 0 : v >= 10 ? 1 : 2);
     }
     if (timeline_->keyframeInterval() > 1)
         text += tr(" · keyframes every %1 frames").arg(timeline_->keyframeInterval());
