@@ -49,6 +49,14 @@ QTableWidgetItem* readOnly(const QString& text) {
     return item;
 }
 
+// 1, 2, 2.5 or 5 times a power of ten, at least x (x > 0).
+double niceStep(double x) {
+    if (!(x > 0) || !std::isfinite(x)) return 1.0;
+    const double p = std::pow(10.0, std::floor(std::log10(x)));
+    const double f = x / p;
+    return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 2.5 ? 2.5 : f <= 5 ? 5 : 10) * p;
+}
+
 }  // namespace
 
 void PlotsDock::Range::add(double v) {
@@ -102,7 +110,8 @@ PlotsDock::PlotsDock(Timeline* timeline, QWidget* parent)
     tabs_->setObjectName("plotTabs");
     for (const ChartSpec& spec : specs) {
         auto* chart = new QChart;
-        chart->setTitle(spec.title);
+        // The tab names the energy and momentum charts; the body charts name the body.
+        if (spec.chart == Chart::Position || spec.chart == Chart::Velocity) chart->setTitle(spec.title);
         chart->setMargins(QMargins(4, 4, 4, 4));
         chart->legend()->setAlignment(Qt::AlignBottom);
         const int c = idx(spec.chart);
@@ -130,12 +139,14 @@ PlotsDock::PlotsDock(Timeline* timeline, QWidget* parent)
         series_[static_cast<std::size_t>(idx(spec.series))] = series;
     }
 
-    profile_ = new QTableWidget(ProfileRowCount, 2);
+    profile_ = new QTableWidget(ProfileRowCount, 3);
     profile_->setObjectName("profile");
-    profile_->setHorizontalHeaderLabels({tr("Stage"), tr("Per step")});
+    profile_->setHorizontalHeaderLabels({tr("Stage"), tr("Per step"), tr("Share")});
     profile_->verticalHeader()->hide();
+    profile_->verticalHeader()->setDefaultSectionSize(profile_->fontMetrics().height() + 6);
     profile_->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
-    profile_->horizontalHeader()->setStretchLastSection(true);
+    profile_->horizontalHeader()->setSectionResizeMode(1, QHeaderView::Stretch);
+    profile_->horizontalHeader()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
     profile_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     const QString rowNames[ProfileRowCount] = {
         tr("Forces (ms)"),         tr("Integration (ms)"),       tr("Broadphase (ms)"),
@@ -149,6 +160,9 @@ PlotsDock::PlotsDock(Timeline* timeline, QWidget* parent)
         auto* value = readOnly(QString());
         value->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
         profile_->setItem(r, 1, value);
+        auto* share = readOnly(QString());
+        share->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+        profile_->setItem(r, 2, share);
     }
     profile_->item(ProfileSteps, 1)->setToolTip(tr("Steps taken so far; the other rows are per step"));
     tabs_->addTab(profile_, tr("Profile"));
@@ -421,8 +435,14 @@ void PlotsDock::updateTimeAxis() {
     const double rate = timeline_->frameRate();
     const int frames = timeline_->frameCount();
     const double end = rate > 0 && frames > 1 ? (frames - 1) / rate : 1.0;
-    for (QValueAxis* axis : timeAxes_)
-        if (axis->min() != 0.0 || axis->max() != end) axis->setRange(0.0, end);
+    for (QValueAxis* axis : timeAxes_) {
+        if (axis->min() == 0.0 && axis->max() == end) continue;
+        // The axis spans the run exactly; the ticks fall on round times.
+        axis->setRange(0.0, end);
+        axis->setTickType(QValueAxis::TicksDynamic);
+        axis->setTickAnchor(0.0);
+        axis->setTickInterval(niceStep(end / 5));
+    }
     for (PlotChartView* v : views_) v->viewport()->update();
 }
 
@@ -436,22 +456,32 @@ void PlotsDock::fitAxis(QValueAxis* axis, const Range& r) {
         lo = r.lo - pad;
         hi = r.hi + pad;
     }
-    if (axis->min() != lo || axis->max() != hi) axis->setRange(lo, hi);
+    // Quantities that are never negative (kinetic energy, magnitudes) keep 0 as the floor.
+    if (!r.empty && r.lo >= 0 && lo < 0) lo = 0;
+    // Round ends and ticks (about six).
+    const double step = niceStep((hi - lo) / 5);
+    lo = std::floor(lo / step) * step;
+    hi = std::ceil(hi / step) * step;
+    if (axis->min() == lo && axis->max() == hi) return;
+    axis->setRange(lo, hi);
+    axis->setTickCount(static_cast<int>(std::lround((hi - lo) / step)) + 1);
 }
 
 void PlotsDock::updateProfile() {
     const Profile p = timeline_->profile();
     const double steps = static_cast<double>(p.steps);
     auto ms = [&](double seconds) {
-        return p.steps > 0 ? QString::number(seconds * 1e3 / steps, 'f', 4) : QString();
+        return p.steps > 0 ? QString::number(seconds * 1e3 / steps, 'f', 5) : QString();
     };
     auto per = [&](long count) { return p.steps > 0 ? QString::number(count / steps, 'f', 2) : QString(); };
     const double stages[] = {p.forces,       p.integrate,   p.broadphase, p.narrowphase,
                              p.timeOfImpact, p.impactSolve, p.solve,      p.sleep};
     double all = 0.0;
+    for (double t : stages) all += t;
     for (int r = 0; r < 8; ++r) {
         profile_->item(r, 1)->setText(ms(stages[r]));
-        all += stages[r];
+        profile_->item(r, 2)->setText(all > 0 ? QString("%1 %").arg(100.0 * stages[r] / all, 0, 'f', 0)
+                                              : QString());
     }
     profile_->item(ProfileTotal, 1)->setText(ms(all));
     profile_->item(ProfileSteps, 1)->setText(QString::number(p.steps));

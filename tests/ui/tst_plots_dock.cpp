@@ -343,6 +343,15 @@ private slots:
         const double all = table->item(PlotsDock::ProfileTotal, 1)->text().toDouble(&ok);
         QVERIFY(ok);
         QVERIFY(std::abs(all - sum) < 1e-3);
+        // Each stage's share of the time, in whole percent, adds up to 100 (up to rounding).
+        int shares = 0;
+        for (int r = PlotsDock::ProfileForces; r < PlotsDock::ProfileTotal; ++r) {
+            QString text = table->item(r, 2)->text();
+            QVERIFY2(text.endsWith(" %"), qPrintable(text));
+            shares += text.chopped(2).toInt(&ok);
+            QVERIFY(ok);
+        }
+        QVERIFY2(std::abs(shares - 100) <= 4, qPrintable(QString::number(shares)));
 
         // And the energies there, with contacts, are still the engine's, frame by frame.
         const auto model = timeline.model();
