@@ -443,7 +443,6 @@ void PlotsDock::updateTimeAxis() {
         axis->setTickAnchor(0.0);
         axis->setTickInterval(niceStep(end / 5));
     }
-    for (PlotChartView* v : views_) v->viewport()->update();
 }
 
 void PlotsDock::fitAxis(QValueAxis* axis, const Range& r) {
