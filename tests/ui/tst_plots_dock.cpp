@@ -256,6 +256,24 @@ private slots:
             QCOMPARE(timeline.currentFrame(), 10);
         }
 
+        // Outside the plot area (the chart's margin, its axis labels) a click does nothing.
+        {
+            QWidget* viewport =
+                qobject_cast<QAbstractScrollArea*>(dock.chartView(Chart::Velocity))->viewport();
+            timeline.seek(3);
+            QTest::mouseClick(viewport, Qt::LeftButton, {}, QPoint(2, 2));
+            QCOMPARE(timeline.currentFrame(), 3);
+            // Dragging along the chart scrubs: press at frame 5, release at frame 22.
+            QTest::mousePress(viewport, Qt::LeftButton, {},
+                              dock.viewportPosition(Chart::Velocity, kinetic[5].x()));
+            QCOMPARE(timeline.currentFrame(), 5);
+            QTest::mouseMove(viewport, dock.viewportPosition(Chart::Velocity, kinetic[22].x()));
+            QCOMPARE(timeline.currentFrame(), 22);
+            QTest::mouseRelease(viewport, Qt::LeftButton, {},
+                                dock.viewportPosition(Chart::Velocity, kinetic[22].x()));
+            QCOMPARE(timeline.currentFrame(), 22);
+        }
+
         // The playhead moved by the timeline: the line is drawn in the chart where frame k is.
         dock.showChart(Chart::Energy);
         QWidget* viewport = qobject_cast<QAbstractScrollArea*>(dock.chartView(Chart::Energy))->viewport();
