@@ -102,6 +102,7 @@ private slots:
         const QList<QPointF> potential = dock.points(Series::Potential);
         const QList<QPointF> total = dock.points(Series::Total);
         const QList<QPointF> momentum = dock.points(Series::Momentum);
+        const QList<QPointF> angular = dock.points(Series::AngularMomentum);
         for (int k = 0; k < n; ++k) {
             State state;
             QVERIFY(timeline.frameState(k, &state));
@@ -117,6 +118,9 @@ private slots:
             QVERIFY2(close(kinetic[k].y(), 0.5 * m * kG * kG * t * t, 1e-9),
                      qPrintable(QString("frame %1: %2").arg(k).arg(kinetic[k].y())));
             QVERIFY2(close(momentum[k].y(), m * kG * t, 1e-9), qPrintable(QString("frame %1").arg(k)));
+            // |L| = |x × P| about the origin: x and z stay (0.5, -0.25), P = (0, -m g t, 0).
+            QVERIFY2(close(angular[k].y(), m * kG * t * std::sqrt(0.5 * 0.5 + 0.25 * 0.25), 1e-9),
+                     qPrintable(QString("frame %1").arg(k)));
             // Potential m g y from the recorded height.
             QVERIFY(close(potential[k].y(), m * kG * state.bodies[0].x.y(), 1e-12));
         }
