@@ -231,7 +231,7 @@ int PlotsDock::frameNearest(double time) const {
 
 void PlotsDock::seekTo(double time) {
     const int k = frameNearest(time);
-    if (k >= 0) timeline_->seek(k);
+    if (k >= 0 && timeline_) timeline_->seek(k);
 }
 
 void PlotsDock::extend(Series which, const QList<QPointF>& pts) {
@@ -414,6 +414,7 @@ void PlotsDock::updateBodySeries(bool rebuild) {
 }
 
 void PlotsDock::onSelection() {
+    if (!timeline_) return;
     const QList<int>& sel = timeline_->document()->selection();
     const int body = sel.isEmpty() ? -1 : sel.first();
     if (body == body_ && !bodyFrames_.empty()) return;

@@ -11,6 +11,7 @@
 #include <QElapsedTimer>
 #include <QList>
 #include <QPointF>
+#include <QPointer>
 
 #include <array>
 #include <vector>
@@ -125,7 +126,7 @@ private:
     void scheduleSync();
     void syncCharts();
 
-    Timeline* timeline_;
+    QPointer<Timeline> timeline_;  // the main window may destroy it first
     QTabWidget* tabs_ = nullptr;
     std::array<PlotChartView*, kChartCount> views_{};
     std::array<QLineSeries*, kSeriesCount> series_{};

@@ -333,6 +333,24 @@ private slots:
         }
     }
 
+    void outlivingItsTimelineIsSafe() {
+        Document doc;
+        doc.replaceScene(freeFall(1.0), "free fall", false);
+        auto* timeline = new Timeline(&doc);
+        PlotsDock dock(timeline);
+        dock.resize(600, 400);
+        dock.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dock));
+        QVERIFY(runToCompletion(*timeline));
+        const QPoint at = dock.viewportPosition(Chart::Energy, 0.5);
+        delete timeline;  // a window closing may take the timeline first
+        QCOMPARE(dock.timeline(), nullptr);
+        doc.setSelection({0});
+        QTest::mouseClick(qobject_cast<QAbstractScrollArea*>(dock.chartView(Chart::Energy))->viewport(),
+                          Qt::LeftButton, {}, at);
+        QCOMPARE(dock.pointCount(Series::Kinetic), 31);  // what was plotted stays
+    }
+
     void theProfileReadoutCountsTheRunsSteps() {
         Document doc;
         QString error;
