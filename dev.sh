@@ -16,6 +16,7 @@ PACKAGES=(
   qt6-base-dev qt6-base-dev-tools qt6-qpa-plugins qt6-3d-dev qt6-charts-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri fonts-dejavu-core
   libeigen3-dev nlohmann-json3-dev libassimp-dev libqhull-dev
   assimp-testmodels
+  libbullet-dev libode-dev libmujoco-dev
   xvfb xauth
 )
 

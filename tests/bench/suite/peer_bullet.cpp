@@ -1,0 +1,317 @@
+// Bullet 3.24 (Debian's libbullet-dev, the double-precision "-float64" libraries) behind the
+// benchmark's adapter interface.
+//
+// Modes, most accurate first. All use btDiscreteDynamicsWorld with the sequential-impulse
+// solver at settings.solverIterations iterations and one fixed step of dt per step()
+// (stepSimulation(dt, 0): no substeps, no interpolation). They differ in how the gyroscopic
+// term w x (I w) enters the velocity update (btRigidBody flags):
+//   gyro-implicit-body   BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY: one Newton step of the
+//                        implicit Euler update in body coordinates (Bullet's default)
+//   gyro-implicit-world  BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD: the same in world axes
+//   gyro-explicit        BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT: explicit, clamped by
+//                        btContactSolverInfo::m_maxGyroscopicForce (unlimited here)
+//   no-gyro              no gyroscopic term: w changes only by torques (fastest)
+//
+// Translation:
+// - Mass, inertia and centre of mass are Tumble's (compile()). Bullet wants a diagonal
+//   inertia at the body origin, so the Bullet body frame is Tumble's principal frame at the
+//   centre of mass and the shape sits in a btCompoundShape at the inverse offset (when the
+//   offset is not the identity).
+// - Shapes: sphere, box, capsule (btCapsuleShape, y axis), cylinder (btCylinderShape, y
+//   axis), plane (btStaticPlaneShape, static only), mesh as its convex hull (Tumble's hull
+//   vertices in a btConvexHullShape), mesh triangles on a static body (btBvhTriangleMeshShape).
+//   Collision margins: spheres and capsules carry theirs inside the radius, boxes and
+//   cylinders inside the extents; a convex hull's margin is added outside, so it is set to
+//   1 mm instead of Bullet's 4 cm.
+// - Materials: gCalculateCombinedRestitutionCallback and ...FrictionCallback are set to
+//   Tumble's rules (max restitution, sqrt of the product of frictions) while an adapter is
+//   loaded (they are process globals). Bullet gives no bounce below
+//   m_restitutionVelocityThreshold, set here to 1e-3 m/s (Bullet's default 0.2).
+// - Forces, torques and damping: Tumble's force stage evaluated at the start of each step
+//   (peer_common.h) and applied as central force and torque; Bullet's own damping is off.
+// - Sleeping follows settings.sleeping (Bullet's deactivation, its own thresholds).
+// - Refused: springs, moving kinematic bodies.
+// - Differs: Bullet clamps the rotation per step to a quarter turn (|w| dt < pi/4 in
+//   btTransformUtil::integrateTransform), so a body spinning faster than pi/(4 dt) is slowed.
+#include "engine_adapter.h"
+#include "peer_common.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <limits>
+
+namespace tumble::bench {
+namespace {
+
+btVector3 bt(const Vec3& v) {
+    return btVector3(v.x(), v.y(), v.z());
+}
+Vec3 eig(const btVector3& v) {
+    return Vec3(v.x(), v.y(), v.z());
+}
+btQuaternion bt(const Quat& q) {
+    return btQuaternion(q.x(), q.y(), q.z(), q.w());
+}
+Quat eig(const btQuaternion& q) {
+    return Quat(q.w(), q.x(), q.y(), q.z());
+}
+
+// See the comment at the top: contacts found this close before touching.
+constexpr double kContactBreakingThreshold = 1e-4;
+
+btScalar combinedRestitution(const btCollisionObject* a, const btCollisionObject* b) {
+    return std::max(a->getRestitution(), b->getRestitution());
+}
+btScalar combinedFriction(const btCollisionObject* a, const btCollisionObject* b) {
+    return std::sqrt(a->getFriction() * b->getFriction());
+}
+
+class BulletAdapter final : public EngineAdapter {
+public:
+    ~BulletAdapter() override { clear(); }
+
+    std::string name() const override { return "bullet"; }
+    std::vector<std::string> modes() const override {
+        return {"gyro-implicit-body", "gyro-implicit-world", "gyro-explicit", "no-gyro"};
+    }
+
+    bool load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) override;
+    void step() override;
+    double time() const override { return time_; }
+    int bodyCount() const override { return int(bodies_.size()); }
+    BodySample body(int i) const override;
+    int contactCount() const override;
+
+private:
+    struct Body {
+        btRigidBody* rb = nullptr;
+        Quat toBody = Quat::Identity();  ///< Bullet body frame (principal) to Tumble's body frame
+        BodySample still;                ///< a static body's sample
+    };
+
+    void clear();
+    btCollisionShape* makeShape(const BodyModel& b, const Vec3& position, const Quat& q, std::string* why);
+
+    peer::PeerScene ps_;
+    double dt_ = 0.0;
+    double time_ = 0.0;
+    bool loads_ = false;
+    std::unique_ptr<btDefaultCollisionConfiguration> config_;
+    std::unique_ptr<btCollisionDispatcher> dispatcher_;
+    std::unique_ptr<btBroadphaseInterface> broadphase_;
+    std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+    std::unique_ptr<btDiscreteDynamicsWorld> world_;
+    std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+    std::vector<std::unique_ptr<btTriangleMesh>> meshes_;
+    std::vector<std::unique_ptr<btRigidBody>> rigid_;
+    std::vector<Body> bodies_;
+};
+
+void BulletAdapter::clear() {
+    if (world_) {
+        for (auto& rb : rigid_) world_->removeRigidBody(rb.get());
+    }
+    rigid_.clear();
+    world_.reset();
+    solver_.reset();
+    broadphase_.reset();
+    dispatcher_.reset();
+    config_.reset();
+    shapes_.clear();
+    meshes_.clear();
+    bodies_.clear();
+}
+
+btCollisionShape* BulletAdapter::makeShape(const BodyModel& b, const Vec3& position, const Quat& q,
+                                           std::string* why) {
+    const collision::Shape& c = b.collider;
+    std::unique_ptr<btCollisionShape> s;
+    switch (b.shape.type) {
+        case ShapeType::Sphere: s = std::make_unique<btSphereShape>(c.radius); break;
+        case ShapeType::Box: s = std::make_unique<btBoxShape>(bt(c.halfExtents)); break;
+        case ShapeType::Capsule: s = std::make_unique<btCapsuleShape>(c.radius, 2.0 * c.halfHeight); break;
+        case ShapeType::Cylinder:
+            s = std::make_unique<btCylinderShape>(btVector3(c.radius, c.halfHeight, c.radius));
+            break;
+        case ShapeType::Plane: {
+            // Static only: the plane in world coordinates on a body at the identity.
+            Vec3 n;
+            double d;
+            peer::worldPlane(b, position, q, &n, &d);
+            s = std::make_unique<btStaticPlaneShape>(bt(n), d);
+            break;
+        }
+        case ShapeType::Mesh:
+            if (b.shape.collision == MeshCollision::ConvexHull) {
+                auto hull = std::make_unique<btConvexHullShape>();
+                for (const Vec3& v : c.hull->vertices) hull->addPoint(bt(v), false);
+                hull->recalcLocalAabb();
+                hull->setMargin(0.001);
+                s = std::move(hull);
+            } else {
+                if (!c.mesh) {
+                    *why = "the mesh has no triangles";
+                    return nullptr;
+                }
+                auto tm = std::make_unique<btTriangleMesh>(true, false);
+                for (const auto& t : c.mesh->triangles)
+                    tm->addTriangle(bt(c.mesh->vertices[t[0]]), bt(c.mesh->vertices[t[1]]),
+                                    bt(c.mesh->vertices[t[2]]));
+                s = std::make_unique<btBvhTriangleMeshShape>(tm.get(), true);
+                meshes_.push_back(std::move(tm));
+            }
+            break;
+    }
+    shapes_.push_back(std::move(s));
+    return shapes_.back().get();
+}
+
+bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) {
+    clear();
+    int gyro = 0;
+    if (mode == "gyro-implicit-body") {
+        gyro = BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY;
+    } else if (mode == "gyro-implicit-world") {
+        gyro = BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD;
+    } else if (mode == "gyro-explicit") {
+        gyro = BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT;
+    } else if (mode != "no-gyro") {
+        if (why) *why = "unknown Bullet mode '" + mode + "'";
+        return false;
+    }
+    std::string reason;
+    if (!peer::prepare(scene, peer::PeerCaps{false, true}, &ps_, &reason)) {
+        if (why) *why = reason;
+        return false;
+    }
+    dt_ = dt;
+    time_ = 0.0;
+    loads_ = peer::hasLoads(ps_.model);
+    gCalculateCombinedRestitutionCallback = &combinedRestitution;
+    gCalculateCombinedFrictionCallback = &combinedFriction;
+    gContactBreakingThreshold = kContactBreakingThreshold;
+
+    config_ = std::make_unique<btDefaultCollisionConfiguration>();
+    dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
+    broadphase_ = std::make_unique<btDbvtBroadphase>();
+    solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+    world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                       config_.get());
+    world_->setGravity(bt(scene.settings.gravity));
+    btContactSolverInfo& info = world_->getSolverInfo();
+    info.m_numIterations = std::max(1, scene.settings.solverIterations);
+    info.m_restitutionVelocityThreshold = 1e-3;
+    info.m_splitImpulsePenetrationThreshold = 0.0;
+    info.m_maxGyroscopicForce = std::numeric_limits<double>::max();
+
+    const Model& m = ps_.model;
+    for (int i = 0; i < int(m.bodies.size()); ++i) {
+        const BodyModel& b = m.bodies[i];
+        const BodyDesc& d = scene.bodies[i];
+        const bool dynamic = b.motion == Motion::Dynamic;
+        btCollisionShape* shape = makeShape(b, d.position, ps_.q[i], &reason);
+        if (!shape) {
+            if (why) *why = "bodies[" + std::to_string(i) + "]: " + reason;
+            clear();
+            return false;
+        }
+        Body out;
+        btTransform start;
+        btScalar mass = 0.0;
+        btVector3 localInertia(0, 0, 0);
+        if (b.shape.type == ShapeType::Plane) {
+            start.setIdentity();
+        } else if (dynamic) {
+            // Bullet body frame: principal axes at the centre of mass.
+            Quat principal(b.principalAxes);
+            if (b.principalAxes.determinant() < 0.0) principal = Quat(Mat3(b.principalAxes * -1.0));
+            principal.normalize();
+            const Quat qBody = (ps_.q[i] * principal).normalized();
+            out.toBody = principal.conjugate();
+            const btTransform shapeInBody(bt(out.toBody), bt(out.toBody * -b.centerOfMass));
+            const bool identity = b.centerOfMass.norm() == 0.0 && principal.vec().norm() == 0.0;
+            if (!identity) {
+                auto compound = std::make_unique<btCompoundShape>(false, 1);
+                compound->addChildShape(shapeInBody, shape);
+                shapes_.push_back(std::move(compound));
+                shape = shapes_.back().get();
+            }
+            start = btTransform(bt(qBody), bt(ps_.com[i]));
+            mass = b.mass;
+            // The moments in the order of the principal axes' columns.
+            const Vec3 moments = (b.principalAxes.transpose() * b.inertia * b.principalAxes).diagonal();
+            localInertia = bt(moments);
+        } else {
+            start = btTransform(bt(ps_.q[i]), bt(d.position));
+        }
+        btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape, localInertia);
+        ci.m_startWorldTransform = start;
+        ci.m_restitution = b.restitution;
+        ci.m_friction = b.friction;
+        ci.m_linearDamping = 0.0;
+        ci.m_angularDamping = 0.0;
+        auto rb = std::make_unique<btRigidBody>(ci);
+        if (dynamic) {
+            rb->setLinearVelocity(bt(ps_.v[i]));
+            rb->setAngularVelocity(bt(ps_.w[i]));
+            int flags = rb->getFlags() &
+                        ~(BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD |
+                          BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+            rb->setFlags(flags | gyro);
+            if (!scene.settings.sleeping) rb->setActivationState(DISABLE_DEACTIVATION);
+        } else {
+            out.still.x = ps_.com[i];
+            out.still.q = ps_.q[i];
+        }
+        out.rb = rb.get();
+        world_->addRigidBody(rb.get());
+        rigid_.push_back(std::move(rb));
+        bodies_.push_back(out);
+    }
+    return true;
+}
+
+void BulletAdapter::step() {
+    if (loads_) {
+        for (int i : ps_.model.dynamicBodies) {
+            btRigidBody* rb = bodies_[i].rb;
+            const BodySample s = body(i);
+            Vec3 F, T;
+            peer::appliedLoad(ps_.model, i, time_, s.q, s.v, s.w, &F, &T);
+            if (F.isZero(0.0) && T.isZero(0.0)) continue;
+            rb->activate();
+            rb->applyCentralForce(bt(F));
+            rb->applyTorque(bt(T));
+        }
+    }
+    world_->stepSimulation(dt_, 0, dt_);
+    time_ += dt_;
+}
+
+BodySample BulletAdapter::body(int i) const {
+    const Body& b = bodies_[i];
+    if (!b.rb || b.rb->isStaticOrKinematicObject()) return b.still;
+    BodySample s;
+    const btTransform& t = b.rb->getCenterOfMassTransform();
+    s.x = eig(t.getOrigin());
+    s.q = (eig(t.getRotation()) * b.toBody).normalized();
+    s.v = eig(b.rb->getLinearVelocity());
+    s.w = eig(b.rb->getAngularVelocity());
+    return s;
+}
+
+int BulletAdapter::contactCount() const {
+    int n = 0;
+    for (int k = 0; k < dispatcher_->getNumManifolds(); ++k)
+        n += dispatcher_->getManifoldByIndexInternal(k)->getNumContacts();
+    return n;
+}
+
+}  // namespace
+
+std::unique_ptr<EngineAdapter> makeBulletAdapter() {
+    return std::make_unique<BulletAdapter>();
+}
+
+}  // namespace tumble::bench
