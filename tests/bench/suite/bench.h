@@ -1,0 +1,80 @@
+// The benchmark program's parts: options, the engines to run, and the four measurements
+// (work-precision, speed, skips as speed variants, stress), each writing rows the report
+// turns into CSV, plots and Markdown tables.
+#pragma once
+
+#include "engine_adapter.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tumble::bench {
+
+struct Options {
+    bool quick = false;
+    std::string scene;  ///< empty: all
+    std::vector<std::string> engines{"tumble", "bullet", "ode", "mujoco"};
+    std::filesystem::path out = "bench-out";
+    int runs = 3;  ///< timed runs of each accuracy point (the minimum is kept)
+};
+
+/// Adapters for the engines named in `opt` that were built; prints "not built" for others.
+std::vector<std::unique_ptr<EngineAdapter>> makeEngines(const Options& opt);
+std::unique_ptr<EngineAdapter> makeEngine(const std::string& name);
+
+double wallNow();
+
+// --- work-precision -------------------------------------------------------------------
+struct AccuracyRow {
+    std::string scene, engine, mode;
+    double dt = 0;
+    long steps = 0;
+    double wall = 0;  ///< s, the whole run, minimum of the runs
+    std::string errorName;
+    double error = 0;
+};
+/// Runs the sweep; false when a run crashed or threw where it must not.
+bool runAccuracy(const Options& opt, std::vector<AccuracyRow>& rows);
+
+// --- speed ----------------------------------------------------------------------------
+struct SpeedRow {
+    std::string scene, engine, mode;
+    int bodies = 0;
+    int steps = 0;
+    double msPerStep = 0;
+    double msMaxStep = 0;
+    double contactsPerStep = 0;
+    double peakMB = 0;  ///< peak resident memory of the child process that ran it
+    double baseMB = 0;  ///< the same process before building the scene
+    // Tumble only: ms per step in each stage, pairs and awake bodies per step.
+    double forces = 0, integrate = 0, broadphase = 0, narrowphase = 0, toi = 0, impact = 0, solve = 0,
+           sleep = 0;
+    double pairsPerStep = 0, awakePerStep = 0;
+    std::string note;  ///< n/a reason or failure
+    bool ok = true;
+};
+bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows);
+/// `tumble-bench --child speed SCENE ENGINE MODE [--quick]`: one speed run, one "RESULT" line.
+int childMain(int argc, char** argv);
+
+// --- stress ---------------------------------------------------------------------------
+struct StressRow {
+    std::string test, engine;
+    bool pass = false;
+    std::string figure;
+    bool broken = false;  ///< the run threw or left a non-finite state
+};
+bool runStress(const Options& opt, std::vector<StressRow>& rows);
+
+// --- report ---------------------------------------------------------------------------
+void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows);
+void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows);
+void writeStress(const Options& opt, const std::vector<StressRow>& rows);
+
+/// Every scene name, by kind, for --list and --scene.
+std::vector<std::string> accuracySceneNames();
+std::vector<std::string> speedSceneNames();
+std::vector<std::string> stressTestNames();
+
+}  // namespace tumble::bench

@@ -1,0 +1,137 @@
+// tumble-bench (issue 8): Tumble against its peers on one library of scenes.
+//   tumble-bench                      everything: work-precision, speed, stress
+//   tumble-bench --quick              a reduced set in under a minute (the CI smoke run)
+//   tumble-bench --scene NAME         one scene or stress test (see --list)
+//   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
+//   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
+//   tumble-bench --runs N             timed runs per accuracy point, the minimum kept (3)
+//   tumble-bench --list               the scenes and the engines built
+// Exit status: 0, or 1 when a run crashed, threw or left a non-finite state, or Tumble
+// failed a stress test. Timing never decides it.
+#include "bench.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+namespace tumble::bench {
+
+double wallNow() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::unique_ptr<EngineAdapter> makeEngine(const std::string& name) {
+    if (name == "tumble") return makeTumbleAdapter();
+    if (name == "bullet") return makeBulletAdapter();
+    if (name == "ode") return makeOdeAdapter();
+    if (name == "mujoco") return makeMujocoAdapter();
+    return nullptr;
+}
+
+std::vector<std::unique_ptr<EngineAdapter>> makeEngines(const Options& opt) {
+    std::vector<std::unique_ptr<EngineAdapter>> out;
+    for (const std::string& name : opt.engines) {
+        if (auto e = makeEngine(name)) {
+            out.push_back(std::move(e));
+        } else {
+            static std::vector<std::string> told;
+            if (std::find(told.begin(), told.end(), name) == told.end()) {
+                std::printf("%s: not built, skipped\n", name.c_str());
+                told.push_back(name);
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace tumble::bench
+
+using namespace tumble::bench;
+
+namespace {
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+void list() {
+    std::printf("accuracy scenes (work-precision):\n");
+    for (const auto& n : accuracySceneNames()) std::printf("  %s\n", n.c_str());
+    std::printf("speed scenes:\n");
+    for (const auto& n : speedSceneNames()) std::printf("  %s\n", n.c_str());
+    std::printf("stress tests:\n");
+    for (const auto& n : stressTestNames()) std::printf("  %s\n", n.c_str());
+    std::printf("engines:\n");
+    for (const char* n : {"tumble", "bullet", "ode", "mujoco"}) {
+        auto e = makeEngine(n);
+        std::string modes;
+        if (e)
+            for (const auto& m : e->modes()) modes += (modes.empty() ? "" : ", ") + m;
+        std::printf("  %-7s %s\n", n, e ? modes.c_str() : "not built");
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc > 1 && std::strcmp(argv[1], "--child") == 0) return childMain(argc, argv);
+    Options opt;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const bool more = i + 1 < argc;
+        if (a == "--quick") {
+            opt.quick = true;
+        } else if (a == "--list") {
+            list();
+            return 0;
+        } else if (a == "--scene" && more) {
+            opt.scene = argv[++i];
+        } else if (a == "--engines" && more) {
+            opt.engines.clear();
+            std::stringstream in(argv[++i]);
+            for (std::string e; std::getline(in, e, ',');) opt.engines.push_back(e);
+        } else if (a == "--out" && more) {
+            opt.out = argv[++i];
+        } else if (a == "--runs" && more) {
+            opt.runs = std::max(1, std::atoi(argv[++i]));
+        } else {
+            std::fprintf(stderr,
+                         "usage: tumble-bench [--quick] [--scene NAME] [--engines tumble,bullet,ode,mujoco] "
+                         "[--out DIR] [--runs N] [--list]\n");
+            return 2;
+        }
+    }
+    const bool all = opt.scene.empty();
+    if (!all && !contains(accuracySceneNames(), opt.scene) && !contains(speedSceneNames(), opt.scene) &&
+        !contains(stressTestNames(), opt.scene)) {
+        std::fprintf(stderr, "no scene or test named %s (see --list)\n", opt.scene.c_str());
+        return 2;
+    }
+    std::filesystem::create_directories(opt.out);
+    std::filesystem::remove(opt.out / "summary.md");
+    const double t0 = wallNow();
+    bool ok = true;
+
+    std::vector<AccuracyRow> accuracy;
+    if (all || contains(accuracySceneNames(), opt.scene)) {
+        std::printf("# Work-precision%s\n", opt.quick ? " (quick: steps 1/60 and 1/240, one run)" : "");
+        ok = runAccuracy(opt, accuracy) && ok;
+        writeAccuracy(opt, accuracy);
+    }
+    std::vector<SpeedRow> speed;
+    if (all || contains(speedSceneNames(), opt.scene)) {
+        std::printf("\n# Speed%s\n", opt.quick ? " (quick: a few steps each)" : "");
+        ok = runSpeed(opt, speed) && ok;
+        writeSpeed(opt, speed);
+    }
+    std::vector<StressRow> stress;
+    if (all || contains(stressTestNames(), opt.scene)) {
+        std::printf("\n# Stability stress%s\n", opt.quick ? " (quick: shorter runs)" : "");
+        ok = runStress(opt, stress) && ok;
+        writeStress(opt, stress);
+    }
+    std::printf("\n%s in %.1f s; CSV, plots and summary.md in %s\n", ok ? "done" : "FAILED", wallNow() - t0,
+                opt.out.c_str());
+    return ok ? 0 : 1;
+}

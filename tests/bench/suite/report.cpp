@@ -1,0 +1,209 @@
+// The report: CSV of every point, gnuplot scripts and PNGs of the work-precision diagrams
+// (when gnuplot is installed), and Markdown tables in DIR/summary.md for docs/benchmarks.md.
+#include "bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace tumble::bench {
+
+namespace {
+
+std::ofstream openOut(const Options& opt, const std::string& name, bool append = false) {
+    std::filesystem::create_directories(opt.out);
+    return std::ofstream(opt.out / name, append ? std::ios::app : std::ios::trunc);
+}
+
+std::string num(double x, const char* fmt = "%.3g") {
+    if (std::isinf(x)) return "inf";
+    if (std::isnan(x)) return "nan";
+    char b[64];
+    std::snprintf(b, sizeof b, fmt, x);
+    return b;
+}
+
+double perSimSecond(const AccuracyRow& r) {
+    return 1e3 * r.wall / (r.steps * r.dt);  // ms of wall time per simulated second
+}
+
+bool haveGnuplot() {
+    return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows) {
+    if (rows.empty()) return;
+    std::ofstream csv = openOut(opt, "accuracy.csv");
+    csv << "scene,engine,mode,dt,steps,wall_s,ms_per_step,error_name,error\n";
+    for (const AccuracyRow& r : rows)
+        csv << r.scene << ',' << r.engine << ',' << r.mode << ',' << num(r.dt, "%.10g") << ',' << r.steps
+            << ',' << num(r.wall, "%.6g") << ',' << num(1e3 * r.wall / r.steps, "%.6g") << ',' << r.errorName
+            << ',' << num(r.error, "%.6g") << '\n';
+
+    // The main error of each scene is its first; plots for every error name.
+    std::vector<std::pair<std::string, std::string>> plots;  // scene, error name
+    std::map<std::string, std::string> mainError;
+    for (const AccuracyRow& r : rows) {
+        if (!mainError.count(r.scene)) mainError[r.scene] = r.errorName;
+        if (std::find(plots.begin(), plots.end(), std::pair(r.scene, r.errorName)) == plots.end())
+            plots.emplace_back(r.scene, r.errorName);
+    }
+    std::filesystem::create_directories(opt.out / "data");
+    const bool gnuplot = haveGnuplot();
+    for (const auto& [scene, errorName] : plots) {
+        std::vector<std::string> series;
+        for (const AccuracyRow& r : rows) {
+            if (r.scene != scene || r.errorName != errorName) continue;
+            const std::string key = r.engine + " " + r.mode;
+            const std::string file =
+                "data/" + scene + "." + errorName + "." + r.engine + "." + r.mode + ".dat";
+            const bool first = std::find(series.begin(), series.end(), key) == series.end();
+            if (first) series.push_back(key);
+            std::ofstream dat = openOut(opt, file, !first);
+            if (std::isfinite(r.error))
+                dat << num(perSimSecond(r), "%.6g") << ' ' << num(std::max(r.error, 1e-16), "%.6g") << ' '
+                    << num(1 / r.dt, "%.0f") << '\n';
+        }
+        const std::string base = "bench-" + scene + (errorName == mainError[scene] ? "" : "-" + errorName);
+        std::ofstream gp = openOut(opt, base + ".gp");
+        gp << "# work-precision diagram, written by tumble-bench; run in " << opt.out.string() << "\n"
+           << "set terminal pngcairo size 800,560 noenhanced font 'DejaVu Sans,10'\n"
+           << "set output '" << base << ".png'\n"
+           << "set title '" << scene << ": " << errorName << " against run time'\n"
+           << "set logscale xy\nset format y '%.0e'\nset grid\nset key outside right\n"
+           << "set xlabel 'wall time per simulated second (ms), steps 1/30 ... 1/3840 s'\n"
+           << "set ylabel '" << errorName << " (floor 1e-16)'\nplot ";
+        for (size_t i = 0; i < series.size(); ++i) {
+            const size_t sp = series[i].find(' ');
+            const std::string file = "data/" + scene + "." + errorName + "." + series[i].substr(0, sp) + "." +
+                                     series[i].substr(sp + 1) + ".dat";
+            gp << (i ? ", \\\n     " : "") << "'" << file << "' using 1:2 with linespoints title '"
+               << series[i] << "'";
+        }
+        gp << "\n";
+        gp.close();
+        if (gnuplot) {
+            const std::string cmd = "cd '" + opt.out.string() + "' && gnuplot '" + base + ".gp' 2>&1";
+            if (std::system(cmd.c_str()) != 0) std::printf("gnuplot failed on %s.gp\n", base.c_str());
+        }
+    }
+    if (!gnuplot) std::printf("gnuplot not found: the plot scripts are in %s (*.gp)\n", opt.out.c_str());
+
+    // Markdown: the main error and the time per simulated second of each point; then
+    // Tumble's cheapest run at each error level against the cheapest peer's.
+    std::ofstream md = openOut(opt, "summary.md", true);
+    for (const auto& [scene, errorName] : mainError) {
+        std::vector<double> dts;
+        for (const AccuracyRow& r : rows)
+            if (r.scene == scene && std::find(dts.begin(), dts.end(), r.dt) == dts.end()) dts.push_back(r.dt);
+        md << "\n#### " << scene << ": " << errorName << " (ms per simulated second)\n\n| engine | mode |";
+        for (double dt : dts) md << " 1/" << num(1 / dt, "%.0f") << " |";
+        md << "\n|---|---|";
+        for (size_t i = 0; i < dts.size(); ++i) md << "--:|";
+        md << "\n";
+        std::vector<std::string> keys;
+        for (const AccuracyRow& r : rows)
+            if (r.scene == scene && r.errorName == errorName &&
+                std::find(keys.begin(), keys.end(), r.engine + "|" + r.mode) == keys.end())
+                keys.push_back(r.engine + "|" + r.mode);
+        for (const std::string& k : keys) {
+            md << "| " << k.substr(0, k.find('|')) << " | " << k.substr(k.find('|') + 1) << " |";
+            for (double dt : dts) {
+                std::string cell = " ";
+                for (const AccuracyRow& r : rows)
+                    if (r.scene == scene && r.errorName == errorName && r.engine + "|" + r.mode == k &&
+                        r.dt == dt)
+                        cell = num(r.error, "%.2g") + " (" + num(perSimSecond(r), "%.2g") + ")";
+                md << ' ' << cell << " |";
+            }
+            md << '\n';
+        }
+        // Error levels: every decade between the best and the worst finite error.
+        double lo = 1e300, hi = 0;
+        for (const AccuracyRow& r : rows)
+            if (r.scene == scene && r.errorName == errorName && std::isfinite(r.error) && r.error > 0)
+                lo = std::min(lo, r.error), hi = std::max(hi, r.error);
+        if (hi == 0) continue;
+        md << "\n| " << errorName
+           << " <= | tumble: cheapest run (ms/sim-s) | fastest peer | tumble / peer |\n"
+           << "|---|---|---|---|\n";
+        for (int k = static_cast<int>(std::ceil(std::log10(hi)));
+             k >= static_cast<int>(std::ceil(std::log10(lo))); --k) {
+            const double target = std::pow(10.0, k);
+            const AccuracyRow* best[2] = {nullptr, nullptr};  // tumble, peer
+            for (const AccuracyRow& r : rows) {
+                if (r.scene != scene || r.errorName != errorName || !(r.error <= target)) continue;
+                const AccuracyRow*& b = best[r.engine == "tumble" ? 0 : 1];
+                if (!b || perSimSecond(r) < perSimSecond(*b)) b = &r;
+            }
+            auto cell = [](const AccuracyRow* r) {
+                return r ? num(perSimSecond(*r), "%.3g") + " (" + r->engine + " " + r->mode + ", 1/" +
+                               num(1 / r->dt, "%.0f") + ")"
+                         : std::string("not reached");
+            };
+            md << "| 1e" << k << " | " << cell(best[0]) << " | " << cell(best[1]) << " | "
+               << (best[0] && best[1] ? num(perSimSecond(*best[0]) / perSimSecond(*best[1]), "%.2f") : "-")
+               << " |\n";
+        }
+    }
+}
+
+void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
+    if (rows.empty()) return;
+    std::ofstream csv = openOut(opt, "speed.csv");
+    csv << "scene,engine,mode,bodies,steps,ms_per_step,ms_max_step,contacts_per_step,peak_mb,base_mb,forces_"
+           "ms,"
+           "integrate_ms,broadphase_ms,narrowphase_ms,toi_ms,impact_ms,solve_ms,sleep_ms,pairs_per_step,"
+           "awake_per_step,note\n";
+    for (const SpeedRow& r : rows)
+        csv << r.scene << ',' << r.engine << ',' << r.mode << ',' << r.bodies << ',' << r.steps << ','
+            << r.msPerStep << ',' << r.msMaxStep << ',' << r.contactsPerStep << ',' << r.peakMB << ','
+            << r.baseMB << ',' << r.forces << ',' << r.integrate << ',' << r.broadphase << ','
+            << r.narrowphase << ',' << r.toi << ',' << r.impact << ',' << r.solve << ',' << r.sleep << ','
+            << r.pairsPerStep << ',' << r.awakePerStep << ",\"" << r.note << "\"\n";
+    std::ofstream md = openOut(opt, "summary.md", true);
+    md << "\n| scene | engine | mode | bodies | steps | ms/step | slowest step | contacts/step | memory (MB) "
+          "|\n"
+       << "|---|---|---|--:|--:|--:|--:|--:|--:|\n";
+    for (const SpeedRow& r : rows) {
+        if (!r.note.empty()) {
+            md << "| " << r.scene << " | " << r.engine << " | " << r.mode << " | " << r.note
+               << " | | | | | |\n";
+            continue;
+        }
+        md << "| " << r.scene << " | " << r.engine << " | " << r.mode << " | " << r.bodies << " | " << r.steps
+           << " | " << num(r.msPerStep) << " | " << num(r.msMaxStep) << " | "
+           << num(r.contactsPerStep, "%.0f") << " | " << num(r.peakMB - r.baseMB, "%.1f") << " |\n";
+    }
+    md << "\nTumble per stage (ms per step):\n\n| scene | forces | integrate | broadphase | narrowphase | "
+          "time of impact "
+          "| impact solve | contact solve | sleep | pairs/step | awake bodies/step |\n"
+       << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+    for (const SpeedRow& r : rows)
+        if (r.engine == "tumble" && r.note.empty())
+            md << "| " << r.scene << " | " << num(r.forces) << " | " << num(r.integrate) << " | "
+               << num(r.broadphase) << " | " << num(r.narrowphase) << " | " << num(r.toi) << " | "
+               << num(r.impact) << " | " << num(r.solve) << " | " << num(r.sleep) << " | "
+               << num(r.pairsPerStep, "%.0f") << " | " << num(r.awakePerStep, "%.0f") << " |\n";
+}
+
+void writeStress(const Options& opt, const std::vector<StressRow>& rows) {
+    if (rows.empty()) return;
+    std::ofstream csv = openOut(opt, "stress.csv");
+    csv << "test,engine,result,figure\n";
+    for (const StressRow& r : rows)
+        csv << r.test << ',' << r.engine << ',' << (r.pass ? "PASS" : "FAIL") << ",\"" << r.figure << "\"\n";
+    std::ofstream md = openOut(opt, "summary.md", true);
+    md << "\n| test | engine | result | figure |\n|---|---|---|---|\n";
+    for (const StressRow& r : rows)
+        md << "| " << r.test << " | " << r.engine << " | " << (r.pass ? "PASS" : "**FAIL**") << " | "
+           << r.figure << " |\n";
+}
+
+}  // namespace tumble::bench

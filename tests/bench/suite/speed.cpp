@@ -1,0 +1,159 @@
+// Speed: each scene, engine by engine, in a child process of its own (this program run
+// with --child), so the peak memory it reports is that run's and a crash is reported, not
+// suffered. The child prints one line, "RESULT key=value ...", that the parent reads back.
+#include "adapter_tumble.h"
+#include "bench.h"
+#include "scenes.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace tumble::bench {
+
+std::vector<std::string> speedSceneNames() {
+    std::vector<std::string> names;
+    for (const SpeedScene& s : speedScenes()) names.push_back(s.name);
+    return names;
+}
+
+namespace {
+
+double vmKB(const char* key) {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind(key, 0) == 0) return std::atof(line.c_str() + std::strlen(key));
+    return 0.0;
+}
+
+std::string selfPath() {
+    char buf[4096];
+    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    return n > 0 ? std::string(buf, n) : "tumble-bench";
+}
+
+}  // namespace
+
+int childMain(int argc, char** argv) {
+    if (argc < 6 || std::strcmp(argv[2], "speed") != 0) {
+        std::fprintf(stderr, "usage: tumble-bench --child speed SCENE ENGINE MODE [--quick]\n");
+        return 2;
+    }
+    const std::string sceneName = argv[3], engineName = argv[4], mode = argv[5];
+    const bool quick = argc > 6 && std::strcmp(argv[6], "--quick") == 0;
+    const double base = vmKB("VmHWM:");
+    for (SpeedScene& sc : speedScenes()) {
+        if (sc.name != sceneName) continue;
+        std::unique_ptr<EngineAdapter> engine = makeEngine(engineName);
+        std::string why;
+        bool loaded = false;
+        {
+            const SceneDesc scene = sc.build();  // freed once the engine has its own copy
+            loaded = engine && engine->load(scene, mode, sc.dt, &why);
+        }
+        if (!loaded) {
+            std::printf("NA %s\n", engine ? why.c_str() : "not built");
+            return 0;
+        }
+        const int steps = quick ? sc.quickSteps : sc.steps;
+        double total = 0, worst = 0, contacts = 0;
+        try {
+            for (int i = 0; i < steps; ++i) {
+                const double t0 = wallNow();
+                engine->step();
+                const double t = wallNow() - t0;
+                total += t;
+                worst = std::max(worst, t);
+                contacts += engine->contactCount();
+            }
+        } catch (const std::exception& e) {
+            std::printf("FAIL %s\n", e.what());
+            return 1;
+        }
+        std::printf("RESULT bodies=%d steps=%d ms=%.6g max=%.6g contacts=%.6g peak=%.6g base=%.6g",
+                    engine->bodyCount(), steps, 1e3 * total / steps, 1e3 * worst, contacts / steps,
+                    vmKB("VmHWM:") / 1024, base / 1024);
+        if (auto* t = dynamic_cast<TumbleAdapter*>(engine.get())) {
+            const Profile& p = t->world().profile();
+            const double k = 1e3 / steps;
+            std::printf(
+                " forces=%.6g integrate=%.6g broadphase=%.6g narrowphase=%.6g toi=%.6g impact=%.6g "
+                "solve=%.6g sleep=%.6g pairs=%.6g awake=%.6g",
+                p.forces * k, p.integrate * k, p.broadphase * k, p.narrowphase * k, p.timeOfImpact * k,
+                p.impactSolve * k, p.solve * k, p.sleep * k, double(p.pairs) / steps,
+                double(p.awakeBodySteps) / steps);
+        }
+        std::printf("\n");
+        return 0;
+    }
+    std::printf("FAIL no speed scene %s\n", sceneName.c_str());
+    return 1;
+}
+
+bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
+    bool ok = true;
+    const std::string self = selfPath();
+    std::vector<std::unique_ptr<EngineAdapter>> engines = makeEngines(opt);
+    for (const std::string& name : speedSceneNames()) {
+        if (!opt.scene.empty() && opt.scene != name) continue;
+        for (auto& engine : engines) {
+            SpeedRow row;
+            row.scene = name;
+            row.engine = engine->name();
+            row.mode = engine->modes().front();
+            const std::string cmd = "'" + self + "' --child speed " + name + " " + row.engine + " " +
+                                    row.mode + (opt.quick ? " --quick" : "") + " 2>&1";
+            FILE* pipe = popen(cmd.c_str(), "r");
+            std::string out;
+            char buf[1024];
+            while (pipe && std::fgets(buf, sizeof buf, pipe)) out += buf;
+            const int status = pipe ? pclose(pipe) : -1;
+            std::map<std::string, double> kv;
+            const size_t at = out.find("RESULT ");
+            if (at != std::string::npos) {
+                std::istringstream in(out.substr(at + 7));
+                std::string tok;
+                while (in >> tok)
+                    if (auto eq = tok.find('='); eq != std::string::npos)
+                        kv[tok.substr(0, eq)] = std::atof(tok.c_str() + eq + 1);
+            }
+            if (status != 0 || kv.empty()) {
+                const size_t na = out.find("NA ");
+                if (status == 0 && na != std::string::npos) {
+                    row.note = "n/a: " + out.substr(na + 3);
+                } else {
+                    row.ok = false;
+                    ok = false;
+                    row.note = "failed (status " + std::to_string(status) + "): " + out.substr(0, 300);
+                }
+                while (!row.note.empty() && row.note.back() == '\n') row.note.pop_back();
+            } else {
+                row.bodies = static_cast<int>(kv["bodies"]);
+                row.steps = static_cast<int>(kv["steps"]);
+                row.msPerStep = kv["ms"];
+                row.msMaxStep = kv["max"];
+                row.contactsPerStep = kv["contacts"];
+                row.peakMB = kv["peak"];
+                row.baseMB = kv["base"];
+                row.forces = kv["forces"], row.integrate = kv["integrate"], row.broadphase = kv["broadphase"];
+                row.narrowphase = kv["narrowphase"], row.toi = kv["toi"], row.impact = kv["impact"];
+                row.solve = kv["solve"], row.sleep = kv["sleep"];
+                row.pairsPerStep = kv["pairs"], row.awakePerStep = kv["awake"];
+            }
+            std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %s\n",
+                        name.c_str(), row.engine.c_str(), row.mode.c_str(), row.msPerStep, row.msMaxStep,
+                        row.contactsPerStep, row.peakMB - row.baseMB, row.note.c_str());
+            std::fflush(stdout);
+            rows.push_back(row);
+        }
+    }
+    return ok;
+}
+
+}  // namespace tumble::bench
