@@ -57,6 +57,16 @@ case "$cmd" in
     else
       xvfb-run -a -s "-screen 0 1280x1024x24" ctest --test-dir "$BUILD_DIR" --output-on-failure -j2 "$@"
     fi
+    # The benchmark's smoke run (issue 8, docs/benchmarks.md): a reduced set in seconds. It
+    # asserts no timing; it fails only on a crash, an exception or a non-finite state.
+    bench_log="$BUILD_DIR/bench-quick.log"
+    if "$BUILD_DIR/tests/bench/suite/tumble-bench" --quick --out "$BUILD_DIR/bench-quick" >"$bench_log" 2>&1; then
+      tail -n 1 "$bench_log"
+    else
+      cat "$bench_log"
+      echo "dev.sh: tumble-bench --quick failed" >&2
+      exit 1
+    fi
     ;;
   build)
     install_missing
