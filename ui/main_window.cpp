@@ -2,6 +2,7 @@
 
 #include "document.h"
 #include "editor_main.h"
+#include "plots_dock.h"
 #include "property_dock.h"
 #include "scene_tree_dock.h"
 #include "settings_dock.h"
@@ -95,7 +96,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
     settings->setObjectName("SettingsDock");
     addDockWidget(Qt::RightDockWidgetArea, settings);
     tabifyDockWidget(properties, settings);
-    properties->raise();
 
     auto* history = new QDockWidget(tr("Undo History"), this);
     history->setObjectName("UndoHistoryDock");
@@ -104,6 +104,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
 
     timelineDock_ = new TimelineDock(timeline_, this);
     addDockWidget(Qt::BottomDockWidgetArea, timelineDock_);
+    auto* plots = new PlotsDock(timeline_, this);
+    plots->setObjectName("PlotsDock");
+    addDockWidget(Qt::RightDockWidgetArea, plots);
+    tabifyDockWidget(settings, plots);
+    properties->raise();
 
     buildMenus();
     setAcceptDrops(true);
