@@ -22,7 +22,8 @@
 //   vertices in a btConvexHullShape), mesh triangles on a static body (btBvhTriangleMeshShape).
 //   Collision margins: spheres and capsules carry theirs inside the radius, boxes and
 //   cylinders inside the extents; a convex hull's margin is added outside, so it is set to
-//   1 mm instead of Bullet's 4 cm.
+//   1 mm instead of Bullet's 4 cm. Convex pairs get a full manifold per step (the collision
+//   configuration's multipoint iterations: 3 perturbations), not one point per step.
 // - Materials: gCalculateCombinedRestitutionCallback and ...FrictionCallback are set to
 //   Tumble's rules (max restitution, sqrt of the product of frictions) while an adapter is
 //   loaded (they are process globals). Bullet gives no bounce below
@@ -193,6 +194,10 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
     gContactBreakingThreshold = kContactBreakingThreshold;
 
     config_ = std::make_unique<btDefaultCollisionConfiguration>();
+    // A full contact manifold in one step for convex shapes (otherwise one point per step,
+    // accumulated over later steps: a hull on a plane rocks on a single point).
+    config_->setConvexConvexMultipointIterations(3, 3);
+    config_->setPlaneConvexMultipointIterations(3, 3);
     dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
     broadphase_ = std::make_unique<btDbvtBroadphase>();
     solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();

@@ -12,11 +12,14 @@
 //                kinetic energy stay within 2 % (modes without a gyroscopic term: printed,
 //                not checked; they do not conserve L).
 //   bounce       a ball dropped from 1 m onto a plane, both restitution 0.5: the first apex
-//                after the bounce at e^2 h = 0.25 m within 5 %.
+//                after the bounce at e^2 h = 0.25 m within 5 % (MuJoCo, soft contacts: 30 %).
+//   rest         a cylinder, a capsule, a turned box and an off-centre convex hull resting on
+//                a plane: centre-of-mass heights within 5 mm (shape axes and offsets).
 //
 // Prints a table; exits 1 when a check fails, 2 when no peer was built.
 #include "engine_adapter.h"
 
+#include <tumble/mass.h>
 #include <tumble/model.h>
 
 #include <cmath>
@@ -90,9 +93,65 @@ SceneDesc bounceScene() {
     return s;
 }
 
+// Four shapes resting on a plane, spaced apart: an upright cylinder (r 0.3, half height 0.6),
+// an upright capsule (r 0.2, half height 0.4), a box turned a quarter about x, and a convex
+// hull of an off-centre box mesh (0..1 x 0..0.5 x 0..0.8 in the body frame). A wrong axis
+// (z for y) or a wrong centre-of-mass offset puts a body at another height.
+SceneDesc restScene() {
+    SceneDesc s;
+    s.settings.gravity = kG;
+    s.settings.sleeping = false;
+    BodyDesc ground;
+    ground.name = "ground";
+    ground.motion = Motion::Static;
+    ground.shape.type = ShapeType::Plane;
+    ground.restitution = 0.0;
+    s.bodies.push_back(ground);
+    auto add = [&](const char* name, const ShapeDesc& shape, const Vec3& at, const Quat& q) {
+        BodyDesc b;
+        b.name = name;
+        b.shape = shape;
+        b.mass = 1.0;
+        b.position = at;
+        b.orientation = q;
+        b.restitution = 0.0;
+        s.bodies.push_back(b);
+    };
+    ShapeDesc cyl;
+    cyl.type = ShapeType::Cylinder;
+    cyl.radius = 0.3;
+    cyl.halfHeight = 0.6;
+    add("cylinder", cyl, Vec3(-3, 0.61, 0), Quat::Identity());
+    ShapeDesc cap;
+    cap.type = ShapeType::Capsule;
+    cap.radius = 0.2;
+    cap.halfHeight = 0.4;
+    add("capsule", cap, Vec3(0, 0.61, 0), Quat::Identity());
+    ShapeDesc box;
+    box.type = ShapeType::Box;
+    box.halfExtents = Vec3(0.5, 0.2, 0.35);
+    add("box", box, Vec3(3, 0.36, 0), Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX())));
+    auto mesh = std::make_shared<TriangleMesh>();
+    for (int k = 0; k < 8; ++k)
+        mesh->vertices.emplace_back(k & 1 ? 1.0 : 0.0, k & 2 ? 0.5 : 0.0, k & 4 ? 0.8 : 0.0);
+    // Counter-clockwise seen from outside: -x, +x, -y, +y, -z, +z.
+    const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& f : faces) {
+        mesh->triangles.push_back({f[0], f[1], f[2]});
+        mesh->triangles.push_back({f[0], f[2], f[3]});
+    }
+    ShapeDesc hull;
+    hull.type = ShapeType::Mesh;
+    hull.file = "offset-box.obj";
+    hull.meshData = mesh;
+    add("hull", hull, Vec3(6, 0.01, 0), Quat::Identity());
+    return s;
+}
+
 struct Row {
     std::string engine, mode;
-    std::string fall, spin, bounce;
+    std::string fall, spin, bounce, rest;
     bool ok = true;
 };
 
@@ -184,8 +243,33 @@ std::string checkBounce(EngineAdapter& e, const std::string& mode, bool* ok) {
         prevV = s.v.y();
     }
     const double ratio = apex / 1.0;
-    if (!(std::abs(ratio - 0.25) <= 0.05 * 0.25) || contacts < 1) *ok = false;
+    // MuJoCo's contact is a spring-damper resolved over 8 steps at this dt (peer_mujoco.cpp):
+    // its bounce converges to e only as dt shrinks, so it gets a wider band.
+    const double tolerance = e.name() == "mujoco" ? 0.30 : 0.05;
+    if (!(std::abs(ratio - 0.25) <= tolerance * 0.25) || contacts < 1) *ok = false;
     return fmt("apex %.4f h (%+.1f %%)", ratio, 100.0 * (ratio / 0.25 - 1.0)) + fmt(" contacts %g", contacts);
+}
+
+// Heights of the centres of mass after 1.5 s at rest: cylinder 0.6, capsule 0.6, box 0.35
+// (its z half extent, turned onto y), hull 0.25; within 5 mm.
+std::string checkRest(EngineAdapter& e, const std::string& mode, bool* ok) {
+    const SceneDesc scene = restScene();
+    std::string why;
+    if (!e.load(scene, mode, kDt, &why)) {
+        *ok = false;
+        return "refused: " + why;
+    }
+    for (int k = 0; k < 360; ++k) e.step();
+    const double want[] = {0.6, 0.6, 0.35, 0.25};
+    double worst = 0.0;
+    int which = 0;
+    for (int i = 0; i < 4; ++i) {
+        const double err = std::abs(e.body(i + 1).x.y() - want[i]);
+        if (!(err <= worst)) which = i + 1;
+        worst = std::isfinite(err) ? std::max(worst, err) : INFINITY;
+    }
+    if (!(worst <= 5e-3)) *ok = false;
+    return fmt("height %.1e m", worst) + " (" + scene.bodies[which].name + ")";
 }
 
 }  // namespace
@@ -207,19 +291,20 @@ int main() {
         }
         ++built;
         for (const std::string& mode : e->modes()) {
-            Row row{e->name(), mode, "", "", "", true};
+            Row row{e->name(), mode, "", "", "", "", true};
             row.fall = checkFall(*e, mode, &row.ok);
             row.spin = checkSpin(*e, mode, &row.ok);
             row.bounce = checkBounce(*e, mode, &row.ok);
+            row.rest = checkRest(*e, mode, &row.ok);
             rows.push_back(row);
         }
     }
-    std::printf("%-7s %-20s %-36s %-40s %-34s %s\n", "engine", "mode", "free fall (rel. error)",
-                "spin (worst drift)", "bounce e=0.5 (apex / h, want 0.25)", "");
+    std::printf("%-7s %-20s %-36s %-40s %-34s %-28s\n", "engine", "mode", "free fall (rel. error)",
+                "spin (worst drift)", "bounce e=0.5 (apex / h, want 0.25)", "rest (worst height error)");
     bool all = true;
     for (const Row& r : rows) {
-        std::printf("%-7s %-20s %-36s %-40s %-34s %s\n", r.engine.c_str(), r.mode.c_str(), r.fall.c_str(),
-                    r.spin.c_str(), r.bounce.c_str(), r.ok ? "ok" : "FAIL");
+        std::printf("%-7s %-20s %-36s %-40s %-34s %-28s %s\n", r.engine.c_str(), r.mode.c_str(),
+                    r.fall.c_str(), r.spin.c_str(), r.bounce.c_str(), r.rest.c_str(), r.ok ? "ok" : "FAIL");
         all = all && r.ok;
     }
     if (built == 0) return 2;

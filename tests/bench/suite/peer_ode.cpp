@@ -158,6 +158,8 @@ dGeomID OdeAdapter::makeGeom(const BodyModel& b, const Vec3& position, const Qua
                 dGeomTriMeshDataBuildDouble(m->data, m->vertices.data(), 3 * sizeof(double),
                                             int(c.mesh->vertices.size()), m->indices.data(),
                                             int(m->indices.size()), 3 * sizeof(dTriIndex));
+                // Convex-against-triangles collision (libccd) needs the face angles.
+                dGeomTriMeshDataPreprocess2(m->data, 1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES, nullptr);
                 dGeomID g = dCreateTriMesh(space_, m->data, nullptr, nullptr, nullptr);
                 meshes_.push_back(std::move(m));
                 return g;
