@@ -118,12 +118,14 @@ int main(int argc, char** argv) {
         std::printf("# Work-precision%s\n", opt.quick ? " (quick: steps 1/60 and 1/240, one run)" : "");
         ok = runAccuracy(opt, accuracy) && ok;
         writeAccuracy(opt, accuracy);
+        std::printf("(work-precision: %.1f s)\n", wallNow() - t0);
     }
     std::vector<SpeedRow> speed;
     if (all || contains(speedSceneNames(), opt.scene)) {
         std::printf("\n# Speed%s\n", opt.quick ? " (quick: a few steps each)" : "");
         ok = runSpeed(opt, speed) && ok;
         writeSpeed(opt, speed);
+        std::printf("(so far: %.1f s)\n", wallNow() - t0);
     }
     std::vector<StressRow> stress;
     if (all || contains(stressTestNames(), opt.scene)) {

@@ -186,23 +186,23 @@ std::vector<SpeedScene> speedScenes() {
     std::vector<SpeedScene> out;
     out.push_back({"drop-3000",
                    "3 008 boxes (half extent 1, 2 kg) in 47 layers of 8 x 8 dropped on the ground",
-                   [] { return named(drop3000()); }, 1.0 / 60.0, 180, 5});
+                   [] { return named(drop3000()); }, 1.0 / 60.0, 180, 3});
     out.push_back({"pyramid-1240", "a 15-layer square pyramid of 1 240 unit boxes, sleeping off",
                    [] {
                        SceneDesc pyr = boxPyramid(15, 0.5, 1.0, Vec3::Zero());
                        pyr.settings.sleeping = false;
                        return named(pyr);
                    },
-                   1.0 / 60.0, 120, 5});
+                   1.0 / 60.0, 120, 2});
     out.push_back({"free-10000", "10 000 boxes tumbling, no gravity, no contacts, nothing static",
                    [] { return named(freeBodies(10000, false)); }, 1.0 / 60.0, 120, 5});
     out.push_back({"free-10000-far-ground",
                    "free-10000 with a ground plane 10 km below: the contact stages run",
                    [] { return named(freeBodies(10000, true)); }, 1.0 / 60.0, 120, 5});
     out.push_back({"piles-sleep-on", "100 towers of 5 boxes, the top of one pushed each second, sleeping on",
-                   [] { return named(piles(100, true)); }, 1.0 / 60.0, 600, 60});
+                   [] { return named(piles(100, true)); }, 1.0 / 60.0, 600, 20});
     out.push_back({"piles-sleep-off", "piles-sleep-on with sleeping off",
-                   [] { return named(piles(100, false)); }, 1.0 / 60.0, 600, 60});
+                   [] { return named(piles(100, false)); }, 1.0 / 60.0, 600, 20});
     out.push_back({"hull-rain", "300 convex hulls (jittered octahedra) raining on a 800-triangle mesh ground",
                    [] { return named(hullRain(300)); }, 1.0 / 60.0, 300, 10});
     out.push_back({"static-field",

@@ -5,6 +5,7 @@
 #include "bench.h"
 #include "scenes.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -107,8 +108,12 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
             row.scene = name;
             row.engine = engine->name();
             row.mode = engine->modes().front();
-            const std::string cmd = "'" + self + "' --child speed " + name + " " + row.engine + " " +
-                                    row.mode + (opt.quick ? " --quick" : "") + " 2>&1";
+            // A bound on each run: a peer that takes minutes to build a big model is reported, not waited
+            // for.
+            const int limit = opt.quick ? 4 : 120;
+            const std::string cmd = "timeout " + std::to_string(limit) + " '" + self + "' --child speed " +
+                                    name + " " + row.engine + " " + row.mode + (opt.quick ? " --quick" : "") +
+                                    " 2>&1";
             FILE* pipe = popen(cmd.c_str(), "r");
             std::string out;
             char buf[1024];
@@ -127,6 +132,8 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
                 const size_t na = out.find("NA ");
                 if (status == 0 && na != std::string::npos) {
                     row.note = "n/a: " + out.substr(na + 3);
+                } else if (WIFEXITED(status) && WEXITSTATUS(status) == 124) {
+                    row.note = "stopped after " + std::to_string(limit) + " s (the time limit of a run)";
                 } else {
                     row.ok = false;
                     ok = false;

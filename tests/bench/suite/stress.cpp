@@ -157,7 +157,7 @@ std::vector<StressTest> stressTests() {
     std::vector<StressTest> t;
     t.push_back({"million-steps-free", [](EngineAdapter& e, bool quick) {
                      SceneDesc s = sampleScene("tumbling-box.json");
-                     return energyNoGain(e, "million-steps-free", s, quick ? 100000 : 1000000);
+                     return energyNoGain(e, "million-steps-free", s, quick ? 20000 : 1000000);
                  }});
     t.push_back({"million-steps-contacts", [](EngineAdapter& e, bool quick) {
                      // The bouncing ball, a tilted box dropped on a corner and a ball rolling.
@@ -174,7 +174,7 @@ std::vector<StressTest> stressTests() {
                      roll.velocity = Vec3(-1, 0, 0);
                      s.bodies.push_back(box);
                      s.bodies.push_back(roll);
-                     return energyNoGain(e, "million-steps-contacts", s, quick ? 100000 : 1000000);
+                     return energyNoGain(e, "million-steps-contacts", s, quick ? 20000 : 1000000);
                  }});
     t.push_back({"tower-20", [](EngineAdapter& e, bool quick) {
                      return stands(e, "tower-20", sampleScene("tower-20.json"), quick ? 5 : 60);
@@ -187,7 +187,7 @@ std::vector<StressTest> stressTests() {
                      SceneDesc s = sampleScene("pyramid-15.json");
                      for (BodyDesc& b : s.bodies)
                          if (b.shape.type != ShapeType::Plane) b.position.x() += 1e5;
-                     return stands(e, "pyramid-100km", s, quick ? 2 : 10);
+                     return stands(e, "pyramid-100km", s, quick ? 0.5 : 10);
                  }});
     t.push_back({"thin-fast-sphere", [](EngineAdapter& e, bool) {
                      // A 2 cm ball at 300 m/s (5 m a step) at a 1 cm static wall.
@@ -222,7 +222,7 @@ std::vector<StressTest> stressTests() {
                      // tumbling-box's box spun at 1 000 rad/s about its stable long axis, a little off.
                      SceneDesc s = sampleScene("tumbling-box.json");
                      s.bodies[0].angularVelocity = Vec3(1000, 2, 2);
-                     return spin(e, "spin-1000", s, quick ? 2 : 10);
+                     return spin(e, "spin-1000", s, quick ? 0.5 : 10);
                  }});
     return t;
 }
@@ -246,9 +246,10 @@ bool runStress(const Options& opt, std::vector<StressRow>& rows) {
             std::printf("  %-24s %-8s %s  %s  (%.1f s)\n", row.test.c_str(), row.engine.c_str(),
                         row.pass ? "PASS" : "FAIL", row.figure.c_str(), wallNow() - t0);
             std::fflush(stdout);
-            // A FAIL against a bound is a finding for the tables; only a run that threw or left
-            // a non-finite state makes the benchmark fail (its exit status, CI's smoke run).
-            if (row.broken) ok = false;
+            // A FAIL against a bound is a finding for the tables, and so is a peer that blows
+            // up; only Tumble throwing or leaving a non-finite state fails the benchmark (its
+            // exit status, CI's smoke run).
+            if (row.broken && row.engine == "tumble") ok = false;
             rows.push_back(row);
         }
     }
