@@ -18,11 +18,18 @@ PACKAGES=(
   assimp-testmodels
   libbullet-dev libode-dev libmujoco-dev
   xvfb xauth
+  nodejs npm
 )
+
+# The Khronos glTF validator for the export tests (tests/io/gltf_validator.h), from npm into
+# the build folder; its 2.x releases are all "2.0.0-dev.3.N", which npm's "@2" does not match.
+GLTF_VALIDATOR=gltf-validator@2.0.0-dev.3.10
 
 install_missing() {
   local missing=() p
   for p in "${PACKAGES[@]}"; do
+    # A nodejs from elsewhere (NodeSource) carries its own npm; Debian's would conflict.
+    [ "$p" = npm ] && command -v npm >/dev/null && continue
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -40,6 +47,15 @@ build() {
   cmake --build "$BUILD_DIR" -j2
 }
 
+# Once per build folder; a later run finds it there.
+install_gltf_validator() {
+  local dir="$BUILD_DIR/gltf-validator"
+  grep -qs "\"version\": \"${GLTF_VALIDATOR#gltf-validator@}\"" "$dir/node_modules/gltf-validator/package.json" && return 0
+  echo "dev.sh: installing $GLTF_VALIDATOR into $dir"
+  mkdir -p "$dir"
+  npm install --prefix "$dir" --no-audit --no-fund --no-save "$GLTF_VALIDATOR"
+}
+
 cmd=${1:-run}
 [ $# -gt 0 ] && shift
 case "$cmd" in
@@ -51,6 +67,7 @@ case "$cmd" in
   test)
     install_missing
     build
+    install_gltf_validator
     # The ui tests need a display; xvfb-run gives them one when there is none.
     if [ -n "${DISPLAY:-}" ]; then
       ctest --test-dir "$BUILD_DIR" --output-on-failure -j2 "$@"
