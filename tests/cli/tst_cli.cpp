@@ -4,9 +4,13 @@
 #include <tumble/integrators.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/io/trajectory_csv.h>
+#include <tumble/io/trajectory_json.h>
+#include <tumble/io/trajectory_writer.h>
 #include <tumble/world.h>
 
 #include <QtTest>
+
+#include "../io/gltf_validator.h"
 
 #include <sstream>
 
@@ -502,6 +506,101 @@ private slots:
         QCOMPARE(report(b.out).value("state_hash"), hash);
         QVERIFY(!read("a.csv").isEmpty());
         QCOMPARE(read("b.csv"), read("a.csv"));
+    }
+
+    // --out with the other formats (docs/export.md): the same run as in this process, the
+    // glTF files valid and complete, no temporary left.
+    void outJson() {
+        RUN(r, {"--headless", "box.json", "--out", "traj.json"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json", "traj.json"}));
+        const tumble::io::Trajectory t = tumble::io::readTrajectoryJson(path("traj.json").toStdString());
+        QCOMPARE(t.frameRate, 20.0);
+        QCOMPARE(t.bodies.size(), size_t(2));
+        QCOMPARE(t.bodies[1].name, std::string("box"));
+        QCOMPARE(t.frames.size(), size_t(11));
+        // Byte for byte what the writer gives for the same run in this process.
+        const tumble::SceneDesc scene = tumble::io::readSceneFile(path("box.json").toStdString());
+        tumble::World world(scene);
+        const std::string expected = path("expected.json").toStdString();
+        auto writer = tumble::io::makeTrajectoryWriter(expected);
+        writer->begin(world.model(), scene, tumble::frameCount(world.model().settings), 20);
+        tumble::simulate(world, [&](int k, const tumble::State& s) { writer->frame(k, s); });
+        writer->finish();
+        QCOMPARE(read("traj.json"), read("expected.json"));
+        QCOMPARE(report(r.out).value("state_hash"),
+                 QString::fromStdString(tumble::hashHex(tumble::hashState(world.state()))));
+    }
+
+    void outGltf_data() {
+        QTest::addColumn<QString>("out");
+        QTest::addColumn<QStringList>("files");
+        QTest::newRow("gltf") << "traj.gltf"
+                              << QStringList({"blow.json", "box.json", "traj.bin", "traj.gltf"});
+        QTest::newRow("glb") << "traj.glb" << QStringList({"blow.json", "box.json", "traj.glb"});
+        QTest::newRow("GLB") << "TRAJ.GLB" << QStringList({"TRAJ.GLB", "blow.json", "box.json"});
+    }
+
+    void outGltf() {
+        QFETCH(QString, out);
+        QFETCH(QStringList, files);
+        RUN(r, {"--headless", "box.json", "--out", out});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        QCOMPARE(entries(), files);
+        TUMBLE_VERIFY_GLTF_VALID(path(out));
+        // The JSON of the file (a .glb's first chunk): both bodies, the box animated.
+        QByteArray json = read(out);
+        if (out.endsWith("glb", Qt::CaseInsensitive)) {
+            QVERIFY(json.startsWith("glTF"));
+            const quint32 length = qFromLittleEndian<quint32>(json.constData() + 12);
+            json = json.mid(20, length);
+        }
+        const QJsonObject doc = QJsonDocument::fromJson(json).object();
+        QStringList names;
+        for (const QJsonValue& n : doc.value("nodes").toArray())
+            names << n.toObject().value("name").toString();
+        QVERIFY2(names.contains("ground") && names.contains("box"), qPrintable(names.join(", ")));
+        const QJsonArray channels =
+            doc.value("animations").toArray().at(0).toObject().value("channels").toArray();
+        QCOMPARE(channels.size(), 2);  // translation and rotation of the box; the ground is static
+        for (const QJsonValue& c : channels) {
+            const int node = c.toObject().value("target").toObject().value("node").toInt();
+            QCOMPARE(doc.value("nodes").toArray().at(node).toObject().value("name").toString(),
+                     QString("box"));
+        }
+    }
+
+    // A run that fails leaves none of the files behind (a .gltf's .bin included).
+    void failedRunLeavesNoExport_data() {
+        QTest::addColumn<QString>("out");
+        for (const char* out : {"traj.json", "traj.gltf", "traj.glb"}) QTest::newRow(out) << QString(out);
+    }
+
+    void failedRunLeavesNoExport() {
+        QFETCH(QString, out);
+        RUN(r, {"--headless", "blow.json", "--out", out});
+        QCOMPARE(r.code, 1);
+        QVERIFY2(r.err.contains("became non-finite"), qPrintable(r.err));
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    void outNamesEveryFormat() {
+        RUN(bad, {"--headless", "box.json", "--out", "traj.obj"});
+        QCOMPARE(bad.code, 2);
+        QCOMPARE(
+            bad.err,
+            QString("tumble: --out: 'traj.obj': the trajectory formats are .csv, .json, .gltf and .glb\n"));
+        RUN(help, {"--help"});
+        for (const char* ext : {".csv", ".json", ".gltf", ".glb"}) QVERIFY2(help.out.contains(ext), ext);
+        RUN(unwritable, {"--headless", "box.json", "--out", "nodir/traj.gltf"});
+        QCOMPARE(unwritable.code, 1);
+        QCOMPARE(
+            unwritable.err,
+            QString(
+                "tumble: --out: nodir/traj.gltf: cannot be written (no such folder, or no permission)\n"));
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
     }
 };
 
