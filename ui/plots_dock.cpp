@@ -438,11 +438,15 @@ void PlotsDock::updateTimeAxis() {
     const double end = rate > 0 && frames > 1 ? (frames - 1) / rate : 1.0;
     for (QValueAxis* axis : timeAxes_) {
         if (axis->min() == 0.0 && axis->max() == end) continue;
-        // The axis spans the run exactly; the ticks fall on round times.
+        // The axis spans the run exactly; the ticks fall on round times. The range changes
+        // under a fixed tick count: a long run's range under a short run's interval (or the
+        // other way round) would make a tick item per interval (100 000 s at 0.5 s hung the
+        // UI thread building 200 000 of them).
+        axis->setTickType(QValueAxis::TicksFixed);
         axis->setRange(0.0, end);
-        axis->setTickType(QValueAxis::TicksDynamic);
         axis->setTickAnchor(0.0);
         axis->setTickInterval(niceStep(end / 5));
+        axis->setTickType(QValueAxis::TicksDynamic);
     }
 }
 

@@ -333,6 +333,34 @@ private slots:
         }
     }
 
+    // A very long run then a short one (and back): the time axis follows each run's length
+    // without building a tick per old interval (this hung the UI thread once).
+    void theTimeAxisFollowsLongAndShortRuns() {
+        Document doc;
+        SceneDesc longRun = freeFall(1.0);
+        longRun.settings.duration = 100000.0;
+        doc.replaceScene(longRun, "long", false);
+        Timeline timeline(&doc);
+        timeline.setAutoSimulate(false);
+        PlotsDock dock(&timeline);
+        dock.show();
+        timeline.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return timeline.framesDone() > 10; }, 30000));
+        timeline.cancel();
+        QVERIFY(QTest::qWaitFor([&] { return timeline.status() == Timeline::Status::Cancelled; }, 30000));
+        doc.replaceScene(freeFall(1.0), "short", false);
+        QVERIFY(runToCompletion(timeline));
+        QCoreApplication::processEvents();
+        QCOMPARE(dock.pointCount(Series::Kinetic), 31);
+        doc.replaceScene(longRun, "long again", false);
+        timeline.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return timeline.framesDone() > 10; }, 30000));
+        timeline.cancel();
+        QVERIFY(QTest::qWaitFor([&] { return timeline.status() == Timeline::Status::Cancelled; }, 30000));
+        QCoreApplication::processEvents();
+        QVERIFY(dock.pointCount(Series::Kinetic) > 10);
+    }
+
     void outlivingItsTimelineIsSafe() {
         Document doc;
         doc.replaceScene(freeFall(1.0), "free fall", false);
