@@ -179,6 +179,9 @@ private slots:
             QCOMPARE(doc.value("asset").toObject().value("version").toString(), QString("2.0"));
         }
         TUMBLE_VERIFY_GLTF_VALID(dir.filePath(name));
+        // Not even a warning or a note (an unknown extension, a degenerate triangle).
+        const tumble::test::ValidatorReport report = tumble::test::validateGltf(dir.filePath(name));
+        QVERIFY2(report.ran && report.messages.isEmpty(), qPrintable(report.messages));
 
         const aiScene* ai = aiImportFile(file.c_str(), 0);
         QVERIFY2(ai, aiGetErrorString());

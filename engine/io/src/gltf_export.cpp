@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -102,6 +103,38 @@ T* copyArray(const std::vector<T>& v) {
     T* out = new T[v.size()];
     std::copy(v.begin(), v.end(), out);
     return out;
+}
+
+std::uint32_t readU32(const std::string& bytes, size_t at) {
+    std::uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+}
+
+void writeU32(std::string& out, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
+}
+
+// Assimp lists extensions it never uses (FB_ngon_encoding, KHR_materials_volume) in
+// extensionsUsed; nothing in these files needs an extension, so the list goes. A .glb is a
+// 12-byte header, a JSON chunk padded with spaces to 4 bytes, then the binary chunk.
+std::string withoutExtensionsUsed(const std::string& glb, const fs::path& file) {
+    const auto bad = [&] {
+        return std::runtime_error(file.string() + ": the glTF exporter wrote a malformed .glb");
+    };
+    if (glb.size() < 20 || glb.compare(0, 4, "glTF") != 0 || readU32(glb, 8) != glb.size()) throw bad();
+    const std::uint32_t jsonLength = readU32(glb, 12);
+    if (readU32(glb, 16) != 0x4E4F534Au || 20 + size_t(jsonLength) > glb.size()) throw bad();
+    nlohmann::json doc = nlohmann::json::parse(glb.substr(20, jsonLength));
+    doc.erase("extensionsUsed");
+    std::string json = doc.dump();
+    json.append((4 - json.size() % 4) % 4, ' ');
+    const std::string rest = glb.substr(20 + jsonLength);
+    std::string out = glb.substr(0, 8);
+    writeU32(out, static_cast<std::uint32_t>(12 + 8 + json.size() + rest.size()));
+    writeU32(out, static_cast<std::uint32_t>(json.size()));
+    writeU32(out, 0x4E4F534Au);  // "JSON"
+    return out + json + rest;
 }
 
 }  // namespace
@@ -248,7 +281,7 @@ void GltfTrajectoryWriter::close() {
     auto main = files->files.find(name);
     if (main == files->files.end())
         throw std::runtime_error(file().string() + ": the glTF exporter wrote nothing");
-    std::string mainText = main->second;
+    std::string mainText;
     if (!binary_) {
         // Assimp names the buffer after the file and an index (t_0.bin); on disk it is the
         // .gltf's own name with .bin, and the .gltf says so.
@@ -259,15 +292,18 @@ void GltfTrajectoryWriter::close() {
         }
         const auto bin =
             files->files.begin()->first == name ? std::next(files->files.begin()) : files->files.begin();
-        nlohmann::json doc = nlohmann::json::parse(mainText);
+        nlohmann::json doc = nlohmann::json::parse(main->second);
         if (!doc.contains("buffers") || doc["buffers"].size() != 1 ||
             doc["buffers"][0].value("uri", "") != bin->first) {
             throw std::runtime_error(file().string() + ": the glTF exporter named its buffer unexpectedly");
         }
         doc["buffers"][0]["uri"] = fs::path(name).replace_extension(".bin").string();
+        doc.erase("extensionsUsed");
         mainText = doc.dump(2);
         outputs_->bin->stream() << bin->second;
         outputs_->bin->commit();
+    } else {
+        mainText = withoutExtensionsUsed(main->second, file());
     }
     outputs_->main->stream() << mainText;
     outputs_->main->commit();
