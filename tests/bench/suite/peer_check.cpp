@@ -12,7 +12,8 @@
 //                kinetic energy stay within 2 % (modes without a gyroscopic term: printed,
 //                not checked; they do not conserve L).
 //   bounce       a ball dropped from 1 m onto a plane, both restitution 0.5: the first apex
-//                after the bounce at e^2 h = 0.25 m within 5 % (MuJoCo, soft contacts: 30 %).
+//                after the bounce at e^2 h = 0.25 m within 5 % (MuJoCo, soft contacts: 30 %;
+//                Bullet's modes with speculative contacts lose the bounce: not checked).
 //   rest         a cylinder, a capsule, a turned box and an off-centre convex hull resting on
 //                a plane: centre-of-mass heights within 5 mm (shape axes and offsets).
 //
@@ -246,8 +247,12 @@ std::string checkBounce(EngineAdapter& e, const std::string& mode, bool* ok) {
     // MuJoCo's contact is a spring-damper resolved over 8 steps at this dt (peer_mujoco.cpp):
     // its bounce converges to e only as dt shrinks, so it gets a wider band.
     const double tolerance = e.name() == "mujoco" ? 0.30 : 0.05;
-    if (!(std::abs(ratio - 0.25) <= tolerance * 0.25) || contacts < 1) *ok = false;
-    return fmt("apex %.4f h (%+.1f %%)", ratio, 100.0 * (ratio / 0.25 - 1.0)) + fmt(" contacts %g", contacts);
+    // Bullet's speculative contacts (all its modes but touching-contacts) stop a falling ball
+    // at the surface and lose the bounce (peer_bullet.cpp): printed, not checked.
+    const bool speculative = e.name() == "bullet" && mode != "touching-contacts";
+    if (contacts < 1 || (!speculative && !(std::abs(ratio - 0.25) <= tolerance * 0.25))) *ok = false;
+    return fmt("apex %.4f h (%+.1f %%)", ratio, 100.0 * (ratio / 0.25 - 1.0)) +
+           (speculative ? std::string(" speculative") : fmt(" contacts %g", contacts));
 }
 
 // Heights of the centres of mass after 1.5 s at rest: cylinder 0.6, capsule 0.6, box 0.35

@@ -39,10 +39,12 @@
 // - Angular velocity: a free joint's qvel holds the linear velocity in world axes and the
 //   angular velocity in the body's own axes (MuJoCo 2.2); body() rotates it to world.
 // - No sleeping in MuJoCo 2.2; settings.sleeping is ignored.
-// - Memory: MuJoCo 2.2 allocates the constraint matrix as njmax x njmax. njmax is 16 rows
-//   per dynamic body (4 contact points of 4 pyramid rows), capped at 10 000 rows (~1.2 GB);
-//   when a run fills it, MuJoCo drops constraints, so from then on body() reports NaN and a
-//   line on stderr says why, rather than measure a different simulation.
+// - Memory: MuJoCo 2.2 sizes its constraint arrays from njmax: njmax x njmax for efc_AR and
+//   njmax x nv for efc_J and efc_JT (with int column indices), in one buffer of at most 2 GB.
+//   njmax is 48 rows per dynamic body (12 points of 4 pyramid rows), capped so these arrays
+//   stay under 1.2 GB (about 2 600 rows with 3 000 boxes, 800 with 10 000); when a
+//   run fills them MuJoCo drops contacts, so from then on body() reports NaN and one line on
+//   stderr says why, rather than measure a different simulation.
 // - Refused: springs, moving kinematic bodies, meshes collided as triangles.
 #include "engine_adapter.h"
 #include "peer_common.h"
@@ -62,7 +64,7 @@
 namespace tumble::bench {
 namespace {
 
-constexpr int kMaxRows = 10000;
+constexpr double kMaxBytes = 1.2e9;
 constexpr double kContactTime = 1.0 / 30.0;  // s
 constexpr double kContactSteps = 4.0;
 
@@ -128,6 +130,17 @@ std::string solref(double dt, double zeta) {
     return os.str();
 }
 
+// Rows of the constraint arrays (njmax): 12 contact points of 4 pyramid rows per dynamic
+// body (two stacked boxes touch at up to 8 points), and no more than fits in kMaxBytes:
+// MuJoCo 2.2 allocates njmax x njmax (efc_AR and its column indices) and twice njmax x nv
+// (efc_J, efc_JT and theirs) in one buffer whose size is an int.
+int constraintRows(int dynamic, std::size_t nv) {
+    const double want = 48.0 * dynamic + 64.0;
+    // 12 njmax^2 + 24 nv njmax <= kMaxBytes
+    const double b = 24.0 * double(nv), fit = (-b + std::sqrt(b * b + 48.0 * kMaxBytes)) / 24.0;
+    return int(std::max(64.0, std::min(want, fit)));
+}
+
 class MujocoAdapter final : public EngineAdapter {
 public:
     ~MujocoAdapter() override { clear(); }
@@ -176,7 +189,7 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
     const SceneDesc& scene = ps_.scene;
     const int n = int(model.bodies.size());
     const int dynamic = int(model.dynamicBodies.size());
-    const int rows = std::min(kMaxRows, 16 * dynamic + 64);
+    const int rows = constraintRows(dynamic, model.dynamicBodies.size() * 6);
 
     // Priority = rank of the restitution (Tumble takes the larger one).
     std::set<double> levels;
@@ -197,7 +210,7 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
        << "<option timestep=\"" << dt << "\" gravity=\"" << str(scene.settings.gravity) << "\" integrator=\""
        << names[integrator] << "\" iterations=\"" << std::max(1, scene.settings.solverIterations)
        << "\" cone=\"pyramidal\"/>\n"
-       << "<size njmax=\"" << rows << "\" nconmax=\"" << std::max(16, rows / 4) << "\"/>\n";
+       << "<size njmax=\"" << rows << "\" nconmax=\"" << rows / 4 << "\"/>\n";
     os << "<asset>\n";
     for (int i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
