@@ -41,6 +41,7 @@ SceneDesc scene() {
     s.settings.dt = 0.01;
     s.settings.duration = 0.5;
     s.settings.frameRate = 20;
+    s.bodies.reserve(16);  // add() hands out references that must stay valid
 
     auto add = [&](const char* name, Motion motion, ShapeType type, const Vec3& position) -> BodyDesc& {
         BodyDesc b;
@@ -59,6 +60,8 @@ SceneDesc scene() {
     ball.shape.radius = 0.3;
     ball.velocity = Vec3(1, 2, 0);
     ball.angularVelocity = Vec3(0, 0, 4);
+    BodyDesc& twin = add("twin", Motion::Dynamic, ShapeType::Sphere, Vec3(1, 4, 0));  // the ball's shape
+    twin.shape.radius = 0.3;
     BodyDesc& box = add("box", Motion::Dynamic, ShapeType::Box, Vec3(2, 3, 0));
     box.shape.halfExtents = Vec3(0.5, 0.25, 0.1);
     box.centerOfMass = Vec3(0.2, 0, 0);
@@ -214,7 +217,8 @@ private slots:
         const aiMesh& rock = meshOf("rock");
         for (unsigned i = 0; i < rock.mNumVertices; ++i) {
             double nearest = 1e300;
-            for (const Vec3& v : s.bodies[6].shape.meshData->vertices) {
+            QCOMPARE(s.bodies[7].name, std::string("rock"));
+            for (const Vec3& v : s.bodies[7].shape.meshData->vertices) {
                 nearest = std::min(
                     nearest,
                     (Vec3(rock.mVertices[i].x, rock.mVertices[i].y, rock.mVertices[i].z) - v).norm());
@@ -222,6 +226,9 @@ private slots:
             QVERIFY(nearest < 1e-6);
         }
         QCOMPARE(nodes.at("rock")->mMeshes[0], nodes.at("stone")->mMeshes[0]);  // one mesh, shared
+        QCOMPARE(nodes.at("ball")->mMeshes[0], nodes.at("twin")->mMeshes[0]);
+        QVERIFY(nodes.at("box")->mMeshes[0] != nodes.at("post")->mMeshes[0]);  // other sizes
+        QCOMPARE(ai->mNumMeshes, unsigned(s.bodies.size() - 2));
 
         // Every node starts where its body is at frame 0; static ones stay there.
         for (size_t i = 0; i < s.bodies.size(); ++i) {
@@ -240,8 +247,8 @@ private slots:
         std::set<std::string> animated;
         for (unsigned c = 0; c < anim.mNumChannels; ++c)
             animated.insert(anim.mChannels[c]->mNodeName.C_Str());
-        QCOMPARE(animated, (std::set<std::string>{"ball", "box", "capsule", "wheel", "rock"}));
-        QCOMPARE(anim.mNumChannels, 5u);
+        QCOMPARE(animated, (std::set<std::string>{"ball", "twin", "box", "capsule", "wheel", "rock"}));
+        QCOMPARE(anim.mNumChannels, 6u);
         for (unsigned c = 0; c < anim.mNumChannels; ++c) {
             const aiNodeAnim& ch = *anim.mChannels[c];
             const std::string body = ch.mNodeName.C_Str();

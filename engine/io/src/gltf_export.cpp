@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -103,6 +104,29 @@ T* copyArray(const std::vector<T>& v) {
     T* out = new T[v.size()];
     std::copy(v.begin(), v.end(), out);
     return out;
+}
+
+// What the render mesh of a shape depends on: equal keys, equal meshes. Imported meshes are
+// shared by the loader per file and scale, so their data's address tells.
+std::string shapeKey(const ShapeDesc& s) {
+    char buf[256];
+    switch (s.type) {
+        case ShapeType::Mesh:
+            std::snprintf(buf, sizeof buf, "mesh %p", static_cast<const void*>(s.meshData.get()));
+            break;
+        case ShapeType::Plane:
+            std::snprintf(buf, sizeof buf, "plane %.17g %.17g %.17g %.17g", s.normal.x(), s.normal.y(),
+                          s.normal.z(), s.distance);
+            break;
+        case ShapeType::Box:
+            std::snprintf(buf, sizeof buf, "box %.17g %.17g %.17g", s.halfExtents.x(), s.halfExtents.y(),
+                          s.halfExtents.z());
+            break;
+        default:
+            std::snprintf(buf, sizeof buf, "%s %.17g %.17g", toString(s.type), s.radius,
+                          s.type == ShapeType::Sphere ? 0.0 : s.halfHeight);
+    }
+    return buf;
 }
 
 std::uint32_t readU32(const std::string& bytes, size_t at) {
@@ -196,7 +220,7 @@ void GltfTrajectoryWriter::close() {
     }
 
     std::vector<aiMesh*> meshes;
-    std::map<const TriangleMesh*, unsigned> shared;  // imported meshes: one per file and scale
+    std::map<std::string, unsigned> shared;  // bodies of the same shape share its mesh
     std::vector<aiNode*> nodes;
     std::vector<aiNodeAnim*> channels;
     for (size_t n = 0; n < bodies().size(); ++n) {
@@ -208,14 +232,15 @@ void GltfTrajectoryWriter::close() {
         nodes.push_back(node);
 
         unsigned meshIndex = static_cast<unsigned>(meshes.size());
-        auto it = shape.type == ShapeType::Mesh ? shared.find(shape.meshData.get()) : shared.end();
+        const std::string key = shapeKey(shape);
+        auto it = shared.find(key);
         if (it != shared.end()) {
             meshIndex = it->second;
         } else {
             const RenderMesh rm = tessellate(shape, segments_, planeHalf);
             if (!rm.indices.empty()) {
                 meshes.push_back(toAiMesh(rm, b.name));
-                if (shape.type == ShapeType::Mesh) shared[shape.meshData.get()] = meshIndex;
+                shared[key] = meshIndex;
             } else {
                 meshIndex = ~0u;
             }
