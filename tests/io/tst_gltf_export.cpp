@@ -328,6 +328,24 @@ private slots:
         QVERIFY2(r.messages.contains("'asset' must be defined"), qPrintable(r.messages));
     }
 
+    // The root node is named after the file, never as a body: the ball's channels must move
+    // the ball, not the whole scene.
+    void rootNamedAsABody() {
+        QTemporaryDir dir;
+        const fs::path file = fs::path(dir.path().toStdString()) / "ball.glb";
+        const SceneDesc s = scene();
+        auto writer = io::makeTrajectoryWriter(file);
+        run(s, *writer);
+        const aiScene* ai = aiImportFile(file.c_str(), 0);
+        QVERIFY2(ai, aiGetErrorString());
+        std::unique_ptr<const aiScene, void (*)(const aiScene*)> guard(ai, aiReleaseImport);
+        QCOMPARE(QString(ai->mRootNode->mName.C_Str()), QString("ball scene"));
+        QCOMPARE(ai->mRootNode->mNumChildren, unsigned(s.bodies.size()));
+        const aiNode* ball = ai->mRootNode->FindNode("ball");
+        QVERIFY(ball && ball != ai->mRootNode && ball->mNumMeshes == 1);
+        TUMBLE_VERIFY_GLTF_VALID(QString::fromStdString(file.string()));
+    }
+
     // An unwritable .bin or .gltf fails at begin(), before any run, and leaves nothing.
     void unwritable() {
         QTemporaryDir dir;

@@ -207,7 +207,14 @@ void GltfTrajectoryWriter::close() {
     const double planeHalf = std::max(10.0, 1.5 * reach + 1.0);
 
     auto ai = std::make_unique<aiScene>();
-    ai->mRootNode = new aiNode(fs::path(file()).stem().string());
+    // Channels find their node by name, so the root must not share one with a body.
+    std::string rootName = fs::path(file()).stem().string();
+    auto taken = [&](const std::string& n) {
+        return std::any_of(bodies().begin(), bodies().end(),
+                           [&](int i) { return model().bodies[i].name == n; });
+    };
+    while (rootName.empty() || taken(rootName)) rootName += " scene";
+    ai->mRootNode = new aiNode(rootName);
     ai->mNumMaterials = 1;
     ai->mMaterials = new aiMaterial* [1] { new aiMaterial() };
     {
