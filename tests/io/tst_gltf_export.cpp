@@ -266,6 +266,10 @@ private slots:
                 const aiVector3D& t = ch.mPositionKeys[k].mValue;
                 QVERIFY2(close(t, p), where + ": " + text(Vec3(t.x, t.y, t.z)) + " against " + text(p));
                 QVERIFY2(close(ch.mRotationKeys[k].mValue, bs.q), where);
+                if (k > 0) {  // consecutive keys on the same side (q and -q are one rotation)
+                    const aiQuaternion &a = ch.mRotationKeys[k - 1].mValue, &b = ch.mRotationKeys[k].mValue;
+                    QVERIFY2(a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z > 0, where);
+                }
             }
             // The motion is there: every moving body has left its first pose by the end.
             const BodyModel& b = model.bodies[i];

@@ -271,6 +271,7 @@ void GltfTrajectoryWriter::close() {
         channel->mNumPositionKeys = channel->mNumRotationKeys = static_cast<unsigned>(times_.size());
         channel->mPositionKeys = new aiVectorKey[times_.size()];
         channel->mRotationKeys = new aiQuatKey[times_.size()];
+        Quat previous = Quat::Identity();
         for (size_t f = 0; f < times_.size(); ++f) {
             const auto& p = poses_[n][f];
             // Times in frames of the run at ticks = frame rate: the exporter writes seconds.
@@ -278,10 +279,15 @@ void GltfTrajectoryWriter::close() {
             channel->mPositionKeys[f].mTime = tick;
             channel->mPositionKeys[f].mValue = aiVector3D(
                 static_cast<ai_real>(p[0]), static_cast<ai_real>(p[1]), static_cast<ai_real>(p[2]));
+            // q and -q are one rotation; keep each key on the previous one's side, so that a
+            // viewer interpolating componentwise (Blender) never passes through a zero.
+            Quat q(p[3], p[4], p[5], p[6]);
+            if (f > 0 && q.coeffs().dot(previous.coeffs()) < 0) q.coeffs() = -q.coeffs();
+            previous = q;
             channel->mRotationKeys[f].mTime = tick;
             channel->mRotationKeys[f].mValue =
-                aiQuaternion(static_cast<ai_real>(p[3]), static_cast<ai_real>(p[4]),
-                             static_cast<ai_real>(p[5]), static_cast<ai_real>(p[6]));
+                aiQuaternion(static_cast<ai_real>(q.w()), static_cast<ai_real>(q.x()),
+                             static_cast<ai_real>(q.y()), static_cast<ai_real>(q.z()));
         }
         channels.push_back(channel);
     }
