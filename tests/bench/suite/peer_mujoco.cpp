@@ -40,11 +40,13 @@
 //   angular velocity in the body's own axes (MuJoCo 2.2); body() rotates it to world.
 // - No sleeping in MuJoCo 2.2; settings.sleeping is ignored.
 // - Memory: MuJoCo 2.2 sizes its constraint arrays from njmax: njmax x njmax for efc_AR and
-//   njmax x nv for efc_J and efc_JT (with int column indices), in one buffer of at most 2 GB.
-//   njmax is 48 rows per dynamic body (12 points of 4 pyramid rows), capped so these arrays
-//   stay under 1.2 GB (about 2 600 rows with 3 000 boxes, 800 with 10 000); when a
-//   run fills them MuJoCo drops contacts, so from then on body() reports NaN and one line on
-//   stderr says why, rather than measure a different simulation.
+//   njmax x nv for efc_J and efc_JT (with int column indices), in one buffer of at most 2 GB
+//   that it clears several times while loading. njmax is 48 rows per dynamic body (12
+//   points of 4 pyramid rows), capped so these arrays stay under 0.6 GB (about 1 300 rows
+//   with 3 000 boxes, 400 with 10 000 bodies): a big pile does not fit, and loading takes
+//   seconds (the 120-box pyramid: 5 824 rows, ~6 s). When a run fills the arrays MuJoCo
+//   drops contacts, so from then on body() reports NaN and one line on stderr says why,
+//   rather than measure a different simulation.
 // - Refused: springs, moving kinematic bodies, meshes collided as triangles.
 #include "engine_adapter.h"
 #include "peer_common.h"
@@ -64,7 +66,7 @@
 namespace tumble::bench {
 namespace {
 
-constexpr double kMaxBytes = 1.2e9;
+constexpr double kMaxBytes = 0.6e9;
 constexpr double kContactTime = 1.0 / 30.0;  // s
 constexpr double kContactSteps = 4.0;
 
@@ -131,9 +133,11 @@ std::string solref(double dt, double zeta) {
 }
 
 // Rows of the constraint arrays (njmax): 12 contact points of 4 pyramid rows per dynamic
-// body (two stacked boxes touch at up to 8 points), and no more than fits in kMaxBytes:
-// MuJoCo 2.2 allocates njmax x njmax (efc_AR and its column indices) and twice njmax x nv
-// (efc_J, efc_JT and theirs) in one buffer whose size is an int.
+// body (MuJoCo's box-box collider gives up to 8 points a pair; the 15-layer pyramid, whose
+// boxes also touch side by side, starts with over 10 per box), and no more than fits in
+// kMaxBytes: MuJoCo 2.2 allocates njmax x njmax (efc_AR and its column indices) and twice
+// njmax x nv (efc_J, efc_JT and theirs) in one buffer whose size is an int, and clears it
+// several times while loading (load time grows as njmax^2: 6 s for 4 900 rows).
 int constraintRows(int dynamic, std::size_t nv) {
     const double want = 48.0 * dynamic + 64.0;
     // 12 njmax^2 + 24 nv njmax <= kMaxBytes
