@@ -50,6 +50,26 @@ QSize renderSize(const QSize& image) {
     return QSize(int(std::ceil(image.width() * s)), int(std::ceil(image.height() * s)));
 }
 
+// Whether Qt3D's render capture comes bottom row first. Qt3D 6's RHI renderer on its OpenGL
+// backend reads the framebuffer back with glReadPixels and hands the rows over as they come,
+// bottom-up (seen with Qt 6.4 under Xvfb/llvmpipe and checked by tst_image_exporter, which
+// finds the ball where the camera projects it). The old OpenGL renderer
+// (QT3D_RENDERER=opengl) and the RHI's other backends (Vulkan, Metal, Direct3D: top-left
+// origin) are not flipped. TUMBLE_CAPTURE_FLIP=0 or 1 overrides.
+bool captureIsBottomUp() {
+    bool set = false;
+    const int forced = qEnvironmentVariableIntValue("TUMBLE_CAPTURE_FLIP", &set);
+    if (set) return forced != 0;
+    const QString renderer = qEnvironmentVariable("QT3D_RENDERER").toLower();
+    if (!renderer.isEmpty() && renderer != QLatin1String("rhi")) return false;
+    const QString api = qEnvironmentVariable("QT3D_RHI_DEFAULT_API").toLower();
+#ifdef Q_OS_MACOS
+    return api == QLatin1String("opengl") || api == QLatin1String("gl");
+#else
+    return api.isEmpty() || api == QLatin1String("opengl") || api == QLatin1String("gl");
+#endif
+}
+
 }  // namespace
 
 struct ImageExporter::Impl {
@@ -62,8 +82,8 @@ struct ImageExporter::Impl {
     int generation = 0;  // bumped at every start and finish: stale callbacks are dropped
 
     ImageExportOptions opt;
-    QString folder;  // absolute
-    bool createdFolder = false;
+    QString folder;       // absolute
+    QString createdRoot;  // the outermost folder the export made (empty: none)
     std::vector<int> frames;
     int next = 0;  // index of the frame being taken
     bool warmUp = false;
@@ -125,7 +145,7 @@ void ImageExporter::start(const ImageExportOptions& options) {
     d.opt = options;
     d.frames.clear();
     d.next = 0;
-    d.createdFolder = false;
+    d.createdRoot.clear();
     d.temp.reset();
     d.tempVideo.reset();
     d.clock.start();
@@ -164,10 +184,13 @@ void ImageExporter::start(const ImageExportOptions& options) {
     // images are moved into place by renames).
     d.folder = QDir(options.folder).absolutePath();
     if (!QFileInfo(d.folder).isDir()) {
+        // The outermost folder that does not exist yet: removed again if the export fails.
+        QString root = d.folder;
+        while (!QFileInfo::exists(QFileInfo(root).path())) root = QFileInfo(root).path();
         if (QFileInfo::exists(d.folder) || !QDir().mkpath(d.folder)) {
             return refuse(tr("Cannot create the folder %1").arg(QDir::toNativeSeparators(d.folder)));
         }
-        d.createdFolder = true;
+        d.createdRoot = root;
     }
     d.temp = std::make_unique<QTemporaryDir>(d.folder + QStringLiteral("/.tumble-export-XXXXXX"));
     if (!d.temp->isValid()) {
@@ -295,6 +318,7 @@ void ImageExporter::onCaptured() {
     const int frame = d.frames[size_t(d.next)];
     if (image.isNull()) return fail(tr("The viewport gave no image of frame %1").arg(frame));
     image = image.convertToFormat(QImage::Format_RGB32);
+    if (captureIsBottomUp()) image.mirror(false, true);
     if (image.size() != d.opt.size) {
         image = image.scaled(d.opt.size, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
     }
@@ -495,8 +519,14 @@ void ImageExporter::finish(bool ok, const QString& message) {
     }
     d.temp.reset();       // removes whatever images were not moved into place
     d.tempVideo.reset();  // removes the partial video unless it was renamed into place
-    if (!ok && d.createdFolder && QDir(d.folder).isEmpty(QDir::AllEntries | QDir::Hidden | QDir::System)) {
-        QDir().rmdir(d.folder);
+    if (!ok && !d.createdRoot.isEmpty()) {
+        // The folders the export made, from the innermost, while empty.
+        for (QString f = d.folder; f.size() >= d.createdRoot.size(); f = QFileInfo(f).path()) {
+            if (!QDir(f).isEmpty(QDir::AllEntries | QDir::Hidden | QDir::System | QDir::NoDotAndDotDot) ||
+                !QDir().rmdir(f)) {
+                break;
+            }
+        }
     }
     if (rendering && d.timeline) d.timeline->seek(d.restoreFrame);
     emit finished(ok, message);
