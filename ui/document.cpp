@@ -4,8 +4,10 @@
 
 #include <tumble/io/scene_file.h>
 
+#include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QMap>
 #include <QSaveFile>
 #include <QSet>
 #include <QUndoStack>
@@ -42,6 +44,41 @@ void Document::newScene() {
     emit fileStateChanged();
 }
 
+namespace {
+
+// In the document a mesh body's file is an absolute path, whatever folder the scene came
+// from; a saved scene holds it relative to the scene's own folder (what the format says), so
+// Save As to another folder keeps every mesh reachable.
+void makeMeshPathsAbsolute(SceneDesc& scene, const QString& dir) {
+    for (BodyDesc& b : scene.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString file = QString::fromStdString(b.shape.file);
+        if (QFileInfo(file).isRelative())
+            b.shape.file = QDir::cleanPath(QDir(dir).absoluteFilePath(file)).toStdString();
+    }
+}
+
+SceneDesc withMeshPathsRelativeTo(SceneDesc scene, const QString& dir) {
+    for (BodyDesc& b : scene.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString file = QString::fromStdString(b.shape.file);
+        if (QFileInfo(file).isAbsolute()) b.shape.file = QDir(dir).relativeFilePath(file).toStdString();
+    }
+    return scene;
+}
+
+// Writes `bytes` to `path` whole or not at all.
+bool writeWhole(const QString& path, const QByteArray& bytes, QString* error) {
+    QSaveFile out(path);
+    if (!out.open(QIODevice::WriteOnly) || out.write(bytes) != bytes.size() || !out.commit()) {
+        if (error) *error = QObject::tr("%1: cannot be written (%2)").arg(path, out.errorString());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 bool Document::open(const QString& path, QString* error) {
     const bool sample = path.startsWith(":/");
     const QString name = sample ? QFileInfo(path).fileName() : path;
@@ -62,6 +99,7 @@ bool Document::open(const QString& path, QString* error) {
                 return false;
             }
             scene = io::readSceneFile(path.toStdString());
+            makeMeshPathsAbsolute(scene, QFileInfo(path).absolutePath());
         }
     } catch (const std::exception& e) {
         if (error) *error = QString::fromStdString(e.what());
@@ -78,17 +116,79 @@ bool Document::open(const QString& path, QString* error) {
 }
 
 bool Document::saveAs(const QString& path, QString* error) {
-    QSaveFile file(path);
-    if (!file.open(QIODevice::WriteOnly)) {
-        if (error) *error = tr("%1: cannot be written (%2)").arg(path, file.errorString());
+    const std::string text = io::sceneToJson(withMeshPathsRelativeTo(scene_, QFileInfo(path).absolutePath()));
+    if (!writeWhole(path, QByteArray::fromStdString(text), error)) return false;
+    path_ = path;
+    undo_->setClean();
+    emit fileStateChanged();
+    return true;
+}
+
+bool Document::saveWithMeshes(const QString& path, QString* error) {
+    const QFileInfo target(path);
+    const QString folderName = target.completeBaseName() + QStringLiteral("-meshes");
+    const QDir dir(target.absolutePath());
+    // Each distinct mesh file gets one copy, under its own name (made unique when two
+    // different files share a name).
+    QMap<QString, QString> copyOf;  // source -> name in the folder
+    QSet<QString> names;
+    for (const BodyDesc& b : scene_.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+        if (copyOf.contains(source)) continue;
+        if (!QFileInfo(source).isReadable()) {
+            if (error)
+                *error = tr("%1: body \"%2\": the mesh file cannot be read")
+                             .arg(source, QString::fromStdString(b.name));
+            return false;
+        }
+        QString name = QFileInfo(source).fileName();
+        for (int n = 2; names.contains(name); ++n)
+            name = QStringLiteral("%1-%2.%3")
+                       .arg(QFileInfo(source).completeBaseName())
+                       .arg(n)
+                       .arg(QFileInfo(source).suffix());
+        names.insert(name);
+        copyOf.insert(source, name);
+    }
+    const QString folder = dir.filePath(folderName);
+    if (!copyOf.isEmpty() && !QDir().mkpath(folder)) {
+        if (error) *error = tr("%1: the folder cannot be made").arg(folder);
         return false;
     }
-    const std::string text = io::sceneToJson(scene_);
-    file.write(text.data(), static_cast<qint64>(text.size()));
-    if (!file.commit()) {
-        if (error) *error = tr("%1: cannot be written (%2)").arg(path, file.errorString());
+    QStringList written;
+    auto undoCopies = [&] {
+        for (const QString& f : written) QFile::remove(f);
+    };
+    for (auto it = copyOf.cbegin(); it != copyOf.cend(); ++it) {
+        const QString to = QDir(folder).filePath(it.value());
+        if (QFileInfo(to).absoluteFilePath() == it.key()) continue;  // saved there already
+        QFile in(it.key());
+        if (!in.open(QIODevice::ReadOnly)) {
+            if (error) *error = tr("%1: cannot be read (%2)").arg(it.key(), in.errorString());
+            undoCopies();
+            return false;
+        }
+        if (!writeWhole(to, in.readAll(), error)) {
+            undoCopies();
+            return false;
+        }
+        written << to;
+    }
+    SceneDesc moved = scene_;
+    for (BodyDesc& b : moved.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+        b.shape.file = QDir(folder).filePath(copyOf.value(source)).toStdString();
+    }
+    const std::string text = io::sceneToJson(withMeshPathsRelativeTo(moved, dir.absolutePath()));
+    if (!writeWhole(path, QByteArray::fromStdString(text), error)) {
+        undoCopies();
         return false;
     }
+    // The document now refers to the copies (the same meshes); not an edit to undo.
+    for (std::size_t i = 0; i < scene_.bodies.size(); ++i)
+        scene_.bodies[i].shape.file = moved.bodies[i].shape.file;
     path_ = path;
     undo_->setClean();
     emit fileStateChanged();

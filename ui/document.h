@@ -36,7 +36,13 @@ public:
     /// On failure the current scene is untouched and `error` says why.
     bool open(const QString& path, QString* error);
     /// Writes the scene atomically (QSaveFile) to `path` and makes it the document's file.
+    /// Mesh files are written relative to the new file's folder (in the document they are
+    /// absolute paths), so a Save As to another folder keeps them reachable.
     bool saveAs(const QString& path, QString* error);
+    /// Saves like saveAs, and copies every mesh file the scene uses into a folder beside it
+    /// (<scene name>-meshes/), the scene referring to the copies: the folder and the scene
+    /// travel together. Nothing is left half written: on failure the copies made are removed.
+    bool saveWithMeshes(const QString& path, QString* error);
     /// The scene file, empty when the scene has never been saved (new or a sample).
     const QString& filePath() const { return path_; }
     /// A name for the title bar: the file name, or "untitled".

@@ -339,11 +339,9 @@ bool MainWindow::importMesh(const QString& path, bool convexHull, double scale, 
         if (error) *error = QString::fromStdString(e.what());
         return false;
     }
-    // The scene stores the path relative to the scene's folder when it has one.
-    const QString base = doc_->filePath().isEmpty() ? QString() : QFileInfo(doc_->filePath()).absolutePath();
-    body.shape.file =
-        (base.isEmpty() ? QFileInfo(path).absoluteFilePath() : QDir(base).relativeFilePath(path))
-            .toStdString();
+    // The document holds mesh files as absolute paths; a save writes them relative to the
+    // scene's folder.
+    body.shape.file = QFileInfo(path).absoluteFilePath().toStdString();
     body.name = QFileInfo(path).completeBaseName().toStdString();
     body.density = 1000.0;
     body.mass.reset();

@@ -3,7 +3,10 @@
 #include "document.h"
 
 #include <tumble/io/scene_file.h>
+#include <tumble/mass.h>
 
+#include <QDir>
+#include <QFile>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QUndoStack>
@@ -192,6 +195,103 @@ private slots:
         QCOMPARE(doc.bodyCount(), 21);
         QVERIFY(doc.filePath().isEmpty());  // Save must ask where
         QVERIFY(!doc.undoStack()->canUndo());
+    }
+
+    // A scene whose mesh sits beside it, saved into another folder: the saved file points
+    // back at the mesh (relative to the new folder) and reopens with it.
+    void saveAsElsewhereKeepsMeshesReachable() {
+        QTemporaryDir root;
+        QVERIFY(QDir(root.path()).mkpath("a") && QDir(root.path()).mkpath("b/deeper"));
+        const QString mesh = root.filePath("a/box.stl");
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", mesh));
+        const QString first = root.filePath("a/scene.json");
+        writeMeshScene(first, {"box.stl"});
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(first, &error), qPrintable(error));
+        QCOMPARE(QString::fromStdString(doc.body(1).shape.file), QFileInfo(mesh).absoluteFilePath());
+        const QString second = root.filePath("b/deeper/scene.json");
+        QVERIFY2(doc.saveAs(second, &error), qPrintable(error));
+        QVERIFY(readAll(second).contains("\"../../a/box.stl\""));
+        Document again;
+        QVERIFY2(again.open(second, &error), qPrintable(error));
+        QVERIFY(again.body(1).shape.meshData);
+        QCOMPARE(int(again.body(1).shape.meshData->triangles.size()), 12);
+    }
+
+    // Save with meshes copies each mesh file beside the scene (one copy per file, names made
+    // unique) and the scene then opens without the originals.
+    void saveWithMeshesCopiesThemBeside() {
+        QTemporaryDir root;
+        QVERIFY(QDir(root.path()).mkpath("src/one") && QDir(root.path()).mkpath("src/two") &&
+                QDir(root.path()).mkpath("out"));
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", root.filePath("src/one/shape.stl")));
+        QVERIFY(QFile::copy(kMeshes + "/tetrahedron.off", root.filePath("src/two/shape.off")));
+        QVERIFY(
+            QFile::copy(kMeshes + "/box.stl", root.filePath("src/two/shape.stl")));  // same name, other file
+        const QString first = root.filePath("src/scene.json");
+        writeMeshScene(first, {"one/shape.stl", "two/shape.off", "two/shape.stl", "one/shape.stl"});
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(first, &error), qPrintable(error));
+        const QString target = root.filePath("out/moved.json");
+        QVERIFY2(doc.saveWithMeshes(target, &error), qPrintable(error));
+        QCOMPARE(doc.filePath(), target);
+        QVERIFY(!doc.isModified());
+        const QDir copies(root.filePath("out/moved-meshes"));
+        QCOMPARE(copies.entryList(QDir::Files, QDir::Name),
+                 QStringList({"shape-2.stl", "shape.off", "shape.stl"}));
+        QCOMPARE(readAll(copies.filePath("shape.stl")), readAll(kMeshes + "/box.stl"));
+        const QByteArray text = readAll(target);
+        QVERIFY(text.contains("\"moved-meshes/shape.stl\"") && text.contains("\"moved-meshes/shape-2.stl\""));
+        QVERIFY(QDir(root.filePath("src")).removeRecursively());  // the originals are gone
+        Document again;
+        QVERIFY2(again.open(target, &error), qPrintable(error));
+        for (int i = 1; i <= 4; ++i) QVERIFY(again.body(i).shape.meshData);
+        QCOMPARE(int(again.body(2).shape.meshData->triangles.size()), 4);
+    }
+
+    // A mesh that cannot be read: a message naming it, and nothing written.
+    void saveWithMeshesRefusesAMissingMesh() {
+        QTemporaryDir root;
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", root.filePath("box.stl")));
+        writeMeshScene(root.filePath("scene.json"), {"box.stl"});
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(root.filePath("scene.json"), &error), qPrintable(error));
+        QVERIFY(QFile::remove(root.filePath("box.stl")));
+        QVERIFY(QDir(root.path()).mkpath("out"));
+        QVERIFY(!doc.saveWithMeshes(root.filePath("out/scene.json"), &error));
+        QVERIFY2(error.contains("box.stl"), qPrintable(error));
+        QVERIFY(QDir(root.filePath("out")).entryList(QDir::NoDotAndDotDot | QDir::AllEntries).isEmpty());
+        QCOMPARE(doc.filePath(), root.filePath("scene.json"));
+    }
+
+private:
+    const QString kMeshes = QStringLiteral(TUMBLE_SCENES_DIR "/../meshes");
+
+    static QByteArray readAll(const QString& path) {
+        QFile f(path);
+        return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+    }
+
+    // A scene with a ground and one convex-hull mesh body per file (paths as given).
+    static void writeMeshScene(const QString& path, const QStringList& files) {
+        QString bodies =
+            R"({"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}})";
+        int n = 0;
+        for (const QString& f : files)
+            bodies +=
+                QStringLiteral(
+                    R"(, {"name": "m%1", "shape": {"type": "mesh", "file": "%2"}, "density": 1000, "position": [0, %3, 0]})")
+                    .arg(++n)
+                    .arg(f)
+                    .arg(2 * n);
+        QFile out(path);
+        QVERIFY(out.open(QIODevice::WriteOnly));
+        out.write(QStringLiteral(R"({"format": "tumble-scene", "version": 1, "bodies": [%1]})")
+                      .arg(bodies)
+                      .toUtf8());
     }
 };
 
