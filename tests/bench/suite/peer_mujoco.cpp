@@ -40,13 +40,15 @@
 //   angular velocity in the body's own axes (MuJoCo 2.2); body() rotates it to world.
 // - No sleeping in MuJoCo 2.2; settings.sleeping is ignored.
 // - Memory: MuJoCo 2.2 sizes its constraint arrays from njmax: njmax x njmax for efc_AR and
-//   njmax x nv for efc_J and efc_JT (with int column indices), in one buffer of at most 2 GB
-//   that it clears several times while loading. njmax is 48 rows per dynamic body (12
-//   points of 4 pyramid rows), capped so these arrays stay under 0.6 GB (about 1 300 rows
-//   with 3 000 boxes, 400 with 10 000 bodies): a big pile does not fit, and loading takes
-//   seconds (the 120-box pyramid: 5 824 rows, ~6 s). When a run fills the arrays MuJoCo
-//   drops contacts, so from then on body() reports NaN and one line on stderr says why,
-//   rather than measure a different simulation.
+//   njmax x nv for efc_J and efc_JT (with int column indices), in one buffer of at most 2 GB,
+//   and its automatic stack at about 6.3 njmax^2 numbers (1.2 GB for 4 864 rows), all
+//   cleared while loading. njmax is 48 rows per dynamic body (12 points of 4 pyramid rows),
+//   capped so the arrays stay under 0.6 GB (about 1 300 rows with 3 000 boxes, 400 with
+//   10 000 bodies): a big pile does not fit, and loading a hundred bodies takes seconds
+//   (100 boxes: 4 864 rows, 6 s). A smaller stack (<size nstack>) loads faster but the
+//   Newton solver overflows it once the rows fill (the 120-box pyramid at t = 0). When a
+//   run fills the arrays MuJoCo drops contacts, so from then on body() reports NaN and one
+//   line on stderr says why, rather than measure a different simulation.
 // - Refused: springs, moving kinematic bodies, meshes collided as triangles.
 #include "engine_adapter.h"
 #include "peer_common.h"
