@@ -212,9 +212,12 @@ void writeStress(const Options& opt, const std::vector<StressRow>& rows) {
         csv << r.test << ',' << r.engine << ',' << (r.pass ? "PASS" : "FAIL") << ",\"" << r.figure << "\"\n";
     std::ofstream md = openOut(opt, "summary.md", true);
     md << "\n| test | engine | result | figure |\n|---|---|---|---|\n";
-    for (const StressRow& r : rows)
+    for (const StressRow& r : rows) {
+        std::string figure;  // a | would end the table cell
+        for (char c : r.figure) figure += c == '|' ? std::string("\\|") : std::string(1, c);
         md << "| " << r.test << " | " << r.engine << " | " << (r.pass ? "PASS" : "**FAIL**") << " | "
-           << r.figure << " |\n";
+           << figure << " |\n";
+    }
 }
 
 }  // namespace tumble::bench
