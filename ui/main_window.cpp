@@ -153,9 +153,11 @@ void MainWindow::buildMenus() {
     file->addSeparator();
     file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save);
     file->addAction(tr("Save &As..."), QKeySequence::SaveAs, this, &MainWindow::saveAsDialog);
+    file->addAction(tr("Save with &Meshes..."), this, &MainWindow::saveWithMeshesDialog);
     file->addAction(tr("Re&vert"), this, &MainWindow::revert);
     file->addSeparator();
     file->addAction(tr("&Import Mesh..."), QKeySequence(tr("Ctrl+I")), this, &MainWindow::importDialog);
+    file->addAction(tr("&Export..."), QKeySequence(tr("Ctrl+E")), this, &MainWindow::exportDialog);
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
 

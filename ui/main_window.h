@@ -5,7 +5,10 @@
 
 #include <tumble/scene.h>
 
+#include <tumble/io/trajectory_writer.h>
+
 #include <QMainWindow>
+#include <QSize>
 #include <QString>
 
 class QMenu;
@@ -14,6 +17,8 @@ class QTimer;
 namespace tumble::ui {
 
 class Document;
+class ImageExporter;
+class TrajectoryExport;
 class SceneTreeDock;
 class Timeline;
 class TimelineDock;
@@ -42,6 +47,14 @@ public:
     /// the scene is untouched and `error` names the file and the reason.
     bool importMesh(const QString& path, bool convexHull, double scale, QString* error);
 
+    /// Exports the recording to `target` as the dialog's options say (see ExportDialog): a
+    /// trajectory file, or images / a video. Returns at once; exportFinished() follows.
+    /// False with the reason when it cannot start.
+    bool startExport(int kind, const QString& target, const io::ExportOptions& options,
+                     const QSize& imageSize, QString* error);
+    bool isExporting() const;
+    void cancelExport();
+
     /// Writes the autosave file now if the scene has unsaved changes (the timer calls it
     /// every minute); removes it when there is nothing unsaved.
     void autosave();
@@ -55,6 +68,9 @@ public:
 
     /// The sample scene opened when no scene is given.
     static QString defaultScenePath();
+
+signals:
+    void exportFinished(bool ok, const QString& message);
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -73,6 +89,9 @@ private:
     bool saveAsDialog();
     void revert();
     void importDialog();
+    // File > Export and Save with Meshes (ui/main_window_export.cpp).
+    void exportDialog();
+    bool saveWithMeshesDialog();
     void addRecent(const QString& path);
     void fillRecentMenu();
     void openPath(const QString& path);
@@ -85,6 +104,8 @@ private:
     QString source_;
     QMenu* recentMenu_ = nullptr;
     QTimer* autosaveTimer_ = nullptr;
+    TrajectoryExport* trajectoryExport_ = nullptr;
+    ImageExporter* imageExport_ = nullptr;
 };
 
 }  // namespace tumble::ui

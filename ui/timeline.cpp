@@ -116,9 +116,23 @@ Profile Timeline::profile() const {
 }
 
 bool Timeline::frameState(int frame, State* out) const {
-    if (!run_) return false;
-    std::lock_guard lock(run_->mutex);
-    Run& r = *run_;
+    return run_ && readFrame(*run_, frame, out);
+}
+
+Timeline::Frames Timeline::frames() const {
+    Frames f;
+    if (!run_) return f;
+    std::shared_ptr<Run> run = run_;
+    f.model = model();
+    f.scene = run->scene;
+    f.frameCount = run->frames;
+    f.frameRate = run->frameRate;
+    f.read = [run](int k, State* out) { return readFrame(*run, k, out); };
+    return f;
+}
+
+bool Timeline::readFrame(Run& r, int frame, State* out) {
+    std::lock_guard lock(r.mutex);
     if (frame < 0 || frame >= r.recording.framesDone() || !r.model) return false;
     if (const State* s = r.recording.stored(frame)) {
         *out = *s;

@@ -20,6 +20,7 @@
 #include <QObject>
 #include <QString>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -73,6 +74,19 @@ public:
     /// re-simulation). For plots and trails.
     void bodyTrack(int body, std::vector<int>* frames, std::vector<BodyState>* states,
                    int lastFrame = -1) const;
+
+    /// What an exporter needs of the current recording, valid and thread-safe after the
+    /// timeline has moved on to another run (it keeps that run's recording alive).
+    struct Frames {
+        std::shared_ptr<const Model> model;
+        SceneDesc scene;  ///< the scene as it was simulated (meshes loaded)
+        int frameCount = 0;
+        double frameRate = 0.0;
+        /// Frame k's state (re-simulated when thinned); false when not recorded.
+        std::function<bool(int frame, State* out)> read;
+    };
+    /// Null model when nothing is recorded.
+    Frames frames() const;
 
     /// The memory cap of the recording (bytes). Lowering it thins a recording at once.
     std::size_t memoryCap() const { return cap_; }
@@ -129,6 +143,7 @@ signals:
 
 private:
     struct Run;
+    static bool readFrame(Run& run, int frame, State* out);
     void markStale();
     void startRun();
     void retire();

@@ -1,0 +1,71 @@
+// File > Export: the format (trajectory CSV or JSON, glTF, glb, a PNG image sequence, an
+// MP4 video when ffmpeg is installed), where to, which frames (range and step, so a lower
+// frame rate), which bodies (trajectories) and the image size (images, video). The last
+// choices are remembered (QSettings).
+#pragma once
+
+#include <tumble/io/trajectory_writer.h>
+
+#include <QDialog>
+#include <QSize>
+#include <QStringList>
+
+class QComboBox;
+class QLabel;
+class QLineEdit;
+class QListWidget;
+class QSpinBox;
+class QDialogButtonBox;
+
+namespace tumble::ui {
+
+class ExportDialog : public QDialog {
+    Q_OBJECT
+public:
+    enum class Kind { Csv, Json, Gltf, Glb, Images, Video };
+    Q_ENUM(Kind)
+
+    /// `bodyNames` in scene order; `frames` and `frameRate` of the recording.
+    ExportDialog(const QStringList& bodyNames, int frames, double frameRate, const QString& sceneName,
+                 QWidget* parent = nullptr);
+
+    Kind kind() const;
+    void setKind(Kind kind);
+    /// A file for the trajectory formats and video, a folder for images.
+    QString target() const;
+    void setTarget(const QString& path);
+    io::ExportOptions options() const;
+    void setFrameRange(int first, int last, int step);
+    void setBodiesChecked(const QList<int>& bodies);
+    QSize imageSize() const;
+    /// What is wrong with the choices, or empty (the OK button is enabled only then).
+    QString problem() const;
+
+    void accept() override;  // remembers the choices
+
+private:
+    void browse();
+    void update();
+    void restore(const QString& sceneName);
+
+    int frames_;
+    double frameRate_;
+    QComboBox* kind_;
+    QLineEdit* target_;
+    QSpinBox* first_;
+    QSpinBox* last_;
+    QSpinBox* step_;
+    QLabel* rate_;
+    QListWidget* bodies_;
+    QSpinBox* width_;
+    QSpinBox* height_;
+    QLabel* problem_;
+    QDialogButtonBox* buttons_;
+    QWidget* bodiesRow_;
+    QWidget* sizeRow_;
+};
+
+/// The extension of a kind ("csv", ...; "" for images).
+QString exportExtension(ExportDialog::Kind kind);
+
+}  // namespace tumble::ui
