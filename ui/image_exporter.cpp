@@ -33,6 +33,8 @@ namespace {
 // size is slow, but not this slow).
 constexpr int kShowTimeoutMs = 20000;
 constexpr int kFrameTimeoutMs = 60000;
+// Captures of one frame at most (see onCaptured).
+constexpr int kMaxCaptures = 6;
 // How long ffmpeg may take per image (an encoder stuck on a bad input is stopped).
 constexpr int kEncodeMsPerImage = 2000;
 constexpr int kEncodeMinMs = 60000;
@@ -85,8 +87,9 @@ struct ImageExporter::Impl {
     QString folder;       // absolute
     QString createdRoot;  // the outermost folder the export made (empty: none)
     std::vector<int> frames;
-    int next = 0;  // index of the frame being taken
-    bool warmUp = false;
+    int next = 0;      // index of the frame being taken
+    int captures = 0;  // captures taken of the frame so far
+    QImage previous;   // the last of them
     std::unique_ptr<QTemporaryDir> temp;
     std::unique_ptr<QTemporaryFile> tempVideo;
 
@@ -232,6 +235,7 @@ void ImageExporter::start(const ImageExportOptions& options) {
     view->setWindowFlags(Qt::Tool | Qt::FramelessWindowHint | Qt::WindowDoesNotAcceptFocus);
     view->setAttribute(Qt::WA_ShowWithoutActivating);
     view->setWindowTitle(tr("Tumble: exporting images"));
+    view->setSelectionShown(false);
     view->setTimeline(d.timeline);
     for (int i = 0; i < Viewport::kOverlayCount; ++i) {
         const auto o = Viewport::Overlay(i);
@@ -263,8 +267,7 @@ void ImageExporter::start(const ImageExportOptions& options) {
     d.poll->start();
 }
 
-// Polled until the export view's window is on screen at its size; then a first capture
-// (discarded) makes sure a frame of that size was drawn before the first image.
+// Polled until the export view's window is on screen at its size.
 void ImageExporter::waitForView() {
     Impl& d = *d_;
     if (d.stage != Impl::Stage::Showing || !d.view) return d.poll->stop();
@@ -273,17 +276,17 @@ void ImageExporter::waitForView() {
     d.poll->stop();
     d.watchdog->stop();
     d.stage = Impl::Stage::Rendering;
-    d.warmUp = true;
+    d.captures = 0;
     requestCapture();
 }
 
 void ImageExporter::requestCapture() {
     Impl& d = *d_;
     if (!d.view || !d.capture || !d.timeline) return fail(tr("The export view was closed"));
-    if (!d.warmUp) d.timeline->seek(d.frames[size_t(d.next)]);
+    if (d.captures == 0) d.timeline->seek(d.frames[size_t(d.next)]);
     if (d.reply) d.reply->deleteLater();
     d.reply = d.capture->requestCapture();
-    const int frame = d.warmUp ? -1 : d.frames[size_t(d.next)];
+    const int frame = d.frames[size_t(d.next)];
     d.watchdog->disconnect();
     connect(d.watchdog, &QTimer::timeout, this, [this, frame] {
         fail(tr("The viewport did not draw frame %1 within %2 s").arg(frame).arg(kFrameTimeoutMs / 1000));
@@ -307,13 +310,18 @@ void ImageExporter::onCaptured() {
     QImage image = reply->image();
     reply->deleteLater();
     d.reply = nullptr;
-    if (d.warmUp) {
-        d.warmUp = false;
+    // A capture can show the frame before the last change (the instance buffers reach the
+    // render thread a frame late): captures are repeated until two in a row agree.
+    ++d.captures;
+    if (d.captures < 2 || (image != d.previous && d.captures < kMaxCaptures)) {
+        d.previous = image;
         QTimer::singleShot(0, this, [this, gen = d.generation] {
             if (d_->generation == gen) requestCapture();
         });
         return;
     }
+    d.captures = 0;
+    d.previous = QImage();
     const int total = int(d.frames.size());
     const int frame = d.frames[size_t(d.next)];
     if (image.isNull()) return fail(tr("The viewport gave no image of frame %1").arg(frame));

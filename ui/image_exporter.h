@@ -4,12 +4,14 @@
 //
 // How a frame is taken: the exporter makes a second Viewport of the document, a frameless
 // top-level window of the chosen size drawing the same timeline with the user's camera,
-// overlays and collision shapes, and puts a Qt3D render capture at the root of its frame
-// graph. For each frame it seeks the timeline, requests a capture (the reply completes only
-// with a frame drawn after the request, so after the seek), saves the image and goes on to
-// the next frame from the event loop: the UI never blocks. A window of its own, rather than
-// an offscreen render target in the user's viewport, keeps the user's view untouched and
-// works the same on a GPU and under Xvfb (llvmpipe), where the tests run.
+// overlays and collision shapes (not the selection: no highlight, no handles), and puts a
+// Qt3D render capture at the root of its frame graph. For each frame it seeks the timeline
+// and requests captures until two in a row agree (a reply completes only with a frame
+// drawn after the request, but Qt3D can draw the bodies' instance transforms a frame
+// late), saves the image and goes on to the next frame from the event loop: the UI never
+// blocks. A window of its own, rather than an offscreen render target in the user's
+// viewport, leaves the user's view untouched and works the same on a GPU and under Xvfb
+// (llvmpipe), where the tests run, also larger than the screen.
 //
 // Writes are atomic: the PNGs go to a hidden temporary folder inside the target folder
 // and are moved into place only when every frame was saved; the MP4 is written by ffmpeg

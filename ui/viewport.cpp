@@ -208,10 +208,14 @@ struct Viewport::Impl {
         return &state;
     }
 
+    /// Whether the selection is drawn (highlight and handles); off in an image export's view.
+    bool selectionShown = true;
+    QList<int> shownSelection() const { return selectionShown ? doc->selection() : QList<int>(); }
+
     /// The selected bodies a handle can move (planes cannot).
     QList<int> movableSelection() const {
         QList<int> out;
-        for (int i : doc->selection()) {
+        for (int i : shownSelection()) {
             if (i >= 0 && i < doc->bodyCount() && doc->body(i).shape.type != ShapeType::Plane) out.append(i);
         }
         return out;
@@ -288,21 +292,21 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     connect(document, &Document::sceneReset, this, [this, cancelDrag] {
         cancelDrag();
         d_->scene->rebuild(d_->doc->scene());
-        d_->scene->setSelection(d_->doc->selection());
+        d_->scene->setSelection(d_->shownSelection());
         refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyInserted, this, [this, cancelDrag](int i) {
         cancelDrag();
         d_->scene->insert(i, d_->doc->body(i));
-        d_->scene->setSelection(d_->doc->selection());
+        d_->scene->setSelection(d_->shownSelection());
         refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyRemoved, this, [this, cancelDrag](int i) {
         cancelDrag();
         d_->scene->remove(i);
-        d_->scene->setSelection(d_->doc->selection());
+        d_->scene->setSelection(d_->shownSelection());
         refreshPlayback();
         updateHandles();
     });
@@ -311,12 +315,12 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
         updateHandles();
     });
     connect(document, &Document::selectionChanged, this, [this] {
-        d_->scene->setSelection(d_->doc->selection());
+        d_->scene->setSelection(d_->shownSelection());
         updateHandles();
     });
 
     d_->scene->rebuild(document->scene());
-    d_->scene->setSelection(document->selection());
+    d_->scene->setSelection(d_->shownSelection());
     syncCamera();
 }
 
@@ -771,6 +775,18 @@ void Viewport::setShowCollisionShapes(bool show) {
     if (show == d_->scene->showCollisionShapes()) return;
     d_->scene->setShowCollisionShapes(show);
     emit showCollisionShapesChanged(show);
+}
+
+bool Viewport::selectionShown() const {
+    return d_->selectionShown;
+}
+
+void Viewport::setSelectionShown(bool shown) {
+    if (shown == d_->selectionShown) return;
+    if (!shown && d_->dragAxis >= 0) cancelHandleDrag();
+    d_->selectionShown = shown;
+    d_->scene->setSelection(d_->shownSelection());
+    updateHandles();
 }
 
 // ---- Playback and overlays.

@@ -110,6 +110,11 @@ public:
     /// The menu text of an overlay ("Trails", "Contact Points", ...).
     static QString overlayText(Overlay overlay);
 
+    /// Whether the selection is drawn (its highlight and the handles); on by default. An
+    /// image export's view turns it off: the pictures show the scene, not the editing.
+    bool selectionShown() const;
+    void setSelectionShown(bool shown);
+
     // ---- Collision shapes.
     bool showCollisionShapes() const;
     /// Wireframe entities drawn (one per body with a bounded shape, while shown).
