@@ -1,6 +1,8 @@
 // tumble-bench (issue 8): Tumble against its peers on one library of scenes.
 //   tumble-bench                      everything: work-precision, speed, stress
-//   tumble-bench --quick              a reduced set in under a minute (the CI smoke run)
+//   tumble-bench --quick              a reduced set in under a minute (the CI smoke run):
+//                                     steps 1/60 and 1/240, a few steps of each speed scene,
+//                                     shorter stress runs on Tumble alone
 //   tumble-bench --scene NAME         one scene or stress test (see --list)
 //   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
@@ -129,7 +131,7 @@ int main(int argc, char** argv) {
     }
     std::vector<StressRow> stress;
     if (all || contains(stressTestNames(), opt.scene)) {
-        std::printf("\n# Stability stress%s\n", opt.quick ? " (quick: shorter runs)" : "");
+        std::printf("\n# Stability stress%s\n", opt.quick ? " (quick: shorter runs, Tumble alone)" : "");
         ok = runStress(opt, stress) && ok;
         writeStress(opt, stress);
     }

@@ -110,7 +110,7 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
             row.mode = engine->modes().front();
             // A bound on each run: a peer that takes minutes to build a big model is reported, not waited
             // for.
-            const int limit = opt.quick ? 4 : 120;
+            const int limit = opt.quick ? 2 : 120;
             const std::string cmd = "timeout " + std::to_string(limit) + " '" + self + "' --child speed " +
                                     name + " " + row.engine + " " + row.mode + (opt.quick ? " --quick" : "") +
                                     " 2>&1";

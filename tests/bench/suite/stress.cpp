@@ -187,7 +187,7 @@ std::vector<StressTest> stressTests() {
                      SceneDesc s = sampleScene("pyramid-15.json");
                      for (BodyDesc& b : s.bodies)
                          if (b.shape.type != ShapeType::Plane) b.position.x() += 1e5;
-                     return stands(e, "pyramid-100km", s, quick ? 0.5 : 10);
+                     return stands(e, "pyramid-100km", s, quick ? 0.1 : 10);
                  }});
     t.push_back({"thin-fast-sphere", [](EngineAdapter& e, bool) {
                      // A 2 cm ball at 300 m/s (5 m a step) at a 1 cm static wall.
@@ -241,6 +241,9 @@ bool runStress(const Options& opt, std::vector<StressRow>& rows) {
     for (const StressTest& t : stressTests()) {
         if (!opt.scene.empty() && opt.scene != t.name) continue;
         for (auto& engine : engines) {
+            // --quick: the peers' adapters are exercised by the other parts; building their
+            // bigger models here costs seconds each (MuJoCo's contact buffers).
+            if (opt.quick && engine->name() != "tumble") continue;
             const double t0 = wallNow();
             StressRow row = t.run(*engine, opt.quick);
             std::printf("  %-24s %-8s %s  %s  (%.1f s)\n", row.test.c_str(), row.engine.c_str(),
