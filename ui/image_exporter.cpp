@@ -261,7 +261,12 @@ void ImageExporter::start(const ImageExportOptions& options) {
     d.stage = Impl::Stage::Showing;
     d.watchdog->disconnect();
     connect(d.watchdog, &QTimer::timeout, this, [this] {
-        fail(tr("The export view could not be shown within %1 s").arg(kShowTimeoutMs / 1000));
+        const QSize size = renderSize(d_->opt.size);
+        fail(tr("The export view could not be shown at %1 x %2 within %3 s (a size larger than the window "
+                "system allows?)")
+                 .arg(size.width())
+                 .arg(size.height())
+                 .arg(kShowTimeoutMs / 1000));
     });
     d.watchdog->start(kShowTimeoutMs);
     d.poll->start();
