@@ -12,6 +12,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QLoggingCategory>
 #include <QPointer>
 #include <QProcess>
 #include <QStandardPaths>
@@ -29,12 +30,16 @@ namespace tumble::ui {
 
 namespace {
 
+Q_LOGGING_CATEGORY(lcExport, "tumble.export")
+
 // How long the export view may take to appear, and a frame to be drawn (llvmpipe at a large
 // size is slow, but not this slow).
 constexpr int kShowTimeoutMs = 20000;
 constexpr int kFrameTimeoutMs = 60000;
 // Captures of one frame at most (see onCaptured).
 constexpr int kMaxCaptures = 6;
+// After this long without an answer a capture is requested again.
+constexpr int kRetryMs = 3000;
 // How long ffmpeg may take per image (an encoder stuck on a bad input is stopped).
 constexpr int kEncodeMsPerImage = 2000;
 constexpr int kEncodeMinMs = 60000;
@@ -98,6 +103,7 @@ struct ImageExporter::Impl {
     QPointer<Qt3DRender::QRenderCaptureReply> reply;
     QTimer* watchdog = nullptr;
     QTimer* poll = nullptr;
+    QTimer* retry = nullptr;  // a capture request that has not completed is made again
     QElapsedTimer clock;
     QPointer<QProcess> process;
 
@@ -118,6 +124,14 @@ ImageExporter::ImageExporter(Viewport* viewport, Timeline* timeline, QObject* pa
     d_->poll = new QTimer(this);
     d_->poll->setInterval(10);
     connect(d_->poll, &QTimer::timeout, this, &ImageExporter::waitForView);
+    d_->retry = new QTimer(this);
+    d_->retry->setSingleShot(true);
+    connect(d_->retry, &QTimer::timeout, this, [this] {
+        if (d_->stage != Impl::Stage::Rendering) return;
+        qCDebug(lcExport) << "capture of frame" << d_->frames[size_t(d_->next)]
+                          << "not answered: asked again";
+        requestCapture();
+    });
 }
 
 ImageExporter::~ImageExporter() {
@@ -281,22 +295,33 @@ void ImageExporter::waitForView() {
     d.poll->stop();
     d.watchdog->stop();
     d.stage = Impl::Stage::Rendering;
+    beginFrame();
+}
+
+// Shows frame frames[next] and starts taking it.
+void ImageExporter::beginFrame() {
+    Impl& d = *d_;
+    if (!d.timeline) return fail(tr("The timeline was closed during the export"));
+    const int frame = d.frames[size_t(d.next)];
     d.captures = 0;
+    d.previous = QImage();
+    d.timeline->seek(frame);
+    d.watchdog->disconnect();
+    connect(d.watchdog, &QTimer::timeout, this, [this, frame] {
+        fail(tr("The viewport did not draw frame %1 within %2 s").arg(frame).arg(kFrameTimeoutMs / 1000));
+    });
+    d.watchdog->start(kFrameTimeoutMs);
     requestCapture();
 }
 
 void ImageExporter::requestCapture() {
     Impl& d = *d_;
     if (!d.view || !d.capture || !d.timeline) return fail(tr("The export view was closed"));
-    if (d.captures == 0) d.timeline->seek(d.frames[size_t(d.next)]);
     if (d.reply) d.reply->deleteLater();
     d.reply = d.capture->requestCapture();
-    const int frame = d.frames[size_t(d.next)];
-    d.watchdog->disconnect();
-    connect(d.watchdog, &QTimer::timeout, this, [this, frame] {
-        fail(tr("The viewport did not draw frame %1 within %2 s").arg(frame).arg(kFrameTimeoutMs / 1000));
-    });
-    d.watchdog->start(kFrameTimeoutMs);
+    // Now and then a request is never answered (the on-demand renderer misses it): it is
+    // made again after a while; the frame's watchdog still bounds the whole.
+    d.retry->start(kRetryMs);
     if (d.reply->isComplete()) {
         QTimer::singleShot(0, this, [this, gen = d.generation] {
             if (d_->generation == gen) onCaptured();
@@ -311,7 +336,7 @@ void ImageExporter::onCaptured() {
     auto* reply = qobject_cast<Qt3DRender::QRenderCaptureReply*>(sender());
     if (!reply) reply = d.reply;
     if (d.stage != Impl::Stage::Rendering || !reply || reply != d.reply) return;
-    d.watchdog->stop();
+    d.retry->stop();
     QImage image = reply->image();
     reply->deleteLater();
     d.reply = nullptr;
@@ -325,8 +350,7 @@ void ImageExporter::onCaptured() {
         });
         return;
     }
-    d.captures = 0;
-    d.previous = QImage();
+    d.watchdog->stop();
     const int total = int(d.frames.size());
     const int frame = d.frames[size_t(d.next)];
     if (image.isNull()) return fail(tr("The viewport gave no image of frame %1").arg(frame));
@@ -345,7 +369,7 @@ void ImageExporter::onCaptured() {
     if (d.generation != gen) return;  // cancelled from a slot
     if (d.next < total) {
         QTimer::singleShot(0, this, [this, gen] {
-            if (d_->generation == gen) requestCapture();
+            if (d_->generation == gen) beginFrame();
         });
     } else {
         QTimer::singleShot(0, this, [this, gen] {
@@ -509,6 +533,7 @@ void ImageExporter::finish(bool ok, const QString& message) {
     d.stage = Impl::Stage::Idle;
     ++d.generation;
     d.poll->stop();
+    d.retry->stop();
     d.watchdog->stop();
     d.watchdog->disconnect();
     for (const auto& c : d.connections) disconnect(c);

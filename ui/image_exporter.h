@@ -85,6 +85,7 @@ private:
     void fail(const QString& message);
     void finish(bool ok, const QString& message);
     void waitForView();
+    void beginFrame();
     void requestCapture();
     void onCaptured();
     void framesDone();
