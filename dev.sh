@@ -19,7 +19,10 @@ PACKAGES=(
   libbullet-dev libode-dev libmujoco-dev
   xvfb xauth
   nodejs npm
+  ffmpeg
 )
+# ffmpeg is optional for users (the editor's MP4 export detects it at run time); the tests
+# install it so that the video path is tested, not skipped.
 
 # The Khronos glTF validator for the export tests (tests/io/gltf_validator.h), from npm into
 # the build folder; its 2.x releases are all "2.0.0-dev.3.N", which npm's "@2" does not match.
