@@ -9,6 +9,7 @@
 #include <tumble/io/trajectory_json.h>
 
 #include <QComboBox>
+#include <QImage>
 #include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -93,6 +94,28 @@ private slots:
         QVERIFY2(finished.first().at(1).toString().contains("cancelled"),
                  qPrintable(finished.first().at(1).toString()));
         QVERIFY(QDir(dir.path()).entryList(QDir::NoDotAndDotDot | QDir::AllEntries | QDir::Hidden).isEmpty());
+    }
+
+    // Images and a video through the same entry point as the dialog's Export button.
+    void imagesAndVideoFromTheWindow() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QVERIFY(openAndRecord(w, ":/scenes/projectile.json"));
+        QTemporaryDir dir;
+        io::ExportOptions o;
+        o.lastFrame = 4;
+        QSignalSpy finished(&w, &MainWindow::exportFinished);
+        QString error;
+        const QString video = dir.filePath("throw.mp4");
+        QVERIFY2(w.startExport(int(ExportDialog::Kind::Video), video, o, QSize(320, 240), &error),
+                 qPrintable(error));
+        QVERIFY(finished.wait(120000));
+        QVERIFY2(finished.first().at(0).toBool(), qPrintable(finished.first().at(1).toString()));
+        QVERIFY(QFileInfo(video).size() > 0);
+        const QDir frames(dir.filePath("throw-frames"));
+        QCOMPARE(frames.entryList({"*.png"}, QDir::Files).size(), 5);
+        QCOMPARE(QImage(frames.filePath("frame_0004.png")).size(), QSize(320, 240));
     }
 
     void aBadTargetIsRefusedWithItsName() {
