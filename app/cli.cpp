@@ -7,6 +7,7 @@
 #include <tumble/world.h>
 
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -40,7 +41,11 @@ Options for --headless:
   --frame-rate HZ     recorded frames per second (overrides settings.frame_rate)
   --out FILE          writes the trajectory; the format follows the extension:
                       .csv, .json (docs/export.md), .gltf (with FILE's .bin beside it) or
-                      .glb (glTF 2.0: the bodies' meshes and their motion as an animation)
+                      .glb (glTF 2.0: the bodies' meshes and their motion as an animation);
+                      a folder ending in / gets a PNG per frame, FILE.mp4 a video (its
+                      frames in FILE-frames/; needs ffmpeg): both drawn by the editor's
+                      viewport, so they need a display (xvfb-run -a tumble --headless ...)
+  --image-size WxH    pixels of the images and video (default 1280x720)
   --save-scene FILE   writes the scene as run (options applied), normalised
   --quiet             prints nothing but errors
 
@@ -65,8 +70,24 @@ struct Options {
     std::optional<double> duration, dt, frameRate;
     std::optional<std::string> integrator;
     std::string out, saveScene;
+    int imageWidth = 1280, imageHeight = 720;
     bool quiet = false;
 };
+
+ImageRenderer& imageRenderer() {
+    static ImageRenderer renderer;
+    return renderer;
+}
+
+// --out DIR/ (a folder: PNG per frame) or --out FILE.mp4 (a video, its frames beside it).
+bool isImageOutput(const std::string& out) {
+    if (out.empty()) return false;
+    if (out.back() == '/') return true;
+    const std::string ext = std::filesystem::path(out).extension().string();
+    std::string lower;
+    for (char c : ext) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return lower == ".mp4";
+}
 
 struct UsageError {
     std::string message;
@@ -104,6 +125,15 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--integrator") o.integrator = next();
         else if (a == "--out") o.out = next();
         else if (a == "--save-scene") o.saveScene = next();
+        else if (a == "--image-size") {
+            const std::string v = next();
+            int w = 0, h = 0;
+            char extra = 0;
+            if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 16 || h < 16 || w > 8192 || h > 8192)
+                throw UsageError{"--image-size: '" + v + "' is not WIDTHxHEIGHT in pixels (16 to 8192 each)"};
+            o.imageWidth = w;
+            o.imageHeight = h;
+        }
         else if (a.rfind("-", 0) == 0 && a.size() > 1) throw UsageError{"unknown option '" + a + "' (see --help)"};
         else if (o.scene.empty()) o.scene = a;
         else throw UsageError{"more than one scene given: '" + o.scene + "' and '" + a + "'"};
@@ -145,8 +175,13 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (o.frameRate) scene.settings.frameRate = *o.frameRate;
     if (o.integrator) scene.settings.integrator = *o.integrator;
 
+    const bool images = isImageOutput(o.out);
+    if (images && !imageRenderer()) {
+        err << "tumble: --out: '" << o.out << "': images and video need the editor, which this build has not\n";
+        return kInvalid;
+    }
     io::TrajectoryFormat format = io::TrajectoryFormat::Csv;
-    if (!o.out.empty() && !io::trajectoryFormatFor(o.out, format)) {
+    if (!o.out.empty() && !images && !io::trajectoryFormatFor(o.out, format)) {
         err << "tumble: --out: '" << o.out << "': " << io::trajectoryFormatsText() << "\n";
         return kInvalid;
     }
@@ -166,7 +201,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
 
     std::unique_ptr<io::TrajectoryWriter> trajectory;
     try {
-        if (!o.out.empty()) {
+        if (!o.out.empty() && !images) {
             trajectory = io::makeTrajectoryWriter(format, o.out);
             trajectory->begin(world->model(), scene, frameCount(world->model().settings),
                               world->model().settings.frameRate);
@@ -209,6 +244,20 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         err << "tumble: " << e.what() << "\n";
         return kFailure;
     }
+    if (images) {
+        // The editor's exporter simulates the scene again (the same frames: the engine is
+        // deterministic) and draws each one.
+        const bool video = o.out.back() != '/';
+        const std::filesystem::path out(o.out);
+        const std::string folder =
+            video ? (out.parent_path() / (out.stem().string() + "-frames")).string() : o.out;
+        const std::string message =
+            imageRenderer()(scene, folder, video ? o.out : std::string(), o.imageWidth, o.imageHeight);
+        if (!message.empty()) {
+            err << "tumble: --out: " << message << "\n";
+            return kFailure;
+        }
+    }
 
     if (!o.quiet) {
         const Model& m = world->model();
@@ -246,6 +295,8 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
 }
 
 }  // namespace
+
+void setImageRenderer(ImageRenderer renderer) { imageRenderer() = std::move(renderer); }
 
 bool wantsCommandLine(const std::vector<std::string>& args) {
     for (const std::string& a : args) {

@@ -2,6 +2,9 @@
 // --help, --version, --list-integrators. Plain C++: it runs without Qt.
 #pragma once
 
+#include <tumble/scene.h>
+
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -13,5 +16,12 @@ bool wantsCommandLine(const std::vector<std::string>& args);
 
 /// Runs the command line; returns the exit status (0 ok, 2 invalid input, 1 failure).
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+/// Draws the frames of `scene` as PNGs into `folder` (and an MP4 `video` when not empty) at
+/// width × height; returns "" or the message. The editor's exporter, installed by main()
+/// when the editor is built: `--out DIR/` and `--out FILE.mp4` need it.
+using ImageRenderer = std::function<std::string(const SceneDesc& scene, const std::string& folder,
+                                                const std::string& video, int width, int height)>;
+void setImageRenderer(ImageRenderer renderer);
 
 }  // namespace tumble::cli

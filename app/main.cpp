@@ -11,6 +11,9 @@
 
 int main(int argc, char** argv) {
     const std::vector<std::string> args(argv + 1, argv + argc);
+#ifdef TUMBLE_HAVE_UI
+    tumble::cli::setImageRenderer(&tumble::ui::renderImages);
+#endif
     if (tumble::cli::wantsCommandLine(args)) return tumble::cli::run(args, std::cout, std::cerr);
 #ifdef TUMBLE_HAVE_UI
     return tumble::ui::runEditor(argc, argv);

@@ -8,6 +8,8 @@
 #include <tumble/io/trajectory_writer.h>
 #include <tumble/world.h>
 
+#include <QDir>
+#include <QProcess>
 #include <QtTest>
 
 #include "../io/gltf_validator.h"
@@ -139,6 +141,18 @@ class TestCli : public QObject {
     }
 
     // Every entry of the folder, hidden ones and temporaries included.
+    // A PNG's size from its IHDR chunk (bytes 16 to 23, big-endian width and height).
+    static QSize pngSize(const QString& file) {
+        QFile f(file);
+        if (!f.open(QIODevice::ReadOnly)) return {};
+        const QByteArray h = f.read(24);
+        if (h.size() < 24 || !h.startsWith("\x89PNG")) return {};
+        auto be = [&](int at) {
+            return (uchar(h[at]) << 24) | (uchar(h[at + 1]) << 16) | (uchar(h[at + 2]) << 8) | uchar(h[at + 3]);
+        };
+        return QSize(int(be(16)), int(be(20)));
+    }
+
     QStringList entries() const {
         return QDir(dir_->path())
             .entryList(QDir::AllEntries | QDir::Hidden | QDir::System | QDir::NoDotAndDotDot, QDir::Name);
@@ -601,6 +615,43 @@ private slots:
             QString(
                 "tumble: --out: nodir/traj.gltf: cannot be written (no such folder, or no permission)\n"));
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    // --out DIR/ draws a PNG per frame, --out FILE.mp4 a video with its frames beside it;
+    // both through the editor's viewport, so they need a display (the tests have Xvfb's).
+    void outImagesAndVideo() {
+        write("box.json", kBox);  // 0.5 s at 20 frames/s: 11 frames
+        RUN(images, {"--headless", "box.json", "--out", "frames/", "--image-size", "160x120", "--quiet"});
+        QCOMPARE(images.code, 0);
+        const QStringList pngs = QDir(path("frames")).entryList({"*.png"}, QDir::Files, QDir::Name);
+        QCOMPARE(pngs.size(), 11);
+        QCOMPARE(pngs.first(), QString("frame_0000.png"));
+        QCOMPARE(pngSize(path("frames/frame_0010.png")), QSize(160, 120));
+        RUN(video, {"--headless", "box.json", "--out", "box.mp4", "--image-size", "160x120", "--quiet"});
+        QCOMPARE(video.code, 0);
+        QVERIFY(QFileInfo(path("box.mp4")).size() > 0);
+        QCOMPARE(QDir(path("box-frames")).entryList({"*.png"}, QDir::Files).size(), 11);
+        RUN(size, {"--headless", "box.json", "--out", "more/", "--image-size", "160by120"});
+        QCOMPARE(size.code, 2);
+        QVERIFY2(size.err.contains("--image-size: '160by120'"), qPrintable(size.err));
+        QVERIFY(!QFileInfo::exists(path("more")));
+    }
+
+    void outImagesNeedADisplay() {
+        write("box.json", kBox);
+        QProcess p;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.remove("DISPLAY");
+        env.remove("WAYLAND_DISPLAY");
+        p.setProcessEnvironment(env);
+        p.setWorkingDirectory(dir_->path());
+        p.start(TUMBLE_EXECUTABLE, {"--headless", "box.json", "--out", "frames/", "--quiet"});
+        QVERIFY(p.waitForFinished(120000));
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(p.exitCode(), 1);
+        QVERIFY2(QString::fromUtf8(p.readAllStandardError()).contains("need a display: run under xvfb-run"),
+                 "the message says why");
+        QVERIFY(!QFileInfo::exists(path("frames")));
     }
 };
 
