@@ -3,6 +3,8 @@
 #include <tumble/io/trajectory_csv.h>
 #include <tumble/world.h>
 
+#include "trajectory_scene.h"
+
 #include <QtTest>
 
 #include <bit>
@@ -70,55 +72,10 @@ std::uint64_t bits(double d) {
     return std::bit_cast<std::uint64_t>(d);
 }
 
-Mat3 diag(double a, double b, double c) {
-    return Vec3(a, b, c).asDiagonal();
-}
-
-// Every kind of body, a name that needs quoting, and an offset centre of mass.
+// Every kind of body, a name that needs quoting, and an offset centre of mass; a turned
+// static post besides the ground.
 SceneDesc csvScene() {
-    SceneDesc s;
-    s.settings.dt = 0.01;
-    s.settings.duration = 0.5;
-    s.settings.frameRate = 20;
-    s.settings.integrator = "rk4";
-
-    BodyDesc ground;
-    ground.name = "ground";
-    ground.motion = Motion::Static;
-    ground.shape.type = ShapeType::Plane;
-    s.bodies.push_back(ground);
-
-    BodyDesc ball;
-    ball.name = "say \"hi\", ball";
-    ball.shape.type = ShapeType::Sphere;
-    ball.shape.radius = 0.2;
-    ball.mass = 1.5;
-    ball.position = Vec3(0, 3, 0);
-    ball.velocity = Vec3(2, 5, -1);
-    ball.angularVelocity = Vec3(0, 0, 3);
-    s.bodies.push_back(ball);
-
-    BodyDesc offset;  // centre of mass away from the body frame's origin
-    offset.name = "offset";
-    offset.shape.type = ShapeType::Box;
-    offset.shape.halfExtents = Vec3(0.5, 0.3, 0.2);
-    offset.mass = 2;
-    offset.inertia = diag(0.2, 0.3, 0.4);
-    offset.centerOfMass = Vec3(0.3, -0.2, 0.1);
-    offset.position = Vec3(1, 2, 3);
-    offset.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(0, 0, 1)));
-    offset.angularVelocity = Vec3(1, 2, -0.5);
-    s.bodies.push_back(offset);
-
-    BodyDesc carousel;
-    carousel.name = "carousel";
-    carousel.motion = Motion::Kinematic;
-    carousel.shape.type = ShapeType::Cylinder;
-    carousel.position = Vec3(-1, 0, 0);
-    carousel.velocity = Vec3(0.25, 0, 0);
-    carousel.angularVelocity = Vec3(0, 1.5, 0);
-    s.bodies.push_back(carousel);
-
+    SceneDesc s = test::trajectoryScene("say \"hi\", ball");
     BodyDesc post;
     post.name = "post";
     post.motion = Motion::Static;

@@ -9,6 +9,8 @@
 #include <tumble/world.h>
 
 #include <QTemporaryDir>
+#include "trajectory_scene.h"
+
 #include <QtTest>
 
 #include <bit>
@@ -28,48 +30,7 @@ std::uint64_t bits(double d) {
 // Every motion, a name that JSON must escape, an offset centre of mass (the body frame's
 // position differs from x) and a spin.
 SceneDesc scene() {
-    SceneDesc s;
-    s.settings.dt = 0.01;
-    s.settings.duration = 0.5;
-    s.settings.frameRate = 20;
-    s.settings.integrator = "rk4";
-
-    BodyDesc ground;
-    ground.name = "ground";
-    ground.motion = Motion::Static;
-    ground.shape.type = ShapeType::Plane;
-    s.bodies.push_back(ground);
-
-    BodyDesc ball;
-    ball.name = "say \"hi\"\\ ball \xc3\xa9\n";
-    ball.shape.radius = 0.2;
-    ball.mass = 1.5;
-    ball.position = Vec3(0, 3, 0);
-    ball.velocity = Vec3(2, 5, -1);
-    ball.angularVelocity = Vec3(0, 0, 3);
-    s.bodies.push_back(ball);
-
-    BodyDesc offset;
-    offset.name = "offset";
-    offset.shape.type = ShapeType::Box;
-    offset.shape.halfExtents = Vec3(0.5, 0.3, 0.2);
-    offset.mass = 2;
-    offset.inertia = Vec3(0.2, 0.3, 0.4).asDiagonal();
-    offset.centerOfMass = Vec3(0.3, -0.2, 0.1);
-    offset.position = Vec3(1, 2, 3);
-    offset.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(0, 0, 1)));
-    offset.angularVelocity = Vec3(1, 2, -0.5);
-    s.bodies.push_back(offset);
-
-    BodyDesc carousel;
-    carousel.name = "carousel";
-    carousel.motion = Motion::Kinematic;
-    carousel.shape.type = ShapeType::Cylinder;
-    carousel.position = Vec3(-1, 0, 0);
-    carousel.velocity = Vec3(0.25, 0, 0);
-    carousel.angularVelocity = Vec3(0, 1.5, 0);
-    s.bodies.push_back(carousel);
-    return s;
+    return test::trajectoryScene("say \"hi\"\\ ball \xc3\xa9\n");
 }
 
 // Runs the scene through `writer` (when given) and returns every frame's state.
