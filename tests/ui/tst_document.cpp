@@ -280,13 +280,15 @@ private:
         QString bodies =
             R"({"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}})";
         int n = 0;
-        for (const QString& f : files)
+        for (const QString& f : files) {
+            ++n;
             bodies +=
                 QStringLiteral(
                     R"(, {"name": "m%1", "shape": {"type": "mesh", "file": "%2"}, "density": 1000, "position": [0, %3, 0]})")
-                    .arg(++n)
+                    .arg(n)
                     .arg(f)
                     .arg(2 * n);
+        }
         QFile out(path);
         QVERIFY(out.open(QIODevice::WriteOnly));
         out.write(QStringLiteral(R"({"format": "tumble-scene", "version": 1, "bodies": [%1]})")
