@@ -1,0 +1,61 @@
+// A child process for tests/ui/tst_crash_safety.cpp, killed (SIGKILL) by the test at a
+// moment of its choosing:
+//   crash_child save-loop SCENE OUT   opens SCENE and saves it to OUT again and again, each
+//                                     time with the first dynamic body moved, printing
+//                                     "saved N" after each save;
+//   crash_child autosave SCENE        opens SCENE in the editor's main window, makes an edit,
+//                                     autosaves, prints "autosaved", then waits to be killed.
+#include "document.h"
+#include "main_window.h"
+
+#include <QApplication>
+#include <QThread>
+
+#include <cstdio>
+#include <cstring>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+int main(int argc, char** argv) {
+    QApplication app(argc, argv);
+    QApplication::setApplicationName("Tumble");
+    QApplication::setOrganizationName("Tumble");
+    if (argc == 4 && !std::strcmp(argv[1], "save-loop")) {
+        Document doc;
+        QString error;
+        if (!doc.open(argv[2], &error)) {
+            std::fprintf(stderr, "%s\n", qPrintable(error));
+            return 2;
+        }
+        const int moved = doc.bodyCount() - 1;
+        for (long n = 1;; ++n) {
+            BodyDesc b = doc.body(moved);
+            b.position.x() = double(n);
+            doc.setBody(moved, b, "Move");
+            if (!doc.saveAs(argv[3], &error)) {
+                std::fprintf(stderr, "%s\n", qPrintable(error));
+                return 1;
+            }
+            std::printf("saved %ld\n", n);
+            std::fflush(stdout);
+        }
+    }
+    if (argc == 3 && !std::strcmp(argv[1], "autosave")) {
+        MainWindow w;
+        QString error;
+        if (!w.openScene(argv[2], &error)) {
+            std::fprintf(stderr, "%s\n", qPrintable(error));
+            return 2;
+        }
+        BodyDesc b = w.document()->body(1);
+        b.restitution = 0.123;
+        w.document()->setBody(1, b, "Restitution");
+        w.autosave();
+        std::printf("autosaved\n");
+        std::fflush(stdout);
+        for (;;) QThread::sleep(1);
+    }
+    std::fprintf(stderr, "usage: crash_child save-loop SCENE OUT | autosave SCENE\n");
+    return 2;
+}
