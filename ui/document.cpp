@@ -2,6 +2,7 @@
 
 #include "commands.h"
 
+#include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 
 #include <QDir>
@@ -83,6 +84,7 @@ bool Document::open(const QString& path, QString* error) {
     const bool sample = path.startsWith(":/");
     const QString name = sample ? QFileInfo(path).fileName() : path;
     SceneDesc scene;
+    QStringList warnings;
     try {
         if (sample) {
             QFile file(path);
@@ -98,7 +100,21 @@ bool Document::open(const QString& path, QString* error) {
                 if (error) *error = tr("%1: no such file").arg(name);
                 return false;
             }
-            scene = io::readSceneFile(path.toStdString());
+            // A mesh that cannot be read does not keep the scene from opening: its bodies
+            // come without their mesh (the tree marks them, the engine refuses to run them
+            // and says which) and the reasons are kept for the window to show.
+            QFile file(path);
+            if (!file.open(QIODevice::ReadOnly)) {
+                if (error) *error = tr("%1: cannot be read (%2)").arg(name, file.errorString());
+                return false;
+            }
+            const QByteArray text = file.readAll();
+            scene = io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
+                                   name.toStdString());
+            std::vector<io::InputError> failures;
+            io::loadSceneMeshes(scene, QFileInfo(path).absolutePath().toStdString(), name.toStdString(),
+                                &failures);
+            for (const io::InputError& f : failures) warnings << QString::fromStdString(f.what());
             makeMeshPathsAbsolute(scene, QFileInfo(path).absolutePath());
         }
     } catch (const std::exception& e) {
@@ -107,6 +123,7 @@ bool Document::open(const QString& path, QString* error) {
     }
     undo_->clear();
     scene_ = std::move(scene);
+    openWarnings_ = warnings;
     path_ = sample ? QString() : path;
     selection_.clear();
     emit sceneReset();

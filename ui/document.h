@@ -12,6 +12,7 @@
 #include <QList>
 #include <QObject>
 #include <QString>
+#include <QStringList>
 
 class QUndoStack;
 
@@ -35,6 +36,9 @@ public:
     /// Reads a scene file, or a ":/scenes/..." sample (which then has no file: Save asks).
     /// On failure the current scene is untouched and `error` says why.
     bool open(const QString& path, QString* error);
+    /// What the last open() could not load but opened without: each mesh file that could not
+    /// be read ("FILE: bodies[i].shape.file: MESH: reason"). Those bodies have no meshData.
+    const QStringList& openWarnings() const { return openWarnings_; }
     /// Writes the scene atomically (QSaveFile) to `path` and makes it the document's file.
     /// Mesh files are written relative to the new file's folder (in the document they are
     /// absolute paths), so a Save As to another folder keeps them reachable.
@@ -96,6 +100,7 @@ signals:
 private:
     SceneDesc scene_;
     QString path_;
+    QStringList openWarnings_;
     QList<int> selection_;
     QUndoStack* undo_ = nullptr;
 };

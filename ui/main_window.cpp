@@ -266,7 +266,14 @@ bool MainWindow::openScene(const QString& path, QString* error) {
 void MainWindow::openPath(const QString& path) {
     if (!maybeSave()) return;
     QString error;
-    if (!openScene(path, &error)) QMessageBox::warning(this, tr("Open scene"), error);
+    if (!openScene(path, &error))
+        QMessageBox::warning(this, tr("Open scene"), error);
+    else if (!doc_->openWarnings().isEmpty())
+        QMessageBox::warning(
+            this, tr("Open scene"),
+            tr("The scene opened, but these meshes could not be read; their bodies are marked in "
+               "red in the scene tree and the scene cannot be simulated until they are back:\n\n%1")
+                .arg(doc_->openWarnings().join("\n")));
 }
 
 bool MainWindow::maybeSave() {

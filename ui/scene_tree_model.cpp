@@ -1,5 +1,7 @@
 #include "scene_tree_model.h"
 
+#include <QColor>
+
 #include "document.h"
 
 #include <QFileInfo>
@@ -52,6 +54,12 @@ SceneTreeModel::Row SceneTreeModel::rowOf(int i) const {
             .arg(p.z(), 0, 'g', 4);
     if (b.mass) r.tip += tr("\nmass %1 kg").arg(*b.mass, 0, 'g', 4);
     if (b.density) r.tip += tr("\ndensity %1 kg/m³").arg(*b.density, 0, 'g', 4);
+    if (b.shape.type == ShapeType::Mesh && !b.shape.meshData) {
+        r.meshMissing = true;
+        r.tip += tr("\nThe mesh file %1 could not be read: the body is not drawn and the scene cannot be "
+                    "simulated until the file is back (reopen the scene) or the body is removed.")
+                     .arg(QString::fromStdString(b.shape.file));
+    }
     return r;
 }
 
@@ -87,11 +95,15 @@ QVariant SceneTreeModel::data(const QModelIndex& index, int role) const {
                 case NameColumn: return r.name;
                 case MotionColumn: return QString::fromLatin1(toString(r.motion));
                 case ShapeColumn:
+                    if (r.meshMissing) return tr("mesh (%1: missing)").arg(r.meshFile);
                     return r.meshFile.isEmpty() ? QString::fromLatin1(toString(r.shape))
                                                 : QStringLiteral("mesh (%1)").arg(r.meshFile);
             }
             break;
         case Qt::ToolTipRole: return r.tip;
+        case Qt::ForegroundRole:
+            if (r.meshMissing) return QColor(0xb0, 0x00, 0x20);
+            break;
         default: break;
     }
     return {};

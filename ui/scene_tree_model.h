@@ -49,6 +49,7 @@ private:
         Motion motion = Motion::Dynamic;
         ShapeType shape = ShapeType::Sphere;
         QString meshFile;
+        bool meshMissing = false;  // a mesh body whose file could not be read
         QString tip;
     };
     Row rowOf(int body) const;

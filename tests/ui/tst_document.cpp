@@ -267,6 +267,30 @@ private slots:
         QCOMPARE(doc.filePath(), root.filePath("scene.json"));
     }
 
+    // A missing mesh does not keep the scene from opening: that body comes without its
+    // mesh, the others with theirs, and the reason names the file, the field and the mesh.
+    void aMissingMeshStillOpens() {
+        QTemporaryDir root;
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", root.filePath("box.stl")));
+        writeMeshScene(root.filePath("scene.json"), {"box.stl", "gone.obj"});
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(root.filePath("scene.json"), &error), qPrintable(error));
+        QCOMPARE(doc.bodyCount(), 3);
+        QVERIFY(doc.body(1).shape.meshData);
+        QVERIFY(!doc.body(2).shape.meshData);
+        QCOMPARE(doc.openWarnings().size(), 1);
+        const QString w = doc.openWarnings().first();
+        QVERIFY2(w.contains("scene.json") && w.contains("bodies[2].shape.file") && w.contains("gone.obj"),
+                 qPrintable(w));
+        // Saving keeps the reference (nothing is lost), and a good file clears the warnings.
+        QVERIFY(doc.saveAs(root.filePath("again.json"), &error));
+        QVERIFY(readAll(root.filePath("again.json")).contains("gone.obj"));
+        writeMeshScene(root.filePath("good.json"), {"box.stl"});
+        QVERIFY(doc.open(root.filePath("good.json"), &error));
+        QVERIFY(doc.openWarnings().isEmpty());
+    }
+
 private:
     const QString kMeshes = QStringLiteral(TUMBLE_SCENES_DIR "/../meshes");
 

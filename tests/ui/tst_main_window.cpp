@@ -4,11 +4,13 @@
 // its viewport shows one entity per body.
 #include "document.h"
 #include "main_window.h"
+#include "timeline.h"
 #include "viewport.h"
 
 #include <tumble/mass.h>
 
 #include <QAbstractButton>
+#include <QAbstractItemView>
 #include <QAction>
 #include <QApplication>
 #include <QDockWidget>
@@ -359,6 +361,35 @@ private slots:
         QVERIFY(!again.viewport()->overlay(Viewport::Overlay::Trails));
         again.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)))
             ->trigger();
+    }
+
+    // A scene with a missing mesh opens: the body is marked in the tree and the run fails
+    // with a message naming it, the scene untouched.
+    void aMissingMeshIsMarkedAndNamed() {
+        QTemporaryDir dir;
+        QVERIFY(QFile::copy(TUMBLE_SCENES_DIR "/../meshes/box.stl", dir.filePath("box.stl")));
+        QFile f(dir.filePath("s.json"));
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(R"({"format": "tumble-scene", "version": 1, "bodies": [
+            {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}},
+            {"name": "rock", "shape": {"type": "mesh", "file": "rock.obj"}, "density": 1000, "position": [0, 2, 0]},
+            {"name": "box", "shape": {"type": "mesh", "file": "box.stl"}, "density": 1000, "position": [3, 2, 0]}]})");
+        f.close();
+        MainWindow w;
+        QString error;
+        QVERIFY2(w.openScene(dir.filePath("s.json"), &error), qPrintable(error));
+        QCOMPARE(w.document()->openWarnings().size(), 1);
+        auto* tree = w.findChild<QAbstractItemView*>();
+        QVERIFY(tree);
+        const QModelIndex shape = tree->model()->index(1, 2);
+        QVERIFY2(shape.data().toString().contains("missing"), qPrintable(shape.data().toString()));
+        QVERIFY(shape.data(Qt::ToolTipRole).toString().contains("rock.obj"));
+        QVERIFY(!tree->model()->index(2, 2).data().toString().contains("missing"));
+        const SceneDesc scene = w.scene();
+        QVERIFY(QTest::qWaitFor([&] { return w.timeline()->status() == Timeline::Status::Failed; }, 60000));
+        QVERIFY2(w.timeline()->errorMessage().contains("bodies[1]"),
+                 qPrintable(w.timeline()->errorMessage()));
+        QCOMPARE(w.scene(), scene);
     }
 
     void saveAndReopen() {

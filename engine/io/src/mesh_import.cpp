@@ -85,7 +85,8 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
     return mesh;
 }
 
-void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName) {
+void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName,
+                     std::vector<InputError>* failures) {
     std::map<std::pair<std::string, std::array<double, 3>>, std::shared_ptr<const TriangleMesh>> loaded;
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         ShapeDesc& s = scene.bodies[i].shape;
@@ -95,8 +96,11 @@ void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, con
             try {
                 slot = std::make_shared<const TriangleMesh>(importMesh(baseDir / s.file, s.scale));
             } catch (const InputError& e) {
-                throw InputError(sceneName, "bodies[" + std::to_string(i) + "].shape.file",
+                InputError named(sceneName, "bodies[" + std::to_string(i) + "].shape.file",
                                  s.file + ": " + e.message());
+                if (!failures) throw named;
+                failures->push_back(named);
+                continue;  // this body stays without its mesh
             }
         }
         s.meshData = slot;

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace tumble::io {
 
@@ -23,6 +24,9 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale = V
 /// same file and scale share one mesh. A failure throws InputError naming `sceneName`, the
 /// field and the mesh file as written, e.g. "drop.json: bodies[2].shape.file: meshes/rock.obj:
 /// cannot be read (missing, or no permission)".
-void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName);
+/// With `failures`, a mesh that cannot be read does not stop the rest: its error goes into
+/// `failures` and its bodies keep no meshData (compile() refuses them, naming the body).
+void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName,
+                     std::vector<InputError>* failures = nullptr);
 
 }  // namespace tumble::io
