@@ -6,6 +6,7 @@
 #include "viewport.h"
 #include "viewport_instances.h"
 #include "viewport_raycast.h"
+#include "viewport_test_util.h"
 
 #include <tumble/mass.h>
 
@@ -21,22 +22,10 @@
 
 using namespace tumble;
 using namespace tumble::ui;
+using tumble::test::body;
+using tumble::test::projected;
 
 namespace {
-
-BodyDesc body(const std::string& name, ShapeType type, const Vec3& position) {
-    BodyDesc b;
-    b.name = name;
-    b.shape.type = type;
-    b.mass = 1.0;
-    b.position = position;
-    return b;
-}
-
-QPoint projected(const Viewport& v, const Vec3& p) {
-    const QVector3D w = v.projectToWidget(QVector3D(float(p.x()), float(p.y()), float(p.z())));
-    return QPoint(qRound(w.x()), qRound(w.y()));
-}
 
 // The ground (0), a sphere (1) at (0, 1, 0) and a box (2) at (2, 0.5, 0), seen from +z.
 struct Fixture {

@@ -6,6 +6,7 @@
 #include "document.h"
 #include "viewport.h"
 #include "viewport_handles.h"
+#include "viewport_test_util.h"
 #include "viewport_wire.h"
 
 #include <tumble/mass.h>
@@ -21,25 +22,13 @@
 
 using namespace tumble;
 using namespace tumble::ui;
+using tumble::test::body;
+using tumble::test::projected;
 
 namespace {
 
-BodyDesc body(const std::string& name, ShapeType type, const Vec3& position) {
-    BodyDesc b;
-    b.name = name;
-    b.shape.type = type;
-    b.mass = 1.0;
-    b.position = position;
-    return b;
-}
-
 Vec3 toVec(const QVector3D& v) {
     return Vec3(v.x(), v.y(), v.z());
-}
-
-QPoint projected(const Viewport& v, const Vec3& p) {
-    const QVector3D w = v.projectToWidget(QVector3D(float(p.x()), float(p.y()), float(p.z())));
-    return QPoint(qRound(w.x()), qRound(w.y()));
 }
 
 // What the drag from `from` to `to` along `axis` through `origin` must move by.

@@ -8,6 +8,7 @@
 #include "timeline.h"
 #include "viewport.h"
 #include "viewport_overlays.h"
+#include "viewport_test_util.h"
 
 #include <tumble/model.h>
 
@@ -20,6 +21,7 @@
 
 using namespace tumble;
 using namespace tumble::ui;
+using tumble::test::projected;
 
 namespace {
 
@@ -46,11 +48,6 @@ bool near(const QMatrix4x4& a, const QMatrix4x4& b, float tol = 1e-6f) {
         if (std::abs(a.constData()[i] - b.constData()[i]) > tol) return false;
     }
     return true;
-}
-
-QPoint projected(const Viewport& v, const Vec3& p) {
-    const QVector3D w = v.projectToWidget(toQt(p));
-    return QPoint(qRound(w.x()), qRound(w.y()));
 }
 
 // A sample scene simulated to the end, drawn by a viewport over the timeline.
