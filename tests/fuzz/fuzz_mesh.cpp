@@ -1,0 +1,79 @@
+// libFuzzer target: a mesh file as the editor's import or a scene's mesh body reads it.
+// The first byte picks the file's extension (assimp chooses its reader by it), the rest is
+// the file. Whatever the bytes, importMesh gives a mesh or an InputError naming the file;
+// a mesh is then compiled as a dynamic body both ways a scene can ask (convex hull, and the
+// triangles as they are), which either works or gives a SceneError; anything else (a crash,
+// a sanitizer report, another exception, a non-finite mass property) is a bug.
+#include <tumble/errors.h>
+#include <tumble/io/mesh_import.h>
+#include <tumble/model.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <string>
+
+namespace {
+
+// The formats docs/scene-format.md names; the seed corpus has one file or more of each.
+constexpr const char* kExtensions[] = {".obj", ".stl", ".ply", ".off", ".glb"};
+constexpr std::size_t kExtensionCount = sizeof kExtensions / sizeof kExtensions[0];
+
+[[noreturn]] void bug(const char* what, const std::string& detail) {
+    std::fprintf(stderr, "fuzz_mesh: %s: %s\n", what, detail.c_str());
+    std::abort();
+}
+
+std::string tempFolder() {
+    const char* dir = std::getenv("TMPDIR");
+    return std::string(dir && *dir ? dir : "/tmp");
+}
+
+void compileBody(const std::shared_ptr<const tumble::TriangleMesh>& mesh, tumble::MeshCollision collision) {
+    tumble::SceneDesc scene;
+    tumble::BodyDesc body;
+    body.name = "fuzzed";
+    body.shape.type = tumble::ShapeType::Mesh;
+    body.shape.file = "fuzz";
+    body.shape.collision = collision;
+    body.shape.meshData = mesh;
+    body.density = 1000.0;
+    scene.bodies.push_back(body);
+    try {
+        const tumble::Model model = tumble::compile(scene);
+        const auto& b = model.bodies.at(0);
+        if (!(b.mass > 0.0) || !std::isfinite(b.mass)) bug("a compiled mesh body with a bad mass", std::to_string(b.mass));
+        if (!b.inertia.allFinite()) bug("a compiled mesh body with a non-finite inertia", "");
+    } catch (const tumble::SceneError&) {
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return 0;
+    static const std::string folder = tempFolder();
+    const std::string path = folder + "/tumble-fuzz-mesh-" + std::to_string(::getpid()) +
+                             kExtensions[data[0] % kExtensionCount];
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
+        if (!out) bug("cannot write the temporary file", path);
+    }
+    std::shared_ptr<const tumble::TriangleMesh> mesh;
+    try {
+        mesh = std::make_shared<const tumble::TriangleMesh>(tumble::io::importMesh(path));
+    } catch (const tumble::io::InputError& e) {
+        if (e.file() != path) bug("an InputError that does not name the file", e.what());
+    }
+    std::remove(path.c_str());
+    if (!mesh) return 0;
+    compileBody(mesh, tumble::MeshCollision::ConvexHull);
+    compileBody(mesh, tumble::MeshCollision::Triangles);
+    return 0;
+}
