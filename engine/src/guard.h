@@ -1,4 +1,6 @@
-// Stage: guard. Stops a run whose state stopped being finite, naming the body.
+// Stage: guard. Stops a run whose state stopped being finite, naming the body, the time and
+// the likely cause (likely_cause.h). The energy guard (energy_guard.h) stops most runs
+// that blow up earlier, while the state is still finite.
 #pragma once
 
 #include <tumble/model.h>

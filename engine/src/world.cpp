@@ -10,6 +10,7 @@
 
 #include "contact_solver.h"
 #include "detect.h"
+#include "energy_guard.h"
 #include "guard.h"
 #include "impact.h"
 #include "integrate.h"
@@ -43,6 +44,7 @@ struct World::Scratch {
     ImpactScratch impact;
     ContactSolverScratch solver;
     SleepScratch sleep;
+    EnergyGuard energy;
     State before;
     std::vector<double> sizes;  // bounding radius per body
     std::vector<int> awake;     // awake dynamic bodies, when sleeping is on
@@ -53,6 +55,7 @@ struct World::Scratch {
 
 World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
     state_ = initialState(model_, scene);
+    armEnergyGuard(model_, state_, scratch_->energy);
 }
 
 World::World(Model model, State state)
@@ -64,6 +67,7 @@ World::World(Model model, State state)
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
     forgetSleepUnlessSleeping();
+    armEnergyGuard(model_, state_, scratch_->energy);
 }
 
 // With sleeping off every body is simulated: sleep flags brought in by a state are dropped.
@@ -79,6 +83,7 @@ void World::setState(const State& state) {
     state_ = state;
     scratch_->detect.contacts.clear();
     forgetSleepUnlessSleeping();
+    armEnergyGuard(model_, state_, scratch_->energy);  // a run from this state
 }
 
 void World::advance(double h) {
@@ -169,6 +174,7 @@ void World::step(double h) {
     ++profile_.steps;
     if (!needsContacts(model_)) {  // nothing can touch: the contact stages are skipped
         advance(h);
+        guardEnergy(model_, state_, s.energy);
         return;
     }
     if (model_.settings.sleeping) wakeTouched(model_, state_, {}, {});  // forces switching on
@@ -226,6 +232,7 @@ void World::step(double h) {
     state_.touchingKnown = true;
     for (const auto& m : d.contacts) profile_.contactPoints += m.count;
     profile_.impacts += static_cast<long>(s.impacts.size());
+    guardEnergy(model_, state_, s.energy);
 }
 
 const std::vector<collision::Manifold>& World::contacts() const { return scratch_->detect.contacts; }

@@ -91,6 +91,9 @@ struct Settings {
     double frameRate = 60.0;
     bool sleeping = true;         ///< bodies at rest fall asleep (off: every body always simulated)
     int solverIterations = 20;    ///< velocity iterations of the contact solver per step
+    /// Stop a run whose energy runs away (an unstable step), naming the body, the time and
+    /// the likely cause; off: only a non-finite state stops it.
+    bool energyGuard = true;
 
     bool operator==(const Settings&) const = default;
 };

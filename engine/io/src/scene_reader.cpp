@@ -126,7 +126,8 @@ E enumValue(const Reader& r, const json& j, const std::string& path, std::initia
 Settings readSettings(const Reader& r, const json& j) {
     const std::string p = "settings";
     r.object(j, p);
-    r.onlyKeys(j, p, {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations"});
+    r.onlyKeys(j, p, {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations",
+                       "energy_guard"});
     Settings s;
     r.optional(j, p, "gravity", [&](const json& v, const std::string& f) { s.gravity = r.vector<3>(v, f); });
     r.optional(j, p, "dt", [&](const json& v, const std::string& f) { s.dt = r.number(v, f); });
@@ -136,6 +137,7 @@ Settings readSettings(const Reader& r, const json& j) {
     r.optional(j, p, "sleeping", [&](const json& v, const std::string& f) { s.sleeping = r.boolean(v, f); });
     r.optional(j, p, "solver_iterations",
                [&](const json& v, const std::string& f) { s.solverIterations = r.integer(v, f); });
+    r.optional(j, p, "energy_guard", [&](const json& v, const std::string& f) { s.energyGuard = r.boolean(v, f); });
     return s;
 }
 

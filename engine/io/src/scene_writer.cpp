@@ -106,6 +106,7 @@ std::string sceneToJson(const SceneDesc& scene) {
     s["frame_rate"] = scene.settings.frameRate;
     s["sleeping"] = scene.settings.sleeping;
     s["solver_iterations"] = scene.settings.solverIterations;
+    s["energy_guard"] = scene.settings.energyGuard;
     j["bodies"] = ojson::array();
     for (const BodyDesc& b : scene.bodies) j["bodies"].push_back(bodyJson(b));
     return j.dump(2) + "\n";
