@@ -2,6 +2,7 @@
 
 #include "commands.h"
 
+#include <tumble/io/atomic_file.h>
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 
@@ -9,7 +10,6 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QMap>
-#include <QSaveFile>
 #include <QSet>
 #include <QUndoStack>
 
@@ -68,11 +68,15 @@ SceneDesc withMeshPathsRelativeTo(SceneDesc scene, const QString& dir) {
     return scene;
 }
 
-// Writes `bytes` to `path` whole or not at all.
+// Writes `bytes` to `path` whole or not at all, through the engine's AtomicFile (which also
+// removes what earlier killed saves of `path` left beside it). Messages name the file.
 bool writeWhole(const QString& path, const QByteArray& bytes, QString* error) {
-    QSaveFile out(path);
-    if (!out.open(QIODevice::WriteOnly) || out.write(bytes) != bytes.size() || !out.commit()) {
-        if (error) *error = QObject::tr("%1: cannot be written (%2)").arg(path, out.errorString());
+    try {
+        io::AtomicFile out(QFile::encodeName(path).toStdString());
+        out.stream().write(bytes.constData(), bytes.size());
+        out.commit();
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromLocal8Bit(e.what());
         return false;
     }
     return true;
@@ -111,6 +115,8 @@ bool Document::open(const QString& path, QString* error) {
             const QByteArray text = file.readAll();
             scene = io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
                                    name.toStdString());
+            // What saves of this file killed long ago left beside it goes (see open()).
+            io::removeStaleTemporaries(QFile::encodeName(path).toStdString());
             std::vector<io::InputError> failures;
             io::loadSceneMeshes(scene, QFileInfo(path).absolutePath().toStdString(), name.toStdString(),
                                 &failures);

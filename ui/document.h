@@ -34,12 +34,16 @@ public:
     /// An empty scene (default settings and a ground plane), no file, nothing to undo.
     void newScene();
     /// Reads a scene file, or a ":/scenes/..." sample (which then has no file: Save asks).
-    /// On failure the current scene is untouched and `error` says why.
+    /// On failure the current scene is untouched and `error` says why. Opening a file also
+    /// removes the temporaries that saves of it killed mid-way left beside it
+    /// (io::removeStaleTemporaries: their process gone, older than a minute).
     bool open(const QString& path, QString* error);
     /// What the last open() could not load but opened without: each mesh file that could not
     /// be read ("FILE: bodies[i].shape.file: MESH: reason"). Those bodies have no meshData.
     const QStringList& openWarnings() const { return openWarnings_; }
-    /// Writes the scene atomically (QSaveFile) to `path` and makes it the document's file.
+    /// Writes the scene atomically (io::AtomicFile) to `path` and makes it the document's file;
+    /// on failure (no such folder, no permission) the file on disk is as it was and `error`
+    /// names it.
     /// Mesh files are written relative to the new file's folder (in the document they are
     /// absolute paths), so a Save As to another folder keeps them reachable.
     bool saveAs(const QString& path, QString* error);

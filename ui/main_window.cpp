@@ -10,6 +10,7 @@
 #include "timeline_dock.h"
 #include "viewport.h"
 
+#include <tumble/io/atomic_file.h>
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 
@@ -33,7 +34,6 @@
 #include <QMessageBox>
 #include <QMetaEnum>
 #include <QMimeData>
-#include <QSaveFile>
 #include <QSettings>
 #include <QStandardPaths>
 #include <QStatusBar>
@@ -412,11 +412,10 @@ void MainWindow::autosave() {
         return;
     }
     QDir().mkpath(QFileInfo(path).absolutePath());
-    QSaveFile file(path);
-    if (!file.open(QIODevice::WriteOnly)) return;
-    const std::string text = io::sceneToJson(doc_->scene());
-    file.write(text.data(), static_cast<qint64>(text.size()));
-    file.commit();
+    try {  // whole or not at all (io::AtomicFile); a failed autosave keeps the previous one
+        io::writeFileAtomically(QFile::encodeName(path).toStdString(), io::sceneToJson(doc_->scene()));
+    } catch (const std::exception&) {
+    }
 }
 
 void MainWindow::offerRecovery() {

@@ -1,11 +1,13 @@
 // Crash safety with real kills (SIGKILL, no chance to clean up): a save interrupted at any
-// moment leaves the previous file whole, and an autosave survives the killed editor and is
-// recovered by the next one.
+// moment leaves the previous file whole, what the killed saves left beside it is removed by
+// the next save, and an autosave survives the killed editor and is recovered by the next one.
 #include "document.h"
 #include "main_window.h"
 
+#include <tumble/io/atomic_file.h>
 #include <tumble/io/scene_file.h>
 
+#include <QDir>
 #include <QFile>
 #include <QProcess>
 #include <QRandomGenerator>
@@ -13,6 +15,9 @@
 #include <QTemporaryDir>
 #include <QThread>
 #include <QtTest>
+
+#include <fcntl.h>
+#include <sys/stat.h>
 
 #include <cmath>
 
@@ -34,6 +39,15 @@ QByteArray bigScene() {
                 .arg(i / 50)
                 .toUtf8();
     return R"({"format": "tumble-scene", "version": 1, "bodies": [)" + bodies + "]}";
+}
+
+// Sets a file's modification time `seconds` into the past.
+bool age(const QString& path, int seconds) {
+    timespec times[2];
+    clock_gettime(CLOCK_REALTIME, &times[0]);
+    times[0].tv_sec -= seconds;
+    times[1] = times[0];
+    return utimensat(AT_FDCWD, QFile::encodeName(path).constData(), times, 0) == 0;
 }
 
 }  // namespace
@@ -78,6 +92,35 @@ private slots:
                      qPrintable(QString("round %1: moved to %2 after save %3").arg(round).arg(x).arg(saves)));
         }
         QVERIFY(lastSeen >= 1);
+
+        // One more killed for sure between writing and committing, so that at least one
+        // temporary is left beside the scene.
+        QProcess holder;
+        holder.start(TUMBLE_CRASH_CHILD, {"hold", out});
+        QVERIFY(holder.waitForStarted(10000));
+        QVERIFY2(holder.waitForReadyRead(60000), qPrintable(holder.readAllStandardError()));
+        holder.kill();
+        QVERIFY(holder.waitForFinished(10000));
+        // Beside the scene: nothing but the kills' temporaries, each named as AtomicFile
+        // names them. They are made older than the threshold (a save leaves a dead
+        // process's temporary alone for a minute, in case it is another machine's).
+        QStringList leftovers = QDir(dir.path()).entryList(QDir::Files | QDir::NoDotAndDotDot);
+        leftovers.removeAll("big.json");
+        leftovers.removeAll("saved.json");
+        QVERIFY(!leftovers.isEmpty());
+        for (const QString& name : leftovers) {
+            QVERIFY2(io::isTemporaryOf(name.toStdString(), "saved.json"), qPrintable(name));
+            QVERIFY(age(dir.filePath(name), 2 * 60));
+        }
+        // The next save, by a fresh editor process, leaves exactly the scene file.
+        QProcess next;
+        next.start(TUMBLE_CRASH_CHILD, {"save-once", scene, out});
+        QVERIFY(next.waitForFinished(60000));
+        QVERIFY2(next.exitStatus() == QProcess::NormalExit && next.exitCode() == 0,
+                 qPrintable(next.readAllStandardError()));
+        QCOMPARE(QDir(dir.path()).entryList(QDir::AllEntries | QDir::NoDotAndDotDot, QDir::Name),
+                 QStringList({"big.json", "saved.json"}));
+        QCOMPARE(int(io::readSceneFile(out.toStdString()).bodies.size()), 2001);
     }
 
     void anAutosaveSurvivesAKilledEditor() {

@@ -1,7 +1,9 @@
 // The scene document: every edit is an undo step, drags merge, macros group, files round
-// trip, bad files leave the scene untouched, the selection follows inserts and removals.
+// trip, bad files leave the scene untouched, a failed save leaves the file on disk and says
+// which, killed saves' temporaries go, the selection follows inserts and removals.
 #include "document.h"
 
+#include <tumble/io/atomic_file.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/mass.h>
 
@@ -11,6 +13,11 @@
 #include <QTemporaryDir>
 #include <QUndoStack>
 #include <QtTest>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace tumble;
 using namespace tumble::ui;
@@ -25,6 +32,25 @@ BodyDesc ball(const std::string& name, double y) {
     b.mass = 1.0;
     b.position = Vec3(0, y, 0);
     return b;
+}
+
+// The name of a temporary that a save of `target` killed long ago left beside it: made by
+// a process that has ended, and two minutes old.
+QString staleTemporary(const QString& target) {
+    const pid_t pid = fork();
+    if (pid == 0) _exit(0);
+    waitpid(pid, nullptr, 0);
+    const QString path = QStringLiteral("%1.tumble-tmp-%2-0badcafe").arg(target).arg(pid);
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly)) return {};
+    f.write("{\"format\": \"tum");
+    f.close();
+    timespec times[2];
+    clock_gettime(CLOCK_REALTIME, &times[0]);
+    times[0].tv_sec -= 120;
+    times[1] = times[0];
+    utimensat(AT_FDCWD, QFile::encodeName(path).constData(), times, 0);
+    return path;
 }
 
 }  // namespace
@@ -195,6 +221,68 @@ private slots:
         QCOMPARE(doc.bodyCount(), 21);
         QVERIFY(doc.filePath().isEmpty());  // Save must ask where
         QVERIFY(!doc.undoStack()->canUndo());
+    }
+
+    // A save that cannot be written says which file and why, leaves what was on disk, and
+    // leaves the document as it was (its file, unsaved changes).
+    void aFailedSaveNamesTheFileAndKeepsTheOldOne() {
+        QTemporaryDir dir;
+        Document doc;
+        doc.addBody(ball("ball", 1.0));
+        QString error;
+        const QString saved = dir.filePath("scene.json");
+        QVERIFY2(doc.saveAs(saved, &error), qPrintable(error));
+        doc.addBody(ball("another", 2.0));
+        const QString missing = dir.filePath("nodir/scene.json");
+        QVERIFY(!doc.saveAs(missing, &error));
+        QCOMPARE(error, missing + ": cannot be written (no such folder, or no permission)");
+        QFile file(dir.filePath("file"));
+        QVERIFY(file.open(QIODevice::WriteOnly));
+        file.close();
+        const QString underAFile = dir.filePath("file/scene.json");
+        QVERIFY(!doc.saveAs(underAFile, &error));
+        QCOMPARE(error, underAFile + ": cannot be written (no such folder, or no permission)");
+        QVERIFY(!doc.saveWithMeshes(missing, &error));
+        QCOMPARE(error, missing + ": cannot be written (no such folder, or no permission)");
+        // A folder where the file should be: it cannot be replaced, and stays as it was.
+        QVERIFY(QDir(dir.path()).mkpath("taken.json/inside"));
+        QVERIFY(!doc.saveAs(dir.filePath("taken.json"), &error));
+        QVERIFY2(error.startsWith(dir.filePath("taken.json") + ": cannot be replaced: "), qPrintable(error));
+        QVERIFY(QFileInfo(dir.filePath("taken.json/inside")).isDir());
+        QCOMPARE(doc.filePath(), saved);
+        QVERIFY(doc.isModified());
+        Document reread;
+        QVERIFY2(reread.open(saved, &error), qPrintable(error));
+        QCOMPARE(reread.bodyCount(), 2);
+        QCOMPARE(QDir(dir.path()).entryList(QDir::AllEntries | QDir::NoDotAndDotDot, QDir::Name),
+                 QStringList({"file", "scene.json", "taken.json"}));
+    }
+
+    // What killed saves left beside a scene goes when it is opened, and beside the scene
+    // and its mesh copies when it is saved; a file that merely looks alike stays.
+    void killedSavesTemporariesAreRemoved() {
+        QTemporaryDir root;
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", root.filePath("box.stl")));
+        const QString scene = root.filePath("scene.json");
+        writeMeshScene(scene, {"box.stl"});
+        QFile backup(scene + ".backup");
+        QVERIFY(backup.open(QIODevice::WriteOnly));
+        backup.close();
+        const QString beforeOpen = staleTemporary(scene);
+        QVERIFY(QFileInfo::exists(beforeOpen));
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(scene, &error), qPrintable(error));
+        QVERIFY(!QFileInfo::exists(beforeOpen));
+        QVERIFY(QDir(root.path()).mkpath("out/moved-meshes"));
+        const QString target = root.filePath("out/moved.json");
+        const QStringList stale = {staleTemporary(target),
+                                   staleTemporary(root.filePath("out/moved-meshes/box.stl"))};
+        for (const QString& s : stale) QVERIFY(QFileInfo::exists(s));
+        QVERIFY2(doc.saveWithMeshes(target, &error), qPrintable(error));
+        for (const QString& s : stale) QVERIFY2(!QFileInfo::exists(s), qPrintable(s));
+        QVERIFY(QFileInfo::exists(scene + ".backup"));
+        QCOMPARE(QDir(root.filePath("out/moved-meshes")).entryList(QDir::Files), QStringList({"box.stl"}));
     }
 
     // A scene whose mesh sits beside it, saved into another folder: the saved file points

@@ -4,9 +4,15 @@
 //                                     time with the first dynamic body moved, printing
 //                                     "saved N" after each save;
 //   crash_child autosave SCENE        opens SCENE in the editor's main window, makes an edit,
-//                                     autosaves, prints "autosaved", then waits to be killed.
+//                                     autosaves, prints "autosaved", then waits to be killed;
+//   crash_child save-once SCENE OUT   opens SCENE and saves it to OUT, then exits;
+//   crash_child hold OUT              starts a save of OUT (an io::AtomicFile, the editor's
+//                                     way), writes part of it, prints "holding", then waits
+//                                     to be killed before the commit.
 #include "document.h"
 #include "main_window.h"
+
+#include <tumble/io/atomic_file.h>
 
 #include <QApplication>
 #include <QThread>
@@ -56,6 +62,23 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         for (;;) QThread::sleep(1);
     }
-    std::fprintf(stderr, "usage: crash_child save-loop SCENE OUT | autosave SCENE\n");
+    if (argc == 4 && !std::strcmp(argv[1], "save-once")) {
+        Document doc;
+        QString error;
+        if (!doc.open(argv[2], &error) || !doc.saveAs(argv[3], &error)) {
+            std::fprintf(stderr, "%s\n", qPrintable(error));
+            return 1;
+        }
+        return 0;
+    }
+    if (argc == 3 && !std::strcmp(argv[1], "hold")) {
+        io::AtomicFile file(argv[2]);
+        file.stream() << R"({"format": "tumble-scene", "version": 1, "bodies": [)" << std::flush;
+        std::printf("holding\n");
+        std::fflush(stdout);
+        for (;;) QThread::sleep(1);
+    }
+    std::fprintf(
+        stderr, "usage: crash_child save-loop SCENE OUT | autosave SCENE | save-once SCENE OUT | hold OUT\n");
     return 2;
 }
