@@ -7,8 +7,8 @@
 #    a sanitizer report or a hang (10 s for one input) fails the test; the input that did it is
 #    in WORKDIR/ (crash-*, leak-*, timeout-*): copy it to tests/fuzz/regressions/TARGET/.
 set -euo pipefail
-program=$1 target=$2 work=$3 seconds=$4 src=$5 models=$6
-here=$(dirname "$0")
+program=$(realpath "$1") target=$2 work=$3 seconds=$4 src=$(realpath "$5") models=$6
+here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$work/corpus" "$work/seeds"
 cd "$work"
 
@@ -33,6 +33,9 @@ case "$target" in
     ;;
   *) echo "run_fuzz.sh: unknown target $target" >&2; exit 2 ;;
 esac
+
+# Leaks inside libraries Tumble cannot fix are suppressed, each with its reason.
+export LSAN_OPTIONS="suppressions=$here/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 
 regressions="$here/regressions/$target"
 if compgen -G "$regressions/*" >/dev/null; then

@@ -4,6 +4,8 @@
 // several placed parts comes out as the user sees it in a modelling tool.
 #include <tumble/io/mesh_import.h>
 
+#include "mesh_precheck.h"
+
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -24,6 +26,7 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
     if (!std::ifstream(file, std::ios::binary)) {
         throw InputError(name, "", "cannot be read (missing, or no permission)");
     }
+    if (const auto hang = meshFileAssimpWouldHangOn(file)) throw InputError(name, "", *hang);
 
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
