@@ -42,7 +42,8 @@ const char* const kBox = R"({
 }
 )";
 
-// A stiff spring that explicit Euler with this step cannot hold: the state overflows.
+// A stiff spring that explicit Euler with this step cannot hold: the energy guard stops it
+// (with "energy_guard": false, the state overflows).
 const char* const kBlowUp = R"({
   "format": "tumble-scene",
   "version": 1,
@@ -50,6 +51,18 @@ const char* const kBlowUp = R"({
   "bodies": [
     {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1, "position": [1, 0, 0],
      "forces": [{"type": "spring", "anchor": [0, 0, 0], "stiffness": 1e12}]}
+  ]
+}
+)";
+
+// A spring that rk4 holds only for dt < 2√2/√(k/m) = 0.00894 s, at dt = 0.01 s.
+const char* const kStiff = R"({
+  "format": "tumble-scene",
+  "version": 1,
+  "settings": {"dt": 0.01, "duration": 10, "integrator": "rk4", "frame_rate": 50},
+  "bodies": [
+    {"name": "bob", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1, "position": [0, -0.1, 0],
+     "forces": [{"type": "spring", "anchor": [0, 1, 0], "stiffness": 1e5, "rest_length": 1}]}
   ]
 }
 )";
@@ -148,7 +161,8 @@ class TestCli : public QObject {
         const QByteArray h = f.read(24);
         if (h.size() < 24 || !h.startsWith("\x89PNG")) return {};
         auto be = [&](int at) {
-            return (uchar(h[at]) << 24) | (uchar(h[at + 1]) << 16) | (uchar(h[at + 2]) << 8) | uchar(h[at + 3]);
+            return (uchar(h[at]) << 24) | (uchar(h[at + 1]) << 16) | (uchar(h[at + 2]) << 8) |
+                   uchar(h[at + 3]);
         };
         return QSize(int(be(16)), int(be(20)));
     }
@@ -225,8 +239,9 @@ private slots:
     // went: energy_end = energy_start - lost + correction, and the end is never above the start.
     void samplesBalanceTheirEnergy_data() {
         QTest::addColumn<QString>("scene");
-        for (const char* name : {"bouncing-ball", "head-on", "tilted-box-impact", "newtons-cradle", "sliding-block",
-                                 "rolling-sphere", "incline", "mass-ratio-stack", "sleeping-wake"})
+        for (const char* name :
+             {"bouncing-ball", "head-on", "tilted-box-impact", "newtons-cradle", "sliding-block",
+              "rolling-sphere", "incline", "mass-ratio-stack", "sleeping-wake"})
             QTest::newRow(name) << QString(TUMBLE_SCENES_DIR "/%1.json").arg(name);
     }
     void samplesBalanceTheirEnergy() {
@@ -234,8 +249,9 @@ private slots:
         RUN(r, {"--headless", scene, "--duration", "3"});
         QCOMPARE(r.code, 0);
         const QMap<QString, QString> kv = report(r.out);
-        for (const char* key : {"energy_start", "energy_end", "energy_lost_contacts", "energy_lost_friction",
-                                "energy_position_correction", "impact_moments", "solve_seconds", "awake_body_steps"})
+        for (const char* key :
+             {"energy_start", "energy_end", "energy_lost_contacts", "energy_lost_friction",
+              "energy_position_correction", "impact_moments", "solve_seconds", "awake_body_steps"})
             QVERIFY2(kv.contains(key), key);
         const double start = kv["energy_start"].toDouble(), end = kv["energy_end"].toDouble();
         const double lost = kv["energy_lost_contacts"].toDouble() + kv["energy_lost_friction"].toDouble();
@@ -392,6 +408,9 @@ private slots:
         QTest::newRow("unknown key") << "bad.json"
                                      << broken(R"("mass": 2,)", R"("mass": 2, "colour": "red",)")
                                      << "bad.json: bodies[1].colour: unknown key";
+        QTest::newRow("energy_guard a string")
+            << "bad.json" << broken(R"("frame_rate": 20})", R"("frame_rate": 20, "energy_guard": "off"})")
+            << "bad.json: settings.energy_guard: must be true or false";
         QTest::newRow("version 2") << "bad.json" << broken(R"("version": 1)", R"("version": 2)")
                                    << "bad.json: version: version 2 is not one this build reads (it reads 1)";
         QTest::newRow("truncated")
@@ -418,7 +437,12 @@ private slots:
         QCOMPARE(entries(), before);      // no output, no temporary
     }
 
+    // With the energy guard off, the state overflows; the message names the body, the
+    // time and the likely cause.
     void nonFiniteState() {
+        QByteArray unguarded = kBlowUp;
+        unguarded.replace(R"("frame_rate": 10})", R"("frame_rate": 10, "energy_guard": false})");
+        write("blow.json", unguarded);
         RUN(r, {"--headless", "blow.json", "--out", "traj.csv", "--save-scene", "saved.json"});
         QCOMPARE(r.code, 1);
         QCOMPARE(r.out, QString());
@@ -426,12 +450,74 @@ private slots:
         const QRegularExpressionMatch m =
             QRegularExpression(
                 "^tumble: blow\\.json: body 'ball' \\(bodies\\[0\\]\\) became non-finite at t = "
-                "([0-9.e+-]+) s")
+                "([0-9.e+-]+) s; likely cause: explicit euler gains energy on spring forces\\[0\\] of body "
+                "'ball' \\(k = 1e\\+12 N/m, m = 1 kg: undamped, at any step\\); use rk4")
                 .match(r.err);
         QVERIFY2(m.hasMatch(), qPrintable(r.err));
         const double t = m.captured(1).toDouble();
         QVERIFY2(t > 0.0 && t <= 2.0, qPrintable(m.captured(1)));
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // no partial CSV, no temporary
+    }
+
+    // A run whose energy runs away stops while the state is still finite: exit 1, one line
+    // naming the body, the time and the likely cause, no output left behind.
+    void energyRunaway_data() {
+        QTest::addColumn<QByteArray>("scene");
+        QTest::addColumn<QString>("pattern");
+        QTest::newRow("rk4, step too large")
+            << QByteArray(kStiff)
+            << "^tumble: blow\\.json: body 'bob' \\(bodies\\[0\\]\\) ran away "
+               "at t = ([0-9.e+-]+) s: .*; likely cause: dt = 0\\.01 s is too "
+               "large for spring forces\\[0\\] of body 'bob' \\(k = 1e\\+05 N/m, "
+               "m = 1 kg: needs dt < 0\\.00894 s with rk4\\)$";
+        QTest::newRow("explicit euler")
+            << QByteArray(kBlowUp)
+            << "^tumble: blow\\.json: body 'ball' \\(bodies\\[0\\]\\) ran away at "
+               "t = ([0-9.e+-]+) s: .*; likely cause: explicit euler gains energy on "
+               "spring forces\\[0\\] of body 'ball' .*use rk4 .* or symplectic-euler";
+    }
+
+    void energyRunaway() {
+        QFETCH(QByteArray, scene);
+        QFETCH(QString, pattern);
+        write("blow.json", scene);
+        RUN(r, {"--headless", "blow.json", "--out", "traj.csv", "--save-scene", "saved.json"});
+        QCOMPARE(r.code, 1);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(lines(r.err).size(), 1);
+        const QRegularExpressionMatch m = QRegularExpression(pattern).match(lines(r.err).at(0));
+        QVERIFY2(m.hasMatch(), qPrintable(r.err));
+        const double t = m.captured(1).toDouble();
+        QVERIFY2(t > 0.0 && t < 0.5, qPrintable(m.captured(1)));      // early: an overflow takes seconds
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // no partial CSV, no temporary
+
+        // The guard switched off in the file: the same scene runs on past that time.
+        QByteArray off = scene;
+        QVERIFY(off.contains(R"("frame_rate": )"));
+        off.replace(R"("settings": {)", R"("settings": {"energy_guard": false, )");
+        write("blow.json", off);
+        RUN(unguarded, {"--headless", "blow.json", "--save-scene", "saved.json"});
+        QCOMPARE(unguarded.code, 1);
+        QVERIFY2(unguarded.err.contains("became non-finite"), qPrintable(unguarded.err));
+        const QRegularExpressionMatch later =
+            QRegularExpression("at t = ([0-9.e+-]+) s").match(unguarded.err);
+        QVERIFY(later.hasMatch());
+        QVERIFY2(later.captured(1).toDouble() > t, qPrintable(unguarded.err));
+    }
+
+    // The setting is read, kept by --save-scene and written in every saved scene.
+    void energyGuardSettingRoundTrips() {
+        QByteArray off = kBox;
+        off.replace(R"("frame_rate": 20})", R"("frame_rate": 20, "energy_guard": false})");
+        write("off.json", off);
+        RUN(r, {"--headless", "off.json", "--save-scene", "saved.json"});
+        QCOMPARE(r.code, 0);
+        QVERIFY(!tumble::io::readSceneFile(path("saved.json").toStdString()).settings.energyGuard);
+        QVERIFY(read("saved.json").contains(R"("energy_guard": false)"));
+        RUN(on, {"--headless", "box.json", "--save-scene", "saved.json"});
+        QCOMPARE(on.code, 0);
+        QVERIFY(tumble::io::readSceneFile(path("saved.json").toStdString()).settings.energyGuard);
+        QVERIFY(read("saved.json").contains(R"("energy_guard": true)"));
     }
 
     void usageErrors_data() {
@@ -596,7 +682,7 @@ private slots:
         QFETCH(QString, out);
         RUN(r, {"--headless", "blow.json", "--out", out});
         QCOMPARE(r.code, 1);
-        QVERIFY2(r.err.contains("became non-finite"), qPrintable(r.err));
+        QVERIFY2(r.err.contains("ran away"), qPrintable(r.err));
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
     }
 
