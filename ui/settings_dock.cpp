@@ -21,9 +21,9 @@ namespace tumble::ui {
 namespace {
 
 const char* const kPaths[SettingsDock::FieldCount] = {
-    "settings.gravity",    "settings.gravity",  "settings.gravity",
-    "settings.dt",         "settings.duration", "settings.integrator",
-    "settings.frame_rate", "settings.sleeping", "settings.solver_iterations",
+    "settings.gravity",           "settings.gravity",      "settings.gravity",    "settings.dt",
+    "settings.duration",          "settings.integrator",   "settings.frame_rate", "settings.sleeping",
+    "settings.solver_iterations", "settings.energy_guard",
 };
 
 QLabel* newMessage(const QString& name) {
@@ -129,6 +129,14 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
     iterationsMessage_ = newMessage(QStringLiteral("iterationsMessage"));
     form->addRow(tr("Solver &iterations"), withMessage(iterations_, iterationsMessage_));
 
+    energyGuard_ = new QCheckBox(tr("Stop a run whose energy runs away"));
+    energyGuard_->setObjectName(QStringLiteral("energyGuard"));
+    energyGuard_->setToolTip(
+        tr("A run that blows up (a step too large for a stiff spring, say) stops early with the body, "
+           "the time and the likely cause; off, only a state that is no longer finite stops it"));
+    energyGuardMessage_ = newMessage(QStringLiteral("energyGuardMessage"));
+    form->addRow(tr("Energy &guard"), withMessage(energyGuard_, energyGuardMessage_));
+
     auto* body = new QWidget;
     auto* outer = new QVBoxLayout(body);
     outer->addLayout(form);
@@ -157,6 +165,7 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
     connect(iterations_, &QSpinBox::editingFinished, this, [this] { ++generation_[Iterations]; });
     connect(integrator_, &QComboBox::currentIndexChanged, this, [this] { edit(Integrator); });
     connect(sleeping_, &QCheckBox::toggled, this, [this] { edit(Sleeping); });
+    connect(energyGuard_, &QCheckBox::toggled, this, [this] { edit(EnergyGuard); });
 
     // ---- The document's changes (undo, redo, open) come back to the fields.
     connect(doc_, &Document::settingsChanged, this, &SettingsDock::refresh);
@@ -178,6 +187,7 @@ QLabel* SettingsDock::messageLabel(Field field) const {
         case FrameRate: return frameRateMessage_;
         case Sleeping: return sleepingMessage_;
         case Iterations: return iterationsMessage_;
+        case EnergyGuard: return energyGuardMessage_;
         case FieldCount: break;
     }
     return nullptr;
@@ -199,6 +209,9 @@ QString SettingsDock::editText(Field field) const {
         case FrameRate: return tr("Set frame rate");
         case Sleeping: return sleeping_->isChecked() ? tr("Turn sleeping on") : tr("Turn sleeping off");
         case Iterations: return tr("Set solver iterations");
+        case EnergyGuard:
+            return energyGuard_->isChecked() ? tr("Turn the energy guard on")
+                                             : tr("Turn the energy guard off");
         case FieldCount: break;
     }
     return {};
@@ -216,6 +229,7 @@ void SettingsDock::edit(Field field) {
         case FrameRate: s.frameRate = frameRate_->value(); break;
         case Sleeping: s.sleeping = sleeping_->isChecked(); break;
         case Iterations: s.solverIterations = iterations_->value(); break;
+        case EnergyGuard: s.energyGuard = energyGuard_->isChecked(); break;
         case FieldCount: return;
     }
     if (!trySetSettings(field, s)) refresh();  // back to the last good value
@@ -241,7 +255,7 @@ bool SettingsDock::trySetSettings(Field field, const Settings& settings) {
     label->clear();
     label->hide();
     // Spin boxes merge a scrub; a check box or a combo box change is a step of its own.
-    const bool merges = field != Integrator && field != Sleeping;
+    const bool merges = field != Integrator && field != Sleeping && field != EnergyGuard;
     const int mergeId = merges ? 1 + field + FieldCount * generation_[field] : 0;
     doc_->setSettings(settings, editText(field), mergeId);
     return true;
@@ -277,6 +291,10 @@ void SettingsDock::refresh() {
     {
         const QSignalBlocker block(iterations_);
         iterations_->setValue(s.solverIterations);
+    }
+    {
+        const QSignalBlocker block(energyGuard_);
+        energyGuard_->setChecked(s.energyGuard);
     }
 }
 

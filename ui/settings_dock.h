@@ -1,5 +1,5 @@
-// The scene settings dock: gravity, time step, duration, integrator, frame rate, sleeping
-// and solver iterations. Each edit is one Document::setSettings call; a scrub of one
+// The scene settings dock: gravity, time step, duration, integrator, frame rate, sleeping,
+// solver iterations and the energy guard. Each edit is one Document::setSettings call; a scrub of one
 // field merges into one undo step. A value the engine would refuse never reaches the
 // document: the field shows why and keeps its last good value.
 #pragma once
@@ -37,6 +37,7 @@ public:
         FrameRate,
         Sleeping,
         Iterations,
+        EnergyGuard,
         FieldCount
     };
 
@@ -63,6 +64,7 @@ private:
     QDoubleSpinBox* frameRate_;
     QCheckBox* sleeping_;
     QSpinBox* iterations_;
+    QCheckBox* energyGuard_;
     QLabel* gravityMessage_;
     QLabel* stepMessage_;
     QLabel* durationMessage_;
@@ -70,6 +72,7 @@ private:
     QLabel* frameRateMessage_;
     QLabel* sleepingMessage_;
     QLabel* iterationsMessage_;
+    QLabel* energyGuardMessage_;
     // A scrub merges while the field keeps the focus; finishing an edit (Enter, focus out)
     // starts a new generation, so the next change of the same field is a new undo step.
     std::array<int, FieldCount> generation_{};

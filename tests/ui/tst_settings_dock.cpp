@@ -41,6 +41,8 @@ private slots:
         QCOMPARE(field<QDoubleSpinBox>(dock, "frameRate")->value(), s.frameRate);
         QCOMPARE(field<QCheckBox>(dock, "sleeping")->isChecked(), s.sleeping);
         QCOMPARE(field<QSpinBox>(dock, "iterations")->value(), s.solverIterations);
+        QVERIFY(s.energyGuard);
+        QVERIFY(field<QCheckBox>(dock, "energyGuard")->isChecked());
         for (const char* name : {"gravityX", "gravityY", "gravityZ", "step", "duration", "frameRate"})
             QVERIFY2(!field<QDoubleSpinBox>(dock, name)->suffix().trimmed().isEmpty(), name);
         QCOMPARE(field<QDoubleSpinBox>(dock, "gravityX")->suffix(), QString(" m/s²"));
@@ -70,6 +72,7 @@ private slots:
         QTest::newRow("frame rate") << "frameRate" << 30.0;
         QTest::newRow("iterations") << "iterations" << 7.0;
         QTest::newRow("sleeping") << "sleeping" << 0.0;
+        QTest::newRow("energy guard") << "energyGuard" << 0.0;
         QTest::newRow("integrator rk4") << "integrator" << 0.0;
     }
 
@@ -91,6 +94,11 @@ private slots:
             set = [box] { box->click(); };
             holds = [&](const Settings& s) { return s.sleeping == !before.sleeping; };
             showsBefore = [box, &before] { return box->isChecked() == before.sleeping; };
+        } else if (n == "energyGuard") {
+            auto* box = field<QCheckBox>(dock, "energyGuard");
+            set = [box] { box->click(); };
+            holds = [&](const Settings& s) { return s.energyGuard == !before.energyGuard; };
+            showsBefore = [box, &before] { return box->isChecked() == before.energyGuard; };
         } else if (n == "integrator") {
             auto* combo = field<QComboBox>(dock, "integrator");
             set = [combo] { combo->setCurrentIndex(combo->findData(QString("rk4"))); };
@@ -238,11 +246,13 @@ private slots:
         Settings s = doc.scene().settings;
         s.dt = 0.01;
         s.sleeping = !s.sleeping;
+        s.energyGuard = false;
         s.integrator = "euler";
         doc.setSettings(s, "From elsewhere");
         QCOMPARE(doc.undoStack()->count(), 1);  // the dock's refresh pushed nothing
         QCOMPARE(field<QDoubleSpinBox>(dock, "step")->value(), 0.01);
         QCOMPARE(field<QCheckBox>(dock, "sleeping")->isChecked(), s.sleeping);
+        QVERIFY(!field<QCheckBox>(dock, "energyGuard")->isChecked());
         QCOMPARE(field<QComboBox>(dock, "integrator")->currentData().toString(), QString("euler"));
 
         // Opening a scene shows its settings and clears old messages.

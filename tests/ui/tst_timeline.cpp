@@ -4,6 +4,7 @@
 // the start" continues the motion and undoes in one step, playback ends or loops.
 #include "document.h"
 #include "timeline.h"
+#include "timeline_dock.h"
 
 #include <tumble/io/scene_file.h>
 #include <tumble/model.h>
@@ -279,6 +280,53 @@ private slots:
         QVERIFY2(t.errorMessage().contains("mass"), qPrintable(t.errorMessage()));
         QCOMPARE(t.framesDone(), 0);
         QVERIFY(doc.scene() == s);
+    }
+
+    // A run that blows up (a spring far too stiff for the step) stops early with the
+    // engine's message: the body, the time and the likely cause, shown in the timeline
+    // dock's status. The frames before the stop stay; the scene and its undo history are
+    // untouched.
+    void aRunThatBlowsUpSaysWhyAndKeepsTheScene() {
+        Document doc;
+        SceneDesc s = doc.scene();
+        BodyDesc bob = ball(-0.1);
+        bob.name = "bob";
+        ForceDesc spring;
+        spring.type = ForceType::Spring;
+        spring.anchor = Vec3(0, 1, 0);
+        spring.stiffness = 1e5;
+        spring.restLength = 1.0;
+        bob.forces.push_back(spring);
+        s.bodies.push_back(bob);
+        const int index = int(s.bodies.size()) - 1;
+        doc.replaceScene(s, "stiff spring", true);
+        Settings settings = doc.scene().settings;
+        settings.dt = 0.01;
+        settings.integrator = "rk4";
+        settings.duration = 10.0;
+        settings.frameRate = 50.0;
+        doc.setSettings(settings, "Set time step");
+        const SceneDesc before = doc.scene();
+        const int undoCount = doc.undoStack()->count();
+        const int undoIndex = doc.undoStack()->index();
+
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        t.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Failed; }, kWaitMs));
+        const QString m = t.errorMessage();
+        QVERIFY2(m.startsWith(QString("body 'bob' (bodies[%1]) ran away at t = ").arg(index)), qPrintable(m));
+        QVERIFY2(m.contains("likely cause: dt = 0.01 s is too large for spring forces[0] of body 'bob' "
+                            "(k = 1e+05 N/m, m = 1 kg: needs dt < 0.00894 s with rk4)"),
+                 qPrintable(m));
+        QVERIFY2(dock.statusText().contains("Failed: " + m), qPrintable(dock.statusText()));
+        QVERIFY(t.framesDone() > 1);  // what was simulated before the stop stays
+        QVERIFY(t.framesDone() < t.frameCount());
+        QVERIFY(doc.scene() == before);
+        QCOMPARE(doc.undoStack()->count(), undoCount);
+        QCOMPARE(doc.undoStack()->index(), undoIndex);
+        doc.undoStack()->undo();  // the history still works: back to before the step change
+        QCOMPARE(doc.scene().settings.dt, s.settings.dt);
     }
 
 private:
