@@ -66,11 +66,11 @@ double runClean(const SceneDesc& scene) {
     for (int k = 1; k < frames; ++k) {
         try {
             advanceFrame(w, k);
+            checkEnergy(w.model(), w.state(), side);
         } catch (const SimulationError& e) {
             QTest::qFail(e.what(), __FILE__, __LINE__);
             return 1e300;
         }
-        checkEnergy(w.model(), w.state(), side);
     }
     return side.worst;
 }
