@@ -8,6 +8,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -116,10 +117,18 @@ private slots:
         const fs::path folder = dir.path().toStdString();
         // This process's, and a sleeping child's: both run, both are kept however old.
         const fs::path mine = folder / temporaryName("scene.json", getpid());
-        const pid_t sleeper = fork();
+        struct Sleeper {  // a child that runs until killed, killed at the latest on return
+            pid_t pid = fork();
+            ~Sleeper() {
+                if (pid > 0 && kill(pid, SIGKILL) == 0) waitpid(pid, nullptr, 0);
+            }
+        } sleeperChild;
+        const pid_t sleeper = sleeperChild.pid;
         if (sleeper == 0) {
+            prctl(PR_SET_PDEATHSIG, SIGKILL);
             for (;;) pause();
         }
+        QVERIFY(sleeper > 0);
         const fs::path theirs = folder / temporaryName("scene.json", sleeper);
         for (const fs::path& p : {mine, theirs}) {
             writeBytes(p, "being written");
