@@ -703,6 +703,7 @@ private slots:
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
     }
 
+#ifdef TUMBLE_HAVE_UI
     // --out DIR/ draws a PNG per frame, --out FILE.mp4 a video with its frames beside it;
     // both through the editor's viewport, so they need a display (the tests have Xvfb's).
     void outImagesAndVideo() {
@@ -739,6 +740,21 @@ private slots:
                  "the message says why");
         QVERIFY(!QFileInfo::exists(path("frames")));
     }
+#else
+    // A build without the editor (TUMBLE_BUILD_UI=OFF, e.g. the sanitizer build) cannot
+    // draw: it says so and writes nothing.
+    void outImagesNeedTheEditor() {
+        write("box.json", kBox);
+        for (const char* out : {"frames/", "box.mp4"}) {
+            RUN(r, {"--headless", "box.json", "--out", out, "--quiet"});
+            QCOMPARE(r.code, 2);
+            QCOMPARE(r.err, QString("tumble: --out: '%1': images and video need the editor, which this build "
+                                    "has not\n")
+                                .arg(out));
+        }
+        QCOMPARE(entries(), QStringList({"box.json"}));
+    }
+#endif
 };
 
 QTEST_GUILESS_MAIN(TestCli)

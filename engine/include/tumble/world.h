@@ -57,8 +57,9 @@ public:
 
     /// Advances the state by h seconds: forces -> integrate -> broadphase -> narrowphase ->
     /// time of impact (cutting the step at each first touch for the impact impulses) ->
-    /// contact solver -> sleeping. Throws SimulationError when a body's state becomes
-    /// non-finite.
+    /// contact solver -> sleeping. Throws SimulationError, naming the body, the time and the
+    /// likely cause, when a body's state becomes non-finite or (settings.energyGuard) the
+    /// scene's energy runs away.
     void step(double h);
 
     /// The contact manifolds at the end of the last step (bodyA < bodyB).
