@@ -164,10 +164,14 @@ private slots:
             heapMax <= heapWarm + bound,
             qPrintable(
                 QString("heap in use grew from %1 B to %2 B after the warm-up").arg(heapWarm).arg(heapMax)));
-        // Energy never exceeds the start's, and the pile stays a pile: after the warm-up its
-        // motion is a small fraction of its potential energy above the ground.
-        QVERIFY2(maxTotal <= start.total(),
-                 qPrintable(QString("energy rose to %1 J from %2 J").arg(maxTotal).arg(start.total())));
+        // Energy never exceeds the start's (up to the integrator's rounding in the first steps
+        // of the fall, 1e-6 of the pile's potential energy), and the pile stays a pile: after
+        // the warm-up its motion is a small fraction of its potential energy above the ground.
+        QVERIFY2(maxTotal <= start.total() + 1e-6 * height,
+                 qPrintable(QString("energy rose to %1 J from %2 J (by %3 J)")
+                                .arg(maxTotal, 0, 'g', 12)
+                                .arg(start.total(), 0, 'g', 12)
+                                .arg(maxTotal - start.total())));
         QVERIFY2(maxKineticLate < 0.05 * height,
                  qPrintable(QString("kinetic energy %1 J after the warm-up, the pile's potential %2 J")
                                 .arg(maxKineticLate)
