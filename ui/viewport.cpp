@@ -197,12 +197,23 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
 }
 
 Viewport::~Viewport() {
-    // The scene's entities belong to the root, which the window owns once set; the window
-    // belongs to the container. Drop our bookkeeping first.
+    // The scene's entities belong to the root, which belongs to the window's top entity; the
+    // window belongs to the container. Drop our bookkeeping first.
     for (const auto& c : d_->timelineConnections) disconnect(c);
     d_->overlays.reset();
     d_->gizmo.reset();
     d_->scene.reset();
+    if (!d_->windowShown) {
+        // The window never gave its top entity (our root, its camera) and its render
+        // settings (our frame graph) to its aspect engine, so nothing would delete them:
+        // a viewport never shown (an image export's, one in a window never shown) would
+        // leak the whole scene. They go before the window (the frame graph's surface
+        // selectors filter its events), which the container then deletes; its engine holds
+        // no node. (Its input settings, a node of Qt3DWindow's own, cannot be reached.)
+        Qt3DCore::QNode* top = d_->root->parentNode();
+        delete (top ? top : d_->root);
+        delete d_->window->renderSettings();
+    }
 }
 
 int Viewport::samples() const {
@@ -433,6 +444,7 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
             return true;
         }
         case QEvent::KeyPress: return handleKey(static_cast<QKeyEvent*>(event));
+        case QEvent::Show: d_->windowShown = true; return false;
         default: return false;
     }
 }

@@ -101,6 +101,10 @@ struct Viewport::Impl {
     Qt3DExtras::Qt3DWindow* window = nullptr;
     QWidget* container = nullptr;
     Qt3DCore::QEntity* root = nullptr;
+    // Whether the window has been shown: Qt3DWindow hands its entity tree (with our root)
+    // and its render and input settings to its aspect engine, which deletes them, on the
+    // first show only. Until then they are nobody's and ~Viewport deletes them.
+    bool windowShown = false;
     std::unique_ptr<ViewportScene> scene;
     OrbitCamera camera;
 
