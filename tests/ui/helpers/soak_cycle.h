@@ -1,12 +1,14 @@
 // The cycles of the editor soak (tests/ui/tst_soak.cpp and the leak check's helper
 // soak_leaks.cpp): a large scene file opened, simulated to the end of its duration, its last
 // frame shown, and closed: by the main window (cycle) or by a document and its timeline
-// (timelineCycle).
+// (timelineCycle); opened again in the same shown main window (reopenCycle); a viewport
+// made and destroyed unshown (viewportCycle).
 #pragma once
 
 #include "document.h"
 #include "main_window.h"
 #include "timeline.h"
+#include "viewport.h"
 
 #include <tumble/io/scene_file.h>
 
@@ -18,6 +20,9 @@
 
 #include <malloc.h>
 
+#include <algorithm>
+#include <array>
+
 #include <string>
 
 namespace tumble::soak {
@@ -26,6 +31,20 @@ namespace tumble::soak {
 inline std::size_t heapInUse() {
     const struct mallinfo2 m = mallinfo2();
     return m.uordblks + m.hblkhd;
+}
+
+/// The heap in use once what is pending has been handled: the median of five readings a
+/// few tens of milliseconds apart, the events handled in between (Qt 3D's render thread
+/// frees and makes again a few hundred KiB around each frame it draws).
+inline std::size_t settledHeapInUse() {
+    std::array<std::size_t, 5> readings{};
+    for (std::size_t& r : readings) {
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
+        QThread::msleep(40);
+        r = heapInUse();
+    }
+    std::sort(readings.begin(), readings.end());
+    return readings[2];
 }
 
 /// A large scene: a ground and `count` boxes and spheres in a grid, dropped from up to a few
@@ -113,6 +132,25 @@ inline bool timelineCycle(const QString& path, QString* error) {
             return false;
         }
     }
+    settle();
+    return true;
+}
+
+/// A viewport of the document made and destroyed without ever being shown (as an image
+/// export's or a test's may be).
+inline void viewportCycle(ui::Document* doc) {
+    { ui::Viewport view(doc); }
+    settle();
+}
+
+/// The shown main window `w` opens the scene again (as File > Open does: the document
+/// replaces its scene, the viewport and the docks follow), simulates it and shows its last
+/// frame; false with the reason in `error` when a step did not happen.
+inline bool reopenCycle(ui::MainWindow* w, const QString& path, QString* error) {
+    if (!w->openScene(path, error)) return false;
+    w->timeline()->simulate();
+    if (!waitForRun(w->timeline(), path, error)) return false;
+    w->timeline()->toEnd();
     settle();
     return true;
 }
