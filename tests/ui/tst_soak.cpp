@@ -1,7 +1,7 @@
 // The editor soak, heap: a large scene (a ground and 600 bodies), many times over, the heap
 // in use (malloc's, settled: helpers/soak_cycle.h) read after each cycle:
 //  - opened by a document, simulated to the end by its timeline (the worker thread, the
-//    recording) and closed, 16 times: after 8 the heap grows by at most 4 KiB (a leak of
+//    recording) and closed, 16 times: after 8 the heap grows by at most 6 KiB (a leak of
 //    1 KiB a cycle fails it);
 //  - opened again in one shown main window (as File > Open does), simulated to the end and
 //    its last frame drawn, 12 times: what a user's session does. After 4 the heap grows by at
@@ -94,8 +94,9 @@ private slots:
     }
 
     void openSimulateCloseManyTimesWithoutGrowth() {
-        // 16 cycles, 8 warm: a block of 1 KiB leaked a cycle is twice the bound by the end.
-        checkFlat("document and timeline", cyclesOr(16), 8, 4 * 1024,
+        // 16 cycles, 8 warm: a block of 1 KiB leaked a cycle is 8 KiB past the warm-up, over
+        // the bound; the creep measured without one is 0.7 to 2.3 KiB.
+        checkFlat("document and timeline", cyclesOr(16), 8, 6 * 1024,
                   [&](QString* error) { return soak::timelineCycle(path_, error); });
     }
 
