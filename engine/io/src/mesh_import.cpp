@@ -4,6 +4,7 @@
 // several placed parts comes out as the user sees it in a modelling tool.
 #include <tumble/io/mesh_import.h>
 
+#include "mesh_child.h"
 #include "mesh_precheck.h"
 
 #include <assimp/config.h>
@@ -18,16 +19,10 @@
 
 namespace tumble::io {
 
-TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
-    const std::string name = file.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec))
-        throw InputError(name, "", "is a directory, not a mesh file");
-    if (!std::ifstream(file, std::ios::binary)) {
-        throw InputError(name, "", "cannot be read (missing, or no permission)");
-    }
-    if (const auto hang = meshFileAssimpWouldHangOn(file)) throw InputError(name, "", *hang);
+namespace {
 
+// assimp's reading and Tumble's checks of what it read; throws InputError for `name`.
+TriangleMesh readWithAssimp(const std::string& name, const Vec3& scale) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
                                 aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
@@ -86,6 +81,24 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale) {
             name, "", scene->mNumMeshes == 0 ? "holds no mesh" : "holds no triangles (only points or lines)");
     }
     return mesh;
+}
+
+}  // namespace
+
+TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale,
+                        const MeshImportOptions& options) {
+    const std::string name = file.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw InputError(name, "", "is a directory, not a mesh file");
+    if (!std::ifstream(file, std::ios::binary)) {
+        throw InputError(name, "", "cannot be read (missing, or no permission)");
+    }
+    if (options.refuseKnownHangs) {
+        if (const auto hang = meshFileAssimpWouldHangOn(file)) throw InputError(name, "", *hang);
+    }
+    const auto read = [&] { return readWithAssimp(name, scale); };
+    return options.timeLimit > 0 ? readMeshInChild(name, options.timeLimit, read) : read();
 }
 
 void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName,

@@ -10,6 +10,15 @@
 
 namespace tumble::io {
 
+struct MeshImportOptions {
+    /// Seconds assimp may take in its child process before it is killed; 0 reads in the
+    /// calling process, unprotected.
+    double timeLimit = 60.0;
+    /// Refuse the files assimp 5.2 is known to loop on before it sees them (mesh_precheck);
+    /// off only to test the time limit.
+    bool refuseKnownHangs = true;
+};
+
 /// Reads every mesh of `file` (OBJ, STL ascii or binary, PLY, OFF, glTF 2, FBX, ... any
 /// format assimp reads) into one triangle mesh: node transforms applied, polygons
 /// triangulated, points and lines ignored, each vertex multiplied componentwise by `scale`.
@@ -17,7 +26,10 @@ namespace tumble::io {
 /// no welding beyond exactly identical vertices (compile() cleans the mesh).
 /// Throws InputError(file, "", reason) when the file is missing or unreadable, assimp
 /// cannot read it (its own message is given), or it holds no triangles.
-TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale = Vec3(1, 1, 1));
+/// assimp reads in a child process (engine/io/src/mesh_child.h): a file it crashes on or
+/// never finishes gives an InputError saying so, never a crash or a hang of the caller.
+TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale = Vec3(1, 1, 1),
+                        const MeshImportOptions& options = {});
 
 /// Fills shape.meshData of every mesh body of `scene` by reading its file relative to
 /// `baseDir` (absolute paths are taken as they are) with the body's scale; bodies with the

@@ -1,0 +1,165 @@
+#include "mesh_child.h"
+
+#include <tumble/io/scene_file.h>
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <vector>
+
+namespace tumble::io {
+
+namespace {
+
+// The child's answer on the pipe: 'M', vertex and triangle counts, the vertices (3 doubles
+// each) and the triangles (3 int32 each); or 'E' and a message.
+void append(std::string& out, const void* data, std::size_t size) {
+    out.append(static_cast<const char*>(data), size);
+}
+
+std::string encode(const TriangleMesh& mesh) {
+    std::string out(1, 'M');
+    const std::uint64_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+    append(out, &nv, sizeof nv);
+    append(out, &nt, sizeof nt);
+    for (const Vec3& v : mesh.vertices) append(out, v.data(), 3 * sizeof(double));
+    for (const auto& t : mesh.triangles) {
+        const std::int32_t k[3] = {t[0], t[1], t[2]};
+        append(out, k, sizeof k);
+    }
+    return out;
+}
+
+bool writeAll(int fd, const std::string& data) {
+    std::size_t done = 0;
+    while (done < data.size()) {
+        const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        done += static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
+[[noreturn]] void runChild(int fd, const std::function<TriangleMesh()>& read) {
+    std::string answer;
+    try {
+        answer = encode(read());
+    } catch (const InputError& e) {
+        answer = "E" + e.message();
+    } catch (const std::exception& e) {
+        answer = std::string("E") + e.what();
+    }
+    _exit(writeAll(fd, answer) ? 0 : 1);  // no atexit handlers, no destructors: only the answer
+}
+
+TriangleMesh decode(const std::string& name, const std::string& data) {
+    const auto broken = [&] {
+        return InputError(name, "", "cannot be read as a mesh: the reader's answer was cut short");
+    };
+    std::uint64_t nv = 0, nt = 0;
+    if (data.size() < 1 + 2 * sizeof nv) throw broken();
+    std::memcpy(&nv, data.data() + 1, sizeof nv);
+    std::memcpy(&nt, data.data() + 1 + sizeof nv, sizeof nt);
+    const std::size_t need = 1 + 2 * sizeof nv + nv * 3 * sizeof(double) + nt * 3 * sizeof(std::int32_t);
+    if (nv > data.size() || nt > data.size() || data.size() != need) throw broken();
+    TriangleMesh mesh;
+    mesh.vertices.resize(nv);
+    mesh.triangles.resize(nt);
+    const char* p = data.data() + 1 + 2 * sizeof nv;
+    for (auto& v : mesh.vertices) {
+        std::memcpy(v.data(), p, 3 * sizeof(double));
+        p += 3 * sizeof(double);
+    }
+    for (auto& t : mesh.triangles) {
+        std::int32_t k[3];
+        std::memcpy(k, p, sizeof k);
+        p += sizeof k;
+        t = {k[0], k[1], k[2]};
+    }
+    return mesh;
+}
+
+std::string describe(int status) {
+    if (WIFSIGNALED(status)) {
+        const int sig = WTERMSIG(status);
+        const char* what = ::strsignal(sig);
+        return "the mesh reader (assimp) crashed on it (signal " + std::to_string(sig) +
+               (what ? std::string(": ") + what : std::string()) +
+               "); the file is damaged or in a form it cannot read";
+    }
+    return "the mesh reader stopped without an answer (exit status " + std::to_string(WEXITSTATUS(status)) +
+           ")";
+}
+
+}  // namespace
+
+TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
+                             const std::function<TriangleMesh()>& read) {
+    int fds[2];
+    if (::pipe(fds) != 0) return read();  // no pipe, no child: read here, unprotected
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        ::close(fds[0]);
+        ::close(fds[1]);
+        return read();
+    }
+    if (pid == 0) {
+        ::close(fds[0]);
+        // assimp's failed assertions abort(): let that end the child at once, whatever
+        // handler the parent has (Qt Test's attaches a debugger). A sanitizer's report in
+        // the child exits with status 1 instead, which the parent tells apart.
+        ::signal(SIGABRT, SIG_DFL);
+        runChild(fds[1], read);
+    }
+    ::close(fds[1]);
+
+    // Read the whole answer, waiting at most timeLimit in all.
+    using Clock = std::chrono::steady_clock;
+    const auto deadline = Clock::now() + std::chrono::duration<double>(timeLimit);
+    std::string data;
+    std::vector<char> buffer(1 << 16);
+    bool timedOut = false;
+    for (;;) {
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        if (left <= 0) {
+            timedOut = true;
+            break;
+        }
+        pollfd p{fds[0], POLLIN, 0};
+        const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready <= 0) continue;
+        const ssize_t n = ::read(fds[0], buffer.data(), buffer.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;  // the child closed its end: the answer is complete
+        data.append(buffer.data(), static_cast<std::size_t>(n));
+    }
+    ::close(fds[0]);
+    if (timedOut) ::kill(pid, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (timedOut) {
+        char limit[32];
+        std::snprintf(limit, sizeof limit, "%g", timeLimit);
+        throw InputError(name, "",
+                         std::string("the mesh reader (assimp) did not finish reading it within ") + limit +
+                             " s; the file is damaged or too large");
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw InputError(name, "", describe(status));
+    if (data.empty()) throw InputError(name, "", describe(status));
+    if (data[0] == 'E') throw InputError(name, "", data.substr(1));
+    return decode(name, data);
+}
+
+}  // namespace tumble::io
