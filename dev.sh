@@ -4,6 +4,9 @@
 #   ./dev.sh run [SCENE]   install what is missing, build, start the editor
 #   ./dev.sh test          install what is missing, build, run every test (under Xvfb)
 #   ./dev.sh build         install what is missing and build
+#   ./dev.sh sanitize      the engine, io, cli and fuzz tests built with clang, ASan and UBSan
+#                          (part of `test`; a folder of its own, $BUILD_DIR-san)
+#   ./dev.sh fuzz TARGET [SECONDS]   a long fuzz run of scene or mesh (docs/reliability.md)
 #
 # Each step is skipped when it has nothing to do, so a second run is quick. Set
 # BUILD_DIR to build elsewhere (default: build). Runs apt-get as root, or through sudo.
@@ -20,6 +23,8 @@ PACKAGES=(
   xvfb xauth
   nodejs npm
   ffmpeg
+  clang-14 libfuzzer-14-dev
+  liblsan0
 )
 # ffmpeg is optional for users (the editor's MP4 export detects it at run time); the tests
 # install it so that the video path is tested, not skipped.
@@ -48,6 +53,30 @@ build() {
     cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
   fi
   cmake --build "$BUILD_DIR" -j2
+}
+
+# The sanitizer build: clang with AddressSanitizer, UndefinedBehaviorSanitizer (LeakSanitizer
+# comes with ASan) and libFuzzer's coverage, without the editor; only what its tests need.
+SAN_DIR=${BUILD_DIR}-san
+build_sanitized() {
+  # Its objects carry debug lines (for the reports' stacks); ccache keys them by path relative
+  # to the source folder, so a clean checkout elsewhere finds them in the cache.
+  export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
+  if [ ! -f "$SAN_DIR/build.ninja" ]; then
+    cmake -S . -B "$SAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+      -DTUMBLE_SANITIZE=ON -DTUMBLE_FUZZ=ON -DTUMBLE_BUILD_UI=OFF -DTUMBLE_BUILD_BENCH=OFF
+  fi
+  cmake --build "$SAN_DIR" -j2
+}
+run_sanitized() {
+  # Any report fails the test that caused it: ASan and LSan abort, UBSan is built not to
+  # recover (-fno-sanitize-recover), and halt_on_error keeps that true for the runtime checks.
+  # Sanitized physics runs 15-20 times slower than Release: the heaviest test functions (a
+  # pyramid of 15 rows settling) take 6-7 minutes, past Qt Test's 5-minute limit.
+  ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  QTEST_FUNCTION_TIMEOUT=1800000 \
+    ctest --timeout 2400 --test-dir "$SAN_DIR" --output-on-failure -j2 -L 'engine|io|cli|fuzz' -LE soak "$@"
 }
 
 # Once per build folder; a later run finds it there.
@@ -87,13 +116,29 @@ case "$cmd" in
       echo "dev.sh: tumble-bench --quick failed" >&2
       exit 1
     fi
+    build_sanitized
+    BUILD_DIR=$SAN_DIR install_gltf_validator
+    run_sanitized
+    ;;
+  sanitize)
+    install_missing
+    build_sanitized
+    BUILD_DIR=$SAN_DIR install_gltf_validator
+    run_sanitized "$@"
+    ;;
+  fuzz)
+    target=${1:?usage: $0 fuzz scene|mesh [SECONDS]}
+    install_missing
+    build_sanitized
+    exec tests/fuzz/run_fuzz.sh "$SAN_DIR/tests/fuzz/fuzz_$target" "$target" "$SAN_DIR/tests/fuzz/$target" \
+      "${2:-3600}" "$PWD" /usr/share/assimp/models
     ;;
   build)
     install_missing
     build
     ;;
   *)
-    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build" >&2
+    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build | sanitize [CTEST ARGS] | fuzz TARGET [SECONDS]" >&2
     exit 2
     ;;
 esac
