@@ -3,8 +3,6 @@
 #include "timeline.h"
 #include "viewport.h"
 
-#include <Qt3DExtras/Qt3DWindow>
-#include <Qt3DRender/QFrameGraphNode>
 #include <Qt3DRender/QRenderCapture>
 
 #include <QDir>
@@ -265,12 +263,7 @@ void ImageExporter::start(const ImageExportOptions& options) {
     view->setFixedSize(renderSize(options.size));
     view->show();
 
-    auto* window = static_cast<Qt3DExtras::Qt3DWindow*>(view->renderWindow());
-    Qt3DRender::QFrameGraphNode* graph = window->activeFrameGraph();
-    auto* capture = new Qt3DRender::QRenderCapture();
-    graph->setParent(capture);
-    window->setActiveFrameGraph(capture);
-    d.capture = capture;
+    d.capture = view->addRenderCapture();
 
     d.stage = Impl::Stage::Showing;
     d.watchdog->disconnect();
@@ -322,20 +315,24 @@ void ImageExporter::requestCapture() {
     // Now and then a request is never answered (the on-demand renderer misses it): it is
     // made again after a while; the frame's watchdog still bounds the whole.
     d.retry->start(kRetryMs);
+    // The reply is taken from the event loop, never inside its completed() signal: Qt3D
+    // emits that from its frame processing (Renderer::jobsDone), and what follows a capture
+    // (a cancel from a progress slot, the view hidden and deleted) must not run in there.
     if (d.reply->isComplete()) {
         QTimer::singleShot(0, this, [this, gen = d.generation] {
             if (d_->generation == gen) onCaptured();
         });
     } else {
-        connect(d.reply, &Qt3DRender::QRenderCaptureReply::completed, this, &ImageExporter::onCaptured);
+        connect(d.reply, &Qt3DRender::QRenderCaptureReply::completed, this, &ImageExporter::onCaptured,
+                Qt::QueuedConnection);
     }
 }
 
 void ImageExporter::onCaptured() {
     Impl& d = *d_;
-    auto* reply = qobject_cast<Qt3DRender::QRenderCaptureReply*>(sender());
-    if (!reply) reply = d.reply;
-    if (d.stage != Impl::Stage::Rendering || !reply || reply != d.reply) return;
+    // Only the reply asked for last counts (an earlier one answered late is dropped with it).
+    Qt3DRender::QRenderCaptureReply* reply = d.reply;
+    if (d.stage != Impl::Stage::Rendering || !reply || !reply->isComplete()) return;
     d.retry->stop();
     QImage image = reply->image();
     reply->deleteLater();

@@ -26,6 +26,7 @@
 #include <Qt3DRender/QDepthTest>
 #include <Qt3DRender/QLayer>
 #include <Qt3DRender/QLayerFilter>
+#include <Qt3DRender/QRenderCapture>
 #include <Qt3DRender/QRenderSettings>
 #include <Qt3DRender/QRenderStateSet>
 #include <Qt3DRender/QRenderSurfaceSelector>
@@ -143,6 +144,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     auto* overlayFilter = new Qt3DRender::QLayerFilter(overlayStates);
     overlayFilter->addLayer(overlay);
     overlayFilter->setFilterMode(Qt3DRender::QLayerFilter::AcceptAnyMatchingLayers);
+    d_->lastLeaf = overlayFilter;
     d_->window->setActiveFrameGraph(surface);
     d_->window->setRootEntity(d_->root);
 
@@ -222,6 +224,26 @@ int Viewport::samples() const {
 
 QWindow* Viewport::renderWindow() const {
     return d_->window;
+}
+
+// The capture goes above the last leaf only, never above two. Qt 6.4's backend
+// RenderCapture hands its pending requests to the render views of the leaves below it, and
+// each leaf's render view is set up by its own job on Qt3D's thread pool: with two leaves
+// below, two pool threads can take a request from the same list at once, and
+// RenderCapture::takeCaptureRequest takes it without the lock that guards the list (Qt 6.4
+// rendercapture.cpp). Two requests pending (a capture asked again) made that a heap
+// corruption, found later in RenderCapture::syncFromFrontEnd when the main thread appended
+// the next request; one request could be taken twice, emptying the list past its start;
+// and when two views of one pass each took one, the second readback replaced the first,
+// whose reply never came. Below the last leaf alone one job takes at most one request a
+// frame, and its readback is recorded at the end of the pass, after both passes have drawn:
+// the image is the whole view.
+Qt3DRender::QRenderCapture* Viewport::addRenderCapture() {
+    auto* capture = new Qt3DRender::QRenderCapture();
+    Qt3DCore::QNode* parent = d_->lastLeaf->parentNode();
+    capture->setParent(parent);
+    d_->lastLeaf->setParent(capture);
+    return capture;
 }
 
 int Viewport::entityCount() const {

@@ -15,6 +15,9 @@
 #include <memory>
 
 class QWindow;
+namespace Qt3DRender {
+class QRenderCapture;
+}
 
 namespace tumble::ui {
 
@@ -65,6 +68,9 @@ public:
 
     /// The Qt3D window inside the container (it receives the mouse and keys).
     QWindow* renderWindow() const;
+    /// A render capture of the whole view, made and placed in the frame graph (owned by
+    /// it): each of its requests is answered with the image of one drawn frame.
+    Qt3DRender::QRenderCapture* addRenderCapture();
     /// The world ray through a widget point (direction of unit length).
     void rayAt(const QPoint& widgetPos, QVector3D* origin, QVector3D* direction) const;
 

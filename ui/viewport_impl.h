@@ -32,6 +32,9 @@ class QEntity;
 namespace Qt3DExtras {
 class Qt3DWindow;
 }
+namespace Qt3DRender {
+class QFrameGraphNode;
+}
 
 namespace tumble::ui {
 
@@ -105,6 +108,9 @@ struct Viewport::Impl {
     // and its render and input settings to its aspect engine, which deletes them, on the
     // first show only. Until then they are nobody's and ~Viewport deletes them.
     bool windowShown = false;
+    // The frame graph's last leaf (the overlay pass) and its parent: a render capture goes
+    // between them (Viewport::addRenderCapture).
+    Qt3DRender::QFrameGraphNode* lastLeaf = nullptr;
     std::unique_ptr<ViewportScene> scene;
     OrbitCamera camera;
 
