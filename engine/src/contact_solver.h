@@ -34,9 +34,9 @@ struct ContactSolverScratch {
     struct Point {
         int a = 0, b = 0;
         Vec3 rA, rB, n;
-        double kn = 0;           // effective mass along the normal
-        double target = 0.0;     // wanted normal velocity after the solve
-        double lambdaN = 0.0;    // accumulated normal impulse
+        double kn = 0;                // effective mass along the normal
+        double target = 0.0;          // wanted normal velocity after the solve
+        double lambdaN = 0.0;         // accumulated normal impulse
         Vec3 localA, localB, localN;  // for the position passes: A's and B's surface points, n in B
         double slop = 0.0, size = 0.0;
         std::uint32_t feature = 0;
@@ -64,15 +64,19 @@ struct ContactSolverScratch {
     std::vector<SolverBody> bodies;
     std::vector<SolverBody> start;  // velocities at the start of the step
     std::vector<Vec3> bodySpin;     // ω in body axes, kept while bodies are re-placed
+    std::vector<int> level;         // contacts between a body and one that cannot move (shockPass)
+    std::vector<int> order;         // blocks from the bottom up
+    std::vector<Block> frozen;      // the blocks of one level with its lower bodies standing still
+    std::vector<int> moving;        // the bodies those blocks move
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
 };
 
 struct ContactSolverSettings {
-    int iterations = 20;       ///< velocity iterations
+    int iterations = 20;  ///< velocity iterations
     int positionIterations = 4;
-    double h = 1.0 / 240.0;    ///< the (last part of the) step, for speculative points and warm starting
-    double restingSpeed = 0.0; ///< below this approach speed, no bounce
+    double h = 1.0 / 240.0;       ///< the (last part of the) step, for speculative points and warm starting
+    double restingSpeed = 0.0;    ///< below this approach speed, no bounce
     double touchTolerance = 0.0;  ///< points deeper than minus this are solved
 };
 
@@ -82,8 +86,9 @@ struct ContactSolverSettings {
 /// `before`: the state at the start of the (last part of the) step: a body the solver
 /// pushed is moved again from there with its new velocity (x = x0 + h v, q turned by h ω),
 /// so that the motion the contact forbids (sinking, creeping down a slope) never happens.
-void solveContacts(const Model& model, State& state, const State& before, const std::vector<collision::Manifold>& contacts,
-                   const std::vector<double>& sizes, const ContactSolverSettings& settings,
-                   ContactSolverScratch& scratch, EnergyLedger& ledger);
+void solveContacts(const Model& model, State& state, const State& before,
+                   const std::vector<collision::Manifold>& contacts, const std::vector<double>& sizes,
+                   const ContactSolverSettings& settings, ContactSolverScratch& scratch,
+                   EnergyLedger& ledger);
 
 }  // namespace tumble

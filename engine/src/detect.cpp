@@ -65,10 +65,26 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
     return w;
 }
 
+// How fast A's and B's points at `point` close along `normal` (out of B towards A) at the
+// fraction s of the step: velocities and centres taken linearly between the start and the end.
+double approachSpeed(const Model& model, const State& before, const State& after, int a, int b, double s,
+                     const Vec3& point, const Vec3& normal) {
+    auto pointVelocity = [&](int i) -> Vec3 {
+        const BodyModel& body = model.bodies[i];
+        if (body.motion == Motion::Static) return Vec3::Zero();
+        if (body.motion == Motion::Kinematic)
+            return body.kinematicVelocity + body.kinematicAngularVelocity.cross(point - after.bodies[i].x);
+        const Derived d0 = derive(body, before.bodies[i]), d1 = derive(body, after.bodies[i]);
+        const Vec3 x = (1.0 - s) * before.bodies[i].x + s * after.bodies[i].x;
+        return (1.0 - s) * d0.v + s * d1.v + ((1.0 - s) * d0.omega + s * d1.omega).cross(point - x);
+    };
+    return -normal.dot(pointVelocity(a) - pointVelocity(b));
+}
 
 }  // namespace
 
-void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance, std::vector<std::uint64_t>& out) {
+void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance,
+                   std::vector<std::uint64_t>& out) {
     out.clear();
     for (const Manifold& m : contacts)
         if (m.maxDepth() >= -touchTolerance) out.push_back(pairKey(m.bodyA, m.bodyB));
@@ -76,7 +92,7 @@ void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance,
 }
 
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, DetectScratch& s) {
+                 double tolerance, double minApproach, DetectScratch& s) {
     s.impacts.clear();
     for (const auto& [a, b] : s.broadphase.pairs()) {
         // In contact already: no new impact.
@@ -87,7 +103,11 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const double size = std::min(boundingRadius(A.collider), boundingRadius(B.collider));
         const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
                                       sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
-        if (hit) s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
+        if (!hit) continue;
+        // A slow approach is settling, the contact solver's work: no moment of impact.
+        if (approachSpeed(model, before, after, a, b, hit->s, hit->point, hit->normal) <= minApproach)
+            continue;
+        s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
     }
 }
 

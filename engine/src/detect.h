@@ -15,9 +15,9 @@
 namespace tumble {
 
 struct DetectScratch {
-    std::vector<collision::Pose> start;   // body poses at the start of the step
-    std::vector<collision::Pose> end;     // ... and at its end
-    std::vector<collision::Aabb> swept;   // world boxes covering the whole step
+    std::vector<collision::Pose> start;  // body poses at the start of the step
+    std::vector<collision::Pose> end;    // ... and at its end
+    std::vector<collision::Aabb> swept;  // world boxes covering the whole step
     std::vector<std::uint8_t> moving;
     collision::Broadphase broadphase;
     std::vector<collision::Manifold> contacts;
@@ -47,8 +47,9 @@ void touchingPairs(const std::vector<collision::Manifold>& contacts, double touc
 /// Time of impact: for pairs that did not touch at the start of the step (not in
 /// `s.touching`), the moment they first come within
 /// `tolerance` × the smaller body's size (t0 = time at the start, h = step). A pair that
-/// is that near already at the start has its impact at t0.
+/// is that near already at the start has its impact at t0. A pair whose points close no
+/// faster than `minApproach` there is not an impact: it is left to the contact solver.
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, DetectScratch& s);
+                 double tolerance, double minApproach, DetectScratch& s);
 
 }  // namespace tumble

@@ -24,17 +24,21 @@ namespace tumble {
 
 namespace {
 
-constexpr int kMaxCuts = 8;              // moments of impact handled exactly per step
+constexpr int kMaxCuts = 8;                // moments of impact handled exactly per step
 constexpr double kImpactTolerance = 1e-6;  // of the smaller body's size: how near "touching" is
 constexpr double kTouchTolerance = 1e-5;   // of the largest body's size: contacts this far apart count
 
 using Clock = std::chrono::steady_clock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // Contacts approaching slower than this are resting, not bouncing: twice what gravity adds
 // in a step, so a body resting under gravity never bounces on its support.
-double restingSpeed(const Model& model) { return 2.0 * model.settings.gravity.norm() * model.settings.dt; }
+double restingSpeed(const Model& model) {
+    return 2.0 * model.settings.gravity.norm() * model.settings.dt;
+}
 
 }  // namespace
 
@@ -74,7 +78,8 @@ World::World(Model model, State state)
 void World::forgetSleepUnlessSleeping() {
     if (model_.settings.sleeping) return;
     // Pairs of sleeping bodies were never tested, so they are missing from `touching`.
-    if (std::find(state_.asleep.begin(), state_.asleep.end(), 1) != state_.asleep.end()) state_.touchingKnown = false;
+    if (std::find(state_.asleep.begin(), state_.asleep.end(), 1) != state_.asleep.end())
+        state_.touchingKnown = false;
     state_.asleep.clear();
     state_.restTime.clear();
 }
@@ -100,7 +105,8 @@ void World::advance(double h) {
     state_.time += h;
     checkFinite(model_, state_);
     profile_.integrate += since(t) - (profile_.forces - forcesBefore);
-    profile_.awakeBodySteps += static_cast<long>(s.integrate.awake ? s.awake.size() : model_.dynamicBodies.size());
+    profile_.awakeBodySteps +=
+        static_cast<long>(s.integrate.awake ? s.awake.size() : model_.dynamicBodies.size());
 }
 
 void World::detect(double t0, double h) {
@@ -118,7 +124,7 @@ void World::detect(double t0, double h) {
     profile_.narrowphase += since(t);
 
     t = Clock::now();
-    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, d);
+    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, restingSpeed(model_), d);
     profile_.timeOfImpact += since(t);
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again
@@ -235,8 +241,12 @@ void World::step(double h) {
     guardEnergy(model_, state_, s.energy);
 }
 
-const std::vector<collision::Manifold>& World::contacts() const { return scratch_->detect.contacts; }
+const std::vector<collision::Manifold>& World::contacts() const {
+    return scratch_->detect.contacts;
+}
 
-const std::vector<collision::ImpactEvent>& World::impacts() const { return scratch_->impacts; }
+const std::vector<collision::ImpactEvent>& World::impacts() const {
+    return scratch_->impacts;
+}
 
 }  // namespace tumble
