@@ -16,6 +16,7 @@ constexpr double kSlop = 0.005;         // overlap left alone, × the smaller bo
 constexpr double kBaumgarte = 0.2;      // share of the overlap beyond the slop removed per pass
 constexpr double kMaxCorrection = 0.1;  // largest move per pass, × size
 constexpr double kMatch = 0.1;          // a remembered point is the same within this × size
+constexpr int kShockPasses = 4;         // passes per level of the last sweep (shockPass)
 
 void indexMemory(const State& state, ContactSolverScratch& s) {
     s.memory.clear();
@@ -147,24 +148,22 @@ void prepare(const Model& model, const State& state, const State& before,
 }
 
 void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, const Eigen::Vector2d& dT,
-                   double dTwist, EnergyLedger& ledger) {
+                   double dTwist) {
     SolverBody& A = s.bodies[s.points[block.begin].a];
     SolverBody& B = s.bodies[s.points[block.begin].b];
-    ledger.lostInFriction += applyPairImpulse(A, block.rA, B, block.rB, dT[0] * block.t1 + dT[1] * block.t2);
+    applyPairImpulse(A, block.rA, B, block.rB, dT[0] * block.t1 + dT[1] * block.t2);
     if (dTwist != 0.0) {
         const Vec3& n = s.points[block.begin].n;
-        const double before = n.dot(A.w - B.w);
         A.w += A.invI * (dTwist * n);
         B.w -= B.invI * (dTwist * n);
         A.touched = A.touched || A.invMass > 0.0;
         B.touched = B.touched || B.invMass > 0.0;
-        ledger.lostInFriction += -0.5 * dTwist * (before + n.dot(A.w - B.w));
     }
 }
 
 // Starts from the remembered impulses, scaled to this step's length (a short step to land
 // on a frame needs proportionally less).
-void warmStart(const State& state, double h, ContactSolverScratch& s, EnergyLedger& ledger) {
+void warmStart(const State& state, double h, ContactSolverScratch& s) {
     for (auto& block : s.blocks) {
         Vec3 tangent = Vec3::Zero();
         double twist = 0.0;
@@ -176,16 +175,15 @@ void warmStart(const State& state, double h, ContactSolverScratch& s, EnergyLedg
             p.lambdaN = scale * c->normalImpulse;
             tangent += scale * c->tangentImpulse;
             twist += scale * c->twistImpulse;
-            ledger.lostInContacts +=
-                applyPairImpulse(s.bodies[p.a], p.rA, s.bodies[p.b], p.rB, p.lambdaN * p.n);
+            applyPairImpulse(s.bodies[p.a], p.rA, s.bodies[p.b], p.rB, p.lambdaN * p.n);
         }
         block.lambdaT = Eigen::Vector2d(block.t1.dot(tangent), block.t2.dot(tangent));
         block.lambdaTwist = twist;
-        applyFriction(s, block, block.lambdaT, twist, ledger);
+        applyFriction(s, block, block.lambdaT, twist);
     }
 }
 
-void normalPoint(ContactSolverScratch& s, Point& p, EnergyLedger& ledger) {
+void normalPoint(ContactSolverScratch& s, Point& p) {
     SolverBody& A = s.bodies[p.a];
     SolverBody& B = s.bodies[p.b];
     const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
@@ -194,15 +192,14 @@ void normalPoint(ContactSolverScratch& s, Point& p, EnergyLedger& ledger) {
     const double d = p.lambdaN - old;
     applyImpulse(A, p.rA, d * p.n);
     applyImpulse(B, p.rB, -d * p.n);
-    ledger.lostInContacts -= d * vn + 0.5 * d * d / p.kn;  // the kinetic energy the impulse added
 }
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
-void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, EnergyLedger& ledger) {
+void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block) {
     Point* q = &s.points[block.begin];
     const int k = block.count;
-    if (k == 1) return normalPoint(s, q[0], ledger);
+    if (k == 1) return normalPoint(s, q[0]);
     SolverBody& A = s.bodies[q[0].a];
     SolverBody& B = s.bodies[q[0].b];
     Eigen::Vector4d lambda = Eigen::Vector4d::Zero(), rhs = Eigen::Vector4d::Zero(),
@@ -220,13 +217,11 @@ void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
         applyImpulse(A, q[i].rA, d[i] * q[i].n);
         applyImpulse(B, q[i].rB, -d[i] * q[i].n);
     }
-    // The kinetic energy the impulses added: d·v + ½ dᵀ K d, exact for rigid bodies.
-    ledger.lostInContacts -= d.dot(vn) + 0.5 * d.dot(block.K * d);  // all zero beyond k
 }
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within
 // the Coulomb limits of the current normal impulses.
-void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block, EnergyLedger& ledger) {
+void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
     if (block.mu <= 0.0) return;
     double normal = 0.0;
     for (int i = 0; i < block.count; ++i) normal += s.points[block.begin + i].lambdaN;
@@ -245,17 +240,17 @@ void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
     const double dTwist = tw - block.lambdaTwist;
     block.lambdaT = l;
     block.lambdaTwist = tw;
-    applyFriction(s, block, dT, dTwist, ledger);
+    applyFriction(s, block, dT, dTwist);
 }
 
 // One pass over the manifolds, forwards on even passes and backwards on odd ones so that
 // their order leaves no bias.
-void iterate(ContactSolverScratch& s, int pass, EnergyLedger& ledger) {
+void iterate(ContactSolverScratch& s, int pass) {
     const int nb = static_cast<int>(s.blocks.size());
     for (int b = 0; b < nb; ++b) {
         ContactSolverScratch::Block& block = s.blocks[pass % 2 ? nb - 1 - b : b];
-        frictionBlock(s, block, ledger);
-        normalBlock(s, block, ledger);
+        frictionBlock(s, block);
+        normalBlock(s, block);
     }
 }
 
@@ -279,18 +274,6 @@ void supportLevels(ContactSolverScratch& s) {
     }
 }
 
-// Kinetic energy of the bodies `which`.
-double kineticEnergy(const Model& model, const State& state, const ContactSolverScratch& s,
-                     const std::vector<int>& which) {
-    double e = 0.0;
-    for (int i : which) {
-        const SolverBody& b = s.bodies[i];
-        const Vec3 wb = state.bodies[i].q.conjugate() * b.w;
-        e += 0.5 * model.bodies[i].mass * b.v.squaredNorm() + 0.5 * wb.dot(model.bodies[i].inertia * wb);
-    }
-    return e;
-}
-
 // The last passes, from the ground up (shock propagation): level by level, the bodies of
 // the lower level stand still while the contacts between them and the next level are
 // solved (a few passes, so that a body on two supports settles on both), so each body
@@ -300,8 +283,7 @@ double kineticEnergy(const Model& model, const State& state, const ContactSolver
 // nears 1 as the stack grows); without these passes the stack sinks into itself each step
 // until the warm start has caught up. The impulses they add are kept for the next step's
 // warm start, where the lower bodies then feel them: at rest they find nothing left to do.
-void shockPass(const Model& model, const State& state, ContactSolverScratch& s, int passes,
-               EnergyLedger& ledger) {
+void shockPass(ContactSolverScratch& s, int passes) {
     supportLevels(s);
     const int nb = static_cast<int>(s.blocks.size());
     auto lowerLevel = [&](int b) {
@@ -342,24 +324,11 @@ void shockPass(const Model& model, const State& state, ContactSolverScratch& s, 
             prepareBlock(s.bodies[q[0].a], s.bodies[q[0].b], block, s);
             s.frozen.push_back(block);
         }
-        // The impulses' energy is counted here from the moving bodies alone: the pair
-        // formulas of the iterations assume both bodies take the impulse.
-        EnergyLedger ignored;
-        s.moving.clear();
-        for (size_t k = g; k < e; ++k) {
-            const Point& p = s.points[s.blocks[s.order[k]].begin];
-            for (int i : {p.a, p.b})
-                if (s.bodies[i].invMass > 0.0) s.moving.push_back(i);
-        }
-        std::sort(s.moving.begin(), s.moving.end());
-        s.moving.erase(std::unique(s.moving.begin(), s.moving.end()), s.moving.end());
-        const double before = kineticEnergy(model, state, s, s.moving);
         for (int pass = 0; pass < passes; ++pass)
             for (auto& block : s.frozen) {
-                frictionBlock(s, block, ignored);
-                normalBlock(s, block, ignored);
+                frictionBlock(s, block);
+                normalBlock(s, block);
             }
-        ledger.lostInContacts += before - kineticEnergy(model, state, s, s.moving);
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block& block = s.blocks[s.order[k]];
             block.lambdaT = s.frozen[k - g].lambdaT;
@@ -382,7 +351,7 @@ void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J) {
     if (angle > 0.0) s.q = (Quat(Eigen::AngleAxisd(angle, turn / angle)) * s.q).normalized();
 }
 
-bool correctPositions(State& state, ContactSolverScratch& s, int passes) {
+bool correctPositions(State& state, ContactSolverScratch& s, int passes, double slopFactor) {
     bool moved = false;
     for (int pass = 0; pass < passes; ++pass) {
         double worst = 0.0;
@@ -394,8 +363,9 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes) {
             const Mat3 RA = a.q.toRotationMatrix(), RB = b.q.toRotationMatrix();
             const Vec3 sA = a.x + RA * p.localA, sB = b.x + RB * p.localB, n = RB * p.localN;
             const double depth = n.dot(sB - sA);
-            worst = std::max(worst, depth - p.slop);
-            const double C = std::min(kBaumgarte * (depth - p.slop), kMaxCorrection * p.size);
+            const double slop = slopFactor * p.slop;
+            worst = std::max(worst, depth - slop);
+            const double C = std::min(kBaumgarte * (depth - slop), kMaxCorrection * p.size);
             if (C <= 0.0) continue;
             const Vec3 rA = sA - a.x, rB = sB - b.x;
             const double k = inverseEffectiveMass(A, rA, B, rB, n);
@@ -450,6 +420,113 @@ void redoPoses(const Model& model, State& state, const State& before, const Cont
     }
 }
 
+
+// Kinetic energy of body i moving as b, its spin taken in the axes of its orientation q.
+double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
+    const Vec3 w = q.conjugate() * b.w;
+    return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
+}
+
+// What friction took this step: -Σ λ·(u⁻ + u⁺)/2 over the blocks' tangential and twisting
+// rows, with λ the whole impulse of the step (warm start included), u⁻ the relative
+// velocity the solver was given and u⁺ the one it left. For impulses that act on both
+// bodies of a contact this is exact, row by row, and the rows add up to the change of
+// kinetic energy; the normal rows take the rest (the last passes, which hold the lower
+// bodies still, included).
+double frictionLost(const ContactSolverScratch& s) {
+    double lost = 0.0;
+    for (const auto& block : s.blocks) {
+        const Point& p = s.points[block.begin];
+        const SolverBody &A0 = s.entry[p.a], &B0 = s.entry[p.b], &A = s.bodies[p.a], &B = s.bodies[p.b];
+        const Vec3 u = relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
+        const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;
+        lost -= 0.5 * J.dot(u) + 0.5 * block.lambdaTwist * p.n.dot(A0.w - B0.w + A.w - B.w);
+    }
+    return lost;
+}
+
+// Whether the contacts of this step may only take energy out: none of them is with a
+// kinematic body that moves (a conveyor or a paddle does work on what it touches).
+bool passive(const Model& model, const std::vector<Manifold>& contacts) {
+    for (const Manifold& m : contacts)
+        for (int b : {m.bodyA, m.bodyB})
+            if (model.bodies[b].motion == Motion::Kinematic && !model.bodies[b].standsStill()) return false;
+    return true;
+}
+
+// The energy of the bodies the solver moved (s.moving), as the step gave them to the
+// solver (kinetic and gravitational, at the poses the integrator reached) and as the
+// solver leaves them (placed again from the start of the step: x = x0 + h v).
+EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
+                            const ContactSolverScratch& s) {
+    EnergyBalance e;
+    const Vec3& g = model.settings.gravity;
+    const double h = state.time - before.time;
+    for (int i : s.moving) {
+        const BodyModel& body = model.bodies[i];
+        const Quat& q = state.bodies[i].q;
+        e.kineticIn += kinetic(body, q, s.entry[i]);
+        e.kineticOut += kinetic(body, q, s.bodies[i]);
+        e.potentialIn -= body.mass * g.dot(state.bodies[i].x);
+        e.potentialStart -= body.mass * g.dot(before.bodies[i].x);
+        e.potentialRate -= body.mass * g.dot(h * s.bodies[i].v);
+    }
+    return e;
+}
+
+// The solver gave the bodies more energy than they brought (Gauss-Seidel stopped before
+// it converged, an impulse kept from the last step that no longer fits): their velocities
+// are scaled by the largest α ≤ 1 that gives none. Scaling keeps every contact that the
+// solver left at rest at rest and every approach as slow, and only ever takes energy out.
+void limitEnergy(EnergyBalance& e, ContactSolverScratch& s) {
+    // E(α) = α² K + α D + P0 must not exceed E_in; E(0) is every body at rest where it
+    // started the step, which is at most E_in when no force did work (else nothing helps).
+    const double K = e.kineticOut, D = e.potentialRate, C = e.potentialStart - e.in();
+    if (C > 0.0 || K <= 0.0) return;
+    const double alpha = std::clamp((-D + std::sqrt(std::max(0.0, D * D - 4.0 * K * C))) / (2.0 * K), 0.0, 1.0);
+    for (int i : s.moving) {
+        s.bodies[i].v *= alpha;
+        s.bodies[i].w *= alpha;
+    }
+    e.kineticOut *= alpha * alpha;
+    e.potentialRate *= alpha;
+}
+
+// Gravity's potential energy of the bodies s.moving as they stand in `state`.
+double potentialOf(const Model& model, const State& state, const std::vector<int>& which) {
+    double u = 0.0;
+    for (int i : which) u -= model.bodies[i].mass * model.settings.gravity.dot(state.bodies[i].x);
+    return u;
+}
+
+// Removes overlap left by the step without touching velocities. Overlap deeper than twice
+// the slop is always removed (bodies placed inside each other come apart). Between one and
+// two slops it is removed only as far as the energy the contacts took this step allows:
+// lifting a body adds potential energy, so with nothing taken out a pile that the solver
+// holds at rest stays exactly as it is, and a correction never feeds energy in.
+void correctOverlap(const Model& model, State& state, ContactSolverScratch& s, const ContactSolverSettings& cfg,
+                    const EnergyBalance& e, bool limited) {
+    if (!limited) {
+        correctPositions(state, s, cfg.positionIterations, 1.0);
+        return;
+    }
+    correctPositions(state, s, cfg.positionIterations, 2.0);
+    const double budget = e.in() - e.out() - (potentialOf(model, state, s.moving) - (e.potentialStart + e.potentialRate));
+    if (budget <= 0.0) return;
+    s.placed.clear();
+    for (int i : s.moving) s.placed.push_back({state.bodies[i].x, state.bodies[i].q});
+    const double u0 = potentialOf(model, state, s.moving);
+    if (!correctPositions(state, s, cfg.positionIterations, 1.0)) return;
+    const double added = potentialOf(model, state, s.moving) - u0;
+    if (added <= budget) return;
+    const double beta = std::max(0.0, budget / added);  // gravity's energy is linear in position
+    for (size_t k = 0; k < s.moving.size(); ++k) {
+        BodyState& b = state.bodies[s.moving[k]];
+        b.x = s.placed[k].first + beta * (b.x - s.placed[k].first);
+        b.q = s.placed[k].second.slerp(beta, b.q);
+    }
+}
+
 }  // namespace
 
 void solveContacts(const Model& model, State& state, const State& before,
@@ -458,12 +535,23 @@ void solveContacts(const Model& model, State& state, const State& before,
     loadSolverBodies(model, state, s.bodies);
     prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
-    warmStart(state, cfg.h, s, ledger);
-    for (int k = 0; k < cfg.iterations; ++k) iterate(s, k, ledger);
-    if (!s.blocks.empty()) shockPass(model, state, s, 4, ledger);
+    s.entry = s.bodies;
+    warmStart(state, cfg.h, s);
+    for (int k = 0; k < cfg.iterations; ++k) iterate(s, k);
+    if (!s.blocks.empty()) shockPass(s, kShockPasses);
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;
+
+    s.moving.clear();
+    for (int i : model.dynamicBodies)
+        if (s.bodies[i].touched && !state.isAsleep(i)) s.moving.push_back(i);
+    const double frictionLoss = frictionLost(s);
+    EnergyBalance e = energyBalance(model, state, before, s);
+    if (e.excess() > 0.0 && passive(model, contacts)) limitEnergy(e, s);
+    ledger.lostInFriction += frictionLoss;
+    ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss;
+
     storeSolverBodies(model, s.bodies, state);
     // Re-placing turns bodies. Their spin is carried along in body axes (ω_body fixed), so
     // ½ ω_bodyᵀ I_body ω_body, the kinetic energy, is exactly what the solver left; L is set
@@ -472,7 +560,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     for (int i : model.dynamicBodies) s.bodySpin[i] = state.bodies[i].q.conjugate() * s.bodies[i].w;
     const double potential = energy(model, state).potential;
     redoPoses(model, state, before, s);
-    correctPositions(state, s, cfg.positionIterations);
+    correctOverlap(model, state, s, cfg, e, passive(model, contacts));
     ledger.positionCorrection += energy(model, state).potential - potential;
     for (int i : model.dynamicBodies) {
         if (!s.bodies[i].touched || state.isAsleep(i)) continue;

@@ -67,9 +67,21 @@ struct ContactSolverScratch {
     std::vector<int> level;         // contacts between a body and one that cannot move (shockPass)
     std::vector<int> order;         // blocks from the bottom up
     std::vector<Block> frozen;      // the blocks of one level with its lower bodies standing still
-    std::vector<int> moving;        // the bodies those blocks move
+    std::vector<int> moving;        // the dynamic bodies the solver moved
+    std::vector<SolverBody> entry;  // the velocities the solver was given
+    std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
+};
+
+/// The energy of the bodies the contact solver moved: as given to it, and as it leaves
+/// them. Gravity's part after the solve is potentialStart + potentialRate (x = x0 + h v).
+struct EnergyBalance {
+    double kineticIn = 0.0, potentialIn = 0.0;
+    double kineticOut = 0.0, potentialStart = 0.0, potentialRate = 0.0;
+    double in() const { return kineticIn + potentialIn; }
+    double out() const { return kineticOut + potentialStart + potentialRate; }
+    double excess() const { return out() - in(); }
 };
 
 struct ContactSolverSettings {
