@@ -17,6 +17,8 @@ constexpr double kBaumgarte = 0.2;      // share of the overlap beyond the slop 
 constexpr double kMaxCorrection = 0.1;  // largest move per pass, × size
 constexpr double kMatch = 0.1;          // a remembered point is the same within this × size
 constexpr int kShockPasses = 4;         // passes per level of the last sweep (shockPass)
+constexpr double kFreeOverlap =
+    10.0;  // × the slop: deeper overlap is removed whatever it costs (correctOverlap)
 
 void indexMemory(const State& state, ContactSolverScratch& s) {
     s.memory.clear();
@@ -420,7 +422,6 @@ void redoPoses(const Model& model, State& state, const State& before, const Cont
     }
 }
 
-
 // Kinetic energy of body i moving as b, its spin taken in the axes of its orientation q.
 double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
     const Vec3 w = q.conjugate() * b.w;
@@ -438,7 +439,8 @@ double frictionLost(const ContactSolverScratch& s) {
     for (const auto& block : s.blocks) {
         const Point& p = s.points[block.begin];
         const SolverBody &A0 = s.entry[p.a], &B0 = s.entry[p.b], &A = s.bodies[p.a], &B = s.bodies[p.b];
-        const Vec3 u = relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
+        const Vec3 u =
+            relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
         const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;
         lost -= 0.5 * J.dot(u) + 0.5 * block.lambdaTwist * p.n.dot(A0.w - B0.w + A.w - B.w);
     }
@@ -454,9 +456,9 @@ bool passive(const Model& model, const std::vector<Manifold>& contacts) {
     return true;
 }
 
-// The energy of the bodies the solver moved (s.moving), as the step gave them to the
-// solver (kinetic and gravitational, at the poses the integrator reached) and as the
-// solver leaves them (placed again from the start of the step: x = x0 + h v).
+// The energy of the bodies the solver moved (s.moving): at the start of the step, as the
+// step gave them to the solver (kinetic and gravitational, at the poses the integrator
+// reached) and as the solver leaves them (placed again from the start: x = x0 + h v).
 EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
                             const ContactSolverScratch& s) {
     EnergyBalance e;
@@ -466,6 +468,7 @@ EnergyBalance energyBalance(const Model& model, const State& state, const State&
         const BodyModel& body = model.bodies[i];
         const Quat& q = state.bodies[i].q;
         e.kineticIn += kinetic(body, q, s.entry[i]);
+        e.kineticStart += kinetic(body, before.bodies[i].q, s.start[i]);
         e.kineticOut += kinetic(body, q, s.bodies[i]);
         e.potentialIn -= body.mass * g.dot(state.bodies[i].x);
         e.potentialStart -= body.mass * g.dot(before.bodies[i].x);
@@ -480,10 +483,11 @@ EnergyBalance energyBalance(const Model& model, const State& state, const State&
 // solver left at rest at rest and every approach as slow, and only ever takes energy out.
 void limitEnergy(EnergyBalance& e, ContactSolverScratch& s) {
     // E(α) = α² K + α D + P0 must not exceed E_in; E(0) is every body at rest where it
-    // started the step, which is at most E_in when no force did work (else nothing helps).
+    // started the step, which is at most its energy there, and so at most E_in.
     const double K = e.kineticOut, D = e.potentialRate, C = e.potentialStart - e.in();
     if (C > 0.0 || K <= 0.0) return;
-    const double alpha = std::clamp((-D + std::sqrt(std::max(0.0, D * D - 4.0 * K * C))) / (2.0 * K), 0.0, 1.0);
+    const double alpha =
+        std::clamp((-D + std::sqrt(std::max(0.0, D * D - 4.0 * K * C))) / (2.0 * K), 0.0, 1.0);
     for (int i : s.moving) {
         s.bodies[i].v *= alpha;
         s.bodies[i].w *= alpha;
@@ -504,14 +508,14 @@ double potentialOf(const Model& model, const State& state, const std::vector<int
 // two slops it is removed only as far as the energy the contacts took this step allows:
 // lifting a body adds potential energy, so with nothing taken out a pile that the solver
 // holds at rest stays exactly as it is, and a correction never feeds energy in.
-void correctOverlap(const Model& model, State& state, ContactSolverScratch& s, const ContactSolverSettings& cfg,
-                    const EnergyBalance& e, bool limited) {
+void correctOverlap(const Model& model, State& state, ContactSolverScratch& s,
+                    const ContactSolverSettings& cfg, const EnergyBalance& e, bool limited) {
     if (!limited) {
         correctPositions(state, s, cfg.positionIterations, 1.0);
         return;
     }
-    correctPositions(state, s, cfg.positionIterations, 2.0);
-    const double budget = e.in() - e.out() - (potentialOf(model, state, s.moving) - (e.potentialStart + e.potentialRate));
+    correctPositions(state, s, cfg.positionIterations, kFreeOverlap);
+    const double budget = e.in() - e.kineticOut - potentialOf(model, state, s.moving);
     if (budget <= 0.0) return;
     s.placed.clear();
     for (int i : s.moving) s.placed.push_back({state.bodies[i].x, state.bodies[i].q});
@@ -543,9 +547,14 @@ void solveContacts(const Model& model, State& state, const State& before,
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;
 
+    // The bodies of the solved points: the solver may have moved them, and the position
+    // passes may.
     s.moving.clear();
-    for (int i : model.dynamicBodies)
-        if (s.bodies[i].touched && !state.isAsleep(i)) s.moving.push_back(i);
+    for (const Point& p : s.points)
+        for (int i : {p.a, p.b})
+            if (s.bodies[i].invMass > 0.0) s.moving.push_back(i);
+    std::sort(s.moving.begin(), s.moving.end());
+    s.moving.erase(std::unique(s.moving.begin(), s.moving.end()), s.moving.end());
     const double frictionLoss = frictionLost(s);
     EnergyBalance e = energyBalance(model, state, before, s);
     if (e.excess() > 0.0 && passive(model, contacts)) limitEnergy(e, s);
