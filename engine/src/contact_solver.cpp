@@ -557,7 +557,8 @@ void solveContacts(const Model& model, State& state, const State& before,
     s.moving.erase(std::unique(s.moving.begin(), s.moving.end()), s.moving.end());
     const double frictionLoss = frictionLost(s);
     EnergyBalance e = energyBalance(model, state, before, s);
-    if (e.excess() > 0.0 && passive(model, contacts)) limitEnergy(e, s);
+    const bool limited = passive(model, contacts);
+    if (limited && e.excess() > 0.0) limitEnergy(e, s);
     ledger.lostInFriction += frictionLoss;
     ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss;
 
@@ -569,7 +570,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     for (int i : model.dynamicBodies) s.bodySpin[i] = state.bodies[i].q.conjugate() * s.bodies[i].w;
     const double potential = energy(model, state).potential;
     redoPoses(model, state, before, s);
-    correctOverlap(model, state, s, cfg, e, passive(model, contacts));
+    correctOverlap(model, state, s, cfg, e, limited);
     ledger.positionCorrection += energy(model, state).potential - potential;
     for (int i : model.dynamicBodies) {
         if (!s.bodies[i].touched || state.isAsleep(i)) continue;
