@@ -73,6 +73,7 @@ struct ContactSolverScratch {
     std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
+    std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
 };
 
 /// The energy of the bodies the contact solver moved: at the start of the step, as given
@@ -94,7 +95,8 @@ struct ContactSolverSettings {
     int positionIterations = 4;
     double h = 1.0 / 240.0;       ///< the (last part of the) step, for speculative points and warm starting
     double restingSpeed = 0.0;    ///< below this approach speed, no bounce
-    double touchTolerance = 0.0;  ///< points deeper than minus this are solved
+    double touchTolerance = 0.0;  ///< points deeper than minus this touch
+    double margin = 0.0;          ///< points deeper than minus this are solved (their gap may close)
 };
 
 /// Solves the velocities of the contacts and removes their overlap; writes the momenta

@@ -90,8 +90,9 @@ SceneDesc pile() {
     for (int layer = 0; layer < 4; ++layer)
         for (int i = 0; i < 10; ++i)
             for (int k = 0; k < 5; ++k) {
-                BodyDesc b = material(
-                    boxBody("b" + std::to_string(bodies.size()), Vec3(0.2, 0.15, 0.25), 2.0), 0.2, 0.6);
+                std::string name = "b";
+                name += std::to_string(bodies.size());  // ("b" + std::string: a false gcc 12 warning)
+                BodyDesc b = material(boxBody(name, Vec3(0.2, 0.15, 0.25), 2.0), 0.2, 0.6);
                 b.position = Vec3(0.45 * i - 2.0 + rng.uniform(-0.05, 0.05) + 0.1 * layer, 0.3 + 0.65 * layer,
                                   0.55 * k - 1.1 + rng.uniform(-0.05, 0.05));
                 b.orientation = Quat(Eigen::AngleAxisd(
@@ -122,12 +123,7 @@ private slots:
             QTest::addRow("pyramid-15, 1/%d s", rate) << "pyramid-15.json" << false << rate << bound;
             QTest::addRow("1 kg under 100 kg, 1/%d s", rate)
                 << "mass-ratio-stack.json" << false << rate << bound;
-            // Not yet at issue 16's bound: the top boxes move 2.3 cm at 1/60 s and 12 cm at
-            // 1/30 s after the ball lands (the impact passes through the whole pile in the
-            // impact loop's sweeps, at the end of a long step). Held to what is measured, with
-            // a quarter more, so that it cannot get worse unseen.
-            QTest::addRow("pyramid-15 tapped, 1/%d s", rate)
-                << "pyramid-15.json" << true << rate << (rate == 60 ? 0.03 : 0.15);
+            QTest::addRow("pyramid-15 tapped, 1/%d s", rate) << "pyramid-15.json" << true << rate << bound;
         }
     }
     void stacksStand() {
@@ -139,6 +135,7 @@ private slots:
         if (tapped) addTapBall(s);
         s.settings.sleeping = false;
         const double h = 1.0 / rate;
+        s.settings.dt = h;
         World w(s);
         const State start = w.state();
         const int boxes = static_cast<int>(s.bodies.size()) - (tapped ? 1 : 0);
@@ -173,24 +170,21 @@ private slots:
     // (landing on an edge), a box sliding into a wall, a ball rolling in a triangle-mesh
     // bowl, and 200 boxes dropped into a pile, left 10 s to settle (not checked: see below)
     // and then watched for a minute.
-    // Not yet at issue 16's bound, so held to what is measured (about 3 times over it, so
-    // that it cannot get worse unseen): the ball in the faceted bowl at 1/30 s (a rise of
-    // 1.9e-3 of the start at t = 2.07 s, where it crosses facet edges), and the pile while
-    // it lands (rises of 3e-5 to 8e-4, from overlap deeper than ten slops that is removed
-    // whatever it costs), which is why the pile is watched only once it has settled.
+    // The pile is watched once it has settled: while 200 boxes land at once, more than a
+    // step's 8 moments of impact are left to the end of the step, and the impulses there
+    // can still raise the total by up to 1e-5 of the start in a step (see
+    // docs/architecture.md); a settled pile, which the issue asks about (the soak test found
+    // energy created there), is held to the bound like the rest.
     void contactsNeverAddEnergy_data() {
         QTest::addColumn<QString>("kind");
         QTest::addColumn<int>("rate");
-        QTest::addColumn<double>("bound");
         for (int rate : {30, 60, 120, 240})
             for (const char* kind : {"box on box", "into a wall", "mesh bowl", "settled pile"})
-                QTest::addRow("%s, 1/%d s", kind, rate)
-                    << kind << rate << (rate == 30 && QLatin1String(kind) == "mesh bowl" ? 6e-3 : 1e-6);
+                QTest::addRow("%s, 1/%d s", kind, rate) << kind << rate;
     }
     void contactsNeverAddEnergy() {
         QFETCH(QString, kind);
         QFETCH(int, rate);
-        QFETCH(double, bound);
         SceneDesc s;
         double seconds = 10.0, settle = 0.0;  // s
         if (kind == "box on box") {
@@ -224,13 +218,14 @@ private slots:
         }
         s.settings.sleeping = false;
         const double h = 1.0 / rate;
+        s.settings.dt = h;
         World w(s);
         while (w.state().time < settle - 1e-9) w.step(h);
         EnergyWatch watch(w);
         while (w.state().time < seconds - 1e-9) {
             w.step(h);
             watch.step(w);
-            if (watch.relative() > bound) QFAIL(qPrintable(describe(watch)));
+            if (watch.relative() > 1e-6) QFAIL(qPrintable(describe(watch)));
         }
         for (int i : w.model().dynamicBodies)
             QVERIFY2(w.state().bodies[i].x.y() > 0.0,
