@@ -158,9 +158,10 @@ std::string likelyCause(const Model& m, const State& state, int body) {
         }
     }
     if (needsContacts(m))
-        return "the contact solver, or a step too large for the impacts: try a smaller step (dt = " +
-               num(dt) + " s) or more solver iterations (solver_iterations = " +
-               std::to_string(m.settings.solverIterations) + ")";
+        return "the contact solver (the contacts put energy in): try half the step (dt = " + num(dt) +
+               " s -> " + num(0.5 * dt) + " s) or twice the solver iterations (solver_iterations = " +
+               std::to_string(m.settings.solverIterations) + " -> " +
+               std::to_string(2 * m.settings.solverIterations) + ")";
     return "a step too large for the forces acting on it: try a smaller step (dt = " + num(dt) + " s)";
 }
 
