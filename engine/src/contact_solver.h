@@ -24,7 +24,6 @@
 #include <tumble/model.h>
 #include <tumble/world.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -74,20 +73,6 @@ struct ContactSolverScratch {
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
-};
-
-/// The energy of the bodies the contact solver moved: at the start of the step, as given
-/// to the solver, and as it leaves them. Gravity's part after the solve is potentialStart
-/// + potentialRate (x = x0 + h v). What they may leave with, in(), is the larger of what
-/// they had at the start and what they brought: a force may have done work within the
-/// step, and an impact at its end may have taken energy out that placing the bodies again
-/// from the start gives back as height (the impact counted as at the start of the step).
-struct EnergyBalance {
-    double kineticStart = 0.0, kineticIn = 0.0, potentialIn = 0.0;
-    double kineticOut = 0.0, potentialStart = 0.0, potentialRate = 0.0;
-    double in() const { return std::max(kineticIn + potentialIn, kineticStart + potentialStart); }
-    double out() const { return kineticOut + potentialStart + potentialRate; }
-    double excess() const { return out() - in(); }
 };
 
 struct ContactSolverSettings {

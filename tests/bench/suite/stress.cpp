@@ -215,6 +215,21 @@ std::vector<StressTest> stressTests() {
                          }});
         }
     }
+    // pyramid-1240 (the speed section's 15-layer square pyramid of unit boxes) at the three
+    // steps; 20 s (quick: half a second, Tumble alone).
+    for (const auto& [rate, bound] : {std::pair{30, 0.02}, std::pair{60, 0.01}, std::pair{240, 0.01}}) {
+        const std::string test = "pyramid-1240@1/" + std::to_string(rate);
+        t.push_back({test, [=](EngineAdapter& e, bool quick) {
+                         SceneDesc s = boxPyramid(15, 0.5, 1.0, Vec3::Zero());
+                         for (size_t i = 0; i < s.bodies.size(); ++i) {
+                             s.bodies[i].name += '-';
+                             s.bodies[i].name += std::to_string(i);
+                         }
+                         s.settings.dt = 1.0 / rate;
+                         s.settings.sleeping = false;
+                         return stands(e, test, s, quick ? 0.5 : 20, bound);
+                     }});
+    }
     t.push_back({"pyramid-100km", [](EngineAdapter& e, bool quick) {
                      SceneDesc s = sampleScene("pyramid-15.json");
                      for (BodyDesc& b : s.bodies)

@@ -1,0 +1,165 @@
+#include "contact_energy.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble {
+
+using collision::Manifold;
+using Point = ContactSolverScratch::Point;
+
+namespace {
+
+constexpr double kBaumgarte = 0.2;      // share of the overlap beyond the slop removed per pass
+constexpr double kMaxCorrection = 0.1;  // largest move per pass, × size
+constexpr double kFreeOverlap = 10.0;   // × the slop: deeper overlap is removed whatever it costs
+
+// Kinetic energy of body i moving as b, its spin taken in the axes of its orientation q.
+double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
+    const Vec3 w = q.conjugate() * b.w;
+    return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
+}
+
+// Gravity's potential energy of the bodies s.moving as they stand in `state`.
+double potentialOf(const Model& model, const State& state, const std::vector<int>& which) {
+    double u = 0.0;
+    for (int i : which) u -= model.bodies[i].mass * model.settings.gravity.dot(state.bodies[i].x);
+    return u;
+}
+
+// Moves body i by the positional impulse J at offset r (its inverse mass and inertia).
+void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J) {
+    s.x += b.invMass * J;
+    const Vec3 turn = b.invI * r.cross(J);
+    const double angle = turn.norm();
+    if (angle > 0.0) s.q = (Quat(Eigen::AngleAxisd(angle, turn / angle)) * s.q).normalized();
+}
+
+bool correctPositions(State& state, ContactSolverScratch& s, int passes, double slopFactor) {
+    bool moved = false;
+    for (int pass = 0; pass < passes; ++pass) {
+        double worst = 0.0;
+        for (const Point& p : s.points) {
+            BodyState& a = state.bodies[p.a];
+            BodyState& b = state.bodies[p.b];
+            const SolverBody& A = s.bodies[p.a];
+            const SolverBody& B = s.bodies[p.b];
+            const Mat3 RA = a.q.toRotationMatrix(), RB = b.q.toRotationMatrix();
+            const Vec3 sA = a.x + RA * p.localA, sB = b.x + RB * p.localB, n = RB * p.localN;
+            const double depth = n.dot(sB - sA);
+            const double slop = slopFactor * p.slop;
+            worst = std::max(worst, depth - slop);
+            const double C = std::min(kBaumgarte * (depth - slop), kMaxCorrection * p.size);
+            if (C <= 0.0) continue;
+            const Vec3 rA = sA - a.x, rB = sB - b.x;
+            const double k = inverseEffectiveMass(A, rA, B, rB, n);
+            if (k <= 0.0) continue;
+            const Vec3 J = (C / k) * n;
+            if (A.invMass > 0.0) nudge(A, a, rA, J), s.bodies[p.a].touched = true;
+            if (B.invMass > 0.0) nudge(B, b, rB, -J), s.bodies[p.b].touched = true;
+            moved = true;
+        }
+        if (worst <= 0.0) break;
+    }
+    return moved;
+}
+
+}  // namespace
+
+// What friction took this step: -Σ λ·(u⁻ + u⁺)/2 over the blocks' tangential and twisting
+// rows, with λ the whole impulse of the step (warm start included), u⁻ the relative
+// velocity the solver was given and u⁺ the one it left. For impulses that act on both
+// bodies of a contact this is exact, row by row, and the rows add up to the change of
+// kinetic energy; the normal rows take the rest (the last passes, which hold the lower
+// bodies still, included).
+double frictionLost(const ContactSolverScratch& s) {
+    double lost = 0.0;
+    for (const auto& block : s.blocks) {
+        const Point& p = s.points[block.begin];
+        const SolverBody &A0 = s.entry[p.a], &B0 = s.entry[p.b], &A = s.bodies[p.a], &B = s.bodies[p.b];
+        const Vec3 u =
+            relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
+        const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;
+        lost -= 0.5 * J.dot(u) + 0.5 * block.lambdaTwist * p.n.dot(A0.w - B0.w + A.w - B.w);
+    }
+    return lost;
+}
+
+// Whether the contacts of this step may only take energy out: none of them is with a
+// kinematic body that moves (a conveyor or a paddle does work on what it touches).
+bool passive(const Model& model, const std::vector<Manifold>& contacts) {
+    for (const Manifold& m : contacts)
+        for (int b : {m.bodyA, m.bodyB})
+            if (model.bodies[b].motion == Motion::Kinematic && !model.bodies[b].standsStill()) return false;
+    return true;
+}
+
+// The energy of the bodies the solver moved (s.moving): at the start of the step, as the
+// step gave them to the solver (kinetic and gravitational, at the poses the integrator
+// reached) and as the solver leaves them (placed again from the start: x = x0 + h v).
+EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
+                            const ContactSolverScratch& s) {
+    EnergyBalance e;
+    const Vec3& g = model.settings.gravity;
+    const double h = state.time - before.time;
+    for (int i : s.moving) {
+        const BodyModel& body = model.bodies[i];
+        const Quat& q = state.bodies[i].q;
+        e.kineticIn += kinetic(body, q, s.entry[i]);
+        e.kineticStart += kinetic(body, before.bodies[i].q, s.start[i]);
+        e.kineticOut += kinetic(body, q, s.bodies[i]);
+        e.potentialIn -= body.mass * g.dot(state.bodies[i].x);
+        e.potentialStart -= body.mass * g.dot(before.bodies[i].x);
+        e.potentialRate -= body.mass * g.dot(h * s.bodies[i].v);
+    }
+    return e;
+}
+
+// The solver gave the bodies more energy than they brought (Gauss-Seidel stopped before
+// it converged, an impulse kept from the last step that no longer fits): their velocities
+// are scaled by the largest α ≤ 1 that gives none. Scaling keeps every contact that the
+// solver left at rest at rest and every approach as slow, and only ever takes energy out.
+void limitEnergy(EnergyBalance& e, ContactSolverScratch& s) {
+    // E(α) = α² K + α D + P0 must not exceed E_in; E(0) is every body at rest where it
+    // started the step, which is at most its energy there, and so at most E_in.
+    const double K = e.kineticOut, D = e.potentialRate, C = e.potentialStart - e.in();
+    if (C > 0.0 || K <= 0.0) return;
+    const double alpha =
+        std::clamp((-D + std::sqrt(std::max(0.0, D * D - 4.0 * K * C))) / (2.0 * K), 0.0, 1.0);
+    for (int i : s.moving) {
+        s.bodies[i].v *= alpha;
+        s.bodies[i].w *= alpha;
+    }
+    e.kineticOut *= alpha * alpha;
+    e.potentialRate *= alpha;
+}
+
+// Removes overlap left by the step without touching velocities. Overlap deeper than ten
+// slops is always removed (bodies placed inside each other come apart). Between one and
+// ten slops it is removed only as far as the energy the contacts took this step allows:
+// lifting a body adds potential energy, so with nothing taken out a pile that the solver
+// holds at rest stays exactly as it is, and a correction never feeds energy in.
+void correctOverlap(const Model& model, State& state, ContactSolverScratch& s,
+                    const ContactSolverSettings& cfg, const EnergyBalance& e, bool limited) {
+    if (!limited) {
+        correctPositions(state, s, cfg.positionIterations, 1.0);
+        return;
+    }
+    correctPositions(state, s, cfg.positionIterations, kFreeOverlap);
+    const double budget = e.in() - e.kineticOut - potentialOf(model, state, s.moving);
+    if (budget <= 0.0) return;
+    s.placed.clear();
+    for (int i : s.moving) s.placed.push_back({state.bodies[i].x, state.bodies[i].q});
+    const double u0 = potentialOf(model, state, s.moving);
+    if (!correctPositions(state, s, cfg.positionIterations, 1.0)) return;
+    const double added = potentialOf(model, state, s.moving) - u0;
+    if (added <= budget) return;
+    const double beta = std::max(0.0, budget / added);  // gravity's energy is linear in position
+    for (size_t k = 0; k < s.moving.size(); ++k) {
+        BodyState& b = state.bodies[s.moving[k]];
+        b.x = s.placed[k].first + beta * (b.x - s.placed[k].first);
+        b.q = s.placed[k].second.slerp(beta, b.q);
+    }
+}
+
+}  // namespace tumble

@@ -1,0 +1,40 @@
+// The contact solver's energy: what it books to the ledger, and the limit that keeps
+// contacts from creating energy (velocities scaled, overlap removed only as far as the
+// contacts paid for the height). See docs/architecture.md "Collision response".
+#pragma once
+
+#include "contact_solver.h"
+
+#include <algorithm>
+
+namespace tumble {
+
+/// The energy of the bodies the contact solver moved (s.moving): at the start of the step,
+/// as given to the solver, and as it leaves them. Gravity's part after the solve is
+/// potentialStart + potentialRate (x = x0 + h v). What they may leave with, in(), is the
+/// larger of what they had at the start and what they brought: a force may have done work
+/// within the step, and an impact at its end may have taken energy out that placing the
+/// bodies again from the start gives back as height (the impact counted as at the start).
+struct EnergyBalance {
+    double kineticStart = 0.0, kineticIn = 0.0, potentialIn = 0.0;
+    double kineticOut = 0.0, potentialStart = 0.0, potentialRate = 0.0;
+    double in() const { return std::max(kineticIn + potentialIn, kineticStart + potentialStart); }
+    double out() const { return kineticOut + potentialStart + potentialRate; }
+    double excess() const { return out() - in(); }
+};
+
+/// What friction took this step (exact per row; see the definition).
+double frictionLost(const ContactSolverScratch& s);
+/// Whether the contacts may only take energy out (no moving kinematic body among them).
+bool passive(const Model& model, const std::vector<collision::Manifold>& contacts);
+/// The balance of s.moving; `before`: the state at the start of the step (or its last part).
+EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
+                            const ContactSolverScratch& s);
+/// Scales the moved bodies' velocities by the largest α ≤ 1 that leaves no excess.
+void limitEnergy(EnergyBalance& e, ContactSolverScratch& s);
+/// Removes the overlap left by the step without touching velocities; `limited`: within the
+/// energy the contacts took (between one and ten slops).
+void correctOverlap(const Model& model, State& state, ContactSolverScratch& s,
+                    const ContactSolverSettings& cfg, const EnergyBalance& e, bool limited);
+
+}  // namespace tumble

@@ -1,0 +1,25 @@
+// The contact solver's rows: one manifold's normal impulses solved as a block and its
+// friction at the centroid, on the velocities of ContactSolverScratch::bodies. Shared by the
+// iterations (contact_solver.cpp) and the last sweep from the ground up
+// (shock_propagation.cpp).
+#pragma once
+
+#include "contact_solver.h"
+
+namespace tumble {
+
+/// The block's K, its least-norm inverse, the friction frame and masses at the centroid, for
+/// the bodies A and B as they stand (a body held still has zero inverse mass).
+void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch::Block& block,
+                  const ContactSolverScratch& s);
+/// Applies a change of the block's friction impulses (tangential, twist).
+void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, const Eigen::Vector2d& dT,
+                   double dTwist);
+/// The normal impulses of one manifold together: the least-norm impulses that give every
+/// point its target velocity, none pulling.
+void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block);
+/// Friction of one manifold: stop the sliding and the twisting at the centroid, within the
+/// Coulomb limits of the current normal impulses.
+void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
+
+}  // namespace tumble

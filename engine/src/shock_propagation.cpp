@@ -1,0 +1,104 @@
+#include "shock_propagation.h"
+
+#include "contact_rows.h"
+
+#include <algorithm>
+
+namespace tumble {
+
+using Point = ContactSolverScratch::Point;
+
+namespace {
+
+// Support levels: 0 for a body that cannot move (static, kinematic, asleep), else the least
+// number of contacts between it and such a body (a large number when none is reached).
+void supportLevels(ContactSolverScratch& s) {
+    constexpr int kUnreached = 1 << 29;
+    s.level.assign(s.bodies.size(), kUnreached);
+    for (size_t i = 0; i < s.bodies.size(); ++i)
+        if (s.bodies[i].invMass == 0.0) s.level[i] = 0;
+    // Relaxation over the blocks; a pile is as many rounds deep as it has layers.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const auto& block : s.blocks) {
+            const Point& p = s.points[block.begin];
+            int& la = s.level[p.a];
+            int& lb = s.level[p.b];
+            if (la + 1 < lb) lb = la + 1, changed = true;
+            if (lb + 1 < la) la = lb + 1, changed = true;
+        }
+    }
+}
+
+}  // namespace
+
+// The last passes, from the ground up (shock propagation): level by level, the bodies of
+// the lower level stand still while the contacts between them and the next level are
+// solved (a few passes, so that a body on two supports settles on both), so each body
+// ends at rest on what holds it, or moving with it, whatever the iterations left. A tall
+// or heavy-on-light stack needs far more Gauss-Seidel passes than a step has to carry its
+// weight down to the ground (the error shrinks by a fixed factor per pass, and that factor
+// nears 1 as the stack grows); without these passes the stack sinks into itself each step
+// until the warm start has caught up. The impulses they add are kept for the next step's
+// warm start, where the lower bodies then feel them: at rest they find nothing left to do.
+void shockPass(ContactSolverScratch& s, int passes) {
+    supportLevels(s);
+    const int nb = static_cast<int>(s.blocks.size());
+    auto lowerLevel = [&](int b) {
+        const Point& p = s.points[s.blocks[b].begin];
+        return std::min(s.level[p.a], s.level[p.b]);
+    };
+    s.order.clear();
+    for (int b = 0; b < nb; ++b) {
+        const Point& p = s.points[s.blocks[b].begin];
+        if (s.level[p.a] != s.level[p.b]) s.order.push_back(b);  // a level's own contacts are done
+    }
+    std::stable_sort(s.order.begin(), s.order.end(),
+                     [&](int x, int y) { return lowerLevel(x) < lowerLevel(y); });
+    std::vector<SolverBody> saved;
+    std::vector<int> frozenBodies;
+    for (size_t g = 0; g < s.order.size();) {
+        const int level = lowerLevel(s.order[g]);
+        size_t e = g;
+        while (e < s.order.size() && lowerLevel(s.order[e]) == level) ++e;
+        // The lower level stands still; the blocks are prepared again for that.
+        for (size_t k = g; k < e; ++k) {
+            const Point& p = s.points[s.blocks[s.order[k]].begin];
+            const int lower = s.level[p.a] < s.level[p.b] ? p.a : p.b;
+            SolverBody& body = s.bodies[lower];
+            if (body.invMass == 0.0) continue;
+            frozenBodies.push_back(lower);
+            saved.push_back(body);
+            body.invMass = 0.0;
+            body.invI.setZero();
+        }
+        s.frozen.clear();
+        for (size_t k = g; k < e; ++k) {
+            ContactSolverScratch::Block block = s.blocks[s.order[k]];
+            Point* q = &s.points[block.begin];
+            for (int i = 0; i < block.count; ++i)
+                q[i].kn =
+                    1.0 / inverseEffectiveMass(s.bodies[q[i].a], q[i].rA, s.bodies[q[i].b], q[i].rB, q[i].n);
+            prepareBlock(s.bodies[q[0].a], s.bodies[q[0].b], block, s);
+            s.frozen.push_back(block);
+        }
+        for (int pass = 0; pass < passes; ++pass)
+            for (auto& block : s.frozen) {
+                frictionBlock(s, block);
+                normalBlock(s, block);
+            }
+        for (size_t k = g; k < e; ++k) {
+            ContactSolverScratch::Block& block = s.blocks[s.order[k]];
+            block.lambdaT = s.frozen[k - g].lambdaT;
+            block.lambdaTwist = s.frozen[k - g].lambdaTwist;
+        }
+        g = e;
+    }
+    for (size_t k = 0; k < frozenBodies.size(); ++k) {
+        SolverBody& body = s.bodies[frozenBodies[k]];
+        body.invMass = saved[k].invMass;
+        body.invI = saved[k].invI;
+    }
+}
+
+}  // namespace tumble
