@@ -76,8 +76,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const tumble::io::InputError& e) {
         if (e.file() != path) bug("an InputError that does not name the file", e.what());
         // assimp reads in a child process (engine/io/src/mesh_child.cpp): a crash of assimp's
-        // own there is a message, as the user gets it; a sanitizer report in Tumble's code in
-        // the child ends it with status 1, which is a bug. (The start of the message: assimp's
+        // own there, or a sanitizer report with assimp on the stack, is a message, as the user
+        // gets it; a sanitizer report in Tumble's code in the child ends it with status 1,
+        // which is a bug. (The start of the message: assimp's
         // own messages come after "cannot be read as a mesh: " and may quote the file.)
         if (e.message().starts_with("the mesh reader stopped without an answer"))
             bug("the mesh reader failed", e.what());
