@@ -79,7 +79,7 @@ struct World::Scratch {
     double touchTolerance = 0.0;
     double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
     double margin = 0.0;   // contact points are found this far apart (contactMargin)
-    std::vector<collision::Manifold> resting_contacts;  // at a cut, all but the impacting pairs'
+    std::vector<collision::Manifold> restingContacts;  // at a cut, all but the impacting pairs'
 };
 
 World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
@@ -195,15 +195,15 @@ void World::impactAt(double t0) {
         // were already there: a pile resting under the impact must not fall freely for that
         // piece (it sank by up to g h² / 2 at each cut, and moved). The impacting pairs are
         // left to the impact loop below.
-        s.resting_contacts.clear();
+        s.restingContacts.clear();
         for (const auto& m : d.contacts) {
             const bool impacting = std::any_of(
                 s.impacts.end() - static_cast<long>(s.seeds.size() / 2), s.impacts.end(),
                 [&](const collision::ImpactEvent& e) { return e.bodyA == m.bodyA && e.bodyB == m.bodyB; });
-            if (!impacting) s.resting_contacts.push_back(m);
+            if (!impacting) s.restingContacts.push_back(m);
         }
-        if (!s.resting_contacts.empty()) {
-            solveContacts(model_, state_, s.before, s.resting_contacts, s.sizes,
+        if (!s.restingContacts.empty()) {
+            solveContacts(model_, state_, s.before, s.restingContacts, s.sizes,
                           solverSettings(model_, s.resting, s.touchTolerance, s.margin, first - t0), s.solver,
                           ledger_);
             checkFinite(model_, state_);
