@@ -22,7 +22,9 @@ namespace tumble {
 
 namespace {
 
-std::string at(int i) { return "bodies[" + std::to_string(i) + "]"; }
+std::string at(int i) {
+    return "bodies[" + std::to_string(i) + "]";
+}
 
 std::string shortNumber(double v) {
     char text[32];
@@ -48,6 +50,10 @@ void requireNonNegative(double v, const std::string& path) {
     if (v < 0.0) throw SceneError(path, "must be 0 or greater");
 }
 
+// The most steps a run may take: far more than any run needs (10^10 steps of one free body
+// take hours here).
+constexpr double kMostSteps = 1e10;
+
 void validateSettings(const Settings& s) {
     requireFinite(s.gravity, "settings.gravity");
     requirePositive(s.dt, "settings.dt");
@@ -58,6 +64,15 @@ void validateSettings(const Settings& s) {
     if (s.duration * s.frameRate > 1e8) {
         throw SceneError("settings.duration", "with this frame_rate gives more than 10^8 frames");
     }
+    // A step count that cannot be counted or run (1e-300 s: the count overflowed and the run
+    // took one step a frame) is a bad input, not a run.
+    if (s.duration / s.dt > kMostSteps) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "%g s is too small: %.3g steps for the duration of %g s (at most 10^10)", s.dt,
+                      s.duration / s.dt, s.duration);
+        throw SceneError("settings.dt", text);
+    }
     if (!s.integrator.empty() && !findIntegrator(s.integrator)) {
         throw SceneError("settings.integrator",
                          "unknown integrator '" + s.integrator + "' (see --list-integrators)");
@@ -67,31 +82,31 @@ void validateSettings(const Settings& s) {
 void validateShape(const BodyDesc& b, const std::string& path) {
     const ShapeDesc& s = b.shape;
     switch (s.type) {
-    case ShapeType::Sphere: requirePositive(s.radius, path + ".radius"); break;
-    case ShapeType::Box:
-        for (int k = 0; k < 3; ++k) {
-            requirePositive(s.halfExtents[k], path + ".half_extents[" + std::to_string(k) + "]");
-        }
-        break;
-    case ShapeType::Capsule:
-    case ShapeType::Cylinder:
-        requirePositive(s.radius, path + ".radius");
-        requirePositive(s.halfHeight, path + ".half_height");
-        break;
-    case ShapeType::Plane:
-        requireFinite(s.normal, path + ".normal");
-        requireFinite(s.distance, path + ".distance");
-        if (!(s.normal.stableNorm() > 1e-12)) throw SceneError(path + ".normal", "must not be zero");
-        if (b.motion != Motion::Static) {
-            throw SceneError(path + ".type", "a plane must belong to a static body");
-        }
-        break;
-    case ShapeType::Mesh:
-        if (s.file.empty()) throw SceneError(path + ".file", "must name a mesh file");
-        for (int k = 0; k < 3; ++k) {
-            requirePositive(s.scale[k], path + ".scale[" + std::to_string(k) + "]");
-        }
-        break;
+        case ShapeType::Sphere: requirePositive(s.radius, path + ".radius"); break;
+        case ShapeType::Box:
+            for (int k = 0; k < 3; ++k) {
+                requirePositive(s.halfExtents[k], path + ".half_extents[" + std::to_string(k) + "]");
+            }
+            break;
+        case ShapeType::Capsule:
+        case ShapeType::Cylinder:
+            requirePositive(s.radius, path + ".radius");
+            requirePositive(s.halfHeight, path + ".half_height");
+            break;
+        case ShapeType::Plane:
+            requireFinite(s.normal, path + ".normal");
+            requireFinite(s.distance, path + ".distance");
+            if (!(s.normal.stableNorm() > 1e-12)) throw SceneError(path + ".normal", "must not be zero");
+            if (b.motion != Motion::Static) {
+                throw SceneError(path + ".type", "a plane must belong to a static body");
+            }
+            break;
+        case ShapeType::Mesh:
+            if (s.file.empty()) throw SceneError(path + ".file", "must name a mesh file");
+            for (int k = 0; k < 3; ++k) {
+                requirePositive(s.scale[k], path + ".scale[" + std::to_string(k) + "]");
+            }
+            break;
     }
 }
 
@@ -126,7 +141,8 @@ mesh::PreparedMesh prepareMeshBody(const BodyDesc& b, int i) {
     }
     mesh::PreparedMesh p;
     try {
-        p = mesh::prepareMesh(*s.meshData, s.collision == MeshCollision::ConvexHull, b.motion == Motion::Dynamic);
+        p = mesh::prepareMesh(*s.meshData, s.collision == MeshCollision::ConvexHull,
+                              b.motion == Motion::Dynamic);
     } catch (const std::invalid_argument& e) {
         throw SceneError(field, s.file + ": " + e.what());
     }
@@ -143,16 +159,19 @@ mesh::PreparedMesh prepareMeshBody(const BodyDesc& b, int i) {
 void noteMesh(const BodyDesc& b, int i, const mesh::PreparedMesh& p, std::vector<std::string>& notes) {
     const std::string who = at(i) + " (" + b.name + "): ";
     if (b.motion == Motion::Dynamic) {
-        notes.push_back(who + (p.closed ? "the mesh is closed; mass properties come from its surface"
-                                        : "the mesh is not closed; mass properties come from its convex hull"));
+        notes.push_back(who + (p.closed
+                                   ? "the mesh is closed; mass properties come from its surface"
+                                   : "the mesh is not closed; mass properties come from its convex hull"));
     }
     if (p.turnedOutward) notes.push_back(who + "the mesh's triangles face inwards; they were turned around");
     if (p.stats.degenerateTriangles > 0 || p.stats.duplicateTriangles > 0) {
         notes.push_back(who + std::to_string(p.stats.degenerateTriangles) + " degenerate and " +
-                        std::to_string(p.stats.duplicateTriangles) + " repeated triangles of the mesh were dropped");
+                        std::to_string(p.stats.duplicateTriangles) +
+                        " repeated triangles of the mesh were dropped");
     }
     if (b.shape.collision == MeshCollision::Triangles && !p.closed) {
-        notes.push_back(who + "the mesh is not closed; as collision \"triangles\" it is a surface with no inside");
+        notes.push_back(who +
+                        "the mesh is not closed; as collision \"triangles\" it is a surface with no inside");
     }
 }
 
@@ -160,18 +179,19 @@ void noteMesh(const BodyDesc& b, int i, const mesh::PreparedMesh& p, std::vector
 collision::Shape colliderOf(const ShapeDesc& s, int i, const mesh::PreparedMesh* prepared = nullptr) {
     using collision::Shape;
     switch (s.type) {
-    case ShapeType::Sphere: return Shape::sphere(s.radius);
-    case ShapeType::Box: return Shape::box(s.halfExtents);
-    case ShapeType::Capsule: return Shape::capsule(s.radius, s.halfHeight);
-    case ShapeType::Cylinder: return Shape::cylinder(s.radius, s.halfHeight);
-    case ShapeType::Plane: return Shape::plane(s.normal.stableNormalized(), s.distance);
-    case ShapeType::Mesh: break;
+        case ShapeType::Sphere: return Shape::sphere(s.radius);
+        case ShapeType::Box: return Shape::box(s.halfExtents);
+        case ShapeType::Capsule: return Shape::capsule(s.radius, s.halfHeight);
+        case ShapeType::Cylinder: return Shape::cylinder(s.radius, s.halfHeight);
+        case ShapeType::Plane: return Shape::plane(s.normal.stableNormalized(), s.distance);
+        case ShapeType::Mesh: break;
     }
     if (!prepared) throw SceneError(at(i) + ".shape.file", "the mesh '" + s.file + "' was never loaded");
     Shape shape;
     if (s.collision == MeshCollision::ConvexHull) {
         if (!prepared->hull) {
-            throw SceneError(at(i) + ".shape.file", s.file + ": has no convex hull: " + prepared->hullProblem +
+            throw SceneError(at(i) + ".shape.file", s.file +
+                                                        ": has no convex hull: " + prepared->hullProblem +
                                                         "; use \"collision\": \"triangles\" for a flat mesh");
         }
         shape.kind = collision::Kind::Hull;
@@ -201,8 +221,8 @@ void validateBody(const BodyDesc& b, int i) {
     } else {
         const char* key = b.mass ? ".mass" : b.density ? ".density" : b.inertia ? ".inertia" : nullptr;
         if (key) {
-            throw SceneError(p + key, std::string("a ") + toString(b.motion) +
-                                          " body has no mass properties; remove it");
+            throw SceneError(
+                p + key, std::string("a ") + toString(b.motion) + " body has no mass properties; remove it");
         }
     }
     if (b.inertia) {
@@ -247,14 +267,15 @@ MassProperties meshBodyMassProperties(const BodyDesc& b, int i, const mesh::Prep
         return mp;
     }
     // A flat mesh has no volume: a mass alone is enough only with inertia and centre given.
-    const std::string why = b.shape.file + ": the mesh encloses no volume (" +
-                            (p.massFromHull && !p.hullProblem.empty() ? p.hullProblem
-                                                                      : std::string("it is flat")) + ")";
+    const std::string why =
+        b.shape.file + ": the mesh encloses no volume (" +
+        (p.massFromHull && !p.hullProblem.empty() ? p.hullProblem : std::string("it is flat")) + ")";
     if (b.density) throw SceneError(at(i) + ".density", why + ", so a density gives it no mass");
     if (!b.inertia || !b.centerOfMass) {
         throw SceneError(at(i) + ".shape.file",
-                         why + ", so its centre of mass and inertia cannot be computed; give "
-                               "center_of_mass and inertia, or use a mesh with volume");
+                         why +
+                             ", so its centre of mass and inertia cannot be computed; give "
+                             "center_of_mass and inertia, or use a mesh with volume");
     }
     MassProperties mp;
     mp.mass = *b.mass;
@@ -264,7 +285,8 @@ MassProperties meshBodyMassProperties(const BodyDesc& b, int i, const mesh::Prep
 MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared) {
     MassProperties mp;
     if (b.shape.type == ShapeType::Mesh) {
-        if (!prepared) throw SceneError(at(i) + ".shape.file", "the mesh '" + b.shape.file + "' was never loaded");
+        if (!prepared)
+            throw SceneError(at(i) + ".shape.file", "the mesh '" + b.shape.file + "' was never loaded");
         mp = meshBodyMassProperties(b, i, *prepared);
     } else {
         mp = primitiveMassProperties(b.shape, b.mass ? *b.mass : *b.density * shapeVolume(b.shape));
@@ -279,9 +301,10 @@ MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMe
                                     " kg, which is not a usable finite positive number");
     }
     if (!b.inertia && !inertiaProblem(mp.inertia).empty()) {
-        throw SceneError(field, "with this shape gives an inertia tensor that is not finite and "
-                                "positive definite (largest entry " +
-                                    shortNumber(mp.inertia.cwiseAbs().maxCoeff()) + " kg m^2)");
+        throw SceneError(field,
+                         "with this shape gives an inertia tensor that is not finite and "
+                         "positive definite (largest entry " +
+                             shortNumber(mp.inertia.cwiseAbs().maxCoeff()) + " kg m^2)");
     }
     return mp;
 }
@@ -305,8 +328,8 @@ Model compile(const SceneDesc& scene) {
 
     Model m;
     m.settings = scene.settings;
-    m.integrator = scene.settings.integrator.empty() ? &defaultIntegrator()
-                                                     : findIntegrator(scene.settings.integrator);
+    m.integrator =
+        scene.settings.integrator.empty() ? &defaultIntegrator() : findIntegrator(scene.settings.integrator);
     m.bodies.reserve(scene.bodies.size());
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         const BodyDesc& d = scene.bodies[i];
@@ -328,25 +351,25 @@ Model compile(const SceneDesc& scene) {
         b.angularDamping = d.angularDamping;
         if (d.centerOfMass) b.centerOfMass = *d.centerOfMass;
         switch (d.motion) {
-        case Motion::Dynamic: {
-            const MassProperties mp = massPropertiesOf(d, index, prepared ? &*prepared : nullptr);
-            b.mass = mp.mass;
-            b.invMass = 1.0 / mp.mass;
-            b.inertia = mp.inertia;
-            b.invInertia = mp.inertia.inverse();
-            b.centerOfMass = mp.centerOfMass;
-            const Eigen::SelfAdjointEigenSolver<Mat3> eig(mp.inertia);
-            b.principalMoments = eig.eigenvalues();
-            b.principalAxes = eig.eigenvectors();
-            m.dynamicBodies.push_back(index);
-            break;
-        }
-        case Motion::Kinematic:
-            b.kinematicVelocity = d.velocity;
-            b.kinematicAngularVelocity = d.angularVelocity;
-            m.kinematicBodies.push_back(index);
-            break;
-        case Motion::Static: break;
+            case Motion::Dynamic: {
+                const MassProperties mp = massPropertiesOf(d, index, prepared ? &*prepared : nullptr);
+                b.mass = mp.mass;
+                b.invMass = 1.0 / mp.mass;
+                b.inertia = mp.inertia;
+                b.invInertia = mp.inertia.inverse();
+                b.centerOfMass = mp.centerOfMass;
+                const Eigen::SelfAdjointEigenSolver<Mat3> eig(mp.inertia);
+                b.principalMoments = eig.eigenvalues();
+                b.principalAxes = eig.eigenvectors();
+                m.dynamicBodies.push_back(index);
+                break;
+            }
+            case Motion::Kinematic:
+                b.kinematicVelocity = d.velocity;
+                b.kinematicAngularVelocity = d.angularVelocity;
+                m.kinematicBodies.push_back(index);
+                break;
+            case Motion::Static: break;
         }
         for (const ForceDesc& f : d.forces) {
             ForceTerm t;

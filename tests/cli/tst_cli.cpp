@@ -12,6 +12,8 @@
 #include <QProcess>
 #include <QtTest>
 
+#include <sys/stat.h>
+
 #include "../io/gltf_validator.h"
 
 #include <sstream>
@@ -411,6 +413,9 @@ private slots:
         QTest::newRow("energy_guard a string")
             << "bad.json" << broken(R"("frame_rate": 20})", R"("frame_rate": 20, "energy_guard": "off"})")
             << "bad.json: settings.energy_guard: must be true or false";
+        QTest::newRow("dt 1e-300") << "bad.json" << broken(R"("dt": 0.005)", R"("dt": 1e-300)")
+                                   << "bad.json: settings.dt: 1e-300 s is too small: 5e+299 steps for the "
+                                      "duration of 0.5 s (at most 10^10)";
         QTest::newRow("version 2") << "bad.json" << broken(R"("version": 1)", R"("version": 2)")
                                    << "bad.json: version: version 2 is not one this build reads (it reads 1)";
         QTest::newRow("truncated")
@@ -421,6 +426,10 @@ private slots:
             << "nope.json" << QByteArray() << "nope.json: cannot be read (missing, or no permission)";
         QTest::newRow("directory") << "folder.json" << QByteArray()
                                    << "folder.json: is a directory, not a scene file";
+        // Opening a FIFO for reading waits for a writer: it used to hang the run.
+        QTest::newRow("fifo")
+            << "pipe.json" << QByteArray()
+            << "pipe.json: is not a regular file (a pipe, socket or device), not a scene file";
     }
 
     void invalidScene() {
@@ -429,6 +438,8 @@ private slots:
         QFETCH(QString, message);
         if (scene == "bad.json") write("bad.json", text);
         if (scene == "folder.json") QVERIFY(QDir(dir_->path()).mkdir("folder.json"));
+        if (scene == "pipe.json")
+            QVERIFY(::mkfifo(QDir(dir_->path()).filePath("pipe.json").toLocal8Bit(), 0600) == 0);
         const QStringList before = entries();
         RUN(r, {"--headless", scene, "--out", "traj.csv", "--save-scene", "saved.json"});
         QCOMPARE(r.code, 2);

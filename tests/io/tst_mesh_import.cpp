@@ -12,6 +12,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <sys/stat.h>
+
 // TUMBLE_TEST_ASAN: the build has AddressSanitizer (./dev.sh sanitize; set by
 // tests/CMakeLists.txt, so that moc sees the slot too): the reader child's sanitizer reports.
 #ifdef TUMBLE_TEST_ASAN
@@ -412,6 +414,22 @@ private slots:
         }
     }
 #endif
+
+    // A mesh `file` that names a FIFO is refused at once (opening it for reading would wait
+    // for a writer for ever: `tumble --headless` on such a scene hung).
+    void aFifoIsNotAMeshFile() {
+        QTemporaryDir dir;
+        const fs::path fifo = fs::path(dir.path().toStdString()) / "pipe.obj";
+        QVERIFY(::mkfifo(fifo.c_str(), 0600) == 0);
+        try {
+            tumble::io::importMesh(fifo);
+            QFAIL("read a FIFO as a mesh");
+        } catch (const tumble::io::InputError& e) {
+            QCOMPARE(QString::fromStdString(e.file()), QString::fromStdString(fifo.string()));
+            QCOMPARE(QString::fromStdString(e.message()),
+                     QString("is not a regular file (a pipe, socket or device), not a mesh file"));
+        }
+    }
 
     // The child's answer carries the mesh exactly (every bit of every vertex).
     void theChildsMeshIsExact() {

@@ -91,6 +91,10 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale,
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec))
         throw InputError(name, "", "is a directory, not a mesh file");
+    // Opening a FIFO waits for a writer for ever: anything but a file is refused first.
+    const auto type = std::filesystem::status(file, ec).type();
+    if (!ec && type != std::filesystem::file_type::regular && type != std::filesystem::file_type::not_found)
+        throw InputError(name, "", "is not a regular file (a pipe, socket or device), not a mesh file");
     if (!std::ifstream(file, std::ios::binary)) {
         throw InputError(name, "", "cannot be read (missing, or no permission)");
     }

@@ -23,7 +23,9 @@ using nlohmann::json;
 
 InputError::InputError(std::string file, std::string field, std::string message)
     : std::runtime_error(file + ": " + (field.empty() ? "" : field + ": ") + message),
-      file_(std::move(file)), field_(std::move(field)), message_(std::move(message)) {}
+      file_(std::move(file)),
+      field_(std::move(field)),
+      message_(std::move(message)) {}
 
 namespace {
 
@@ -81,7 +83,8 @@ public:
 
     template <int N>
     Eigen::Matrix<double, N, 1> vector(const json& j, const std::string& path) const {
-        if (!j.is_array() || j.size() != N) fail(path, "must be an array of " + std::to_string(N) + " numbers");
+        if (!j.is_array() || j.size() != N)
+            fail(path, "must be an array of " + std::to_string(N) + " numbers");
         Eigen::Matrix<double, N, 1> v;
         for (int k = 0; k < N; ++k) v[k] = number(j[k], path + "[" + std::to_string(k) + "]");
         return v;
@@ -90,7 +93,8 @@ public:
     Mat3 matrix(const json& j, const std::string& path) const {
         if (!j.is_array() || j.size() != 3) fail(path, "must be 3 rows of 3 numbers");
         Mat3 m;
-        for (int r = 0; r < 3; ++r) m.row(r) = vector<3>(j[r], path + "[" + std::to_string(r) + "]").transpose();
+        for (int r = 0; r < 3; ++r)
+            m.row(r) = vector<3>(j[r], path + "[" + std::to_string(r) + "]").transpose();
         return m;
     }
 
@@ -126,18 +130,22 @@ E enumValue(const Reader& r, const json& j, const std::string& path, std::initia
 Settings readSettings(const Reader& r, const json& j) {
     const std::string p = "settings";
     r.object(j, p);
-    r.onlyKeys(j, p, {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations",
-                       "energy_guard"});
+    r.onlyKeys(j, p,
+               {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations",
+                "energy_guard"});
     Settings s;
     r.optional(j, p, "gravity", [&](const json& v, const std::string& f) { s.gravity = r.vector<3>(v, f); });
     r.optional(j, p, "dt", [&](const json& v, const std::string& f) { s.dt = r.number(v, f); });
     r.optional(j, p, "duration", [&](const json& v, const std::string& f) { s.duration = r.number(v, f); });
-    r.optional(j, p, "integrator", [&](const json& v, const std::string& f) { s.integrator = r.string(v, f); });
-    r.optional(j, p, "frame_rate", [&](const json& v, const std::string& f) { s.frameRate = r.number(v, f); });
+    r.optional(j, p, "integrator",
+               [&](const json& v, const std::string& f) { s.integrator = r.string(v, f); });
+    r.optional(j, p, "frame_rate",
+               [&](const json& v, const std::string& f) { s.frameRate = r.number(v, f); });
     r.optional(j, p, "sleeping", [&](const json& v, const std::string& f) { s.sleeping = r.boolean(v, f); });
     r.optional(j, p, "solver_iterations",
                [&](const json& v, const std::string& f) { s.solverIterations = r.integer(v, f); });
-    r.optional(j, p, "energy_guard", [&](const json& v, const std::string& f) { s.energyGuard = r.boolean(v, f); });
+    r.optional(j, p, "energy_guard",
+               [&](const json& v, const std::string& f) { s.energyGuard = r.boolean(v, f); });
     return s;
 }
 
@@ -149,34 +157,36 @@ ShapeDesc readShape(const Reader& r, const json& j, const std::string& p) {
                         ShapeType::Plane, ShapeType::Mesh});
     auto num = [&](const char* key) { return r.number(r.require(j, p, key), p + "." + key); };
     switch (s.type) {
-    case ShapeType::Sphere:
-        r.onlyKeys(j, p, {"type", "radius"});
-        s.radius = num("radius");
-        break;
-    case ShapeType::Box:
-        r.onlyKeys(j, p, {"type", "half_extents"});
-        s.halfExtents = r.vector<3>(r.require(j, p, "half_extents"), p + ".half_extents");
-        break;
-    case ShapeType::Capsule:
-    case ShapeType::Cylinder:
-        r.onlyKeys(j, p, {"type", "radius", "half_height"});
-        s.radius = num("radius");
-        s.halfHeight = num("half_height");
-        break;
-    case ShapeType::Plane:
-        r.onlyKeys(j, p, {"type", "normal", "distance"});
-        s.normal = r.vector<3>(r.require(j, p, "normal"), p + ".normal");
-        r.optional(j, p, "distance", [&](const json& v, const std::string& f) { s.distance = r.number(v, f); });
-        if (s.normal.norm() > 0.0 && s.normal.allFinite()) s.normal = unitLength(s.normal);
-        break;
-    case ShapeType::Mesh:
-        r.onlyKeys(j, p, {"type", "file", "scale", "collision"});
-        s.file = r.string(r.require(j, p, "file"), p + ".file");
-        r.optional(j, p, "scale", [&](const json& v, const std::string& f) { s.scale = r.vector<3>(v, f); });
-        r.optional(j, p, "collision", [&](const json& v, const std::string& f) {
-            s.collision = enumValue(r, v, f, {MeshCollision::ConvexHull, MeshCollision::Triangles});
-        });
-        break;
+        case ShapeType::Sphere:
+            r.onlyKeys(j, p, {"type", "radius"});
+            s.radius = num("radius");
+            break;
+        case ShapeType::Box:
+            r.onlyKeys(j, p, {"type", "half_extents"});
+            s.halfExtents = r.vector<3>(r.require(j, p, "half_extents"), p + ".half_extents");
+            break;
+        case ShapeType::Capsule:
+        case ShapeType::Cylinder:
+            r.onlyKeys(j, p, {"type", "radius", "half_height"});
+            s.radius = num("radius");
+            s.halfHeight = num("half_height");
+            break;
+        case ShapeType::Plane:
+            r.onlyKeys(j, p, {"type", "normal", "distance"});
+            s.normal = r.vector<3>(r.require(j, p, "normal"), p + ".normal");
+            r.optional(j, p, "distance",
+                       [&](const json& v, const std::string& f) { s.distance = r.number(v, f); });
+            if (s.normal.norm() > 0.0 && s.normal.allFinite()) s.normal = unitLength(s.normal);
+            break;
+        case ShapeType::Mesh:
+            r.onlyKeys(j, p, {"type", "file", "scale", "collision"});
+            s.file = r.string(r.require(j, p, "file"), p + ".file");
+            r.optional(j, p, "scale",
+                       [&](const json& v, const std::string& f) { s.scale = r.vector<3>(v, f); });
+            r.optional(j, p, "collision", [&](const json& v, const std::string& f) {
+                s.collision = enumValue(r, v, f, {MeshCollision::ConvexHull, MeshCollision::Triangles});
+            });
+            break;
     }
     return s;
 }
@@ -190,27 +200,30 @@ ForceDesc readForce(const Reader& r, const json& j, const std::string& p) {
         f.frame = enumValue(r, v, path, {Frame::World, Frame::Body});
     };
     auto point = [&](const json& v, const std::string& path) { f.point = r.vector<3>(v, path); };
-    auto num = [&](double& out) { return [&](const json& v, const std::string& path) { out = r.number(v, path); }; };
+    auto num = [&](double& out) {
+        return [&](const json& v, const std::string& path) { out = r.number(v, path); };
+    };
     switch (f.type) {
-    case ForceType::Force:
-        r.onlyKeys(j, p, {"type", "vector", "point", "frame", "start", "end"});
-        f.vector = r.vector<3>(r.require(j, p, "vector"), p + ".vector");
-        r.optional(j, p, "point", point);
-        r.optional(j, p, "frame", frame);
-        break;
-    case ForceType::Torque:
-        r.onlyKeys(j, p, {"type", "vector", "frame", "start", "end"});
-        f.vector = r.vector<3>(r.require(j, p, "vector"), p + ".vector");
-        r.optional(j, p, "frame", frame);
-        break;
-    case ForceType::Spring:
-        r.onlyKeys(j, p, {"type", "anchor", "point", "stiffness", "rest_length", "damping", "start", "end"});
-        f.anchor = r.vector<3>(r.require(j, p, "anchor"), p + ".anchor");
-        r.optional(j, p, "point", point);
-        f.stiffness = r.number(r.require(j, p, "stiffness"), p + ".stiffness");
-        r.optional(j, p, "rest_length", num(f.restLength));
-        r.optional(j, p, "damping", num(f.damping));
-        break;
+        case ForceType::Force:
+            r.onlyKeys(j, p, {"type", "vector", "point", "frame", "start", "end"});
+            f.vector = r.vector<3>(r.require(j, p, "vector"), p + ".vector");
+            r.optional(j, p, "point", point);
+            r.optional(j, p, "frame", frame);
+            break;
+        case ForceType::Torque:
+            r.onlyKeys(j, p, {"type", "vector", "frame", "start", "end"});
+            f.vector = r.vector<3>(r.require(j, p, "vector"), p + ".vector");
+            r.optional(j, p, "frame", frame);
+            break;
+        case ForceType::Spring:
+            r.onlyKeys(j, p,
+                       {"type", "anchor", "point", "stiffness", "rest_length", "damping", "start", "end"});
+            f.anchor = r.vector<3>(r.require(j, p, "anchor"), p + ".anchor");
+            r.optional(j, p, "point", point);
+            f.stiffness = r.number(r.require(j, p, "stiffness"), p + ".stiffness");
+            r.optional(j, p, "rest_length", num(f.restLength));
+            r.optional(j, p, "damping", num(f.damping));
+            break;
     }
     r.optional(j, p, "start", [&](const json& v, const std::string& path) { f.start = r.number(v, path); });
     r.optional(j, p, "end", [&](const json& v, const std::string& path) { f.end = r.number(v, path); });
@@ -219,21 +232,27 @@ ForceDesc readForce(const Reader& r, const json& j, const std::string& p) {
 
 BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
-    r.onlyKeys(j, p, {"name", "motion", "shape", "mass", "density", "inertia", "center_of_mass", "position",
-                      "orientation", "velocity", "angular_velocity", "restitution", "friction",
-                      "linear_damping", "angular_damping", "forces"});
+    r.onlyKeys(j, p,
+               {"name", "motion", "shape", "mass", "density", "inertia", "center_of_mass", "position",
+                "orientation", "velocity", "angular_velocity", "restitution", "friction", "linear_damping",
+                "angular_damping", "forces"});
     BodyDesc b;
     b.name = r.string(r.require(j, p, "name"), p + ".name");
     r.optional(j, p, "motion", [&](const json& v, const std::string& f) {
         b.motion = enumValue(r, v, f, {Motion::Dynamic, Motion::Static, Motion::Kinematic});
     });
     b.shape = readShape(r, r.require(j, p, "shape"), p + ".shape");
-    auto vec = [&](Vec3& out) { return [&](const json& v, const std::string& f) { out = r.vector<3>(v, f); }; };
-    auto num = [&](double& out) { return [&](const json& v, const std::string& f) { out = r.number(v, f); }; };
+    auto vec = [&](Vec3& out) {
+        return [&](const json& v, const std::string& f) { out = r.vector<3>(v, f); };
+    };
+    auto num = [&](double& out) {
+        return [&](const json& v, const std::string& f) { out = r.number(v, f); };
+    };
     r.optional(j, p, "mass", [&](const json& v, const std::string& f) { b.mass = r.number(v, f); });
     r.optional(j, p, "density", [&](const json& v, const std::string& f) { b.density = r.number(v, f); });
     r.optional(j, p, "inertia", [&](const json& v, const std::string& f) { b.inertia = r.matrix(v, f); });
-    r.optional(j, p, "center_of_mass", [&](const json& v, const std::string& f) { b.centerOfMass = r.vector<3>(v, f); });
+    r.optional(j, p, "center_of_mass",
+               [&](const json& v, const std::string& f) { b.centerOfMass = r.vector<3>(v, f); });
     r.optional(j, p, "position", vec(b.position));
     r.optional(j, p, "orientation", [&](const json& v, const std::string& f) {
         const Eigen::Vector4d q = r.vector<4>(v, f);
@@ -248,7 +267,8 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     r.optional(j, p, "angular_damping", num(b.angularDamping));
     r.optional(j, p, "forces", [&](const json& v, const std::string& f) {
         if (!v.is_array()) r.fail(f, "must be an array");
-        for (size_t k = 0; k < v.size(); ++k) b.forces.push_back(readForce(r, v[k], f + "[" + std::to_string(k) + "]"));
+        for (size_t k = 0; k < v.size(); ++k)
+            b.forces.push_back(readForce(r, v[k], f + "[" + std::to_string(k) + "]"));
     });
     return b;
 }
@@ -259,9 +279,9 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
 json parseJson(std::string_view text, const Reader& r) {
     struct Level {
         bool array = false;
-        long index = -1;              // array: the element being read
-        std::string key;              // object: the key being read
-        std::set<std::string> keys;   // object: the keys seen so far
+        long index = -1;             // array: the element being read
+        std::string key;             // object: the key being read
+        std::set<std::string> keys;  // object: the keys seen so far
     };
     std::vector<Level> levels;
     std::string duplicate;
@@ -271,17 +291,23 @@ json parseJson(std::string_view text, const Reader& r) {
     };
     auto callback = [&](int, json::parse_event_t event, json& parsed) {
         switch (event) {
-        case json::parse_event_t::object_start: element(); levels.emplace_back(); break;
-        case json::parse_event_t::array_start: element(); levels.emplace_back().array = true; break;
-        case json::parse_event_t::object_end:
-        case json::parse_event_t::array_end: levels.pop_back(); break;
-        case json::parse_event_t::key: {
-            Level& l = levels.back();
-            l.key = parsed.get<std::string>();
-            if (!l.keys.insert(l.key).second && duplicate.empty()) duplicate = l.key;
-            break;
-        }
-        case json::parse_event_t::value: element(); break;
+            case json::parse_event_t::object_start:
+                element();
+                levels.emplace_back();
+                break;
+            case json::parse_event_t::array_start:
+                element();
+                levels.emplace_back().array = true;
+                break;
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end: levels.pop_back(); break;
+            case json::parse_event_t::key: {
+                Level& l = levels.back();
+                l.key = parsed.get<std::string>();
+                if (!l.keys.insert(l.key).second && duplicate.empty()) duplicate = l.key;
+                break;
+            }
+            case json::parse_event_t::value: element(); break;
         }
         return true;
     };
@@ -291,8 +317,10 @@ json parseJson(std::string_view text, const Reader& r) {
         std::string path;
         for (size_t i = 0; i < levels.size(); ++i) {
             const Level& l = levels[i];
-            if (l.array) path += "[" + std::to_string(l.index + (i + 1 == levels.size() ? 1 : 0)) + "]";
-            else path = Reader::join(path, l.key);
+            if (l.array)
+                path += "[" + std::to_string(l.index + (i + 1 == levels.size() ? 1 : 0)) + "]";
+            else
+                path = Reader::join(path, l.key);
         }
         return path.empty() ? std::string("(top level)") : path;
     };
@@ -308,7 +336,8 @@ json parseJson(std::string_view text, const Reader& r) {
         if (close != std::string::npos) what = what.substr(close + 2);
         r.fail("", "malformed JSON: " + what);
     }
-    if (!duplicate.empty()) r.fail("", "malformed JSON: the key '" + duplicate + "' appears twice in one object");
+    if (!duplicate.empty())
+        r.fail("", "malformed JSON: the key '" + duplicate + "' appears twice in one object");
     return j;
 }
 
@@ -349,7 +378,12 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName,
 SceneDesc readSceneFile(const std::filesystem::path& path) {
     const std::string name = path.string();
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw InputError(name, "", "is a directory, not a scene file");
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(name, "", "is a directory, not a scene file");
+    // Opening a FIFO waits for a writer for ever: anything but a file is refused first.
+    const auto type = std::filesystem::status(path, ec).type();
+    if (!ec && type != std::filesystem::file_type::regular && type != std::filesystem::file_type::not_found)
+        throw InputError(name, "", "is not a regular file (a pipe, socket or device), not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name, "", "cannot be read (missing, or no permission)");
     std::ostringstream text;
