@@ -132,6 +132,15 @@ void AtomicFile::commit() {
     fs::rename(temp_, final_, ec);
     if (ec) throw std::runtime_error(target_.string() + ": cannot be replaced: " + ec.message());
     committed_ = true;
+    // And the new name durable: until the folder is synced a power cut can bring back the
+    // old file (whole, never a mix). Best effort: a folder that cannot be opened keeps the
+    // save as it is.
+    const fs::path folder = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
+    const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);
+        ::close(dir);
+    }
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& contents) {
