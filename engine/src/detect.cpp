@@ -30,6 +30,7 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
     const size_t n = model.bodies.size();
     s.swept.resize(n);
     s.moving.resize(n);
+    s.halfSpaces.clear();
     for (size_t i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
         s.moving[i] = !b.standsStill() && !state.isAsleep(static_cast<int>(i));
@@ -37,8 +38,14 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
         if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
         s.swept[i].min.array() -= margin;
         s.swept[i].max.array() += margin;
+        // A plane that stands still is a half-space: it pairs only with the boxes reaching it.
+        if (b.collider.kind == Kind::Plane && b.standsStill()) {
+            s.halfSpaces.resize(n);
+            const Vec3 normal = s.end[i].R * b.collider.normal;
+            s.halfSpaces[i] = {normal, normal.dot(s.end[i].p) + b.collider.distance, true};
+        }
     }
-    s.broadphase.update(s.swept, s.moving);
+    s.broadphase.update(s.swept, s.moving, s.halfSpaces);
 }
 
 void findContacts(const Model& model, DetectScratch& s, double margin) {

@@ -19,6 +19,7 @@ struct DetectScratch {
     std::vector<collision::Pose> end;    // ... and at its end
     std::vector<collision::Aabb> swept;  // world boxes covering the whole step
     std::vector<std::uint8_t> moving;
+    std::vector<collision::HalfSpace> halfSpaces;  // of the planes that stand still; empty if none
     collision::Broadphase broadphase;
     std::vector<collision::Manifold> contacts;
     std::vector<collision::ImpactEvent> impacts;

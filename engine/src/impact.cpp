@@ -27,27 +27,44 @@ bool touches(const Manifold& m, double tol) {
 }
 
 // The manifolds reached from the seed bodies through touching manifolds; dynamic bodies
-// carry the reach on, static and kinematic ones do not.
+// carry the reach on, static and kinematic ones do not. A breadth-first search over each
+// body's touching manifolds: linear in the contacts (sweeping the whole list until nothing
+// grew took a pass per link of the longest chain, quadratic for a long row or a tall pile).
 void collectIsland(const Model& model, const State& state, const std::vector<Manifold>& contacts,
                    const std::vector<int>& seeds, double tol, ImpactScratch& s) {
-    s.inIsland.assign(model.bodies.size(), 0);
-    auto carries = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
-    for (int b : seeds)
-        if (carries(b)) s.inIsland[b] = 1;
+    const size_t n = model.bodies.size();
+    s.inIsland.assign(n, 0);
     s.manifolds.clear();
-    std::vector<std::uint8_t> taken(contacts.size(), 0);
-    for (bool grew = true; grew;) {
-        grew = false;
-        for (size_t k = 0; k < contacts.size(); ++k) {
-            const Manifold& m = contacts[k];
-            if (taken[k] || !(s.inIsland[m.bodyA] || s.inIsland[m.bodyB]) || !touches(m, tol)) continue;
-            taken[k] = 1;
-            for (int b : {m.bodyA, m.bodyB})
-                if (carries(b) && !s.inIsland[b]) s.inIsland[b] = 1, grew = true;
+    auto carries = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
+    // Each body's touching manifolds, as ranges of one array (counting sort by body).
+    s.first.assign(n + 1, 0);
+    for (const Manifold& m : contacts)
+        if (touches(m, tol)) ++s.first[m.bodyA + 1], ++s.first[m.bodyB + 1];
+    for (size_t i = 0; i < n; ++i) s.first[i + 1] += s.first[i];
+    s.byBody.resize(s.first[n]);
+    s.fill.assign(s.first.begin(), s.first.end() - 1);
+    for (size_t k = 0; k < contacts.size(); ++k) {
+        const Manifold& m = contacts[k];
+        if (!touches(m, tol)) continue;
+        s.byBody[s.fill[m.bodyA]++] = static_cast<int>(k);
+        s.byBody[s.fill[m.bodyB]++] = static_cast<int>(k);
+    }
+    s.taken.assign(contacts.size(), 0);
+    s.queue.clear();
+    for (int b : seeds)
+        if (carries(b) && !s.inIsland[b]) s.inIsland[b] = 1, s.queue.push_back(b);
+    for (size_t q = 0; q < s.queue.size(); ++q) {
+        const int body = s.queue[q];
+        for (int j = s.first[body]; j < s.first[body + 1]; ++j) {
+            const int k = s.byBody[j];
+            if (s.taken[k]) continue;
+            s.taken[k] = 1;
+            for (int b : {contacts[k].bodyA, contacts[k].bodyB})
+                if (carries(b) && !s.inIsland[b]) s.inIsland[b] = 1, s.queue.push_back(b);
         }
     }
     for (size_t k = 0; k < contacts.size(); ++k)
-        if (taken[k]) s.manifolds.push_back(static_cast<int>(k));
+        if (s.taken[k]) s.manifolds.push_back(static_cast<int>(k));
 }
 
 // One manifold: the approaching touching points solved together. Returns whether any

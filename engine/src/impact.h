@@ -30,7 +30,10 @@ struct ImpactScratch {
     std::vector<SolverBody> bodies;
     std::vector<SolverBody> start;  // the velocities at the start of the step
     std::vector<std::uint8_t> inIsland;
-    std::vector<int> manifolds;
+    std::vector<int> manifolds;  // in the order of the contacts
+    // collectIsland's search: each body's touching manifolds (byBody[first[b] .. first[b+1]))
+    std::vector<int> first, fill, byBody, queue;
+    std::vector<std::uint8_t> taken;
 };
 
 struct ImpactResult {

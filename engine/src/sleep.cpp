@@ -102,17 +102,32 @@ bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& 
     for (int i : model.dynamicBodies)
         if (state.isAsleep(i) && forceActs(model, i, state.time)) stack.push_back(i);
     bool woke = false;
+    // Who rests on whom while asleep, from the remembered contacts: each body's partners,
+    // made once when the first body wakes (scanning the whole memory for each woken body
+    // was quadratic when a large pile woke).
+    std::vector<int> first, partners;
+    auto index = [&] {
+        const size_t n = model.bodies.size();
+        first.assign(n + 1, 0);
+        for (const ContactMemory& c : state.contacts) ++first[c.bodyA + 1], ++first[c.bodyB + 1];
+        for (size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+        partners.resize(first[n]);
+        std::vector<int> fill(first.begin(), first.end() - 1);
+        for (const ContactMemory& c : state.contacts) {
+            partners[fill[c.bodyA]++] = c.bodyB;
+            partners[fill[c.bodyB]++] = c.bodyA;
+        }
+    };
     while (!stack.empty()) {
         const int b = stack.back();
         stack.pop_back();
         if (!state.isAsleep(b)) continue;
         wake(state, b);
+        if (!woke) index();
         woke = true;
-        // Its sleeping neighbours, from the contacts remembered while they slept.
-        for (const ContactMemory& c : state.contacts) {
-            if (c.bodyA == b && state.isAsleep(c.bodyB)) stack.push_back(c.bodyB);
-            if (c.bodyB == b && state.isAsleep(c.bodyA)) stack.push_back(c.bodyA);
-        }
+        // Its sleeping neighbours.
+        for (int j = first[b]; j < first[b + 1]; ++j)
+            if (state.isAsleep(partners[j])) stack.push_back(partners[j]);
     }
     return woke;
 }

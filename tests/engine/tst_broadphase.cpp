@@ -272,6 +272,43 @@ private slots:
         QCOMPARE(partners, expected);
     }
 
+    void aHalfSpacePairsOnlyWithTheBoxesReachingIt() {
+        // A static plane given its half-space (a tilted ground) pairs with exactly the moving
+        // boxes that have a corner on its solid side or on it, checked corner by corner; the
+        // other pairs are those of the plain update.
+        Generator gen(5);
+        Scene s = gen.scene({300, false, false, 0.3, 0});
+        s.bounds[0] = {Vec3::Constant(-kInf), Vec3::Constant(kInf)};
+        s.moving[0] = 0;
+        std::vector<HalfSpace> half(s.bounds.size());
+        half[0] = {Vec3(0.3, 1.0, -0.2).normalized(), 4.0, true};
+        Broadphase plain, culled;
+        plain.update(s.bounds, s.moving);
+        culled.update(s.bounds, s.moving, half);
+        Pairs expected;
+        int reaching = 0, far = 0;
+        for (const auto& [i, j] : plain.pairs()) {
+            if (i != 0) {
+                expected.emplace_back(i, j);
+                continue;
+            }
+            const Aabb& b = s.bounds[j];
+            bool reaches = false;
+            for (int c = 0; c < 8; ++c) {
+                const Vec3 corner(c & 1 ? b.max.x() : b.min.x(), c & 2 ? b.max.y() : b.min.y(),
+                                  c & 4 ? b.max.z() : b.min.z());
+                reaches = reaches || half[0].normal.dot(corner) <= half[0].offset;
+            }
+            (reaches ? reaching : far) += 1;
+            if (reaches) expected.emplace_back(i, j);
+        }
+        std::sort(expected.begin(), expected.end());
+        QVERIFY(reaching > 10 && far > 10);  // the scene straddles the plane
+        QCOMPARE(culled.pairs(), expected);
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 culled.update(s.bounds, s.moving, std::vector<HalfSpace>(3)));
+    }
+
     void treeQueriesMatchBruteForceUnderChurn() {
         // Random insertions, additions and removals in two trees; every query, the tree
         // against itself and against the other, exactly as brute force over the stored boxes,

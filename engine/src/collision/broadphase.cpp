@@ -50,8 +50,13 @@ Aabb Broadphase::fattened(const Aabb& box) const {
 }
 
 void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving) {
-    if (bounds.size() != moving.size())
-        throw std::invalid_argument("Broadphase::update: bounds and moving differ in size");
+    update(bounds, moving, {});
+}
+
+void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving,
+                        const std::vector<HalfSpace>& halfSpaces) {
+    if (bounds.size() != moving.size() || (!halfSpaces.empty() && halfSpaces.size() != bounds.size()))
+        throw std::invalid_argument("Broadphase::update: bounds, moving and half-spaces differ in size");
     const int n = static_cast<int>(bounds.size());
     if (sets_.size() != bounds.size()) reset(n, bounds);
 
@@ -107,17 +112,20 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
     movingTree_.pairsWith(staticTree_, [&](int m, int s) {
         if (bounds[m].overlaps(bounds[s])) addPair(m, s);
     });
+    const HalfSpace none;
     for (std::size_t k = 0; k < unbounded_.size(); ++k) {
         const int u = unbounded_[k];
         const Aabb& box = bounds[u];
+        const HalfSpace& half = halfSpaces.empty() ? none : halfSpaces[u];
+        auto pairsWith = [&](int j) { return box.overlaps(bounds[j]) && (!half.valid || half.reaches(bounds[j])); };
         if (moving[u]) {
             for (int j = 0; j < n; ++j) {
                 const Set s = sets_[j];
-                if ((s == Set::Moving || s == Set::Static) && box.overlaps(bounds[j])) addPair(u, j);
+                if ((s == Set::Moving || s == Set::Static) && pairsWith(j)) addPair(u, j);
             }
         } else {
             for (int j : movingBodies_)
-                if (box.overlaps(bounds[j])) addPair(u, j);
+                if (pairsWith(j)) addPair(u, j);
         }
         for (std::size_t l = k + 1; l < unbounded_.size(); ++l) {
             const int v = unbounded_[l];

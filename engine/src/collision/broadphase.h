@@ -14,7 +14,9 @@
 // - static bodies with finite boxes, in a tree of their exact boxes, descended only against
 //   the moving tree: static-static pairs are never looked at;
 // - unbounded bodies (a box with an infinite bound: planes), kept in a list and checked
-//   against every body they could pair with.
+//   against every body they could pair with; an unbounded body given a half-space (a plane
+//   that stands still) pairs only with the boxes that reach into it: one dot product per
+//   box, so a far ground plane costs no narrowphase and no time of impact.
 // Bodies whose box is empty (min > max on some axis, or NaN) pair with nothing.
 // A body may change sets (wakes up, falls asleep) from one update to the next. A tree is
 // rebuilt top-down when a quarter of it has changed since its last rebuild (see aabb_tree.h),
@@ -31,6 +33,19 @@
 
 namespace tumble::collision {
 
+/// The solid side of a plane, normal·p <= offset, in world coordinates.
+struct HalfSpace {
+    Vec3 normal = Vec3(0, 1, 0);
+    double offset = 0.0;
+    bool valid = false;  ///< false: no half-space known, the infinite box is used
+
+    /// True when some point of `box` is on the solid side (or on the plane).
+    bool reaches(const Aabb& box) const {
+        const Vec3 c = 0.5 * (box.min + box.max), e = 0.5 * (box.max - box.min);
+        return normal.dot(c) - normal.cwiseAbs().dot(e) <= offset;
+    }
+};
+
 class Broadphase {
 public:
     /// bounds[i]: world box of body i (planes have infinite boxes); moving[i]: false for
@@ -39,6 +54,11 @@ public:
     /// pairs are never produced and never tested. A different body count starts afresh.
     /// Throws std::invalid_argument if the two vectors differ in size.
     void update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving);
+
+    /// The same, where an unbounded body i with halfSpaces[i].valid pairs only with boxes
+    /// that reach its half-space (halfSpaces empty: none has one).
+    void update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving,
+                const std::vector<HalfSpace>& halfSpaces);
 
     /// Sorted ascending by (i, j), no duplicates: deterministic whatever the input history.
     const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
