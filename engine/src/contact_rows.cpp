@@ -32,6 +32,7 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
                             q[i].n.dot((A.invI * q[j].rA.cross(q[j].n)).cross(q[i].rA)) +
                             q[i].n.dot((B.invI * q[j].rB.cross(q[j].n)).cross(q[i].rB));
     block.Kinv = k > 1 ? leastNormInverse(block.K, k) : Eigen::Matrix4d::Zero();
+    block.subsets = SubsetInverses{};
     if (k == 1) block.Kinv(0, 0) = q[0].kn;
     // Friction at the centroid.
     Vec3 c = Vec3::Zero();
@@ -72,7 +73,7 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
-void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block) {
+void normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
     Point* q = &s.points[block.begin];
     const int k = block.count;
     if (k == 1) return normalPoint(s, q[0]);
@@ -80,19 +81,34 @@ void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
     SolverBody& B = s.bodies[q[0].b];
     Eigen::Vector4d lambda = Eigen::Vector4d::Zero(), rhs = Eigen::Vector4d::Zero(),
                     vn = Eigen::Vector4d::Zero();
+    bool idle = true;  // nothing pushes and nothing approaches faster than its target
     for (int i = 0; i < k; ++i) lambda[i] = q[i].lambdaN;
     for (int i = 0; i < k; ++i) {
         // What the impulses must add to the velocity the point would have without them.
         vn[i] = q[i].n.dot(relativeVelocity(A, q[i].rA, B, q[i].rB));
         rhs[i] = q[i].target - (vn[i] - block.K.row(i).dot(lambda));  // zero beyond k
+        idle = idle && lambda[i] == 0.0 && vn[i] >= q[i].target;
     }
-    const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k);
-    const Eigen::Vector4d d = wanted - lambda;
+    // λ = 0 already solves this block (a side neighbour in a pile, a point still apart).
+    if (idle) return;
+    const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &block.subsets);
+    // The changes summed per body: one impulse and one moment each, all along n.
+    const Vec3& n = q[0].n;
+    double total = 0.0;
+    Vec3 armA = Vec3::Zero(), armB = Vec3::Zero();
     for (int i = 0; i < k; ++i) {
+        const double d = wanted[i] - lambda[i];
         q[i].lambdaN = wanted[i];
-        applyImpulse(A, q[i].rA, d[i] * q[i].n);
-        applyImpulse(B, q[i].rB, -d[i] * q[i].n);
+        total += d;
+        armA += d * q[i].rA;
+        armB += d * q[i].rB;
     }
+    if (total == 0.0 && armA.isZero(0.0)) return;
+    A.v += (A.invMass * total) * n;
+    A.w += A.invI * armA.cross(n);
+    B.v -= (B.invMass * total) * n;
+    B.w -= B.invI * armB.cross(n);
+    A.touched = B.touched = true;
 }
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within
@@ -102,6 +118,8 @@ void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) 
     double normal = 0.0;
     for (int i = 0; i < block.count; ++i) normal += s.points[block.begin + i].lambdaN;
     const double limit = block.mu * normal;
+    // No normal impulse holds no friction: nothing to do when none is held.
+    if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return;
     const Point& p = s.points[block.begin];
     SolverBody& A = s.bodies[p.a];
     SolverBody& B = s.bodies[p.b];

@@ -17,7 +17,7 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
                    double dTwist);
 /// The normal impulses of one manifold together: the least-norm impulses that give every
 /// point its target velocity, none pulling.
-void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block);
+void normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
 /// Friction of one manifold: stop the sliding and the twisting at the centroid, within the
 /// Coulomb limits of the current normal impulses.
 void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);

@@ -52,6 +52,7 @@ struct ContactSolverScratch {
         int begin = 0, count = 0;
         Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
         Eigen::Matrix4d Kinv = Eigen::Matrix4d::Zero();
+        SubsetInverses subsets;       // of K, for the iterations (pushingImpulses)
         double mu = 0.0;
         Vec3 rA, rB, t1, t2;          // centroid offsets, tangents
         Eigen::Matrix2d tangentMass;  // inverse of the 2x2 tangential K at the centroid

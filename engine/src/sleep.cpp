@@ -89,18 +89,22 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
 }
 
 bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& contacts,
-                 const std::vector<collision::ImpactEvent>& impacts) {
+                 const std::vector<collision::ImpactEvent>& impacts, const std::vector<std::uint8_t>& parked) {
     if (state.asleep.empty()) return false;
     std::vector<int> stack;
+    // A parked body is flagged asleep only while the step's impacts are cut (World::step):
+    // it neither wakes nor wakes others.
+    auto isParked = [&](int b) { return !parked.empty() && parked[b] != 0; };
+    auto sleeps = [&](int b) { return state.isAsleep(b) && !isParked(b); };
     auto active = [&](int b) { return !model.bodies[b].standsStill() && !state.isAsleep(b); };
     auto touchPair = [&](int a, int b) {
-        if (state.isAsleep(a) && active(b)) stack.push_back(a);
-        if (state.isAsleep(b) && active(a)) stack.push_back(b);
+        if (sleeps(a) && active(b)) stack.push_back(a);
+        if (sleeps(b) && active(a)) stack.push_back(b);
     };
     for (const Manifold& m : contacts) touchPair(m.bodyA, m.bodyB);
     for (const auto& e : impacts) touchPair(e.bodyA, e.bodyB);
     for (int i : model.dynamicBodies)
-        if (state.isAsleep(i) && forceActs(model, i, state.time)) stack.push_back(i);
+        if (sleeps(i) && forceActs(model, i, state.time)) stack.push_back(i);
     bool woke = false;
     // Who rests on whom while asleep, from the remembered contacts: each body's partners,
     // made once when the first body wakes (scanning the whole memory for each woken body
@@ -121,13 +125,13 @@ bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& 
     while (!stack.empty()) {
         const int b = stack.back();
         stack.pop_back();
-        if (!state.isAsleep(b)) continue;
+        if (!sleeps(b)) continue;
         wake(state, b);
         if (!woke) index();
         woke = true;
         // Its sleeping neighbours.
         for (int j = first[b]; j < first[b + 1]; ++j)
-            if (state.isAsleep(partners[j])) stack.push_back(partners[j]);
+            if (sleeps(partners[j])) stack.push_back(partners[j]);
     }
     return woke;
 }

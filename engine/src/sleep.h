@@ -30,9 +30,10 @@ bool updateSleep(const Model& model, State& state, const std::vector<collision::
                  double touchTolerance, double h, SleepScratch& scratch, EnergyLedger& ledger);
 
 /// Wakes the sleeping bodies an awake body touches (`contacts`, `impacts`) or whose applied
-/// forces act at state.time, with their sleeping neighbours. True when any woke.
+/// forces act at state.time, with their sleeping neighbours. True when any woke. Bodies with
+/// parked[i] set (World::step's parked islands; empty: none) are left alone.
 bool wakeTouched(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
-                 const std::vector<collision::ImpactEvent>& impacts);
+                 const std::vector<collision::ImpactEvent>& impacts, const std::vector<std::uint8_t>& parked = {});
 
 /// The dynamic bodies that are awake, in index order.
 void awakeBodies(const Model& model, const State& state, std::vector<int>& out);

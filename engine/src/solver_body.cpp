@@ -49,8 +49,25 @@ Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
     return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
 }
 
+namespace {
+
+// The least-norm inverse of the na × na sub-block Ks of the points in `mask`, from the cache
+// when it was computed before.
+Eigen::Matrix4d subsetInverse(const Eigen::Matrix4d& Ks, int na, std::uint8_t mask, SubsetInverses* cache) {
+    if (!cache) return leastNormInverse(Ks, na);
+    for (int i = 0; i < 2; ++i)
+        if (cache->mask[i] == mask) return cache->inverse[i];
+    const int slot = cache->next;
+    cache->next = 1 - slot;
+    cache->mask[slot] = mask;
+    cache->inverse[slot] = leastNormInverse(Ks, na);
+    return cache->inverse[slot];
+}
+
+}  // namespace
+
 Eigen::Vector4d pushingImpulses(const Eigen::Matrix4d& K, const Eigen::Matrix4d& Kinv, const Eigen::Vector4d& g,
-                                int k) {
+                                int k, SubsetInverses* cache) {
     Eigen::Vector4d lambda = Kinv * g;
     bool active[4] = {true, true, true, true};
     for (int round = 1; round < k; ++round) {
@@ -59,8 +76,9 @@ Eigen::Vector4d pushingImpulses(const Eigen::Matrix4d& K, const Eigen::Matrix4d&
             if (active[i] && lambda[i] < 0.0) active[i] = false, dropped = true;
         if (!dropped) break;
         int map[4], na = 0;
+        std::uint8_t mask = 0;
         for (int i = 0; i < k; ++i)
-            if (active[i]) map[na++] = i;
+            if (active[i]) map[na++] = i, mask |= static_cast<std::uint8_t>(1u << i);
         lambda.setZero();
         if (na == 0) break;
         Eigen::Matrix4d Ks = Eigen::Matrix4d::Zero();
@@ -69,7 +87,7 @@ Eigen::Vector4d pushingImpulses(const Eigen::Matrix4d& K, const Eigen::Matrix4d&
             gs[i] = g[map[i]];
             for (int j = 0; j < na; ++j) Ks(i, j) = K(map[i], map[j]);
         }
-        const Eigen::Vector4d sol = leastNormInverse(Ks, na) * gs;
+        const Eigen::Vector4d sol = subsetInverse(Ks, na, mask, cache) * gs;
         for (int i = 0; i < na; ++i) lambda[map[i]] = sol[i];
     }
     for (int i = 0; i < 4; ++i) lambda[i] = i < k ? std::max(lambda[i], 0.0) : 0.0;  // the last one may still pull

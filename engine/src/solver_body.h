@@ -4,6 +4,9 @@
 // still, all three with zero inverse mass so that no impulse moves them.
 #pragma once
 
+#include <array>
+#include <cstdint>
+
 #include <tumble/model.h>
 #include <tumble/state.h>
 
@@ -67,12 +70,23 @@ inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, con
 /// almost zero and the answer is the least-norm one, symmetric for symmetric points.
 Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k);
 
+/// The least-norm inverses of a K's principal sub-blocks computed last, by the points kept
+/// (bit i: point i): the iterations of the contact solver ask pushingImpulses for the same
+/// one or two subsets again and again, and an eigen-decomposition per ask was half of a
+/// resting pyramid's step. Valid for one K only: reset it when K changes.
+struct SubsetInverses {
+    std::array<std::uint8_t, 2> mask{0, 0};  // 0: empty slot
+    std::array<Eigen::Matrix4d, 2> inverse{Eigen::Matrix4d::Zero(), Eigen::Matrix4d::Zero()};
+    int next = 0;
+};
+
 /// Impulses λ ≥ 0 for k points with K λ = g where they push: the least-norm solution
 /// (Kinv = leastNormInverse(K, k)); every point whose impulse would pull is let go at once
 /// (λ = 0; not the worst first, so that ties between symmetric points are not broken by
-/// their order) and the others are solved again without it.
+/// their order) and the others are solved again without it. `cache`, if given, keeps the
+/// inverses of the subsets (the answer is the same with or without it).
 Eigen::Vector4d pushingImpulses(const Eigen::Matrix4d& K, const Eigen::Matrix4d& Kinv, const Eigen::Vector4d& g,
-                                int k);
+                                int k, SubsetInverses* cache = nullptr);
 
 /// Two unit tangents completing n to a right-handed frame.
 void tangentFrame(const Vec3& n, Vec3& t1, Vec3& t2);

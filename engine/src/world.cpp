@@ -6,6 +6,11 @@
 // moment, the impulses of the impact are applied there (impact.h), and the rest of the
 // step is taken the same way (at most kMaxCuts times a step; later impacts are left to the
 // contact solver). The step ends with the contact solver (contact_solver.h) and sleeping.
+//
+// Only the islands with an impact are cut (islands.h): the others are "parked" at the end
+// of their free step, flagged asleep so that no stage moves or pairs them, and their
+// contacts are solved over the whole step at the end. Should a cut island's new path meet a
+// parked body after all, the step is taken again from its start with every body cut.
 #include <tumble/world.h>
 
 #include "contact_solver.h"
@@ -14,11 +19,13 @@
 #include "guard.h"
 #include "impact.h"
 #include "integrate.h"
+#include "islands.h"
 #include "sleep.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 
 namespace tumble {
 
@@ -80,6 +87,16 @@ struct World::Scratch {
     double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
     double margin = 0.0;   // contact points are found this far apart (contactMargin)
     std::vector<collision::Manifold> restingContacts;  // at a cut, all but the impacting pairs'
+    // Parked islands (see the top of this file); parkedCount == 0: none this step.
+    IslandScratch islands;
+    std::vector<std::uint8_t> parked;
+    int parkedCount = 0;
+    State stepStart;                                   // to take the step again
+    std::vector<std::uint64_t> touchingAtStart;
+    EnergyLedger ledgerAtStart;
+    std::vector<std::uint8_t> realAsleep;              // the sleep flags without the parked ones
+    std::vector<collision::Manifold> parkedContacts;   // at the end of their free step
+    std::vector<collision::Manifold> merged;
 };
 
 World::World(const SceneDesc& scene) : World(compile(scene), State{}) {
@@ -118,7 +135,7 @@ void World::setState(const State& state) {
 
 void World::advance(double h) {
     Scratch& s = *scratch_;
-    if (model_.settings.sleeping && !state_.asleep.empty()) {
+    if (!state_.asleep.empty()) {  // sleeping bodies, or parked ones
         awakeBodies(model_, state_, s.awake);
         s.integrate.awake = &s.awake;
     } else {
@@ -154,7 +171,7 @@ void World::detect(double t0, double h) {
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again
     // with the woken bodies among the moving ones.
-    if (model_.settings.sleeping && wakeTouched(model_, state_, d.contacts, d.impacts)) {
+    if (model_.settings.sleeping && wakeTouched(model_, state_, d.contacts, d.impacts, s.parked)) {
         t = Clock::now();
         findPairs(model_, state_, s.margin, d);
         findContacts(model_, d, s.margin);
@@ -190,6 +207,7 @@ void World::impactAt(double t0) {
     const auto t2 = Clock::now();
     bodyPoses(model_, state_, d.end);
     findContacts(model_, d, s.margin);
+    if (s.parkedCount > 0) dropParked();
     if (first > t0) {
         // The piece of the step up to the moment is a step of its own for the contacts that
         // were already there: a pile resting under the impact must not fall freely for that
@@ -241,40 +259,43 @@ void World::step(double h) {
         touchingPairs(d.contacts, s.touchTolerance, d.touching);
     }
     s.impacts.clear();
+    s.parkedCount = 0;
+    s.parked.clear();
+    bool mayPark = true;
     for (int cut = 0;; ++cut) {
         s.before = state_;
         const double t0 = state_.time;
         advance(tEnd - t0);
         state_.time = tEnd;
         detect(t0, tEnd - t0);
+        if (cut == 0 && mayPark && !d.impacts.empty()) park();
+        if (s.parkedCount > 0 && cut > 0 && !leaveParked()) {
+            // A cut body's new path meets a parked one: the whole step again, every body cut.
+            unpark(true);
+            ++profile_.islandRestarts;
+            mayPark = false;
+            cut = -1;
+            continue;
+        }
         if (cut == kMaxCuts) s.impacts.insert(s.impacts.end(), d.impacts.begin(), d.impacts.end());
         if (d.impacts.empty() || cut == kMaxCuts) break;
         impactAt(t0);
     }
 
-    // Bounces that no time of impact found (bodies that touched at the start of the step
-    // and now approach fast) get the same impact loop, at the end of the step.
-    const double resting = s.resting;
-    auto t = Clock::now();
-    approachingBodies(model_, s.before, state_, d.contacts, s.touchTolerance, resting, s.impact, s.seeds);
-    if (!s.seeds.empty()) {
-        const ImpactResult r =
-            resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, resting, s.impact, ledger_);
-        ++profile_.impactMoments;
-        if (r.limited) ++profile_.impactSweepLimits;
+    // The end of the step: the cut islands from their last cut, then the parked ones from
+    // the start of the step, each with the other set standing still.
+    finishStep(s.before, d.contacts);
+    if (s.parkedCount > 0) {
+        for (int i : model_.dynamicBodies) {
+            if (!s.parked[i]) s.realAsleep[i] = state_.asleep[i];  // woken by a cut body, maybe
+            state_.asleep[i] = s.parked[i] ? 0 : 1;
+        }
+        finishStep(s.stepStart, s.parkedContacts);
+        unpark(false);
     }
-    profile_.impactSolve += since(t);
-
-    t = Clock::now();
-    solveContacts(model_, state_, s.before, d.contacts, s.sizes,
-                  solverSettings(model_, s.resting, s.touchTolerance, s.margin, tEnd - s.before.time),
-                  s.solver,
-                  ledger_);  // the last part of the step, after any cut
-    checkFinite(model_, state_);
-    profile_.solve += since(t);
 
     if (model_.settings.sleeping) {
-        t = Clock::now();
+        const auto t = Clock::now();
         updateSleep(model_, state_, d.contacts, s.touchTolerance, h, s.sleep, ledger_);
         profile_.sleep += since(t);
     }
@@ -283,6 +304,105 @@ void World::step(double h) {
     for (const auto& m : d.contacts) profile_.contactPoints += m.count;
     profile_.impacts += static_cast<long>(s.impacts.size());
     guardEnergy(model_, state_, s.energy);
+}
+
+// Bounces that no time of impact found (bodies that touched at the start of the step and
+// now approach fast) get the impact loop at the end of the step; then the contact solver
+// over the last part of the step, from `before`.
+void World::finishStep(const State& before, const std::vector<collision::Manifold>& contacts) {
+    Scratch& s = *scratch_;
+    auto t = Clock::now();
+    approachingBodies(model_, before, state_, contacts, s.touchTolerance, s.resting, s.impact, s.seeds);
+    if (!s.seeds.empty()) {
+        const ImpactResult r =
+            resolveImpacts(model_, state_, contacts, s.seeds, s.touchTolerance, s.resting, s.impact, ledger_);
+        ++profile_.impactMoments;
+        if (r.limited) ++profile_.impactSweepLimits;
+    }
+    profile_.impactSolve += since(t);
+
+    t = Clock::now();
+    solveContacts(model_, state_, before, contacts, s.sizes,
+                  solverSettings(model_, s.resting, s.touchTolerance, s.margin, state_.time - before.time), s.solver,
+                  ledger_);
+    checkFinite(model_, state_);
+    profile_.solve += since(t);
+}
+
+// After the first look at the step: the islands without an impact keep their free step.
+void World::park() {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    s.parkedCount = parkIslandsWithoutImpact(model_, state_, d.broadphase.pairs(), d.impacts, s.islands, s.parked);
+    if (s.parkedCount == 0) {
+        s.parked.clear();
+        return;
+    }
+    profile_.parkedBodySteps += s.parkedCount;
+    s.stepStart = s.before;
+    s.touchingAtStart = d.touching;
+    s.ledgerAtStart = ledger_;
+    s.realAsleep = state_.asleep;
+    s.realAsleep.resize(model_.bodies.size(), 0);
+    state_.asleep = s.realAsleep;
+    for (int i : model_.dynamicBodies) {
+        if (!s.parked[i]) continue;
+        state_.asleep[i] = 1;
+        s.before.bodies[i] = state_.bodies[i];  // a cut goes back to s.before: they stay at the end
+    }
+    // Their contacts wait for the end of the step.
+    auto it = std::stable_partition(d.contacts.begin(), d.contacts.end(), [&](const collision::Manifold& m) {
+        return !s.parked[m.bodyA] && !s.parked[m.bodyB];
+    });
+    s.parkedContacts.assign(it, d.contacts.end());
+    d.contacts.erase(it, d.contacts.end());
+}
+
+// After each look at the cut bodies: false when one pairs with a parked body (its new path
+// may reach it); else the contacts and impacts found with parked bodies (a moving kinematic
+// body still pairs with them) are dropped: theirs are the ones of the free step.
+bool World::leaveParked() {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    auto parked = [&](int b) { return s.parked[b] != 0; };
+    auto cut = [&](int b) { return model_.bodies[b].motion == Motion::Dynamic && !parked(b) && !state_.isAsleep(b); };
+    for (const auto& [a, b] : d.broadphase.pairs())
+        if ((parked(a) && cut(b)) || (parked(b) && cut(a))) return false;
+    dropParked();
+    return true;
+}
+
+void World::dropParked() {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    auto parked = [&](int b) { return s.parked[b] != 0; };
+    std::erase_if(d.contacts, [&](const collision::Manifold& m) { return parked(m.bodyA) || parked(m.bodyB); });
+    std::erase_if(d.impacts, [&](const collision::ImpactEvent& e) { return parked(e.bodyA) || parked(e.bodyB); });
+}
+
+// Ends the parking: `unwind` takes the world back to the start of the step; else the sleep
+// flags are the real ones again and the contacts of both sets are merged in pair order.
+void World::unpark(bool unwind) {
+    Scratch& s = *scratch_;
+    DetectScratch& d = s.detect;
+    if (unwind) {
+        state_ = s.stepStart;
+        ledger_ = s.ledgerAtStart;
+        d.touching = s.touchingAtStart;
+        s.impacts.clear();
+    } else {
+        state_.asleep = s.realAsleep;
+        if (!model_.settings.sleeping) state_.asleep.clear();
+        s.merged.clear();
+        std::merge(d.contacts.begin(), d.contacts.end(), s.parkedContacts.begin(), s.parkedContacts.end(),
+                   std::back_inserter(s.merged), [](const collision::Manifold& a, const collision::Manifold& b) {
+                       return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
+                   });
+        d.contacts.swap(s.merged);
+    }
+    s.parkedContacts.clear();
+    s.parked.clear();
+    s.parkedCount = 0;
 }
 
 const std::vector<collision::Manifold>& World::contacts() const {

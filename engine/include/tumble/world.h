@@ -28,6 +28,8 @@ struct Profile {
     long impactMoments = 0;  ///< moments of impact the step was cut at
     long impactSweepLimits = 0;  ///< impact loops stopped by their bound (see docs/architecture.md)
     long awakeBodySteps = 0; ///< dynamic bodies integrated, summed over steps (sleeping ones are not)
+    long parkedBodySteps = 0;   ///< bodies of islands without an impact kept out of the cuts, summed
+    long islandRestarts = 0;    ///< steps taken again with every body cut (a cut body met a parked one)
 };
 
 /// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no
@@ -71,6 +73,11 @@ private:
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
     void impactAt(double t0);          // cut the step at the first impact and resolve it
+    void finishStep(const State& before, const std::vector<collision::Manifold>& contacts);
+    void park();                       // the islands without an impact keep their free step
+    bool leaveParked();
+    void dropParked();
+    void unpark(bool unwind);
     void forgetSleepUnlessSleeping();
 
     Model model_;

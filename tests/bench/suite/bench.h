@@ -51,6 +51,7 @@ struct SpeedRow {
     double forces = 0, integrate = 0, broadphase = 0, narrowphase = 0, toi = 0, impact = 0, solve = 0,
            sleep = 0;
     double pairsPerStep = 0, awakePerStep = 0;
+    double cutsPerStep = 0, parkedPerStep = 0, restartsPerStep = 0;  ///< impact moments, parked bodies, restarts
     std::string note;  ///< n/a reason or failure
     bool ok = true;
 };

@@ -171,13 +171,14 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
     csv << "scene,engine,mode,bodies,steps,ms_per_step,ms_max_step,contacts_per_step,peak_mb,base_mb,forces_"
            "ms,"
            "integrate_ms,broadphase_ms,narrowphase_ms,toi_ms,impact_ms,solve_ms,sleep_ms,pairs_per_step,"
-           "awake_per_step,note\n";
+           "awake_per_step,cuts_per_step,parked_per_step,restarts_per_step,note\n";
     for (const SpeedRow& r : rows)
         csv << r.scene << ',' << r.engine << ',' << r.mode << ',' << r.bodies << ',' << r.steps << ','
             << r.msPerStep << ',' << r.msMaxStep << ',' << r.contactsPerStep << ',' << r.peakMB << ','
             << r.baseMB << ',' << r.forces << ',' << r.integrate << ',' << r.broadphase << ','
             << r.narrowphase << ',' << r.toi << ',' << r.impact << ',' << r.solve << ',' << r.sleep << ','
-            << r.pairsPerStep << ',' << r.awakePerStep << ",\"" << r.note << "\"\n";
+            << r.pairsPerStep << ',' << r.awakePerStep << ',' << r.cutsPerStep << ','
+           << r.parkedPerStep << ',' << r.restartsPerStep << ",\"" << r.note << "\"\n";
     std::ofstream md = openOut(opt, "summary.md", true);
     md << "\n| scene | engine | mode | bodies | steps | ms/step | slowest step | contacts/step | memory (MB) "
           "|\n"
@@ -194,14 +195,17 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
     }
     md << "\nTumble per stage (ms per step):\n\n| scene | forces | integrate | broadphase | narrowphase | "
           "time of impact "
-          "| impact solve | contact solve | sleep | pairs/step | awake bodies/step |\n"
-       << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+          "| impact solve | contact solve | sleep | pairs/step | awake bodies/step | cuts/step | parked/step | "
+          "restarts/step |\n"
+       << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const SpeedRow& r : rows)
         if (r.engine == "tumble" && r.note.empty())
             md << "| " << r.scene << " | " << num(r.forces) << " | " << num(r.integrate) << " | "
                << num(r.broadphase) << " | " << num(r.narrowphase) << " | " << num(r.toi) << " | "
                << num(r.impact) << " | " << num(r.solve) << " | " << num(r.sleep) << " | "
-               << num(r.pairsPerStep, "%.0f") << " | " << num(r.awakePerStep, "%.0f") << " |\n";
+               << num(r.pairsPerStep, "%.0f") << " | " << num(r.awakePerStep, "%.0f") << " | "
+               << num(r.cutsPerStep, "%.2f") << " | " << num(r.parkedPerStep, "%.0f") << " | "
+               << num(r.restartsPerStep, "%.3f") << " |\n";
 }
 
 void writeStress(const Options& opt, const std::vector<StressRow>& rows) {

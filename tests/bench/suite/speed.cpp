@@ -85,10 +85,11 @@ int childMain(int argc, char** argv) {
             const double k = 1e3 / steps;
             std::printf(
                 " forces=%.6g integrate=%.6g broadphase=%.6g narrowphase=%.6g toi=%.6g impact=%.6g "
-                "solve=%.6g sleep=%.6g pairs=%.6g awake=%.6g",
+                "solve=%.6g sleep=%.6g pairs=%.6g awake=%.6g cuts=%.6g parked=%.6g restarts=%.6g",
                 p.forces * k, p.integrate * k, p.broadphase * k, p.narrowphase * k, p.timeOfImpact * k,
                 p.impactSolve * k, p.solve * k, p.sleep * k, double(p.pairs) / steps,
-                double(p.awakeBodySteps) / steps);
+                double(p.awakeBodySteps) / steps, double(p.impactMoments) / steps,
+                double(p.parkedBodySteps) / steps, double(p.islandRestarts) / steps);
         }
         std::printf("\n");
         return 0;
@@ -152,6 +153,7 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
                 row.narrowphase = kv["narrowphase"], row.toi = kv["toi"], row.impact = kv["impact"];
                 row.solve = kv["solve"], row.sleep = kv["sleep"];
                 row.pairsPerStep = kv["pairs"], row.awakePerStep = kv["awake"];
+                row.cutsPerStep = kv["cuts"], row.parkedPerStep = kv["parked"], row.restartsPerStep = kv["restarts"];
             }
             std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %s\n",
                         name.c_str(), row.engine.c_str(), row.mode.c_str(), row.msPerStep, row.msMaxStep,
