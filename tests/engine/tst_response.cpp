@@ -144,6 +144,89 @@ private slots:
         }
     }
 
+    // An impact cuts the step of its island only (issue 17): three balls bouncing far apart
+    // move as each would alone (to the impact tolerance, 1e-6 of the radius: where two
+    // bounce in one step, both are cut at both moments), and a ball not bouncing in a step
+    // is integrated once in it.
+    void islandsBounceAsIfAlone() {
+        const double r = 0.1, e = 0.8, dt = 1.0 / 60.0;
+        const double heights[3] = {1.2, 2.1, 2.9};
+        auto ballAt = [&](int k) {
+            BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, 1.0), e, 0.5);
+            b.position = Vec3(3.0 * k, heights[k] + r, 0);
+            return b;
+        };
+        SceneDesc all = sceneOf({groundPlane(e, 0.5), ballAt(0), ballAt(1), ballAt(2)});
+        all.settings.sleeping = false;
+        World together(all);
+        std::vector<World> alone;
+        for (int k = 0; k < 3; ++k) {
+            SceneDesc one = sceneOf({groundPlane(e, 0.5), ballAt(k)});
+            one.settings.sleeping = false;
+            alone.emplace_back(one);
+        }
+        const int steps = 90;  // 1.5 s: each ball bounces 1 to 3 times
+        double worst = 0.0;
+        int shared = 0;  // steps in which two balls bounce
+        for (int n = 0; n < steps; ++n) {
+            together.step(dt);
+            int bouncing = 0;
+            for (int k = 0; k < 3; ++k) {
+                const long cuts = alone[k].profile().impactMoments;
+                alone[k].step(dt);
+                bouncing += alone[k].profile().impactMoments > cuts;
+                const BodyState& a = together.state().bodies[1 + k];
+                const BodyState& b = alone[k].state().bodies[1];
+                worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm()});
+            }
+            shared += bouncing > 1;
+        }
+        QVERIFY2(shared == 0, "precondition: no two balls bounce in the same step");
+        QVERIFY2(worst == 0.0, qPrintable(QString("a ball moved %1 (m or kg m/s) away from its run alone").arg(worst)));
+        long aloneCuts = 0, aloneIntegrations = 0;
+        for (const World& w : alone) {
+            aloneCuts += w.profile().impactMoments;
+            aloneIntegrations += w.profile().awakeBodySteps - steps;  // more than once a step
+        }
+        const Profile& p = together.profile();
+        QVERIFY2(aloneCuts >= 9, "precondition: the balls bounce");
+        QCOMPARE(p.islandRestarts, 0L);
+        QVERIFY(p.parkedBodySteps > 0);
+        // Integrations beyond one per ball and step: only the cut ball's, as alone (cutting
+        // every body at every moment would be 3 x the moments).
+        QCOMPARE(p.awakeBodySteps - 3L * steps, aloneIntegrations);
+    }
+
+    // A cut ball's new path meets a ball that was parked: the step is taken again with both
+    // cut. No gravity, e = 1: A (x = 0.5, 60 m/s) bounces off a wall at x = 1 after 1/150 s,
+    // comes back, and hits B (at rest at x = 0.15, outside A's path before the bounce) 0.55/60 s
+    // later; equal masses exchange velocities. At the end of the step (1/60 s): A at rest at
+    // x = 0.35, B at x = 0.10 moving at -60 m/s.
+    void aCutBodyMeetingAParkedOneRedoesTheStep() {
+        BodyDesc wall;
+        wall.name = "wall";
+        wall.motion = Motion::Static;
+        wall.shape.type = ShapeType::Plane;
+        wall.shape.normal = -Vec3::UnitX();
+        wall.shape.distance = -1.0;  // -x > -1: x < 1 is free
+        wall.restitution = 1.0;
+        wall.friction = 0.0;
+        BodyDesc a = material(sphereBody("a", 0.1, 1.0), 1.0, 0.0);
+        a.position = Vec3(0.5, 0, 0);
+        a.velocity = Vec3(60, 0, 0);
+        BodyDesc b = material(sphereBody("b", 0.1, 1.0), 1.0, 0.0);
+        b.position = Vec3(0.15, 0, 0);
+        World w(sceneOf({wall, a, b}, Vec3::Zero()));
+        w.step(1.0 / 60.0);
+        const auto& s = w.state().bodies;
+        QCOMPARE(w.profile().islandRestarts, 1L);
+        // Positions to the impact tolerance (1e-6 of the radius, at each of the two impacts).
+        QVERIFY2(std::abs(s[1].x.x() - 0.35) < 1e-6 && std::abs(s[2].x.x() - 0.10) < 1e-6,
+                 qPrintable(QString("A at x = %1, B at x = %2").arg(num(s[1].x.x()), num(s[2].x.x()))));
+        QVERIFY2(s[1].P.norm() < 1e-9 && (s[2].P - Vec3(-60, 0, 0)).norm() < 1e-9,
+                 qPrintable(QString("A's momentum %1, B's %2").arg(num(s[1].P.x()), num(s[2].P.x()))));
+    }
+
     // 2. Two spheres meeting head on along x, no gravity: the closed form of a central impact
     // (the 1-D case of (27)). The velocities are constant before and after the impact, so the
     // answer holds to rounding wherever in the step the impact falls: 1e-9 relative.
