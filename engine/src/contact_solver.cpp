@@ -63,7 +63,7 @@ void prepare(const Model& model, const State& state, const State& before,
              const ContactSolverSettings& cfg, ContactSolverScratch& s) {
     s.points.clear();
     s.blocks.clear();
-    loadSolverBodies(model, before, s.start);
+    loadSolverBodies(model, before, s.start, s.involved);
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
         SolverBody& B = s.bodies[m.bodyB];
@@ -184,8 +184,8 @@ void remember(const Model& model, const State& state, double h, ContactSolverScr
 // velocity (symplectic Euler for the bodies in contact).
 void redoPoses(const Model& model, State& state, const State& before, const ContactSolverScratch& s) {
     const double h = state.time - before.time;
-    for (int i : model.dynamicBodies) {
-        if (!s.bodies[i].touched || state.isAsleep(i)) continue;
+    for (int i : s.involved) {
+        if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
         BodyState& b = state.bodies[i];
         b.x = before.bodies[i].x + h * s.bodies[i].v;
         const Vec3 turn = h * s.bodies[i].w;
@@ -195,12 +195,31 @@ void redoPoses(const Model& model, State& state, const State& before, const Cont
     }
 }
 
+// The potential energy of the bodies `only` (gravity and their springs): what the position
+// passes can change.
+double potentialOf(const Model& model, const State& state, const std::vector<int>& only) {
+    double e = 0.0;
+    for (int i : only)
+        if (model.bodies[i].motion == Motion::Dynamic)
+            e -= model.bodies[i].mass * model.settings.gravity.dot(state.bodies[i].x);
+    for (const ForceTerm& f : model.forces) {
+        if (f.type != ForceType::Spring || !f.activeAt(state.time) ||
+            !std::binary_search(only.begin(), only.end(), f.body))
+            continue;
+        const BodyState& s = state.bodies[f.body];
+        const double stretch = (s.x + s.q * f.arm - f.anchor).norm() - f.restLength;
+        e += 0.5 * f.stiffness * stretch * stretch;
+    }
+    return e;
+}
+
 }  // namespace
 
 void solveContacts(const Model& model, State& state, const State& before,
                    const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
-    loadSolverBodies(model, state, s.bodies);
+    bodiesOf(contacts, s.involved);
+    loadSolverBodies(model, state, s.bodies, s.involved);
     prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
     s.entry = s.bodies;
@@ -226,18 +245,18 @@ void solveContacts(const Model& model, State& state, const State& before,
     ledger.lostInFriction += frictionLoss;
     ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss;
 
-    storeSolverBodies(model, s.bodies, state);
+    storeSolverBodies(model, s.bodies, state, s.involved);
     // Re-placing turns bodies. Their spin is carried along in body axes (ω_body fixed), so
     // ½ ω_bodyᵀ I_body ω_body, the kinetic energy, is exactly what the solver left; L is set
     // again at the new orientation.
     s.bodySpin.resize(model.bodies.size());
-    for (int i : model.dynamicBodies) s.bodySpin[i] = state.bodies[i].q.conjugate() * s.bodies[i].w;
-    const double potential = energy(model, state).potential;
+    for (int i : s.involved) s.bodySpin[i] = state.bodies[i].q.conjugate() * s.bodies[i].w;
+    const double potential = potentialOf(model, state, s.involved);
     redoPoses(model, state, before, s);
     correctOverlap(model, state, s, cfg, e, limited);
-    ledger.positionCorrection += energy(model, state).potential - potential;
-    for (int i : model.dynamicBodies) {
-        if (!s.bodies[i].touched || state.isAsleep(i)) continue;
+    ledger.positionCorrection += potentialOf(model, state, s.involved) - potential;
+    for (int i : s.involved) {
+        if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
         BodyState& b = state.bodies[i];
         b.L = b.q * (model.bodies[i].inertia * s.bodySpin[i]);
     }

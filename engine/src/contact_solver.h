@@ -69,6 +69,7 @@ struct ContactSolverScratch {
     std::vector<int> order;         // blocks from the bottom up
     std::vector<Block> frozen;      // the blocks of one level with its lower bodies standing still
     std::vector<int> moving;        // the dynamic bodies the solver moved
+    std::vector<int> involved;      // the bodies of the contacts, ascending (all the solve touches)
     std::vector<SolverBody> entry;  // the velocities the solver was given
     std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts

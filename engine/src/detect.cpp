@@ -99,7 +99,7 @@ void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance,
 }
 
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, double minApproach, DetectScratch& s) {
+                 double tolerance, double minApproach, const std::vector<double>& sizes, DetectScratch& s) {
     s.impacts.clear();
     for (const auto& [a, b] : s.broadphase.pairs()) {
         // In contact already: no new impact.
@@ -107,7 +107,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
-        const double size = std::min(boundingRadius(A.collider), boundingRadius(B.collider));
+        const double size = std::min(sizes[a], sizes[b]);
         const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
                                       sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
         if (!hit) continue;

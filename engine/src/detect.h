@@ -50,7 +50,8 @@ void touchingPairs(const std::vector<collision::Manifold>& contacts, double touc
 /// `tolerance` × the smaller body's size (t0 = time at the start, h = step). A pair that
 /// is that near already at the start has its impact at t0. A pair whose points close no
 /// faster than `minApproach` there is not an impact: it is left to the contact solver.
+/// `sizes`: each body's bounding radius (a mesh's is a pass over its vertices: not per pair).
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, double minApproach, DetectScratch& s);
+                 double tolerance, double minApproach, const std::vector<double>& sizes, DetectScratch& s);
 
 }  // namespace tumble

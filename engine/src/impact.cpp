@@ -129,8 +129,9 @@ void approachingBodies(const Model& model, const State& before, const State& sta
                        std::vector<int>& seeds) {
     seeds.clear();
     if (contacts.empty()) return;
-    loadSolverBodies(model, state, s.bodies);
-    loadSolverBodies(model, before, s.start);
+    bodiesOf(contacts, s.involved);
+    loadSolverBodies(model, state, s.bodies, s.involved);
+    loadSolverBodies(model, before, s.start, s.involved);
     for (const Manifold& m : contacts) {
         const SolverBody& A = s.bodies[m.bodyA];
         const SolverBody& B = s.bodies[m.bodyB];
@@ -154,7 +155,11 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     ImpactResult result;
     collectIsland(model, state, contacts, seeds, touchTolerance, s);
     if (s.manifolds.empty()) return result;
-    loadSolverBodies(model, state, s.bodies);
+    s.involved.clear();
+    for (int k : s.manifolds) s.involved.push_back(contacts[k].bodyA), s.involved.push_back(contacts[k].bodyB);
+    std::sort(s.involved.begin(), s.involved.end());
+    s.involved.erase(std::unique(s.involved.begin(), s.involved.end()), s.involved.end());
+    loadSolverBodies(model, state, s.bodies, s.involved);
 
     // "Still approaching" relative to the fastest approach at the start.
     double scale = 0.0;
@@ -179,7 +184,7 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
             break;
         }
     }
-    storeSolverBodies(model, s.bodies, state);
+    storeSolverBodies(model, s.bodies, state, s.involved);
     return result;
 }
 

@@ -31,6 +31,7 @@ struct ImpactScratch {
     std::vector<SolverBody> start;  // the velocities at the start of the step
     std::vector<std::uint8_t> inIsland;
     std::vector<int> manifolds;  // in the order of the contacts
+    std::vector<int> involved;   // the bodies loaded, ascending
     // collectIsland's search: each body's touching manifolds (byBody[first[b] .. first[b+1]))
     std::vector<int> first, fill, byBody, queue;
     std::vector<std::uint8_t> taken;

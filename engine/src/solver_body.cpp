@@ -2,39 +2,68 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 
 namespace tumble {
 
-void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out) {
-    out.assign(model.bodies.size(), SolverBody{});
-    for (size_t i = 0; i < out.size(); ++i) {
-        const BodyModel& b = model.bodies[i];
-        const BodyState& s = state.bodies[i];
-        SolverBody& o = out[i];
-        o.x = s.x;
-        if (b.motion == Motion::Kinematic) {
-            o.v = b.kinematicVelocity;
-            o.w = b.kinematicAngularVelocity;
-        } else if (b.motion == Motion::Dynamic && !state.isAsleep(static_cast<int>(i))) {
-            const Derived d = derive(b, s);
-            o.v = d.v;
-            o.w = d.omega;
-            o.invMass = b.invMass;
-            o.invI = d.invInertiaWorld;
-        }
+namespace {
+
+void loadBody(const Model& model, const State& state, int i, SolverBody& o) {
+    const BodyModel& b = model.bodies[i];
+    const BodyState& s = state.bodies[i];
+    o.x = s.x;
+    if (b.motion == Motion::Kinematic) {
+        o.v = b.kinematicVelocity;
+        o.w = b.kinematicAngularVelocity;
+    } else if (b.motion == Motion::Dynamic && !state.isAsleep(i)) {
+        const Derived d = derive(b, s);
+        o.v = d.v;
+        o.w = d.omega;
+        o.invMass = b.invMass;
+        o.invI = d.invInertiaWorld;
     }
 }
 
-void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state) {
-    for (int i : model.dynamicBodies) {
-        if (state.isAsleep(i) || !bodies[i].touched) continue;
-        const BodyModel& b = model.bodies[i];
-        BodyState& s = state.bodies[i];
-        const Mat3 R = s.q.toRotationMatrix();
-        s.P = b.mass * bodies[i].v;
-        s.L = R * (b.inertia * (R.transpose() * bodies[i].w));
+void storeBody(const Model& model, const SolverBody& body, int i, State& state) {
+    if (model.bodies[i].motion != Motion::Dynamic || state.isAsleep(i) || !body.touched) return;
+    const BodyModel& b = model.bodies[i];
+    BodyState& s = state.bodies[i];
+    const Mat3 R = s.q.toRotationMatrix();
+    s.P = b.mass * body.v;
+    s.L = R * (b.inertia * (R.transpose() * body.w));
+}
+
+}  // namespace
+
+void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<int>& out) {
+    out.clear();
+    for (const collision::Manifold& m : contacts) {
+        out.push_back(m.bodyA);
+        out.push_back(m.bodyB);
     }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out) {
+    out.assign(model.bodies.size(), SolverBody{});
+    for (size_t i = 0; i < out.size(); ++i) loadBody(model, state, static_cast<int>(i), out[i]);
+}
+
+void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
+                      const std::vector<int>& only) {
+    out.assign(model.bodies.size(), SolverBody{});
+    for (int i : only) loadBody(model, state, i, out[i]);
+}
+
+void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state) {
+    for (int i : model.dynamicBodies) storeBody(model, bodies[i], i, state);
+}
+
+void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state,
+                       const std::vector<int>& only) {
+    for (int i : only) storeBody(model, bodies[i], i, state);
 }
 
 Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {

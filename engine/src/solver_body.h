@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 
+#include <tumble/collision.h>
 #include <tumble/model.h>
 #include <tumble/state.h>
 
@@ -22,6 +23,18 @@ struct SolverBody {
     Mat3 invI = Mat3::Zero();  ///< world frame
     bool touched = false;      ///< an impulse was applied: write the momenta back
 };
+
+/// The bodies of `contacts`, ascending, each once.
+void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<int>& out);
+
+/// Loads the bodies `only` of `state` (ascending); the others are left standing still with
+/// no mass (`out` is resized to the body count). The solver's cost stays with its contacts.
+void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
+                      const std::vector<int>& only);
+
+/// Writes back the momenta of the bodies `only` as storeSolverBodies does.
+void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state,
+                       const std::vector<int>& only);
 
 /// Loads every body of `state` (`out` is resized to the body count).
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out);

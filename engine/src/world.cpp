@@ -166,7 +166,7 @@ void World::detect(double t0, double h) {
     profile_.narrowphase += since(t);
 
     t = Clock::now();
-    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, s.resting, d);
+    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, s.resting, s.sizes, d);
     profile_.timeOfImpact += since(t);
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again
