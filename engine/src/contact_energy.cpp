@@ -39,17 +39,19 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
     bool moved = false;
     for (int pass = 0; pass < passes; ++pass) {
         double worst = 0.0;
-        for (const Point& p : s.points) {
+        for (size_t i = 0; i < s.points.size(); ++i) {
+            const Point& p = s.points[i];
+            const ContactSolverScratch::PointGeometry& g = s.geometry[i];
             BodyState& a = state.bodies[p.a];
             BodyState& b = state.bodies[p.b];
             const SolverBody& A = s.bodies[p.a];
             const SolverBody& B = s.bodies[p.b];
             const Mat3 RA = a.q.toRotationMatrix(), RB = b.q.toRotationMatrix();
-            const Vec3 sA = a.x + RA * p.localA, sB = b.x + RB * p.localB, n = RB * p.localN;
+            const Vec3 sA = a.x + RA * g.localA, sB = b.x + RB * g.localB, n = RB * g.localN;
             const double depth = n.dot(sB - sA);
-            const double slop = slopFactor * p.slop;
+            const double slop = slopFactor * g.slop;
             worst = std::max(worst, depth - slop);
-            const double C = std::min(kBaumgarte * (depth - slop), kMaxCorrection * p.size);
+            const double C = std::min(kBaumgarte * (depth - slop), kMaxCorrection * g.size);
             if (C <= 0.0) continue;
             const Vec3 rA = sA - a.x, rB = sB - b.x;
             const double k = inverseEffectiveMass(A, rA, B, rB, n);

@@ -32,11 +32,11 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
                             q[i].n.dot((A.invI * q[j].rA.cross(q[j].n)).cross(q[i].rA)) +
                             q[i].n.dot((B.invI * q[j].rB.cross(q[j].n)).cross(q[i].rB));
     block.Kinv = k > 1 ? leastNormInverse(block.K, k) : Eigen::Matrix4d::Zero();
-    block.subsets = SubsetInverses{};
     if (k == 1) block.Kinv(0, 0) = q[0].kn;
     // Friction at the centroid.
     Vec3 c = Vec3::Zero();
-    for (int i = 0; i < k; ++i) c += q[i].position;
+    const ContactSolverScratch::PointGeometry* g = &s.geometry[block.begin];
+    for (int i = 0; i < k; ++i) c += g[i].position;
     c /= k;
     const Vec3& n = q[0].n;
     block.rA = c - A.x;
@@ -54,7 +54,7 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
     const double twist = n.dot(A.invI * n) + n.dot(B.invI * n);
     block.twistMass = twist > 0.0 ? 1.0 / twist : 0.0;
     block.radius = 0.0;
-    for (int i = 0; i < k; ++i) block.radius += (q[i].position - c).norm() / k;
+    for (int i = 0; i < k; ++i) block.radius += (g[i].position - c).norm() / k;
 }
 
 void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, const Eigen::Vector2d& dT,
@@ -73,7 +73,7 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
-void normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
+void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
     Point* q = &s.points[block.begin];
     const int k = block.count;
     if (k == 1) return normalPoint(s, q[0]);
@@ -91,7 +91,7 @@ void normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
     }
     // λ = 0 already solves this block (a side neighbour in a pile, a point still apart).
     if (idle) return;
-    const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &block.subsets);
+    const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &subsets);
     // The changes summed per body: one impulse and one moment each, all along n.
     const Vec3& n = q[0].n;
     double total = 0.0;

@@ -17,7 +17,8 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
                    double dTwist);
 /// The normal impulses of one manifold together: the least-norm impulses that give every
 /// point its target velocity, none pulling.
-void normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
+/// `subsets`: the cache of K's sub-inverses for this block (reset it when K changes).
+void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets);
 /// Friction of one manifold: stop the sliding and the twisting at the centroid, within the
 /// Coulomb limits of the current normal impulses.
 void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);

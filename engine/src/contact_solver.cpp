@@ -36,20 +36,21 @@ void indexMemory(const State& state, ContactSolverScratch& s) {
 // step: each remembered impulse starts one point only (when a manifold gains points, two
 // new points near one old one took its impulse twice, and the warm start kicked a box of a
 // resting pyramid to 1.2 m/s).
-const ContactMemory* remembered(const State& state, ContactSolverScratch& s, const Point& p) {
+const ContactMemory* remembered(const State& state, ContactSolverScratch& s, const Point& p,
+                                const ContactSolverScratch::PointGeometry& g) {
     const auto it = s.memory.find(pairKey(p.a, p.b));
     if (it == s.memory.end()) return nullptr;
     // The same pair of features if it is still near; else the nearest remembered point
     // (features are renamed when, say, the reference face passes from one box to the other
     // in a stack: the impulses at the same corner still hold).
     int same = -1, nearest = -1;
-    double nearestD = kMatch * p.size;
+    double nearestD = kMatch * g.size;
     for (int i = it->second.first; i < it->second.second; ++i) {
         if (s.used[i]) continue;
         const ContactMemory& c = state.contacts[i];
-        const double d = (c.position - p.position).norm();
-        if (d > kMatch * p.size) continue;
-        if (c.feature == p.feature) same = i;
+        const double d = (c.position - g.position).norm();
+        if (d > kMatch * g.size) continue;
+        if (c.feature == g.feature) same = i;
         if (d <= nearestD) nearest = i, nearestD = d;
     }
     const int k = same >= 0 ? same : nearest;
@@ -62,7 +63,9 @@ void prepare(const Model& model, const State& state, const State& before,
              const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
              const ContactSolverSettings& cfg, ContactSolverScratch& s) {
     s.points.clear();
+    s.geometry.clear();
     s.blocks.clear();
+    s.subsets.clear();
     loadSolverBodies(model, before, s.start, s.involved);
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
@@ -83,6 +86,7 @@ void prepare(const Model& model, const State& state, const State& before,
             const collision::ContactPoint& c = m.points[i];
             if (c.depth < -cfg.margin) continue;
             Point p;
+            ContactSolverScratch::PointGeometry g;
             p.a = m.bodyA;
             p.b = m.bodyB;
             p.n = m.normal;
@@ -93,8 +97,8 @@ void prepare(const Model& model, const State& state, const State& before,
             const double vn0 = p.n.dot(relativeVelocity(s.start[m.bodyA], p.rA, s.start[m.bodyB], p.rB));
             // A's deepest point is half the depth below the midpoint, B's half above.
             const Vec3 sA = p.rA - 0.5 * c.depth * p.n, sB = p.rB + 0.5 * c.depth * p.n;
-            p.localA = RA.transpose() * sA;
-            p.localB = RB.transpose() * sB;
+            g.localA = RA.transpose() * sA;
+            g.localB = RB.transpose() * sB;
             // The gap between those two surface points at the start of the step. The bodies
             // are placed again from there with the solved velocities (redoPoses), so the gap
             // at the end is gap0 + h vn: a gap may close within the step and no more, and an
@@ -107,17 +111,19 @@ void prepare(const Model& model, const State& state, const State& before,
                 p.target = -e * vn;  // touching and approaching fast: a bounce
             else
                 p.target = gap0 > 0.0 ? -gap0 / cfg.h : 0.0;
-            p.localN = RB.transpose() * p.n;
-            p.size = std::min(sizes[m.bodyA], sizes[m.bodyB]);
-            p.slop = kSlop * p.size;
-            p.feature = c.feature;
-            p.position = c.position;
+            g.localN = RB.transpose() * p.n;
+            g.size = std::min(sizes[m.bodyA], sizes[m.bodyB]);
+            g.slop = kSlop * g.size;
+            g.feature = c.feature;
+            g.position = c.position;
             s.points.push_back(p);
+            s.geometry.push_back(g);
         }
         block.count = static_cast<int>(s.points.size()) - block.begin;
         if (block.count == 0) continue;
         prepareBlock(A, B, block, s);
         s.blocks.push_back(block);
+        s.subsets.emplace_back();
     }
 }
 
@@ -130,7 +136,7 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
         double twist = 0.0;
         for (int i = 0; i < block.count; ++i) {
             Point& p = s.points[block.begin + i];
-            const ContactMemory* c = remembered(state, s, p);
+            const ContactMemory* c = remembered(state, s, p, s.geometry[block.begin + i]);
             if (!c) continue;
             const double scale = c->step > 0.0 ? std::min(h / c->step, 100.0) : 1.0;
             p.lambdaN = scale * c->normalImpulse;
@@ -149,9 +155,10 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
 void iterate(ContactSolverScratch& s, int pass) {
     const int nb = static_cast<int>(s.blocks.size());
     for (int b = 0; b < nb; ++b) {
-        ContactSolverScratch::Block& block = s.blocks[pass % 2 ? nb - 1 - b : b];
+        const int k = pass % 2 ? nb - 1 - b : b;
+        ContactSolverScratch::Block& block = s.blocks[k];
         frictionBlock(s, block);
-        normalBlock(s, block);
+        normalBlock(s, block, s.subsets[k]);
     }
 }
 
@@ -161,11 +168,12 @@ void remember(const Model& model, const State& state, double h, ContactSolverScr
         const Vec3 tangent = (block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2) / block.count;
         for (int i = 0; i < block.count; ++i) {
             const Point& p = s.points[block.begin + i];
+            const ContactSolverScratch::PointGeometry& g = s.geometry[block.begin + i];
             ContactMemory c;
             c.bodyA = p.a;
             c.bodyB = p.b;
-            c.feature = p.feature;
-            c.position = p.position;
+            c.feature = g.feature;
+            c.position = g.position;
             c.normalImpulse = p.lambdaN;
             c.tangentImpulse = tangent;
             c.twistImpulse = block.lambdaTwist / block.count;

@@ -82,10 +82,11 @@ void shockPass(ContactSolverScratch& s, int passes) {
             prepareBlock(s.bodies[q[0].a], s.bodies[q[0].b], block, s);
             s.frozen.push_back(block);
         }
+        s.frozenSubsets.assign(s.frozen.size(), SubsetInverses{});
         for (int pass = 0; pass < passes; ++pass)
-            for (auto& block : s.frozen) {
-                frictionBlock(s, block);
-                normalBlock(s, block);
+            for (size_t k = 0; k < s.frozen.size(); ++k) {
+                frictionBlock(s, s.frozen[k]);
+                normalBlock(s, s.frozen[k], s.frozenSubsets[k]);
             }
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block& block = s.blocks[s.order[k]];
