@@ -9,18 +9,39 @@ using Point = ContactSolverScratch::Point;
 
 namespace {
 
+// The normal velocity of A's point relative to B's.
+double normalVelocity(const SolverBody& A, const SolverBody& B, const Point& p) {
+    return p.n.dot(A.v - B.v) + p.armA.dot(A.w) - p.armB.dot(B.w);
+}
+
+// The normal impulse d at the point: on A along n, on B against it.
+void pushPoint(SolverBody& A, SolverBody& B, const Point& p, double d) {
+    A.v += (A.invMass * d) * p.n;
+    A.w += d * p.spinA;
+    B.v -= (B.invMass * d) * p.n;
+    B.w -= d * p.spinB;
+    A.touched = B.touched = true;
+}
+
 void normalPoint(ContactSolverScratch& s, Point& p) {
     SolverBody& A = s.bodies[p.a];
     SolverBody& B = s.bodies[p.b];
-    const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
+    const double vn = normalVelocity(A, B, p);
     const double old = p.lambdaN;
     p.lambdaN = std::max(0.0, old - p.kn * (vn - p.target));
     const double d = p.lambdaN - old;
-    applyImpulse(A, p.rA, d * p.n);
-    applyImpulse(B, p.rB, -d * p.n);
+    if (d != 0.0) pushPoint(A, B, p, d);
 }
 
 }  // namespace
+
+void preparePoint(const SolverBody& A, const SolverBody& B, Point& p) {
+    p.kn = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.n);
+    p.armA = p.rA.cross(p.n);
+    p.armB = p.rB.cross(p.n);
+    p.spinA = A.invI * p.armA;
+    p.spinB = B.invI * p.armB;
+}
 
 void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch::Block& block,
                   const ContactSolverScratch& s) {
@@ -42,6 +63,15 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
     block.rA = c - A.x;
     block.rB = c - B.x;
     tangentFrame(n, block.t1, block.t2);
+    for (int t = 0; t < 2; ++t) {
+        const Vec3& dir = t == 0 ? block.t1 : block.t2;
+        block.armA[t] = block.rA.cross(dir);
+        block.armB[t] = block.rB.cross(dir);
+        block.spinA[t] = A.invI * block.armA[t];
+        block.spinB[t] = B.invI * block.armB[t];
+    }
+    block.twistA = A.invI * n;
+    block.twistB = B.invI * n;
     // K of the two tangents: velocity change along t_i per unit impulse along t_j.
     auto response = [&](const Vec3& ti, const Vec3& tj) {
         return ti.dot(A.invMass * tj + (A.invI * block.rA.cross(tj)).cross(block.rA) + B.invMass * tj +
@@ -59,16 +89,15 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
 
 void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, const Eigen::Vector2d& dT,
                    double dTwist) {
+    if (dT.isZero(0.0) && dTwist == 0.0) return;
     SolverBody& A = s.bodies[s.points[block.begin].a];
     SolverBody& B = s.bodies[s.points[block.begin].b];
-    applyPairImpulse(A, block.rA, B, block.rB, dT[0] * block.t1 + dT[1] * block.t2);
-    if (dTwist != 0.0) {
-        const Vec3& n = s.points[block.begin].n;
-        A.w += A.invI * (dTwist * n);
-        B.w -= B.invI * (dTwist * n);
-        A.touched = A.touched || A.invMass > 0.0;
-        B.touched = B.touched || B.invMass > 0.0;
-    }
+    const Vec3 J = dT[0] * block.t1 + dT[1] * block.t2;
+    A.v += A.invMass * J;
+    A.w += dT[0] * block.spinA[0] + dT[1] * block.spinA[1] + dTwist * block.twistA;
+    B.v -= B.invMass * J;
+    B.w -= dT[0] * block.spinB[0] + dT[1] * block.spinB[1] + dTwist * block.twistB;
+    A.touched = B.touched = true;
 }
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
@@ -85,29 +114,29 @@ void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
     for (int i = 0; i < k; ++i) lambda[i] = q[i].lambdaN;
     for (int i = 0; i < k; ++i) {
         // What the impulses must add to the velocity the point would have without them.
-        vn[i] = q[i].n.dot(relativeVelocity(A, q[i].rA, B, q[i].rB));
+        vn[i] = normalVelocity(A, B, q[i]);
         rhs[i] = q[i].target - (vn[i] - block.K.row(i).dot(lambda));  // zero beyond k
         idle = idle && lambda[i] == 0.0 && vn[i] >= q[i].target;
     }
     // λ = 0 already solves this block (a side neighbour in a pile, a point still apart).
     if (idle) return;
     const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &subsets);
-    // The changes summed per body: one impulse and one moment each, all along n.
-    const Vec3& n = q[0].n;
+    // The changes summed per body: one impulse along n and one change of spin each.
     double total = 0.0;
-    Vec3 armA = Vec3::Zero(), armB = Vec3::Zero();
+    Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();
     for (int i = 0; i < k; ++i) {
         const double d = wanted[i] - lambda[i];
         q[i].lambdaN = wanted[i];
         total += d;
-        armA += d * q[i].rA;
-        armB += d * q[i].rB;
+        spinA += d * q[i].spinA;
+        spinB += d * q[i].spinB;
     }
-    if (total == 0.0 && armA.isZero(0.0)) return;
+    if (total == 0.0 && spinA.isZero(0.0) && spinB.isZero(0.0)) return;
+    const Vec3& n = q[0].n;
     A.v += (A.invMass * total) * n;
-    A.w += A.invI * armA.cross(n);
+    A.w += spinA;
     B.v -= (B.invMass * total) * n;
-    B.w -= B.invI * armB.cross(n);
+    B.w -= spinB;
     A.touched = B.touched = true;
 }
 
@@ -123,8 +152,10 @@ void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) 
     const Point& p = s.points[block.begin];
     SolverBody& A = s.bodies[p.a];
     SolverBody& B = s.bodies[p.b];
-    const Vec3 v = relativeVelocity(A, block.rA, B, block.rB);
-    Eigen::Vector2d l = block.lambdaT - block.tangentMass * Eigen::Vector2d(block.t1.dot(v), block.t2.dot(v));
+    const Vec3 dv = A.v - B.v;
+    const Eigen::Vector2d vt(block.t1.dot(dv) + block.armA[0].dot(A.w) - block.armB[0].dot(B.w),
+                             block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w));
+    Eigen::Vector2d l = block.lambdaT - block.tangentMass * vt;
     if (l.norm() > limit) l *= limit / l.norm();
     // The twist is always clamped: a one-point patch (radius 0) may hold none, whatever
     // was remembered.

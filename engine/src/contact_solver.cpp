@@ -92,7 +92,7 @@ void prepare(const Model& model, const State& state, const State& before,
             p.n = m.normal;
             p.rA = c.position - A.x;
             p.rB = c.position - B.x;
-            p.kn = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.n);
+            preparePoint(A, B, p);
             const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
             const double vn0 = p.n.dot(relativeVelocity(s.start[m.bodyA], p.rA, s.start[m.bodyB], p.rB));
             // A's deepest point is half the depth below the midpoint, B's half above.

@@ -37,6 +37,10 @@ struct ContactSolverScratch {
     struct Point {
         int a = 0, b = 0;
         Vec3 rA, rB, n;
+        // The angular parts of the normal row, set by preparePoint: rA × n and rB × n (a
+        // body's spin changes the normal velocity by ω·(r × n)), and what a unit impulse
+        // along n does to each spin, I⁻¹(r × n). The iterations need no matrix product.
+        Vec3 armA, armB, spinA, spinB;
         double kn = 0;                // effective mass along the normal
         double target = 0.0;          // wanted normal velocity after the solve
         double lambdaN = 0.0;         // accumulated normal impulse
@@ -60,6 +64,9 @@ struct ContactSolverScratch {
         Eigen::Matrix4d Kinv = Eigen::Matrix4d::Zero();
         double mu = 0.0;
         Vec3 rA, rB, t1, t2;          // centroid offsets, tangents
+        // As Point's for the rows t1, t2 at the centroid and the twist about n:
+        // r × t and I⁻¹(r × t) per body and tangent, I⁻¹ n per body.
+        Vec3 armA[2], armB[2], spinA[2], spinB[2], twistA, twistB;
         Eigen::Matrix2d tangentMass;  // inverse of the 2x2 tangential K at the centroid
         double twistMass = 0.0, radius = 0.0;
         Eigen::Vector2d lambdaT = Eigen::Vector2d::Zero();

@@ -76,9 +76,7 @@ void shockPass(ContactSolverScratch& s, int passes) {
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block block = s.blocks[s.order[k]];
             Point* q = &s.points[block.begin];
-            for (int i = 0; i < block.count; ++i)
-                q[i].kn =
-                    1.0 / inverseEffectiveMass(s.bodies[q[i].a], q[i].rA, s.bodies[q[i].b], q[i].rB, q[i].n);
+            for (int i = 0; i < block.count; ++i) preparePoint(s.bodies[q[i].a], s.bodies[q[i].b], q[i]);
             prepareBlock(s.bodies[q[0].a], s.bodies[q[0].b], block, s);
             s.frozen.push_back(block);
         }
