@@ -20,13 +20,6 @@ double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
     return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
 }
 
-// Gravity's potential energy of the bodies s.moving as they stand in `state`.
-double potentialOf(const Model& model, const State& state, const std::vector<int>& which) {
-    double u = 0.0;
-    for (int i : which) u -= model.bodies[i].mass * model.settings.gravity.dot(state.bodies[i].x);
-    return u;
-}
-
 // Moves body i by the positional impulse J at offset r (its inverse mass and inertia).
 void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J) {
     s.x += b.invMass * J;
@@ -67,6 +60,14 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
 }
 
 }  // namespace
+
+double gravityPotential(const Model& model, const State& state, const std::vector<int>& which) {
+    double u = 0.0;
+    for (int i : which)
+        if (model.bodies[i].motion == Motion::Dynamic)
+            u -= model.bodies[i].mass * model.settings.gravity.dot(state.bodies[i].x);
+    return u;
+}
 
 // What friction took this step: -Σ λ·(u⁻ + u⁺)/2 over the blocks' tangential and twisting
 // rows, with λ the whole impulse of the step (warm start included), u⁻ the relative
@@ -148,13 +149,13 @@ void correctOverlap(const Model& model, State& state, ContactSolverScratch& s,
         return;
     }
     correctPositions(state, s, cfg.positionIterations, kFreeOverlap);
-    const double budget = e.in() - e.kineticOut - potentialOf(model, state, s.moving);
+    const double budget = e.in() - e.kineticOut - gravityPotential(model, state, s.moving);
     if (budget <= 0.0) return;
     s.placed.clear();
     for (int i : s.moving) s.placed.push_back({state.bodies[i].x, state.bodies[i].q});
-    const double u0 = potentialOf(model, state, s.moving);
+    const double u0 = gravityPotential(model, state, s.moving);
     if (!correctPositions(state, s, cfg.positionIterations, 1.0)) return;
-    const double added = potentialOf(model, state, s.moving) - u0;
+    const double added = gravityPotential(model, state, s.moving) - u0;
     if (added <= budget) return;
     const double beta = std::max(0.0, budget / added);  // gravity's energy is linear in position
     for (size_t k = 0; k < s.moving.size(); ++k) {

@@ -25,6 +25,8 @@ struct EnergyBalance {
 
 /// What friction took this step (exact per row; see the definition).
 double frictionLost(const ContactSolverScratch& s);
+/// Gravity's potential energy of the dynamic bodies `which` as they stand in `state`.
+double gravityPotential(const Model& model, const State& state, const std::vector<int>& which);
 /// Whether the contacts may only take energy out (no moving kinematic body among them).
 bool passive(const Model& model, const std::vector<collision::Manifold>& contacts);
 /// The balance of s.moving; `before`: the state at the start of the step (or its last part).

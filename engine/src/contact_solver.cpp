@@ -206,10 +206,7 @@ void redoPoses(const Model& model, State& state, const State& before, const Cont
 // The potential energy of the bodies `only` (gravity and their springs): what the position
 // passes can change.
 double potentialOf(const Model& model, const State& state, const std::vector<int>& only) {
-    double e = 0.0;
-    for (int i : only)
-        if (model.bodies[i].motion == Motion::Dynamic)
-            e -= model.bodies[i].mass * model.settings.gravity.dot(state.bodies[i].x);
+    double e = gravityPotential(model, state, only);
     for (const ForceTerm& f : model.forces) {
         if (f.type != ForceType::Spring || !f.activeAt(state.time) ||
             !std::binary_search(only.begin(), only.end(), f.body))
