@@ -1,5 +1,6 @@
 #include "solver_body.h"
 
+#include <Eigen/LU>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -66,7 +67,10 @@ void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies
     for (int i : only) storeBody(model, bodies[i], i, state);
 }
 
-Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
+namespace {
+
+// The pseudo-inverse by eigen-decomposition: the reference, for any K.
+Eigen::Matrix4d pseudoInverseByEigen(const Eigen::Matrix4d& K, int k) {
     Eigen::Matrix4d Kk = Eigen::Matrix4d::Zero();
     Kk.topLeftCorner(k, k) = K.topLeftCorner(k, k);
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Kk);
@@ -77,6 +81,73 @@ Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
         if (l[i] > cut) inv[i] = 1.0 / l[i];
     return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
 }
+
+// The vector orthogonal to the rows of the 3 x 4 matrix (a, b, c): its cofactors.
+Eigen::Vector4d orthogonalTo(const Eigen::Vector4d& a, const Eigen::Vector4d& b, const Eigen::Vector4d& c) {
+    auto det3 = [&](int i, int j, int l) {
+        return a[i] * (b[j] * c[l] - b[l] * c[j]) - a[j] * (b[i] * c[l] - b[l] * c[i]) +
+               a[l] * (b[i] * c[j] - b[j] * c[i]);
+    };
+    return Eigen::Vector4d(det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2));
+}
+
+// Conditioning a fast answer must have; below it the eigen-decomposition decides what is
+// null (it cuts at 1e-9 of the largest eigenvalue).
+constexpr double kFastCondition = 1e-6;
+
+// The inverse of the symmetric M (4 x 4 cofactors) when its condition number in the 1-norm
+// is below 1 / kFastCondition.
+bool conditionedInverse(const Eigen::Matrix4d& M, Eigen::Matrix4d& inv) {
+    inv = M.inverse();
+    const double norm = M.cwiseAbs().colwise().sum().maxCoeff();
+    const double normInv = inv.cwiseAbs().colwise().sum().maxCoeff();
+    return std::isfinite(normInv) && norm * normInv * kFastCondition < 1.0;
+}
+
+}  // namespace
+
+// The k points of one manifold share its normal, so their K = J M⁻¹ Jᵀ has rank 3 at most
+// (each row of J is (n, r × n) for a body, and r × n lies in the plane normal to n): four
+// points always have a null direction u, the impulses that cancel out. K⁺ is then
+// (K + s u uᵀ)⁻¹ - u uᵀ / s for any s > 0, a Cholesky inverse instead of an
+// eigen-decomposition (which was a fifth of a resting pile's step). Fewer points, or a K
+// that is not that well conditioned (points in a line, nearly coincident), take the
+// eigen-decomposition.
+Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
+    const double scale = K.topLeftCorner(k, k).trace() / k;
+    if (k <= 1 || !(scale > 0.0)) return pseudoInverseByEigen(K, k);
+    if (k < 4) {
+        // Padded with the scale of K, so that the condition is K's own.
+        Eigen::Matrix4d M = scale * Eigen::Matrix4d::Identity();
+        M.topLeftCorner(k, k) = K.topLeftCorner(k, k);
+        Eigen::Matrix4d inv;
+        if (!conditionedInverse(M, inv)) return pseudoInverseByEigen(K, k);
+        inv.bottomRightCorner(4 - k, 4 - k).setZero();
+        inv.topRightCorner(k, 4 - k).setZero();
+        inv.bottomLeftCorner(4 - k, k).setZero();
+        return inv;
+    }
+    // The null direction: orthogonal to three rows of K (the best of the four choices).
+    Eigen::Vector4d u = Eigen::Vector4d::Zero();
+    for (int skip = 0; skip < 4; ++skip) {
+        int r[3], n = 0;
+        for (int i = 0; i < 4; ++i)
+            if (i != skip) r[n++] = i;
+        const Eigen::Vector4d c = orthogonalTo(K.row(r[0]), K.row(r[1]), K.row(r[2]));
+        if (c.squaredNorm() > u.squaredNorm()) u = c;
+    }
+    const double length = u.norm();
+    if (!(length > 0.0)) return pseudoInverseByEigen(K, k);
+    u /= length;
+    // u must be null (rank 3): else (rank 4, or rank < 3 where u is noise) the reference.
+    if ((K * u).norm() > 1e-12 * scale) return pseudoInverseByEigen(K, k);
+    const Eigen::Matrix4d M = K + scale * u * u.transpose();
+    Eigen::Matrix4d inv;
+    if (!conditionedInverse(M, inv)) return pseudoInverseByEigen(K, k);
+    return inv - (u * u.transpose()) / scale;
+}
+
+Eigen::Matrix4d leastNormInverseReference(const Eigen::Matrix4d& K, int k) { return pseudoInverseByEigen(K, k); }
 
 namespace {
 

@@ -83,6 +83,9 @@ inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, con
 /// almost zero and the answer is the least-norm one, symmetric for symmetric points.
 Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k);
 
+/// The same by eigen-decomposition alone (what leastNormInverse falls back on), for tests.
+Eigen::Matrix4d leastNormInverseReference(const Eigen::Matrix4d& K, int k);
+
 /// The least-norm inverses of a K's principal sub-blocks computed last, by the points kept
 /// (bit i: point i): the iterations of the contact solver ask pushingImpulses for the same
 /// one or two subsets again and again, and an eigen-decomposition per ask was half of a
