@@ -18,21 +18,32 @@ bool needsContacts(const Model& model) {
 }
 
 void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
-    out.resize(model.bodies.size());
-    for (size_t i = 0; i < out.size(); ++i) {
+    auto place = [&](size_t i) {
         const BodyState& s = state.bodies[i];
         out[i].R = s.q.toRotationMatrix();
         out[i].p = s.x - out[i].R * model.bodies[i].centerOfMass;
+    };
+    if (out.size() != model.bodies.size()) {
+        out.resize(model.bodies.size());
+        for (size_t i = 0; i < out.size(); ++i) place(i);
+        return;
     }
+    // Static bodies never move: their poses are the ones already there.
+    for (int i : model.dynamicBodies) place(static_cast<size_t>(i));
+    for (int i : model.kinematicBodies) place(static_cast<size_t>(i));
 }
 
 void findPairs(const Model& model, const State& state, double margin, DetectScratch& s) {
     const size_t n = model.bodies.size();
+    // A static body's box is the last one while the margin is the same.
+    const bool keepStatic = s.swept.size() == n && s.sweptMargin == margin;
+    s.sweptMargin = margin;
     s.swept.resize(n);
     s.moving.resize(n);
     s.halfSpaces.clear();
     for (size_t i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
+        if (keepStatic && b.motion == Motion::Static && b.collider.kind != Kind::Plane) continue;
         s.moving[i] = !b.standsStill() && !state.isAsleep(static_cast<int>(i));
         s.swept[i] = bounds(b.collider, s.end[i]);
         if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));

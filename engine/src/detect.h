@@ -18,6 +18,7 @@ struct DetectScratch {
     std::vector<collision::Pose> start;  // body poses at the start of the step
     std::vector<collision::Pose> end;    // ... and at its end
     std::vector<collision::Aabb> swept;  // world boxes covering the whole step
+    double sweptMargin = 0.0;            // the margin they were grown by
     std::vector<std::uint8_t> moving;
     std::vector<collision::HalfSpace> halfSpaces;  // of the planes that stand still; empty if none
     collision::Broadphase broadphase;
@@ -30,10 +31,13 @@ struct DetectScratch {
 /// otherwise the contact stages are skipped entirely.
 bool needsContacts(const Model& model);
 
-/// World pose of each body's frame.
+/// World pose of each body's frame. When `out` has a pose per body already, the static
+/// bodies' are kept: a World clears it when a state is set (World::setState).
 void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out);
 
-/// Broadphase: pairs whose boxes, swept over the step and grown by `margin`, overlap.
+/// Broadphase: pairs whose boxes, swept over the step and grown by `margin`, overlap. A
+/// static body's box is computed again only when the margin changed or `s.swept` was
+/// cleared.
 /// Sleeping bodies stand with the static ones, so two sleeping bodies (or a sleeping and a
 /// static one) never pair.
 void findPairs(const Model& model, const State& state, double margin, DetectScratch& s);

@@ -129,6 +129,10 @@ void World::forgetSleepUnlessSleeping() {
 void World::setState(const State& state) {
     state_ = state;
     scratch_->detect.contacts.clear();
+    // Static bodies may stand elsewhere in this state: their poses and boxes again.
+    scratch_->detect.start.clear();
+    scratch_->detect.end.clear();
+    scratch_->detect.swept.clear();
     forgetSleepUnlessSleeping();
     armEnergyGuard(model_, state_, scratch_->energy);  // a run from this state
 }
