@@ -1,0 +1,48 @@
+// The scratch space of a World (world.cpp, world_islands.cpp): what the stages keep
+// between calls, so that a step allocates nothing once the scene has run a while.
+#pragma once
+
+#include <tumble/world.h>
+
+#include "contact_solver.h"
+#include "detect.h"
+#include "energy_guard.h"
+#include "impact.h"
+#include "integrate.h"
+#include "islands.h"
+#include "sleep.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tumble {
+
+struct World::Scratch {
+    IntegrateScratch integrate;
+    DetectScratch detect;
+    ImpactScratch impact;
+    ContactSolverScratch solver;
+    SleepScratch sleep;
+    EnergyGuard energy;
+    State before;
+    std::vector<double> sizes;  // bounding radius per body
+    std::vector<int> awake;     // awake dynamic bodies, when sleeping is on
+    std::vector<int> seeds;
+    std::vector<collision::ImpactEvent> impacts;  // of the whole step
+    double touchTolerance = 0.0;
+    double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
+    double margin = 0.0;   // contact points are found this far apart (contactMargin)
+    std::vector<collision::Manifold> restingContacts;  // at a cut, all but the impacting pairs'
+    // Parked islands (see the top of this file); parkedCount == 0: none this step.
+    IslandScratch islands;
+    std::vector<std::uint8_t> parked;
+    int parkedCount = 0;
+    State stepStart;                                   // to take the step again
+    std::vector<std::uint64_t> touchingAtStart;
+    EnergyLedger ledgerAtStart;
+    std::vector<std::uint8_t> realAsleep;              // the sleep flags without the parked ones
+    std::vector<collision::Manifold> parkedContacts;   // at the end of their free step
+    std::vector<collision::Manifold> merged;
+};
+
+}  // namespace tumble
