@@ -60,9 +60,10 @@ energy_position_correction (potential energy of placing bodies in contact), so t
 energy_end = energy_start - lost + correction when no force drives the scene; the time
 of each stage (forces_seconds, integrate_seconds, broadphase_seconds,
 narrowphase_seconds, toi_seconds, impact_seconds, solve_seconds, sleep_seconds); pairs,
-contact_points, impacts, impact_moments (the steps were cut there), impact_sweep_limits
-and awake_body_steps summed over the steps; and state_hash (the same scene and options
-give the same hash).
+contact_points, impacts, impact_moments (the steps were cut there), impact_sweep_limits,
+awake_body_steps, parked_body_steps (bodies of islands without an impact, kept out of a
+step's cuts) and island_restarts (steps taken again with every body cut) summed over the
+steps; and state_hash (the same scene and options give the same hash).
 )";
 
 struct Options {
@@ -289,6 +290,8 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "impact_moments: " << p.impactMoments << "\n"
             << "impact_sweep_limits: " << p.impactSweepLimits << "\n"
             << "awake_body_steps: " << p.awakeBodySteps << "\n"
+            << "parked_body_steps: " << p.parkedBodySteps << "\n"
+            << "island_restarts: " << p.islandRestarts << "\n"
             << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }
     return kOk;
