@@ -223,6 +223,14 @@ double potentialOf(const Model& model, const State& state, const std::vector<int
 void solveContacts(const Model& model, State& state, const State& before,
                    const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
+    if (contacts.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
+        s.points.clear();
+        s.geometry.clear();
+        s.blocks.clear();
+        remember(model, state, cfg.h, s);
+        state.contacts.swap(s.nextMemory);
+        return;
+    }
     bodiesOf(contacts, s.involved);
     loadSolverBodies(model, state, s.bodies, s.involved);
     prepare(model, state, before, contacts, sizes, cfg, s);
