@@ -2,15 +2,6 @@
 
 namespace tumble {
 
-namespace {
-
-int root(std::vector<int>& parent, int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-}
-
-}  // namespace
-
 int parkIslandsWithoutImpact(const Model& model, const State& state, const std::vector<std::pair<int, int>>& pairs,
                              const std::vector<collision::ImpactEvent>& impacts, IslandScratch& s,
                              std::vector<std::uint8_t>& parked) {
@@ -19,15 +10,15 @@ int parkIslandsWithoutImpact(const Model& model, const State& state, const std::
     s.parent.resize(n);
     for (int i = 0; i < n; ++i) s.parent[i] = i;
     for (const auto& [a, b] : pairs)
-        if (links(a) && links(b)) s.parent[root(s.parent, a)] = root(s.parent, b);
+        if (links(a) && links(b)) s.parent[islandRoot(s.parent, a)] = islandRoot(s.parent, b);
     s.impacted.assign(n, 0);
     for (const auto& e : impacts)
         for (int b : {e.bodyA, e.bodyB})
-            if (links(b)) s.impacted[root(s.parent, b)] = 1;
+            if (links(b)) s.impacted[islandRoot(s.parent, b)] = 1;
     parked.assign(n, 0);
     int count = 0;
     for (int i : model.dynamicBodies) {
-        if (!links(i) || s.impacted[root(s.parent, i)]) continue;
+        if (!links(i) || s.impacted[islandRoot(s.parent, i)]) continue;
         parked[i] = 1;
         ++count;
     }

@@ -16,6 +16,12 @@
 
 namespace tumble {
 
+/// The root of i in a union-find forest (parent[r] == r at a root), halving the path.
+inline int islandRoot(std::vector<int>& parent, int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
 struct IslandScratch {
     std::vector<int> parent;
     std::vector<std::uint8_t> impacted;  // per island root

@@ -1,5 +1,7 @@
 #include "sleep.h"
 
+#include "islands.h"
+
 #include <algorithm>
 
 namespace tumble {
@@ -7,11 +9,6 @@ namespace tumble {
 using collision::Manifold;
 
 namespace {
-
-int root(std::vector<int>& parent, int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-}
 
 bool touches(const Manifold& m, double tol) {
     for (int i = 0; i < m.count; ++i)
@@ -60,7 +57,7 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
         if (!touches(m, tol)) continue;
         const int a = m.bodyA, b = m.bodyB;
         if (dynamicBody(model, a) && dynamicBody(model, b)) {
-            s.parent[root(s.parent, a)] = root(s.parent, b);
+            s.parent[islandRoot(s.parent, a)] = islandRoot(s.parent, b);
         } else {
             // Resting on a moving kinematic body keeps the island awake.
             for (int k : {a, b})
@@ -71,12 +68,12 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
     s.islandRest.assign(n, 1e300);
     for (int i : model.dynamicBodies) {
         if (state.asleep[i]) continue;
-        const int r = root(s.parent, i);
+        const int r = islandRoot(s.parent, i);
         s.islandRest[r] = std::min(s.islandRest[r], s.blocked[i] ? 0.0 : state.restTime[i]);
     }
     bool fell = false;
     for (int i : model.dynamicBodies) {
-        if (state.asleep[i] || s.islandRest[root(s.parent, i)] < kTimeToSleep) continue;
+        if (state.asleep[i] || s.islandRest[islandRoot(s.parent, i)] < kTimeToSleep) continue;
         BodyState& b = state.bodies[i];
         const Derived d = derive(model.bodies[i], b);
         ledger.lostInContacts += 0.5 * (d.v.dot(b.P) + d.omega.dot(b.L));  // the little left at rest

@@ -47,19 +47,10 @@ void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<int>
     out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out) {
-    out.assign(model.bodies.size(), SolverBody{});
-    for (size_t i = 0; i < out.size(); ++i) loadBody(model, state, static_cast<int>(i), out[i]);
-}
-
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
                       const std::vector<int>& only) {
     out.assign(model.bodies.size(), SolverBody{});
     for (int i : only) loadBody(model, state, i, out[i]);
-}
-
-void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state) {
-    for (int i : model.dynamicBodies) storeBody(model, bodies[i], i, state);
 }
 
 void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state,
@@ -109,10 +100,10 @@ bool conditionedInverse(const Eigen::Matrix4d& M, Eigen::Matrix4d& inv) {
 // The k points of one manifold share its normal, so their K = J M⁻¹ Jᵀ has rank 3 at most
 // (each row of J is (n, r × n) for a body, and r × n lies in the plane normal to n): four
 // points always have a null direction u, the impulses that cancel out. K⁺ is then
-// (K + s u uᵀ)⁻¹ - u uᵀ / s for any s > 0, a Cholesky inverse instead of an
-// eigen-decomposition (which was a fifth of a resting pile's step). Fewer points, or a K
-// that is not that well conditioned (points in a line, nearly coincident), take the
-// eigen-decomposition.
+// (K + s u uᵀ)⁻¹ - u uᵀ / s for any s > 0, a 4 x 4 cofactor inverse instead of an
+// eigen-decomposition (which was a fifth of a resting pile's step); fewer points invert
+// K directly. A K that is not that well conditioned (points in a line, nearly coincident)
+// takes the eigen-decomposition.
 Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
     const double scale = K.topLeftCorner(k, k).trace() / k;
     if (k <= 1 || !(scale > 0.0)) return pseudoInverseByEigen(K, k);

@@ -32,15 +32,10 @@ void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<int>
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
                       const std::vector<int>& only);
 
-/// Writes back the momenta of the bodies `only` as storeSolverBodies does.
+/// Writes back the momenta of the bodies `only` that are dynamic, awake and took an
+/// impulse: P = M v, L = I(t) ω.
 void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state,
                        const std::vector<int>& only);
-
-/// Loads every body of `state` (`out` is resized to the body count).
-void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out);
-
-/// Writes the momenta of the dynamic awake bodies that took an impulse back: P = M v, L = I(t) ω.
-void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state);
 
 inline Vec3 pointVelocity(const SolverBody& b, const Vec3& r) { return b.v + b.w.cross(r); }
 
