@@ -29,7 +29,9 @@
 // - Refused: springs.
 // - Known: dWorldStep's Dantzig LCP reports "LCP internal error, s <= 0" on a 20-box tower
 //   from the first step (with 1 to 8 points per pair, CFM 1e-10 to 1e-3, with or without
-//   the friction pyramid) and the tower falls; dWorldQuickStep keeps it standing. A convex
+//   the friction pyramid) and the tower falls; dWorldQuickStep keeps it standing. A step
+//   that ODE reports failed (it returns 0 when its memory runs out: dWorldStep's matrices
+//   grow with the square of the contact rows) throws, and the tables show the failure. A convex
 //   hull resting on a triangle mesh (libccd, one point per triangle) rocks by a few mm.
 #include "engine_adapter.h"
 #include "peer_common.h"
@@ -41,6 +43,7 @@
 #include <cstdio>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 
 namespace tumble::bench {
 namespace {
@@ -324,12 +327,21 @@ void OdeAdapter::step() {
     }
     pending_ = 0;
     dSpaceCollide(space_, this, &OdeAdapter::nearCallback);
-    if (quick_) {
-        dWorldQuickStep(world_, dt_);
-    } else {
-        dWorldStep(world_, dt_);
-    }
+    // Both return 0 when ODE could not allocate its working memory; the world is then left
+    // as it was (no step taken). dWorldStep needs memory of the order of the square of the
+    // constraint rows: on pyramid-1240 (some 78 000 rows in one island) it fails at every
+    // step, and a benchmark that ignored it timed ODE's collision alone and reported a
+    // pyramid that "stands" because it never moved.
+    const int ok = quick_ ? dWorldQuickStep(world_, dt_) : dWorldStep(world_, dt_);
     dJointGroupEmpty(group_);
+    if (!ok) {
+        char what[160];
+        std::snprintf(what, sizeof what,
+                      "ODE's %s failed at t = %g s: it could not allocate its working memory "
+                      "(%d contact points); no step was taken",
+                      quick_ ? "dWorldQuickStep" : "dWorldStep", time_, pending_);
+        throw std::runtime_error(what);
+    }
     contacts_ = pending_;
     time_ += dt_;
 }
