@@ -73,6 +73,22 @@ Shape groundMesh(double h) {
                      {{0, 1, 2}, {0, 2, 3}});
 }
 
+// A flat square ground in y = 0 from -h to h in x and z, of n x n cells of two triangles
+// each, faces up.
+Shape gridGround(double h, int n) {
+    std::vector<Vec3> v;
+    std::vector<std::array<int, 3>> t;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k <= n; ++k) v.emplace_back(-h + 2 * h * i / n, 0.0, -h + 2 * h * k / n);
+    auto at = [n](int i, int k) { return i * (n + 1) + k; };
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < n; ++k) {
+            t.push_back({at(i, k), at(i, k + 1), at(i + 1, k + 1)});
+            t.push_back({at(i, k), at(i + 1, k + 1), at(i + 1, k)});
+        }
+    return meshShape(v, t);
+}
+
 double distanceAt(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double s) {
     return gjkDistance(proxyOf(a, sa.at(s)), proxyOf(b, sb.at(s))).distance;
 }
@@ -239,6 +255,35 @@ private slots:
         QVERIFY(hit && hit->s <= 0.55 && (0.55 - hit->s) * 5 <= tol);
         // A miss: the sphere falls beside the ground.
         QVERIFY(!timeOfImpact(ball, moving(Vec3(6, 3, 0), Vec3(6, -2, 0)), ground, still(Vec3::Zero()), tol));
+    }
+
+    void turningBodiesOverALargeMesh() {
+        // The turning bar of boxTurningOntoPlane, far from the centre of a ground of 12 800
+        // small triangles (the triangles a turning body can reach are looked up around its
+        // own path, not around the mesh's centre): the same closed-form time, whether the
+        // ground stands still or slides along its own plane, and for the bar as a mesh too.
+        const Shape bar = Shape::box(Vec3(1, 0.1, 0.1)), ground = gridGround(10.0, 80);
+        const double phi = std::atan2(0.1, 1.0), exact = std::asin(0.5 / std::hypot(1.0, 0.1)) - phi;
+        const double tol = 1e-6;
+        const Vec3 at(7.3, 0.5, -6.1);
+        const Sweep sa = moving(at, at, Quat::Identity(), about(Vec3::UnitZ(), 1.0));
+        for (const Sweep& sg : {still(Vec3::Zero()), moving(Vec3::Zero(), Vec3(0.4, 0, -0.3))}) {
+            const auto hit = timeOfImpact(bar, sa, ground, sg, tol);
+            QVERIFY(hit.has_value());
+            QVERIFY(hit->s <= exact && (exact - hit->s) * 0.8 <= tol);
+            QVERIFY(hit->normal.y() > 0.999);
+        }
+        // A cube mesh turning 1 rad about x as it falls onto the ground off its centre, its
+        // centre of mass 0.2 from its frame's origin: the same time as against the plane.
+        Shape cube = cubeMesh(0.5);
+        Sweep drop = moving(Vec3(-8.2, 2.5, 4.4), Vec3(-8.2, -0.5, 4.4), Quat::Identity(),
+                            about(Vec3::UnitX(), 1.0));
+        drop.localCenter = Vec3(0.2, 0, 0);
+        const auto onPlane = timeOfImpact(cube, drop, Shape::plane(Vec3(0, 1, 0), 0.0), still(Vec3::Zero()), tol);
+        const auto onMesh = timeOfImpact(cube, drop, ground, still(Vec3::Zero()), tol);
+        QVERIFY(onPlane && onMesh);
+        QVERIFY2(std::abs(onPlane->s - onMesh->s) * 3 <= 2 * tol,
+                 qPrintable(QString("plane %1, mesh %2").arg(onPlane->s).arg(onMesh->s)));
     }
 };
 

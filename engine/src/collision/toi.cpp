@@ -94,20 +94,26 @@ bool spheresMiss(const Sweep& sa, double rA, const Sweep& sb, double rB, double 
     return (d0 + t * dd).norm() - rA - rB > tol;
 }
 
-// The region of mesh-local space that a ball of radius r about the other body's centre
-// (sweep `so`) can reach over the step, as a box in the mesh's frame (sweep `sm`).
+// The region of mesh-local space that a ball of radius r about the point at offsetLocal from
+// the other body's centre (sweep `so`) can reach over the step, as a box in the mesh's
+// frame (sweep `sm`). While the mesh does not turn, the other centre's position in the
+// mesh's frame is linear in s (both centres move linearly), so the box of its two ends
+// holds it; a turning other body moves the offset point on a sphere of its length about
+// that centre.
 Aabb sweptBoxInMesh(const Sweep& so, const Vec3& offsetLocal, double r, const Sweep& sm) {
     Aabb box;
-    if (!turns(sm) && !turns(so)) {
+    if (!turns(sm)) {
         const Mat3 Rm = sm.at(0).R;
-        const Mat3 Ro = so.at(0).R;
+        const bool fixedOffset = !turns(so);
+        const Vec3 offset = fixedOffset ? Vec3(so.at(0).R * offsetLocal) : Vec3::Zero();
         for (int k = 0; k < 2; ++k) {
-            const Vec3 c = (k ? so.c1 : so.c0) + Ro * offsetLocal - (k ? sm.c1 : sm.c0);
+            const Vec3 c = (k ? so.c1 : so.c0) + offset - (k ? sm.c1 : sm.c0);
             box.add(Rm.transpose() * c + sm.localCenter);
         }
-        return box.inflated(r);
+        return box.inflated(fixedOffset ? r : r + offsetLocal.norm());
     }
-    // Turning: the centre's separation is linear in s, largest at an end; any orientation.
+    // A turning mesh: the centres' separation is linear in s, largest at an end; any
+    // orientation.
     const double far = std::max((so.c0 - sm.c0).norm(), (so.c1 - sm.c1).norm()) + offsetLocal.norm();
     box.add(sm.localCenter);
     return box.inflated(far + r);
