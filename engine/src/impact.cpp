@@ -174,10 +174,25 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     }
     const double approachTol = 1e-9 * scale + 1e-15;
 
+    // A manifold found with nothing approaching is looked at again only once an impulse
+    // has changed one of its bodies: the sweeps then give bit for bit what sweeping every
+    // manifold gives, at the cost of the manifolds the impact actually reaches (an impact
+    // on a pile of thousands travels down one column of it).
+    s.changedAt.assign(model.bodies.size(), -1);
+    s.checkedAt.assign(s.manifolds.size(), 0);
+    s.approached.assign(s.manifolds.size(), 1);
+    long clock = 0;
     for (;;) {
         bool any = false;
-        for (int k : s.manifolds)
-            any |= solveManifold(model, contacts[k], s.bodies, touchTolerance, approachTol, restingSpeed, ledger);
+        for (size_t i = 0; i < s.manifolds.size(); ++i) {
+            const Manifold& m = contacts[s.manifolds[i]];
+            if (!s.approached[i] && s.checkedAt[i] > s.changedAt[m.bodyA] && s.checkedAt[i] > s.changedAt[m.bodyB])
+                continue;
+            s.checkedAt[i] = ++clock;
+            s.approached[i] = solveManifold(model, m, s.bodies, touchTolerance, approachTol, restingSpeed, ledger);
+            if (s.approached[i]) s.changedAt[m.bodyA] = s.changedAt[m.bodyB] = clock;
+            any |= s.approached[i] != 0;
+        }
         if (!any) break;
         if (++result.sweeps == kMaxSweeps) {
             result.limited = true;

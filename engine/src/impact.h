@@ -35,6 +35,10 @@ struct ImpactScratch {
     // collectIsland's search: each body's touching manifolds (byBody[first[b] .. first[b+1]))
     std::vector<int> first, fill, byBody, queue;
     std::vector<std::uint8_t> taken;
+    // The sweeps' bookkeeping: when each body last got an impulse, when each manifold of the
+    // island was last solved, and whether it had points approaching then.
+    std::vector<long> changedAt, checkedAt;
+    std::vector<std::uint8_t> approached;
 };
 
 struct ImpactResult {
