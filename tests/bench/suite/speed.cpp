@@ -136,8 +136,10 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
                 } else if (WIFEXITED(status) && WEXITSTATUS(status) == 124) {
                     row.note = "stopped after " + std::to_string(limit) + " s (the time limit of a run)";
                 } else {
+                    // A peer that fails is a finding for the tables (ODE's dWorldStep runs out
+                    // of memory on pyramid-1240); only Tumble failing fails the benchmark.
                     row.ok = false;
-                    ok = false;
+                    if (row.engine == "tumble") ok = false;
                     row.note = "failed (status " + std::to_string(status) + "): " + out.substr(0, 300);
                 }
                 while (!row.note.empty() && row.note.back() == '\n') row.note.pop_back();
