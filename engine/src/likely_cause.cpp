@@ -118,7 +118,8 @@ double oscillatorLimit(Integrator id) {
     switch (id) {
         case Integrator::Euler: return 0.0;
         case Integrator::SymplecticEuler: return 2.0;
-        case Integrator::Splitting: return 2.0;
+        case Integrator::Splitting:
+        case Integrator::Splitting4: return 2.0;
         case Integrator::Rk4: return 2.0 * std::sqrt(2.0);
     }
     return 0.0;

@@ -14,7 +14,7 @@ using namespace tumble::test;
 
 namespace {
 
-const char* const kAll[] = {"euler", "symplectic-euler", "rk4", "splitting"};
+const char* const kAll[] = {"euler", "symplectic-euler", "rk4", "splitting", "splitting-4"};
 
 void addIntegratorRows() {
     QTest::addColumn<QString>("integrator");
@@ -45,6 +45,27 @@ SceneDesc coupledScene(const std::string& integrator) {
     return sceneOf({b}, Vec3(0, -9.81, 0), integrator);
 }
 
+// The 1 kg box of issue 18 (half extents 0.5, 0.2, 0.1) spun at `spin` rad/s about its
+// long axis (x, the smallest moment: stable), a little off it; no gravity.
+SceneDesc fastSpinner(const std::string& integrator, double spin) {
+    BodyDesc b = boxBody("spinner", Vec3(0.5, 0.2, 0.1), 1.0);
+    b.angularVelocity = Vec3(spin, 2.0, 2.0);
+    return sceneOf({b}, Vec3::Zero(), integrator);
+}
+
+// The angle of the rotation from a to b (well resolved near zero, unlike 2 acos(a·b)).
+double angleBetween(const Quat& a, const Quat& b) {
+    const Quat d = a.normalized().conjugate() * b.normalized();
+    return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
+}
+
+Quat orientationAfter(const SceneDesc& scene, double T, double h) {
+    World w(scene);
+    const long n = std::lround(T / h);
+    for (long k = 0; k < n; ++k) w.step(T / n);
+    return w.state().bodies[0].q;
+}
+
 double poseError(const BodyState& a, const BodyState& b) {
     const double dq = std::min((a.q.coeffs() - b.q.coeffs()).norm(), (a.q.coeffs() + b.q.coeffs()).norm());
     return (a.x - b.x).norm() + dq;
@@ -56,7 +77,7 @@ class TestIntegrators : public QObject {
     Q_OBJECT
 private slots:
     void namesAndDefault() {
-        QCOMPARE(integrators().size(), size_t(4));
+        QCOMPARE(integrators().size(), size_t(std::size(kAll)));
         QCOMPARE(QString(defaultIntegrator().name), QString("splitting"));
         for (const char* name : kAll) QVERIFY(findIntegrator(name) != nullptr);
         QVERIFY(findIntegrator("rk5") == nullptr);
@@ -185,6 +206,101 @@ private slots:
         QVERIFY(eSplit * 100 < eRk4);
     }
 
+    // A fast spin at the steps people use (issue 18): a wheel, a fan or a drill turns
+    // radians a step. The energy stays to rounding and |L| exactly, the long axis stays
+    // where the exact motion keeps it (within 1.5 times its first angle from L: the
+    // splitting alone flipped the box to its other axis at 1 000 rad/s and 1/240 s, its
+    // energy x5.8), and the orientation is close to a converged run of the same
+    // integrator at a 64 times smaller step (measured: 1.2e-3 rad for splitting, 4.4e-5
+    // for splitting-4, after 2 s).
+    void fastSpinKeepsEnergyAxisAndPhase_data() {
+        QTest::addColumn<QString>("integrator");
+        QTest::addColumn<double>("spin");
+        QTest::addColumn<double>("h");
+        QTest::addColumn<double>("maxOrientationError");
+        for (const char* name : {"splitting", "splitting-4"}) {
+            const bool four = std::string(name) == "splitting-4";
+            QTest::addRow("%s 100 rad/s at 1/60", name) << name << 100.0 << 1.0 / 60 << (four ? 1e-4 : 2e-3);
+            QTest::addRow("%s 300 rad/s at 1/240", name) << name << 300.0 << 1.0 / 240 << (four ? 1e-4 : 2e-3);
+            QTest::addRow("%s 1000 rad/s at 1/240", name) << name << 1000.0 << 1.0 / 240 << (four ? 1e-4 : 2e-3);
+            QTest::addRow("%s 1000 rad/s at 1/60", name) << name << 1000.0 << 1.0 / 60 << (four ? 1e-4 : 2e-3);
+        }
+    }
+    void fastSpinKeepsEnergyAxisAndPhase() {
+        QFETCH(QString, integrator);
+        QFETCH(double, spin);
+        QFETCH(double, h);
+        QFETCH(double, maxOrientationError);
+        const SceneDesc scene = fastSpinner(integrator.toStdString(), spin);
+        const double T = 2.0;
+        World w(scene);
+        const double e0 = energy(w.model(), w.state()).kinetic;
+        const Vec3 L0 = w.state().bodies[0].L;
+        auto axisAngle = [&] {
+            const Vec3 x = w.state().bodies[0].q * Vec3::UnitX();
+            return std::acos(std::min(1.0, x.dot(L0) / L0.norm()));
+        };
+        const double theta0 = axisAngle();
+        double worstE = 0, worstL = 0, worstTheta = 0;
+        const long n = std::lround(T / h);
+        for (long k = 0; k < n; ++k) {
+            w.step(h);
+            worstE = std::max(worstE, std::abs(energy(w.model(), w.state()).kinetic - e0) / e0);
+            worstL = std::max(worstL, (w.state().bodies[0].L - L0).norm() / L0.norm());
+            worstTheta = std::max(worstTheta, axisAngle());
+        }
+        const double phase = angleBetween(w.state().bodies[0].q, orientationAfter(scene, T, h / 64));
+        qInfo("energy %.3g, L %.3g, axis %.4g rad (start %.4g), orientation against h/64 %.3g rad", worstE, worstL,
+              worstTheta, theta0, phase);
+        QVERIFY(worstE < 1e-12);
+        QVERIFY(worstL == 0.0);
+        QVERIFY(worstTheta < 1.5 * theta0);
+        QVERIFY(phase < maxOrientationError);
+    }
+
+    // The Dzhanibekov top (the tumbling box, spinning about its unstable middle axis) at
+    // dt 1e-3 for 2 s, against splitting-4 at a 16 times smaller step and RK4 at a 64
+    // times smaller one (which agree to 1e-13 rad). Measured: splitting 5.8e-7 rad,
+    // splitting-4 2.2e-11.
+    void dzhanibekovOrientation_data() {
+        QTest::addColumn<QString>("integrator");
+        QTest::addColumn<double>("maxError");
+        QTest::newRow("splitting") << "splitting" << 1e-6;
+        QTest::newRow("splitting-4") << "splitting-4" << 1e-9;
+    }
+    void dzhanibekovOrientation() {
+        QFETCH(QString, integrator);
+        QFETCH(double, maxError);
+        const double T = 2.0, h = 1e-3;
+        const Quat fine = orientationAfter(tumblingBox("splitting-4"), T, h / 16);
+        const Quat rk4 = orientationAfter(tumblingBox("rk4"), T, h / 64);
+        const double error = angleBetween(orientationAfter(tumblingBox(integrator.toStdString()), T, h), fine);
+        qInfo("references apart %.3g rad; %s at 1e-3: %.3g rad", angleBetween(fine, rk4), qPrintable(integrator),
+              error);
+        QVERIFY(angleBetween(fine, rk4) < 1e-11);
+        QVERIFY(error < maxError);
+    }
+
+    // The order of the free rotation alone (the tumbling box, 2 s, against RK4 at 1/6400 s):
+    // 2 for splitting, 4 for splitting-4.
+    void freeRotationOrder_data() {
+        QTest::addColumn<QString>("integrator");
+        QTest::addColumn<double>("expected");
+        QTest::newRow("splitting") << "splitting" << 2.0;
+        QTest::newRow("splitting-4") << "splitting-4" << 4.0;
+    }
+    void freeRotationOrder() {
+        QFETCH(QString, integrator);
+        QFETCH(double, expected);
+        const double T = 2.0;
+        const Quat reference = orientationAfter(tumblingBox("rk4"), T, 1.0 / 6400);
+        const double e1 = angleBetween(orientationAfter(tumblingBox(integrator.toStdString()), T, 1.0 / 50), reference);
+        const double e2 = angleBetween(orientationAfter(tumblingBox(integrator.toStdString()), T, 1.0 / 100), reference);
+        const double order = std::log2(e1 / e2);
+        qInfo("%s: errors %.3g, %.3g: order %.2f", qPrintable(integrator), e1, e2, order);
+        QVERIFY2(std::abs(order - expected) < 0.25, qPrintable(QString::number(order)));
+    }
+
     // The measured order of convergence: error against a converged reference (RK4 at a
     // step 64 times smaller than the finest tested) at h and h/2; log2 of the ratio.
     void convergenceOrder_data() {
@@ -194,6 +310,7 @@ private slots:
         QTest::newRow("symplectic-euler") << "symplectic-euler" << 1.0 / 400;
         QTest::newRow("rk4") << "rk4" << 1.0 / 100;
         QTest::newRow("splitting") << "splitting" << 1.0 / 100;
+        QTest::newRow("splitting-4") << "splitting-4" << 1.0 / 100;
     }
     void convergenceOrder() {
         QFETCH(QString, integrator);

@@ -6,7 +6,7 @@
 
 namespace tumble {
 
-enum class Integrator { Euler, SymplecticEuler, Rk4, Splitting };
+enum class Integrator { Euler, SymplecticEuler, Rk4, Splitting, Splitting4 };
 
 struct IntegratorInfo {
     Integrator id;

@@ -111,9 +111,11 @@ public:
     std::vector<std::pair<std::string, double>> errors() const override {
         std::vector<std::pair<std::string, double>> out;
         if (reference_) {
-            const Quat r = reference_();
-            const double c = std::min(1.0, std::abs(r.normalized().dot(last_.q.normalized())));
-            out.emplace_back("orientation_error_rad", bad_ ? kInf : 2.0 * std::acos(c));
+            // The angle of the rotation between them, from the difference quaternion's parts
+            // (2 acos of the dot product cannot resolve angles below about 2e-8 rad).
+            const Quat d = reference_().normalized().conjugate() * last_.q.normalized();
+            const double angle = 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
+            out.emplace_back("orientation_error_rad", bad_ ? kInf : angle);
         }
         if (axisAngle_) out.emplace_back("axis_angle_error_rad", bad_ ? kInf : dTheta_);
         out.emplace_back("energy_rel_error", bad_ ? kInf : dE_);
