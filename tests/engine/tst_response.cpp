@@ -333,7 +333,8 @@ private slots:
     // and a fifth arriving at v along the row; no gravity, e = 1, no friction. The momentum
     // travels down the row: the last ball leaves at v, the other four stop. The velocities
     // are constant between impacts, so this holds to rounding: 1e-9 v, and the kinetic
-    // energy to 1e-9 relative.
+    // energy to 1e-9 relative. The positions hold to 1e-9 m when the moment of impact does
+    // (the time of impact closes its last gap by a secant step).
     void newtonsCradle() {
         const double r = 0.1, v = 1.0, gap = 0.05;
         std::vector<BodyDesc> balls;
@@ -349,6 +350,12 @@ private slots:
 
         const QString problem = cradleEndProblem(w, 5, v, ke0);
         QVERIFY2(problem.isEmpty(), qPrintable(problem));
+        // Positions (issue 18): the first ball stopped where it touched the row (0.05 m on),
+        // the row still, the last ball moving on since 0.05 s.
+        const double t = w.state().time, row0 = 2 * r + gap;
+        const QString where =
+            cradlePositionProblem(w, {gap, row0, row0 + 2 * r, row0 + 4 * r, row0 + 6 * r + v * (t - gap / v)});
+        QVERIFY2(where.isEmpty(), qPrintable(where));
     }
 
     // 5. A box falling flat onto the plane touches at four corners at once. The answer must

@@ -72,6 +72,7 @@ public:
 private:
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
+    void impactsAtStart();             // touching bodies that approach as a run starts
     void impactAt(double t0);          // cut the step at the first impact and resolve it
     void finishStep(const State& before, const std::vector<collision::Manifold>& contacts);
     void park();                       // the islands without an impact keep their free step

@@ -50,16 +50,35 @@ bool turns(const Sweep& s) {
 }
 
 // Conservative advancement over [0, sEnd]; bound(n, s) is mu for the normal n at time s.
+// Once within tol, the gap left (up to tol) is closed to a thousandth of tol by one secant
+// step through the last two probes, kept only if the shapes are then apart by no more than
+// before and not touching yet: for bodies moving straight at each other the moment is then
+// early by tol/1000 / approach speed instead of up to tol / approach speed (a cradle's last
+// ball left 5e-8 m early), and a refinement that would overshoot is dropped, so the answer
+// is still never after the first contact.
 template <class DistanceAt, class Bound>
 std::optional<Impact> advance(DistanceAt&& distanceAt, Bound&& bound, double tol, double sEnd) {
-    double s = 0.0;
+    double s = 0.0, sBefore = 0.0, dBefore = 0.0;
     for (int iter = 0;; ++iter) {
         const Probe p = distanceAt(s);
         // At the iteration cap the current time is still safe (never past a contact).
-        if (p.distance <= tol || iter == kMaxIterations)
-            return Impact{s, p.normal, 0.5 * (p.pointA + p.pointB)};
+        if (p.distance <= tol || iter == kMaxIterations) {
+            Impact hit{s, p.normal, 0.5 * (p.pointA + p.pointB)};
+            const double gap = 1e-3 * tol;
+            if (iter > 0 && p.distance > gap && dBefore > p.distance) {
+                const double sNext = s + (p.distance - gap) * (s - sBefore) / (dBefore - p.distance);
+                if (sNext > s && sNext <= sEnd) {
+                    const Probe q = distanceAt(sNext);
+                    if (q.distance >= 0.0 && q.distance <= p.distance)
+                        hit = Impact{sNext, q.normal, 0.5 * (q.pointA + q.pointB)};
+                }
+            }
+            return hit;
+        }
         const double mu = bound(p.normal, s);
         if (!(mu > 0.0)) return std::nullopt;
+        sBefore = s;
+        dBefore = p.distance;
         s += (p.distance - 0.5 * tol) / mu;
         if (!(s <= sEnd)) return std::nullopt;
     }
