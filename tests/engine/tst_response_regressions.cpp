@@ -349,6 +349,29 @@ private slots:
         const QString where = cradlePositionProblem(w, {0.0, 2 * r, 4 * r, 6 * r, 8 * r + v * w.state().time});
         QVERIFY2(where.isEmpty(), qPrintable(where));
     }
+
+    // 8. The order of the sweeps with unequal masses (docs/architecture.md): a 2 kg ball
+    // at 1 m/s touching a row of two 1 kg balls at t = 0, e = 1. Sweep 1: A meets B
+    // (A 1/3, B 4/3), B meets C (B 0, C 4/3); sweep 2: A meets B again (A 1/9, B 4/9); then
+    // nothing approaches. Momentum 2 and kinetic energy 1 J are kept; to 1e-12.
+    void sequentialOrderWithUnequalMasses() {
+        const double r = 0.125;
+        std::vector<BodyDesc> balls;
+        for (int k = 0; k < 3; ++k) {
+            BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, k == 0 ? 2.0 : 1.0), 1.0, 0.0);
+            b.position = Vec3(2 * r * k, 0, 0);
+            if (k == 0) b.velocity = Vec3(1.0, 0, 0);
+            balls.push_back(b);
+        }
+        World w(sceneOf(balls, Vec3::Zero()));
+        w.step(kDt);
+        const double expected[3] = {1.0 / 9, 4.0 / 9, 4.0 / 3};
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 u = velocityOf(w, k);
+            QVERIFY2((u - Vec3(expected[k], 0, 0)).norm() < 1e-12,
+                     qPrintable(QString("ball %1 at %2 m/s, expected %3").arg(k).arg(u.x(), 0, 'g', 17).arg(expected[k])));
+        }
+    }
 };
 
 QTEST_APPLESS_MAIN(TestResponseRegressions)
