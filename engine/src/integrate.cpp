@@ -138,6 +138,7 @@ void symplecticEuler(const Model& model, State& state, double h, IntegrateScratc
 //    less than kMaxTurn a step is stepped as it always was (energy error a bounded
 //    oscillation, 4e-7 of it at 0.5 rad a step on a tumbling box).
 constexpr double kMaxTurn = 0.5;  // rad per sub-step of the splitting
+constexpr int kMaxSubsteps = 1000;
 
 // Π (body axes) moved on its sphere to the energy level 2T = e0 (Newton along the energy's
 // tangential gradient); unchanged when it is there already or on a principal axis.
@@ -164,7 +165,10 @@ void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) 
     const Vec3 bodyL0 = s.q.conjugate() * s.L;
     const Vec3 spin = b.principalAxes.transpose() * bodyL0;
     const Vec3 omega = spin.cwiseQuotient(b.principalMoments);  // principal axes
-    const int n = std::max(1, static_cast<int>(std::ceil(h * omega.norm() / kMaxTurn)));
+    // At most kMaxSubsteps (a body past 500 rad a step keeps its energy and axis but not
+    // its phase); a non-finite spin is left to the finite-state check.
+    const double turns = h * omega.norm() / kMaxTurn;
+    const int n = turns > 1.0 ? static_cast<int>(std::ceil(std::min(turns, double(kMaxSubsteps)))) : 1;
     const double hs = h / n;
     // splitting-4: Yoshida's triple jump, three symmetric second-order steps of weights
     // g1, g0, g1 (g0 < 0), is fourth order; the projection below changes it by what the
