@@ -48,6 +48,7 @@ struct ContactSolverScratch {
     /// The rest of point k: for the position passes, the warm start and the memory.
     struct PointGeometry {
         Vec3 localA, localB, localN;  // A's and B's surface points, n in B
+        Vec3 roundShiftA, roundShiftB;  // a round body's surface point less the midpoint (else 0)
         double slop = 0.0, size = 0.0;
         std::uint32_t feature = 0;
         Vec3 position;
