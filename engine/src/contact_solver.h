@@ -91,6 +91,7 @@ struct ContactSolverScratch {
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
+    std::vector<Vec3> slide;         // per body: the velocity change of sliding friction (redoPoses)
 };
 
 struct ContactSolverSettings {
