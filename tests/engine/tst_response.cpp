@@ -86,6 +86,15 @@ Drift driftFrom(const World& w, const State& start, int first) {
     return d;
 }
 
+// A ball of radius r and the given mass resting on a ground plane, set sliding along x at
+// v0 without spin; friction mu on both.
+SceneDesc ballSetSliding(double r, double mass, double v0, double mu) {
+    BodyDesc ball = material(sphereBody("ball", r, mass), 0.0, mu);
+    ball.position = Vec3(0, r, 0);
+    ball.velocity = Vec3(v0, 0, 0);
+    return sceneOf({groundPlane(0.0, mu), ball});
+}
+
 }  // namespace
 
 class TestResponse : public QObject {
@@ -529,10 +538,7 @@ private slots:
     // step) plus 1 % (solver). The rolling speed: 1 %.
     void slidingBecomesRolling() {
         const double r = 0.2, v0 = 3.0, mu = 0.3;
-        BodyDesc ball = material(sphereBody("ball", r, 1.0), 0.0, mu);
-        ball.position = Vec3(0, r, 0);
-        ball.velocity = Vec3(v0, 0, 0);
-        World w(sceneOf({groundPlane(0.0, mu), ball}));
+        World w(ballSetSliding(r, 1.0, v0, mu));
         const double tRoll = 2 * v0 / (7 * mu * kG);
         auto slip = [&] {  // velocity of the material point at the contact
             return (velocityOf(w, 1) + omegaOf(w, 1).cross(Vec3(0, -r, 0))).norm();
@@ -576,10 +582,7 @@ private slots:
     void bowlingBallRollsExactly() {
         QFETCH(double, h);
         const double r = 0.108, v0 = 8.0, mu = 0.12;
-        BodyDesc ball = material(sphereBody("ball", r, 7.0), 0.0, mu);
-        ball.position = Vec3(0, r, 0);
-        ball.velocity = Vec3(v0, 0, 0);
-        World w(sceneOf({groundPlane(0.0, mu), ball}));
+        World w(ballSetSliding(r, 7.0, v0, mu));
         const double tRoll = 2 * v0 / (7 * mu * kG);
         double worstSlide = 0.0, lowest = r;
         while (w.state().time < 2 * tRoll) {
