@@ -284,7 +284,8 @@ void solveContacts(const Model& model, State& state, const State& before,
     loadSolverBodies(model, state, s.bodies, s.involved);
     prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
-    s.entry = s.bodies;
+    s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
+    for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStart(state, cfg.h, s);
     for (int k = 0; k < cfg.iterations; ++k) iterate(s, k);
     if (!s.blocks.empty()) shockPass(s, kShockPasses);

@@ -79,6 +79,7 @@ World::World(Model model, State state)
         if (std::isfinite(scratch_->sizes.back())) largest = std::max(largest, scratch_->sizes.back());
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
+    scratch_->contacts = needsContacts(model_);
     forgetSleepUnlessSleeping();
     armEnergyGuard(model_, state_, scratch_->energy);
 }
@@ -215,7 +216,7 @@ void World::step(double h) {
     ++profile_.steps;
     s.resting = restingSpeed(model_, h);
     s.margin = contactMargin(model_, s.touchTolerance, h);
-    if (!needsContacts(model_)) {  // nothing can touch: the contact stages are skipped
+    if (!s.contacts) {  // nothing can touch: the contact stages are skipped
         advance(h);
         guardEnergy(model_, state_, s.energy);
         return;

@@ -30,6 +30,7 @@ struct World::Scratch {
     std::vector<int> seeds;
     std::vector<collision::ImpactEvent> impacts;  // of the whole step
     double touchTolerance = 0.0;
+    bool contacts = false;  // needsContacts(model): can two bodies ever touch (the model never changes)
     double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
     double margin = 0.0;   // contact points are found this far apart (contactMargin)
     std::vector<collision::Manifold> restingContacts;  // at a cut, all but the impacting pairs'
