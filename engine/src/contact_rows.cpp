@@ -153,19 +153,30 @@ void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within
 // the Coulomb limits of the current normal impulses.
-void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
-    if (block.mu <= 0.0) return;
+double normalImpulse(const ContactSolverScratch& s, const ContactSolverScratch::Block& block) {
     double normal = 0.0;
     for (int i = 0; i < block.count; ++i) normal += s.points[block.begin + i].lambdaN;
-    const double limit = block.mu * normal;
+    return normal;
+}
+
+Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverScratch::Block& block) {
+    const Point& p = s.points[block.begin];
+    const SolverBody& A = s.bodies[p.a];
+    const SolverBody& B = s.bodies[p.b];
+    const Vec3 dv = A.v - B.v;
+    return {block.t1.dot(dv) + block.armA[0].dot(A.w) - block.armB[0].dot(B.w),
+            block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w)};
+}
+
+void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
+    if (block.mu <= 0.0) return;
+    const double limit = block.mu * normalImpulse(s, block);
     // No normal impulse holds no friction: nothing to do when none is held.
     if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return;
     const Point& p = s.points[block.begin];
-    SolverBody& A = s.bodies[p.a];
-    SolverBody& B = s.bodies[p.b];
-    const Vec3 dv = A.v - B.v;
-    const Eigen::Vector2d vt(block.t1.dot(dv) + block.armA[0].dot(A.w) - block.armB[0].dot(B.w),
-                             block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w));
+    const SolverBody& A = s.bodies[p.a];
+    const SolverBody& B = s.bodies[p.b];
+    const Eigen::Vector2d vt = slipVelocity(s, block);
     Eigen::Vector2d l = block.lambdaT - block.tangentMass * vt;
     if (l.norm() > limit) l *= limit / l.norm();
     // The twist is always clamped: a one-point patch (radius 0) may hold none, whatever

@@ -209,23 +209,17 @@ void remember(const Model& model, const State& state, double h, ContactSolverScr
 // the whole step, under a friction force of constant size) and whose surfaces still slide
 // faster than `sliding` at the end. Friction inside the limit holds the bodies together
 // and is not counted.
-void slidingFriction(const Model& model, double sliding, ContactSolverScratch& s) {
-    s.slide.assign(model.bodies.size(), Vec3::Zero());
+void slidingFriction(double sliding, ContactSolverScratch& s) {
+    s.slide.resize(s.bodies.size());
+    for (int i : s.involved) s.slide[i] = Vec3::Zero();
     for (const auto& block : s.blocks) {
         if (block.mu <= 0.0) continue;
-        double normal = 0.0;
-        for (int i = 0; i < block.count; ++i) normal += s.points[block.begin + i].lambdaN;
-        const double limit = block.mu * normal;
+        const double limit = block.mu * normalImpulse(s, block);
         if (!(limit > 0.0) || block.lambdaT.norm() < (1.0 - 1e-9) * limit) continue;
-        const Point& p = s.points[block.begin];
         // ... and still sliding at the end: a resting pile's side contacts hold almost no
         // normal impulse, so their friction sits at its (tiny) limit while nothing moves.
-        const SolverBody& A = s.bodies[p.a];
-        const SolverBody& B = s.bodies[p.b];
-        const Vec3 dv = A.v - B.v;
-        const Eigen::Vector2d vt(block.t1.dot(dv) + block.armA[0].dot(A.w) - block.armB[0].dot(B.w),
-                                 block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w));
-        if (!(vt.norm() > sliding)) continue;
+        if (!(slipVelocity(s, block).norm() > sliding)) continue;
+        const Point& p = s.points[block.begin];
         const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;
         s.slide[p.a] += s.bodies[p.a].invMass * J;
         s.slide[p.b] -= s.bodies[p.b].invMass * J;
@@ -240,7 +234,7 @@ void slidingFriction(const Model& model, double sliding, ContactSolverScratch& s
 // so that a body at rest on a slope does not creep.
 void redoPoses(const Model& model, State& state, const State& before, double sliding, ContactSolverScratch& s) {
     const double h = state.time - before.time;
-    slidingFriction(model, sliding, s);
+    slidingFriction(sliding, s);
     for (int i : s.involved) {
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
         BodyState& b = state.bodies[i];
