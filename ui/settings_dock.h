@@ -38,6 +38,7 @@ public:
         Sleeping,
         Iterations,
         EnergyGuard,
+        Impacts,
         FieldCount
     };
 
@@ -65,6 +66,7 @@ private:
     QCheckBox* sleeping_;
     QSpinBox* iterations_;
     QCheckBox* energyGuard_;
+    QComboBox* impacts_;
     QLabel* gravityMessage_;
     QLabel* stepMessage_;
     QLabel* durationMessage_;
@@ -73,6 +75,7 @@ private:
     QLabel* sleepingMessage_;
     QLabel* iterationsMessage_;
     QLabel* energyGuardMessage_;
+    QLabel* impactsMessage_;
     // A scrub merges while the field keeps the focus; finishing an edit (Enter, focus out)
     // starts a new generation, so the next change of the same field is a new undo step.
     std::array<int, FieldCount> generation_{};

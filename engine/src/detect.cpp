@@ -110,11 +110,18 @@ void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance,
 }
 
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, double minApproach, const std::vector<double>& sizes, DetectScratch& s) {
+                 double tolerance, double minApproach, const std::vector<double>& sizes, bool missedOnly,
+                 DetectScratch& s) {
     s.impacts.clear();
+    if (missedOnly) {
+        s.found.clear();
+        for (const Manifold& m : s.contacts) s.found.push_back(pairKey(m.bodyA, m.bodyB));
+        std::sort(s.found.begin(), s.found.end());
+    }
     for (const auto& [a, b] : s.broadphase.pairs()) {
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) continue;
+        if (missedOnly && std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b))) continue;
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.

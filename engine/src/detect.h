@@ -25,6 +25,7 @@ struct DetectScratch {
     std::vector<collision::Manifold> contacts;
     std::vector<collision::ImpactEvent> impacts;
     std::vector<std::uint64_t> touching;  // sorted keys of the pairs touching at the start of the step
+    std::vector<std::uint64_t> found;     // sorted keys of the pairs with contacts at the end (findImpacts)
 };
 
 /// True when the model has two bodies that could ever touch (at least one not static);
@@ -55,7 +56,11 @@ void touchingPairs(const std::vector<collision::Manifold>& contacts, double touc
 /// is that near already at the start has its impact at t0. A pair whose points close no
 /// faster than `minApproach` there is not an impact: it is left to the contact solver.
 /// `sizes`: each body's bounding radius (a mesh's is a pass over its vertices: not per pair).
+/// With `missedOnly` (ImpactTiming::EndOfStep) a pair that has contacts at the end of the
+/// step (`s.contacts`) is left to the end of the step: only paths that crossed without
+/// touching at the end (a fast body through a thin one) get a moment of impact.
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, double minApproach, const std::vector<double>& sizes, DetectScratch& s);
+                 double tolerance, double minApproach, const std::vector<double>& sizes, bool missedOnly,
+                 DetectScratch& s);
 
 }  // namespace tumble

@@ -75,6 +75,10 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
     SolverBody& B = bodies[m.bodyB];
     const Vec3& n = m.normal;
     const double e = restitution(model, m);
+    // How gravity closes the pair along n: negative when it presses them together.
+    const Vec3& grav = model.settings.gravity;
+    const double closing =
+        n.dot((A.invMass > 0.0 ? grav : Vec3::Zero()) - (B.invMass > 0.0 ? grav : Vec3::Zero()));
     Vec3 rA[Manifold::kMaxPoints], rB[Manifold::kMaxPoints];
     double gain[Manifold::kMaxPoints];  // wanted change of the normal velocity
     int k = 0;
@@ -87,7 +91,13 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
         if (vn >= -std::max(approachTol, restingSpeed)) continue;
         rA[k] = a;
         rB[k] = b;
-        gain[k] = -(1.0 + e) * vn;
+        // Restitution of the speed at the touch: a point found overlapping by d (at the end of
+        // a step, not at its moment of impact) has fallen d under gravity since, and energy
+        // gives v_touch² = vn² + 2 a d. From vn itself the bounce would also return that fall
+        // once the position pass lifts the bodies out: an elastic ball gained m g d a bounce.
+        const double d = std::max(m.points[i].depth, 0.0);
+        const double touch = std::sqrt(std::max(vn * vn + 2.0 * closing * d, 0.0));
+        gain[k] = -vn + e * touch;
         ++k;
     }
     if (k == 0) return false;

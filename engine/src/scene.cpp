@@ -38,6 +38,8 @@ const char* toString(ForceType t) {
 
 const char* toString(Frame f) { return f == Frame::World ? "world" : "body"; }
 
+const char* toString(ImpactTiming t) { return t == ImpactTiming::Exact ? "exact" : "end-of-step"; }
+
 bool ShapeDesc::operator==(const ShapeDesc& o) const {
     return type == o.type && radius == o.radius && halfHeight == o.halfHeight &&
            halfExtents == o.halfExtents && normal == o.normal && distance == o.distance &&

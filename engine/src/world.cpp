@@ -6,6 +6,8 @@
 // moment, the impulses of the impact are applied there (impact.h), and the rest of the
 // step is taken the same way (at most kMaxCuts times a step; later impacts are left to the
 // contact solver). The step ends with the contact solver (contact_solver.h) and sleeping.
+// With settings.impacts = end-of-step, only pairs that are not found in contact at the end
+// of the step cut it (paths that crossed); the others' impacts are resolved at the end.
 //
 // Only the islands with an impact are cut (islands.h): the others are "parked" at the end
 // of their free step, flagged asleep so that no stage moves or pairs them, and their
@@ -138,7 +140,8 @@ void World::detect(double t0, double h) {
     profile_.narrowphase += since(t);
 
     t = Clock::now();
-    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, s.resting, s.sizes, d);
+    findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, s.resting, s.sizes,
+                model_.settings.impacts == ImpactTiming::EndOfStep, d);
     profile_.timeOfImpact += since(t);
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again

@@ -62,6 +62,7 @@ SceneDesc everyField() {
     s.settings.frameRate = 50;
     s.settings.sleeping = false;
     s.settings.solverIterations = 7;
+    s.settings.impacts = ImpactTiming::EndOfStep;
 
     BodyDesc ground;
     ground.name = "ground";
@@ -347,6 +348,10 @@ private slots:
             R"("forces": {})", "bodies[1].forces", "drop.json: bodies[1].forces: must be an array");
         row("unknown motion", R"("motion": "static")", R"("motion": "frozen")", "bodies[0].motion",
             "drop.json: bodies[0].motion: 'frozen' is not one of dynamic, static, kinematic");
+        row("unknown impact timing", R"("frame_rate": 30})", R"("frame_rate": 30, "impacts": "later"})",
+            "settings.impacts", "drop.json: settings.impacts: 'later' is not one of exact, end-of-step");
+        row("impact timing not a string", R"("frame_rate": 30})", R"("frame_rate": 30, "impacts": true})",
+            "settings.impacts", "drop.json: settings.impacts: must be a string");
 
         // Numbers a double cannot hold: the JSON library refuses them; so must the reader.
         row("1e999", R"("mass": 1,)", R"("mass": 1e999,)", "bodies[1].mass",
@@ -529,6 +534,24 @@ private slots:
         // Absent sleeping and solver_iterations take their documented defaults.
         QCOMPARE(scene.settings.sleeping, true);
         QCOMPARE(scene.settings.solverIterations, 20);
+        QVERIFY(scene.settings.impacts == ImpactTiming::Exact);
+    }
+
+    // "impacts" is read, and written back only when it is not the default (so a saved scene
+    // that keeps exact impacts is byte for byte what it was before the key existed).
+    void impactTiming() {
+        QString text = kBase;
+        text.replace(R"("frame_rate": 30})", R"("frame_rate": 30, "impacts": "end-of-step"})");
+        const SceneDesc scene = io::parseScene(text.toStdString(), "drop.json");
+        QVERIFY(scene.settings.impacts == ImpactTiming::EndOfStep);
+        const std::string saved = io::sceneToJson(scene);
+        QVERIFY(saved.find(R"("impacts": "end-of-step")") != std::string::npos);
+        QVERIFY(io::parseScene(saved, "again.json") == scene);
+        SceneDesc exact = scene;
+        exact.settings.impacts = ImpactTiming::Exact;
+        QVERIFY(!(exact == scene));
+        QVERIFY(io::sceneToJson(exact).find("impacts") == std::string::npos);
+        QVERIFY(io::parseScene(io::sceneToJson(exact), "again.json") == exact);
     }
 
     void solverSettings_data() {

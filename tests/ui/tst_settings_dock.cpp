@@ -74,6 +74,7 @@ private slots:
         QTest::newRow("sleeping") << "sleeping" << 0.0;
         QTest::newRow("energy guard") << "energyGuard" << 0.0;
         QTest::newRow("integrator rk4") << "integrator" << 0.0;
+        QTest::newRow("impacts at the end of the step") << "impacts" << 0.0;
     }
 
     void eachFieldReachesTheDocumentAndUndoRestoresIt() {
@@ -104,6 +105,11 @@ private slots:
             set = [combo] { combo->setCurrentIndex(combo->findData(QString("rk4"))); };
             holds = [](const Settings& s) { return s.integrator == "rk4"; };
             showsBefore = [combo] { return combo->currentIndex() == 0; };
+        } else if (n == "impacts") {
+            auto* combo = field<QComboBox>(dock, "impacts");
+            set = [combo] { combo->setCurrentIndex(combo->findData(int(ImpactTiming::EndOfStep))); };
+            holds = [](const Settings& s) { return s.impacts == ImpactTiming::EndOfStep; };
+            showsBefore = [combo] { return combo->currentData().toInt() == int(ImpactTiming::Exact); };
         } else if (n == "iterations") {
             auto* spin = field<QSpinBox>(dock, "iterations");
             set = [spin, value] { spin->setValue(int(value)); };
@@ -248,12 +254,14 @@ private slots:
         s.sleeping = !s.sleeping;
         s.energyGuard = false;
         s.integrator = "euler";
+        s.impacts = ImpactTiming::EndOfStep;
         doc.setSettings(s, "From elsewhere");
         QCOMPARE(doc.undoStack()->count(), 1);  // the dock's refresh pushed nothing
         QCOMPARE(field<QDoubleSpinBox>(dock, "step")->value(), 0.01);
         QCOMPARE(field<QCheckBox>(dock, "sleeping")->isChecked(), s.sleeping);
         QVERIFY(!field<QCheckBox>(dock, "energyGuard")->isChecked());
         QCOMPARE(field<QComboBox>(dock, "integrator")->currentData().toString(), QString("euler"));
+        QCOMPARE(field<QComboBox>(dock, "impacts")->currentData().toInt(), int(ImpactTiming::EndOfStep));
 
         // Opening a scene shows its settings and clears old messages.
         field<QDoubleSpinBox>(dock, "step")->setValue(0.0);

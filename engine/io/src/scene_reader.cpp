@@ -132,7 +132,7 @@ Settings readSettings(const Reader& r, const json& j) {
     r.object(j, p);
     r.onlyKeys(j, p,
                {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations",
-                "energy_guard"});
+                "energy_guard", "impacts"});
     Settings s;
     r.optional(j, p, "gravity", [&](const json& v, const std::string& f) { s.gravity = r.vector<3>(v, f); });
     r.optional(j, p, "dt", [&](const json& v, const std::string& f) { s.dt = r.number(v, f); });
@@ -146,6 +146,9 @@ Settings readSettings(const Reader& r, const json& j) {
                [&](const json& v, const std::string& f) { s.solverIterations = r.integer(v, f); });
     r.optional(j, p, "energy_guard",
                [&](const json& v, const std::string& f) { s.energyGuard = r.boolean(v, f); });
+    r.optional(j, p, "impacts", [&](const json& v, const std::string& f) {
+        s.impacts = enumValue(r, v, f, {ImpactTiming::Exact, ImpactTiming::EndOfStep});
+    });
     return s;
 }
 

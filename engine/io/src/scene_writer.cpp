@@ -107,6 +107,8 @@ std::string sceneToJson(const SceneDesc& scene) {
     s["sleeping"] = scene.settings.sleeping;
     s["solver_iterations"] = scene.settings.solverIterations;
     s["energy_guard"] = scene.settings.energyGuard;
+    // Written only when not the default: files of scenes that keep it stay as they were.
+    if (scene.settings.impacts != ImpactTiming::Exact) s["impacts"] = toString(scene.settings.impacts);
     j["bodies"] = ojson::array();
     for (const BodyDesc& b : scene.bodies) j["bodies"].push_back(bodyJson(b));
     return j.dump(2) + "\n";

@@ -1,5 +1,6 @@
 // Tumble's adapter: the scene as it is, the mode is the integrator's name, one World::step
-// per step.
+// per step. A mode may end in "+end-of-step" (kEndOfStep): impacts resolved at the end of the
+// step (settings.impacts), as the speed part runs the contact scenes a second time.
 #include "adapter_tumble.h"
 
 #include <tumble/errors.h>
@@ -15,13 +16,17 @@ std::vector<std::string> TumbleAdapter::modes() const {
 }
 
 bool TumbleAdapter::load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) {
-    if (!findIntegrator(mode)) {
-        if (why) *why = "no integrator named " + mode;
+    std::string integrator = mode;
+    const bool endOfStep = integrator.ends_with(kEndOfStep);
+    if (endOfStep) integrator.resize(integrator.size() - std::string_view(kEndOfStep).size());
+    if (!findIntegrator(integrator)) {
+        if (why) *why = "no integrator named " + integrator;
         return false;
     }
     SceneDesc s = scene;
     s.settings.dt = dt;
-    s.settings.integrator = mode;
+    s.settings.integrator = integrator;
+    if (endOfStep) s.settings.impacts = ImpactTiming::EndOfStep;
     try {
         world_.emplace(s);
     } catch (const std::exception& e) {

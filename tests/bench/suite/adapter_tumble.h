@@ -10,6 +10,9 @@
 
 namespace tumble::bench {
 
+/// The suffix of a mode (an integrator's name) that resolves impacts at the end of the step.
+inline constexpr const char* kEndOfStep = "+end-of-step";
+
 class TumbleAdapter : public EngineAdapter {
 public:
     std::string name() const override { return "tumble"; }

@@ -193,14 +193,14 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
            << " | " << num(r.msPerStep) << " | " << num(r.msMaxStep) << " | "
            << num(r.contactsPerStep, "%.0f") << " | " << num(r.peakMB - r.baseMB, "%.1f") << " |\n";
     }
-    md << "\nTumble per stage (ms per step):\n\n| scene | forces | integrate | broadphase | narrowphase | "
+    md << "\nTumble per stage (ms per step):\n\n| scene | mode | forces | integrate | broadphase | narrowphase | "
           "time of impact "
           "| impact solve | contact solve | sleep | pairs/step | awake bodies/step | cuts/step | parked/step | "
           "restarts/step |\n"
-       << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+       << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const SpeedRow& r : rows)
         if (r.engine == "tumble" && r.note.empty())
-            md << "| " << r.scene << " | " << num(r.forces) << " | " << num(r.integrate) << " | "
+            md << "| " << r.scene << " | " << r.mode << " | " << num(r.forces) << " | " << num(r.integrate) << " | "
                << num(r.broadphase) << " | " << num(r.narrowphase) << " | " << num(r.toi) << " | "
                << num(r.impact) << " | " << num(r.solve) << " | " << num(r.sleep) << " | "
                << num(r.pairsPerStep, "%.0f") << " | " << num(r.awakePerStep, "%.0f") << " | "

@@ -1,0 +1,187 @@
+// settings.impacts: "exact" cuts the step at each moment of impact (tst_response.cpp checks
+// its bounces to 1e-6); "end-of-step" resolves an impact at the end of the step that finds
+// the bodies touching, as the peers do. Checked here: the end-of-step bounce against its
+// closed-form first-order error, energy never rising with either setting, and a fast body
+// that would pass through a thin one still getting its moment. Only the public API is used.
+#include "scene_builders.h"
+
+#include "test_random.h"
+
+#include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace tumble;
+using namespace tumble::test;
+
+namespace {
+
+constexpr double kG = 9.81;
+
+QString num(double v) {
+    return QString::number(v, 'g', 17);
+}
+
+struct Bounce {
+    double apex = 0.0;        // the bottom's height at the first apex after the bounce
+    double highest = 0.0;     // the largest total energy seen, J
+    double deepest = 0.0;     // the deepest the ball went below the ground, m
+    long cuts = 0;            // moments of impact found within a step
+};
+
+// A ball of radius r dropped from h0 (its bottom) onto the ground, rk4 (exact in free fall),
+// until just past its first apex.
+Bounce dropBall(ImpactTiming timing, double e, double h, double h0 = 1.0) {
+    const double r = 0.1;
+    BodyDesc ball = material(sphereBody("ball", r, 1.0), e, 0.0);
+    ball.position = Vec3(0, h0 + r, 0);
+    SceneDesc scene = sceneOf({groundPlane(e, 0.0), ball}, Vec3(0, -kG, 0), "rk4");
+    scene.settings.impacts = timing;
+    World w(scene);
+    Bounce b;
+    bool rising = false;
+    while (w.state().time < 3.0) {
+        w.step(h);
+        b.cuts += static_cast<long>(w.impacts().size());
+        const double y = w.state().bodies[1].x.y(), vy = velocityOf(w, 1).y();
+        b.highest = std::max(b.highest, energy(w.model(), w.state()).total());
+        b.deepest = std::max(b.deepest, r - y);
+        if (vy > 0.0) rising = true;
+        if (rising && vy <= 0.0) {
+            b.apex = y + vy * vy / (2.0 * kG) - r;  // the ballistic apex of this flight
+            return b;
+        }
+    }
+    return b;
+}
+
+}  // namespace
+
+class TestImpactTiming : public QObject {
+    Q_OBJECT
+private slots:
+    // A ball bouncing with restitution e, impacts at the end of the step. It reaches the ground
+    // s after some moment within the step (0 <= s < h), at speed v, and is found there
+    // overlapping by d = v s + g s²/2 and falling at v + g s. The bounce must take its
+    // restitution from the speed of the touch, v = sqrt(v_end² - 2 g d) (what the ball had
+    // when it met the ground, as energy says): from v_end it would rise by e² d too high
+    // after the overlap is pushed out, and an elastic ball (e = 1) would gain m g d at
+    // every bounce. So: the apex lies between e² h0 - d_max and e² h0 (1e-9: rounding), the
+    // energy never rises above the start, no step is cut, and the overlap stays below the
+    // distance fallen in one step (v h + g h²/2).
+    void endOfStepBounce_data() {
+        QTest::addColumn<double>("e");
+        QTest::addColumn<double>("h");
+        for (double e : {1.0, 0.8, 0.5})
+            for (double h : {1.0 / 30, 1.0 / 60, 1.0 / 240})
+                QTest::addRow("e %g, dt 1/%.0f", e, 1.0 / h) << e << h;
+    }
+    void endOfStepBounce() {
+        QFETCH(double, e);
+        QFETCH(double, h);
+        const double h0 = 1.0, v = std::sqrt(2.0 * kG * h0);
+        const double dMax = v * h + 0.5 * kG * h * h;
+        const Bounce b = dropBall(ImpactTiming::EndOfStep, e, h, h0);
+        const double e0 = kG * (h0 + 0.1);  // m g y of the ball's centre at the start
+        QVERIFY2(b.apex > 0.0, "no apex after the bounce within 3 s");
+        QCOMPARE(b.cuts, 0L);
+        QVERIFY2(b.deepest <= dMax * (1 + 1e-9),
+                 qPrintable(QString("overlap %1 m, more than one step's fall %2 m").arg(b.deepest).arg(dMax)));
+        const double expected = e * e * h0;
+        QVERIFY2(b.apex <= expected + 1e-9 && b.apex >= expected - dMax,
+                 qPrintable(QString("apex %1 m, expected %2 m less at most the overlap %3 m")
+                                .arg(num(b.apex), num(expected))
+                                .arg(dMax)));
+        QVERIFY2(b.highest <= e0 * (1 + 1e-12),
+                 qPrintable(QString("energy rose to %1 J above the start %2 J").arg(num(b.highest), num(e0))));
+    }
+
+    // The same drop with impacts at their moment: the apex to 1e-6 of e² h0 at every step
+    // (the exact setting's promise, and what end-of-step gives up).
+    void exactBounceForComparison_data() {
+        QTest::addColumn<double>("h");
+        for (double h : {1.0 / 30, 1.0 / 240}) QTest::addRow("dt 1/%.0f", 1.0 / h) << h;
+    }
+    void exactBounceForComparison() {
+        QFETCH(double, h);
+        const Bounce b = dropBall(ImpactTiming::Exact, 0.8, h);
+        QVERIFY(b.cuts > 0);
+        QVERIFY2(std::abs(b.apex - 0.64) < 1e-6 * 0.64, qPrintable(QString("apex %1 m").arg(num(b.apex))));
+    }
+
+    // A 5 cm ball at 200 m/s towards a static plate 1 cm thick: in one step of 1/60 s it
+    // travels 3.3 m, so the end of the step finds it far beyond the plate, touching
+    // nothing. End-of-step still cuts the step there, and the ball bounces back off the
+    // plate (e = 0.5: 100 m/s back, the moment exact).
+    void fastBodyThroughAThinPlateStillStops() {
+        BodyDesc plate = boxBody("plate", Vec3(1.0, 1.0, 0.005), 1.0);
+        plate.motion = Motion::Static;
+        plate.mass.reset();
+        BodyDesc ball = material(sphereBody("ball", 0.05, 0.1), 0.5, 0.0);
+        ball.position = Vec3(0, 0, -1.0);
+        ball.velocity = Vec3(0, 0, 200.0);
+        plate = material(plate, 0.5, 0.0);
+        SceneDesc scene = sceneOf({plate, ball}, Vec3::Zero());
+        scene.settings.impacts = ImpactTiming::EndOfStep;
+        World w(scene);
+        long cuts = 0;
+        for (int i = 0; i < 6; ++i) {
+            w.step(1.0 / 60);
+            cuts += static_cast<long>(w.impacts().size());
+        }
+        QCOMPARE(cuts, 1L);
+        const double z = w.state().bodies[1].x.z(), vz = velocityOf(w, 1).z();
+        QVERIFY2(z < -0.05, qPrintable(QString("the ball is at z = %1 m: through the plate").arg(z)));
+        QVERIFY2(std::abs(vz + 100.0) < 1e-9 * 100.0, qPrintable(QString("bounced back at %1 m/s").arg(num(vz))));
+    }
+
+    // A pile of random boxes and spheres dropped onto the ground with end-of-step impacts
+    // (restitution and friction 0..1): the total energy never rises above the start (1e-6
+    // relative: rounding and the integrator's error in free flight). tst_response.cpp's
+    // energyNeverRises is the same with exact impacts.
+    void pileEnergyNeverRises_data() {
+        QTest::addColumn<int>("seed");
+        QTest::addColumn<double>("h");
+        for (int seed : {1, 2, 3})
+            for (double h : {1.0 / 60, 1.0 / 240}) QTest::addRow("seed %d, dt 1/%.0f", seed, 1.0 / h) << seed << h;
+    }
+    void pileEnergyNeverRises() {
+        QFETCH(int, seed);
+        QFETCH(double, h);
+        test::Rng rng{std::uint64_t(seed)};
+        std::vector<BodyDesc> bodies{groundPlane(0.0, rng.uniform(0, 1))};
+        for (int k = 0; k < 10; ++k) {
+            BodyDesc b = k % 2 ? sphereBody("s", rng.uniform(0.1, 0.3), 1.0)
+                               : boxBody("b", Vec3(rng.uniform(0.1, 0.3), rng.uniform(0.1, 0.3), rng.uniform(0.1, 0.3)),
+                                         1.0);
+            b.name += std::to_string(k);
+            b.mass = rng.uniform(0.5, 5.0);
+            b.restitution = rng.uniform(0, 1);
+            b.friction = rng.uniform(0, 1);
+            b.position = Vec3(rng.uniform(-0.3, 0.3), 0.6 + 1.1 * k, rng.uniform(-0.3, 0.3));
+            b.orientation =
+                Quat(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
+            b.angularVelocity = Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+            bodies.push_back(b);
+        }
+        SceneDesc scene = sceneOf(bodies);
+        scene.settings.impacts = ImpactTiming::EndOfStep;
+        World w(scene);
+        const double e0 = energy(w.model(), w.state()).total();
+        while (w.state().time < 5.0) {
+            w.step(h);
+            const double e = energy(w.model(), w.state()).total();
+            QVERIFY2(e <= e0 + 1e-6 * std::abs(e0), qPrintable(QString("energy %1 J at t = %2 s, above the start %3 J")
+                                                                    .arg(num(e))
+                                                                    .arg(w.state().time)
+                                                                    .arg(num(e0))));
+        }
+        for (int i = 1; i < int(bodies.size()); ++i)
+            QVERIFY2(w.state().bodies[i].x.y() > 0.0,
+                     qPrintable(QString("body %1 ended at y = %2 m, below the ground").arg(i).arg(w.state().bodies[i].x.y())));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestImpactTiming)
+#include "tst_impact_timing.moc"
