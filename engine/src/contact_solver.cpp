@@ -274,7 +274,7 @@ void solveContacts(const Model& model, State& state, const State& before,
         state.contacts.swap(s.nextMemory);
         return;
     }
-    bodiesOf(contacts, s.involved);
+    bodiesOf(contacts, s.seen, s.involved);
     loadSolverBodies(model, state, s.bodies, s.involved);
     prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
@@ -293,8 +293,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     for (const Point& p : s.points)
         for (int i : {p.a, p.b})
             if (s.bodies[i].invMass > 0.0) s.moving.push_back(i);
-    std::sort(s.moving.begin(), s.moving.end());
-    s.moving.erase(std::unique(s.moving.begin(), s.moving.end()), s.moving.end());
+    uniqueBodies(s.moving, s.seen);
     const double frictionLoss = frictionLost(s);
     EnergyBalance e = energyBalance(model, state, before, s);
     const bool limited = passive(model, contacts);
@@ -317,6 +316,15 @@ void solveContacts(const Model& model, State& state, const State& before,
         BodyState& b = state.bodies[i];
         b.L = b.q * (model.bodies[i].inertia * s.bodySpin[i]);
     }
+}
+
+void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
+    const size_t n = model.bodies.size();
+    for (auto* v : {&s.bodies, &s.start, &s.entry}) sizeSolverBodies(model, *v);
+    s.slide.assign(n, Vec3::Zero());
+    s.bodySpin.assign(n, Vec3::Zero());
+    s.level.assign(n, 0);
+    s.seen.assign(n, 0);
 }
 
 }  // namespace tumble

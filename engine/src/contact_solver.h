@@ -91,6 +91,7 @@ struct ContactSolverScratch {
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
+    std::vector<std::uint8_t> seen;  // bodiesOf's flags
     std::vector<Vec3> slide;         // per body: the velocity change of sliding friction (redoPoses)
 };
 
@@ -102,6 +103,10 @@ struct ContactSolverSettings {
     double touchTolerance = 0.0;  ///< points deeper than minus this touch
     double margin = 0.0;          ///< points deeper than minus this are solved (their gap may close)
 };
+
+/// Sizes the scratch's per-body arrays for `model` (World's constructor: at loading, not in
+/// the first step; see sizeSolverBodies).
+void sizeContactSolver(const Model& model, ContactSolverScratch& scratch);
 
 /// Solves the velocities of the contacts and removes their overlap; writes the momenta
 /// and poses of the dynamic bodies, the impulses to remember (State::contacts, keeping

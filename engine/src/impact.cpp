@@ -139,7 +139,7 @@ void approachingBodies(const Model& model, const State& before, const State& sta
                        std::vector<int>& seeds) {
     seeds.clear();
     if (contacts.empty()) return;
-    bodiesOf(contacts, s.involved);
+    bodiesOf(contacts, s.seen, s.involved);
     loadSolverBodies(model, state, s.bodies, s.involved);
     loadSolverBodies(model, before, s.start, s.involved);
     for (const Manifold& m : contacts) {
@@ -167,8 +167,7 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     if (s.manifolds.empty()) return result;
     s.involved.clear();
     for (int k : s.manifolds) s.involved.push_back(contacts[k].bodyA), s.involved.push_back(contacts[k].bodyB);
-    std::sort(s.involved.begin(), s.involved.end());
-    s.involved.erase(std::unique(s.involved.begin(), s.involved.end()), s.involved.end());
+    uniqueBodies(s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
 
     // "Still approaching" relative to the fastest approach at the start.
@@ -211,6 +210,17 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     }
     storeSolverBodies(model, s.bodies, state, s.involved);
     return result;
+}
+
+void sizeImpacts(const Model& model, ImpactScratch& s) {
+    const size_t n = model.bodies.size();
+    sizeSolverBodies(model, s.bodies);
+    sizeSolverBodies(model, s.start);
+    s.inIsland.assign(n, 0);
+    s.seen.assign(n, 0);
+    s.first.assign(n + 1, 0);
+    s.fill.assign(n, 0);
+    s.changedAt.assign(n, -1);
 }
 
 }  // namespace tumble

@@ -30,6 +30,7 @@ struct ImpactScratch {
     std::vector<SolverBody> bodies;
     std::vector<SolverBody> start;  // the velocities at the start of the step
     std::vector<std::uint8_t> inIsland;
+    std::vector<std::uint8_t> seen;  // bodiesOf's flags
     std::vector<int> manifolds;  // in the order of the contacts
     std::vector<int> involved;   // the bodies loaded, ascending
     // collectIsland's search: each body's touching manifolds (byBody[first[b] .. first[b+1]))
@@ -45,6 +46,9 @@ struct ImpactResult {
     int sweeps = 0;
     bool limited = false;  ///< stopped by the bound with points still approaching
 };
+
+/// Sizes the scratch's per-body arrays for `model` (World's constructor).
+void sizeImpacts(const Model& model, ImpactScratch& scratch);
 
 /// `contacts`: the manifolds at the moment of impact; `seeds`: the bodies of the pairs that
 /// first touch now. A point counts as touching when its depth is at least -touchTolerance.

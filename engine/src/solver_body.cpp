@@ -38,14 +38,31 @@ void storeBody(const Model& model, const SolverBody& body, int i, State& state) 
 
 }  // namespace
 
-void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<int>& out) {
+void uniqueBodies(std::vector<int>& list, std::vector<std::uint8_t>& seen) {
+    // Flags first, then a sort of the distinct bodies only: a pile's manifolds name each
+    // body eight times over, and sorting all of them was 7 % of a step of piles-sleep-off.
+    size_t n = 0;
+    for (int b : list) {
+        if (static_cast<size_t>(b) >= seen.size()) seen.resize(static_cast<size_t>(b) + 1, 0);
+        if (!seen[b]) seen[b] = 1, list[n++] = b;
+    }
+    list.resize(n);
+    for (int b : list) seen[b] = 0;
+    std::sort(list.begin(), list.end());
+}
+
+void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<std::uint8_t>& seen,
+              std::vector<int>& out) {
     out.clear();
     for (const collision::Manifold& m : contacts) {
         out.push_back(m.bodyA);
         out.push_back(m.bodyB);
     }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    uniqueBodies(out, seen);
+}
+
+void sizeSolverBodies(const Model& model, std::vector<SolverBody>& out) {
+    out.assign(model.bodies.size(), SolverBody{});
 }
 
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
@@ -53,7 +70,7 @@ void loadSolverBodies(const Model& model, const State& state, std::vector<Solver
     // Sized once: only the entries of `only` are written and read (every caller indexes the
     // bodies of its contacts, which `only` lists); clearing all of them cost a 3 000-body
     // pile half a megabyte of writes per call, several calls per look at the step.
-    if (out.size() != model.bodies.size()) out.assign(model.bodies.size(), SolverBody{});
+    if (out.size() != model.bodies.size()) sizeSolverBodies(model, out);
     for (int i : only) loadBody(model, state, i, out[i]);
 }
 

@@ -24,8 +24,17 @@ struct SolverBody {
     bool touched = false;      ///< an impulse was applied: write the momenta back
 };
 
-/// The bodies of `contacts`, ascending, each once.
-void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<int>& out);
+/// The bodies of `contacts`, ascending, each once. `seen` is scratch: one flag per body,
+/// all 0 before and after (sized here on first use).
+void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<std::uint8_t>& seen,
+              std::vector<int>& out);
+/// `list` made ascending with each body once, `seen` as for bodiesOf.
+void uniqueBodies(std::vector<int>& list, std::vector<std::uint8_t>& seen);
+
+/// `out` sized to the body count and every entry written once. The stages' per-body arrays
+/// are sized by the World's constructor: the first write of a few hundred kilobytes took
+/// the first step of a 910-body scene 4.3 ms on this machine (0.1 ms on later steps).
+void sizeSolverBodies(const Model& model, std::vector<SolverBody>& out);
 
 /// Loads the bodies `only` of `state` (ascending); the others are left standing still with
 /// no mass (`out` is resized to the body count). The solver's cost stays with its contacts.

@@ -82,6 +82,11 @@ World::World(Model model, State state)
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
     scratch_->contacts = needsContacts(model_);
+    if (scratch_->contacts) {
+        // The contact stages' per-body arrays, at loading rather than in the first step.
+        sizeContactSolver(model_, scratch_->solver);
+        sizeImpacts(model_, scratch_->impact);
+    }
     forgetSleepUnlessSleeping();
     armEnergyGuard(model_, state_, scratch_->energy);
 }
@@ -229,11 +234,15 @@ void World::step(double h) {
         d.touching = state_.touching;  // the last step's: pairs touching at the start
     } else {
         // The first step from a state: what touches already is resting contact, not an impact.
+        auto t = Clock::now();
         bodyPoses(model_, state_, d.start);
         d.end = d.start;
         findPairs(model_, state_, s.margin, d);
+        profile_.broadphase += since(t);
+        t = Clock::now();
         findContacts(model_, d, s.margin);
         touchingPairs(d.contacts, s.touchTolerance, d.touching);
+        profile_.narrowphase += since(t);
         // Bodies that touch and approach as the run starts (a cradle's first ball set
         // moving against the row) meet now, at the start of the step: left to the end of
         // the step they would overlap for a step and the impact would come one step late.
