@@ -23,7 +23,7 @@ void pushPoint(SolverBody& A, SolverBody& B, const Point& p, double d) {
     A.touched = B.touched = true;
 }
 
-void normalPoint(ContactSolverScratch& s, Point& p) {
+bool normalPoint(ContactSolverScratch& s, Point& p) {
     SolverBody& A = s.bodies[p.a];
     SolverBody& B = s.bodies[p.b];
     const double vn = normalVelocity(A, B, p);
@@ -31,6 +31,7 @@ void normalPoint(ContactSolverScratch& s, Point& p) {
     p.lambdaN = std::max(0.0, old - p.kn * (vn - p.target));
     const double d = p.lambdaN - old;
     if (d != 0.0) pushPoint(A, B, p, d);
+    return d != 0.0;
 }
 
 }  // namespace
@@ -113,7 +114,7 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
-void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+bool normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
     Point* q = &s.points[block.begin];
     const int k = block.count;
     if (k == 1) return normalPoint(s, q[0]);
@@ -130,25 +131,28 @@ void normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
         idle = idle && lambda[i] == 0.0 && vn[i] >= q[i].target;
     }
     // λ = 0 already solves this block (a side neighbour in a pile, a point still apart).
-    if (idle) return;
+    if (idle) return false;
     const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &subsets);
     // The changes summed per body: one impulse along n and one change of spin each.
     double total = 0.0;
     Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();
+    bool changed = false;
     for (int i = 0; i < k; ++i) {
         const double d = wanted[i] - lambda[i];
         q[i].lambdaN = wanted[i];
+        changed = changed || d != 0.0;
         total += d;
         spinA += d * q[i].spinA;
         spinB += d * q[i].spinB;
     }
-    if (total == 0.0 && spinA.isZero(0.0) && spinB.isZero(0.0)) return;
+    if (total == 0.0 && spinA.isZero(0.0) && spinB.isZero(0.0)) return changed;
     const Vec3& n = q[0].n;
     A.v += (A.invMass * total) * n;
     A.w += spinA;
     B.v -= (B.invMass * total) * n;
     B.w -= spinB;
     A.touched = B.touched = true;
+    return true;
 }
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within
@@ -168,11 +172,11 @@ Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverS
             block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w)};
 }
 
-void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
-    if (block.mu <= 0.0) return;
+bool frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
+    if (block.mu <= 0.0) return false;
     const double limit = block.mu * normalImpulse(s, block);
     // No normal impulse holds no friction: nothing to do when none is held.
-    if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return;
+    if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return false;
     const Point& p = s.points[block.begin];
     const SolverBody& A = s.bodies[p.a];
     const SolverBody& B = s.bodies[p.b];
@@ -188,6 +192,7 @@ void frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) 
     block.lambdaT = l;
     block.lambdaTwist = tw;
     applyFriction(s, block, dT, dTwist);
+    return !(dT.isZero(0.0) && dTwist == 0.0);
 }
 
 }  // namespace tumble

@@ -168,14 +168,20 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
 
 // One pass over the manifolds, forwards on even passes and backwards on odd ones so that
 // their order leaves no bias.
-void iterate(ContactSolverScratch& s, int pass) {
+// One pass over the blocks, forwards or backwards by turns. Returns whether any impulse
+// changed: a pass that changed none leaves every block's input as it found it, so every
+// later pass would change none either, bit for bit (a ball rolling on the ground is there
+// after two passes of twenty).
+bool iterate(ContactSolverScratch& s, int pass) {
     const int nb = static_cast<int>(s.blocks.size());
+    bool changed = false;
     for (int b = 0; b < nb; ++b) {
         const int k = pass % 2 ? nb - 1 - b : b;
         ContactSolverScratch::Block& block = s.blocks[k];
-        frictionBlock(s, block);
-        normalBlock(s, block, s.subsets[k]);
+        changed |= frictionBlock(s, block);
+        changed |= normalBlock(s, block, s.subsets[k]);
     }
+    return changed;
 }
 
 void remember(const Model& model, const State& state, double h, ContactSolverScratch& s) {
@@ -281,7 +287,8 @@ void solveContacts(const Model& model, State& state, const State& before,
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
     for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStart(state, cfg.h, s);
-    for (int k = 0; k < cfg.iterations; ++k) iterate(s, k);
+    for (int k = 0; k < cfg.iterations; ++k)
+        if (!iterate(s, k)) break;
     if (!s.blocks.empty()) shockPass(s, kShockPasses);
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
