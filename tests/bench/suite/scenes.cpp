@@ -222,14 +222,30 @@ private:
 };
 
 // A sphere launched sliding without spin: it rolls from t = 2 v0/(7 mu g) at 5/7 v0.
+// The moment it starts to roll is where the slip's straight line (friction is constant
+// while it slides) through the last two sliding samples reaches zero: the first sample
+// found rolling alone would give every engine the error of its step, whatever its physics.
 class SlideToRoll : public Observer {
 public:
     SlideToRoll(double radius, double mu) : r_(radius), mu_(mu) {}
-    void start(const EngineAdapter& eng) override { v0_ = eng.body(1).v.x(); }
+    void start(const EngineAdapter& eng) override {
+        v0_ = eng.body(1).v.x();
+        sliding_[1] = {eng.time(), v0_};
+    }
     void observe(const EngineAdapter& eng) override {
         last_ = eng.body(1);
         const double slip = last_.v.x() + last_.w.z() * r_;
-        if (tRoll_ < 0 && std::abs(slip) < 1e-3 * v0_) tRoll_ = eng.time();
+        if (tRoll_ >= 0) return;
+        if (std::abs(slip) >= 1e-3 * v0_) {
+            sliding_[0] = sliding_[1];
+            sliding_[1] = {eng.time(), slip};
+            ++slides_;
+            return;
+        }
+        tRoll_ = eng.time();
+        const auto [t0, s0] = sliding_[0];
+        const auto [t1, s1] = sliding_[1];
+        if (slides_ >= 1 && s0 > s1 && s1 > 0.0) tRoll_ = t1 + s1 * (t1 - t0) / (s0 - s1);
     }
     std::vector<std::pair<std::string, double>> errors() const override {
         const double tExact = 2 * v0_ / (7 * mu_ * 9.81);
@@ -241,6 +257,8 @@ public:
 private:
     double r_, mu_;
     double v0_ = 0, tRoll_ = -1;
+    std::pair<double, double> sliding_[2];  // (time, slip) of the last two samples still sliding
+    int slides_ = 0;
     BodySample last_;
 };
 
