@@ -38,6 +38,8 @@ Options for --headless:
   --duration S        simulated seconds (overrides settings.duration)
   --dt S              the step, seconds (overrides settings.dt)
   --integrator NAME   overrides settings.integrator; see --list-integrators
+  --impacts WHEN      exact or end-of-step (overrides settings.impacts): impacts at their
+                      moment, or at the end of the step that finds them (faster for piles)
   --frame-rate HZ     recorded frames per second (overrides settings.frame_rate)
   --out FILE          writes the trajectory; the format follows the extension:
                       .csv, .json (docs/export.md), .gltf (with FILE's .bin beside it) or
@@ -70,6 +72,7 @@ struct Options {
     std::string scene;
     std::optional<double> duration, dt, frameRate;
     std::optional<std::string> integrator;
+    std::optional<ImpactTiming> impacts;
     std::string out, saveScene;
     int imageWidth = 1280, imageHeight = 720;
     bool quiet = false;
@@ -124,6 +127,12 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--dt") o.dt = parseNumber(a, next());
         else if (a == "--frame-rate") o.frameRate = parseNumber(a, next());
         else if (a == "--integrator") o.integrator = next();
+        else if (a == "--impacts") {
+            const std::string v = next();
+            if (v == toString(ImpactTiming::Exact)) o.impacts = ImpactTiming::Exact;
+            else if (v == toString(ImpactTiming::EndOfStep)) o.impacts = ImpactTiming::EndOfStep;
+            else throw UsageError{"--impacts: '" + v + "' is not one of exact, end-of-step"};
+        }
         else if (a == "--out") o.out = next();
         else if (a == "--save-scene") o.saveScene = next();
         else if (a == "--image-size") {
@@ -175,6 +184,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (o.dt) scene.settings.dt = *o.dt;
     if (o.frameRate) scene.settings.frameRate = *o.frameRate;
     if (o.integrator) scene.settings.integrator = *o.integrator;
+    if (o.impacts) scene.settings.impacts = *o.impacts;
 
     const bool images = isImageOutput(o.out);
     if (images && !imageRenderer()) {

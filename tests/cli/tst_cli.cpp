@@ -189,8 +189,8 @@ private slots:
         QCOMPARE(r.code, 0);
         QCOMPARE(r.err, QString());
         QVERIFY(r.out.startsWith("Usage:"));
-        for (const char* flag : {"--headless", "--duration", "--dt", "--integrator", "--frame-rate", "--out",
-                                 "--save-scene", "--quiet", "--help", "--version", "--list-integrators"}) {
+        for (const char* flag : {"--headless", "--duration", "--dt", "--integrator", "--impacts", "--frame-rate",
+                                 "--out", "--save-scene", "--quiet", "--help", "--version", "--list-integrators"}) {
             QVERIFY2(r.out.contains(flag), flag);
         }
     }
@@ -357,6 +357,26 @@ private slots:
         }
     }
 
+    // --impacts end-of-step: the bouncing ball's impacts are resolved where the steps end
+    // (no moment of impact found within a step), the run differs from the exact one, and
+    // the scene saved as run says so.
+    void impactsOverride() {
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/bouncing-ball.json");
+        RUN(exact, {"--headless", scene});
+        RUN(late, {"--headless", scene, "--impacts", "end-of-step", "--save-scene", "saved.json"});
+        QCOMPARE(exact.code, 0);
+        QCOMPARE(late.code, 0);
+        const auto e = report(exact.out), l = report(late.out);
+        QVERIFY2(e.value("impacts").toInt() > 0, qPrintable(exact.out));
+        QCOMPARE(l.value("impacts"), QString("0"));
+        QVERIFY(e.value("state_hash") != l.value("state_hash"));
+        QFile saved(path("saved.json"));
+        QVERIFY(saved.open(QIODevice::ReadOnly));
+        QVERIFY(saved.readAll().contains(R"("impacts": "end-of-step")"));
+        RUN(again, {"--headless", scene, "--impacts", "exact"});
+        QCOMPARE(report(again.out).value("state_hash"), e.value("state_hash"));
+    }
+
     void badOverride_data() {
         QTest::addColumn<QStringList>("args");
         QTest::addColumn<QString>("message");
@@ -376,6 +396,8 @@ private slots:
         QTest::newRow("integrator nope")
             << QStringList({"--integrator", "nope"})
             << "tumble: --integrator: unknown integrator 'nope' (see --list-integrators)";
+        QTest::newRow("impacts later")
+            << QStringList({"--impacts", "later"}) << "tumble: --impacts: 'later' is not one of exact, end-of-step";
     }
 
     void badOverride() {
