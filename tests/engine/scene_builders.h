@@ -4,6 +4,11 @@
 #include <tumble/scene.h>
 #include <tumble/world.h>
 
+#include "test_random.h"
+
+#include <cstdint>
+#include <vector>
+
 namespace tumble::test {
 
 inline BodyDesc sphereBody(const std::string& name, double radius, double mass) {
@@ -59,6 +64,29 @@ inline Vec3 omegaOf(const World& w, int i) { return derive(w.model().bodies[i], 
 /// Takes n steps of h.
 inline void stepN(World& w, long n, double h) {
     for (long k = 0; k < n; ++k) w.step(h);
+}
+
+/// The ground (restitution 0, random friction) and 10 random boxes and spheres (restitution
+/// and friction 0..1, masses 0.5..5 kg, spinning) one above the other, 1.1 m apart: more
+/// than two half-diagonals (2 × 0.52 m), so none overlap at the start.
+inline std::vector<BodyDesc> randomDropPile(std::uint64_t seed) {
+    Rng rng{seed};
+    std::vector<BodyDesc> bodies{groundPlane(0.0, rng.uniform(0, 1))};
+    for (int k = 0; k < 10; ++k) {
+        BodyDesc b = k % 2 ? sphereBody("s", rng.uniform(0.1, 0.3), 1.0)
+                           : boxBody("b", Vec3(rng.uniform(0.1, 0.3), rng.uniform(0.1, 0.3), rng.uniform(0.1, 0.3)),
+                                     1.0);
+        b.name += std::to_string(k);
+        b.mass = rng.uniform(0.5, 5.0);
+        b.restitution = rng.uniform(0, 1);
+        b.friction = rng.uniform(0, 1);
+        b.position = Vec3(rng.uniform(-0.3, 0.3), 0.6 + 1.1 * k, rng.uniform(-0.3, 0.3));
+        b.orientation =
+            Quat(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
+        b.angularVelocity = Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+        bodies.push_back(b);
+    }
+    return bodies;
 }
 
 }  // namespace tumble::test

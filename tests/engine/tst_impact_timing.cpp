@@ -5,8 +5,6 @@
 // that would pass through a thin one still getting its moment. Only the public API is used.
 #include "scene_builders.h"
 
-#include "test_random.h"
-
 #include <QtTest>
 
 #include <algorithm>
@@ -149,22 +147,7 @@ private slots:
     void pileEnergyNeverRises() {
         QFETCH(int, seed);
         QFETCH(double, h);
-        test::Rng rng{std::uint64_t(seed)};
-        std::vector<BodyDesc> bodies{groundPlane(0.0, rng.uniform(0, 1))};
-        for (int k = 0; k < 10; ++k) {
-            BodyDesc b = k % 2 ? sphereBody("s", rng.uniform(0.1, 0.3), 1.0)
-                               : boxBody("b", Vec3(rng.uniform(0.1, 0.3), rng.uniform(0.1, 0.3), rng.uniform(0.1, 0.3)),
-                                         1.0);
-            b.name += std::to_string(k);
-            b.mass = rng.uniform(0.5, 5.0);
-            b.restitution = rng.uniform(0, 1);
-            b.friction = rng.uniform(0, 1);
-            b.position = Vec3(rng.uniform(-0.3, 0.3), 0.6 + 1.1 * k, rng.uniform(-0.3, 0.3));
-            b.orientation =
-                Quat(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
-            b.angularVelocity = Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
-            bodies.push_back(b);
-        }
+        const std::vector<BodyDesc> bodies = randomDropPile(std::uint64_t(seed));
         SceneDesc scene = sceneOf(bodies);
         scene.settings.impacts = ImpactTiming::EndOfStep;
         World w(scene);
