@@ -37,22 +37,25 @@ bool normalPoint(ContactSolverScratch& s, Point& p) {
 }  // namespace
 
 void preparePoint(const SolverBody& A, const SolverBody& B, Point& p) {
-    p.kn = 1.0 / inverseEffectiveMass(A, p.rA, B, p.rB, p.n);
     p.armA = p.rA.cross(p.n);
     p.armB = p.rB.cross(p.n);
     p.spinA = A.invI * p.armA;
     p.spinB = B.invI * p.armB;
+    // n · ((I⁻¹ (r × n)) × r) = (r × n) · I⁻¹ (r × n): the effective mass from the arms.
+    p.kn = 1.0 / (A.invMass + B.invMass + p.armA.dot(p.spinA) + p.armB.dot(p.spinB));
 }
 
 void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch::Block& block,
                   const ContactSolverScratch& s) {
     const int k = block.count;
     const Point* q = &s.points[block.begin];
+    // K(i, j) = mA + mB + n · ((I⁻¹ (r_j × n)) × r_i) for each body, and n · (a × r) =
+    // a · (r × n): the points' own arms and spins (preparePoint) give it in two dot products.
+    // Symmetric, as it must be: the upper triangle mirrored.
     for (int i = 0; i < k; ++i)
-        for (int j = 0; j < k; ++j)
-            block.K(i, j) = A.invMass + B.invMass +
-                            q[i].n.dot((A.invI * q[j].rA.cross(q[j].n)).cross(q[i].rA)) +
-                            q[i].n.dot((B.invI * q[j].rB.cross(q[j].n)).cross(q[i].rB));
+        for (int j = i; j < k; ++j)
+            block.K(i, j) = block.K(j, i) =
+                A.invMass + B.invMass + q[j].spinA.dot(q[i].armA) + q[j].spinB.dot(q[i].armB);
     block.Kinv = k > 1 ? leastNormInverse(block.K, k) : Eigen::Matrix4d::Zero();
     if (k == 1) block.Kinv(0, 0) = q[0].kn;
     // Friction at the centroid.
@@ -84,16 +87,16 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
     }
     block.twistA = A.invI * n;
     block.twistB = B.invI * n;
-    // K of the two tangents: velocity change along t_i per unit impulse along t_j.
-    auto response = [&](const Vec3& ti, const Vec3& tj) {
-        return ti.dot(A.invMass * tj + (A.invI * block.rA.cross(tj)).cross(block.rA) + B.invMass * tj +
-                      (B.invI * block.rB.cross(tj)).cross(block.rB));
-    };
+    // K of the two tangents: velocity change along t_i per unit impulse along t_j, from the
+    // arms and spins above as for the normals.
+    const Vec3 t[2] = {block.t1, block.t2};
     Eigen::Matrix2d Kt;
-    Kt << response(block.t1, block.t1), response(block.t1, block.t2), response(block.t2, block.t1),
-        response(block.t2, block.t2);
+    for (int i = 0; i < 2; ++i)
+        for (int j = i; j < 2; ++j)
+            Kt(i, j) = Kt(j, i) = (A.invMass + B.invMass) * t[i].dot(t[j]) + block.spinA[j].dot(block.armA[i]) +
+                                  block.spinB[j].dot(block.armB[i]);
     block.tangentMass = Kt.inverse();
-    const double twist = n.dot(A.invI * n) + n.dot(B.invI * n);
+    const double twist = n.dot(block.twistA) + n.dot(block.twistB);
     block.twistMass = twist > 0.0 ? 1.0 / twist : 0.0;
     block.radius = 0.0;
     for (int i = 0; i < k; ++i) block.radius += (g[i].position - c).norm() / k;
