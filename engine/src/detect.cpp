@@ -110,18 +110,27 @@ void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance,
 }
 
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
-                 double tolerance, double minApproach, const std::vector<double>& sizes, bool missedOnly,
-                 DetectScratch& s) {
+                 double tolerance, double minApproach, const std::vector<double>& sizes,
+                 const std::vector<double>* thickness, DetectScratch& s) {
     s.impacts.clear();
-    if (missedOnly) {
+    if (thickness) {
         s.found.clear();
         for (const Manifold& m : s.contacts) s.found.push_back(pairKey(m.bodyA, m.bodyB));
         std::sort(s.found.begin(), s.found.end());
     }
+    // How far any point of body i moved in the step, at most.
+    auto travel = [&](int i) {
+        const BodyModel& body = model.bodies[i];
+        if (body.motion == Motion::Static) return 0.0;
+        const BodyState &b0 = before.bodies[i], &b1 = after.bodies[i];
+        return (b1.x - b0.x).norm() + b0.q.angularDistance(b1.q) * (sizes[i] + body.centerOfMass.norm());
+    };
     for (const auto& [a, b] : s.broadphase.pairs()) {
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) continue;
-        if (missedOnly && std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b))) continue;
+        if (thickness && (std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b)) ||
+                          travel(a) + travel(b) < (*thickness)[a] + (*thickness)[b]))
+            continue;
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.

@@ -7,7 +7,8 @@
 // step is taken the same way (at most kMaxCuts times a step; later impacts are left to the
 // contact solver). The step ends with the contact solver (contact_solver.h) and sleeping.
 // With settings.impacts = end-of-step, only pairs that are not found in contact at the end
-// of the step cut it (paths that crossed); the others' impacts are resolved at the end.
+// of the step and moved far enough to pass through each other cut it (paths that crossed);
+// the others' impacts are resolved at the end.
 //
 // Only the islands with an impact are cut (islands.h): the others are "parked" at the end
 // of their free step, flagged asleep so that no stage moves or pairs them, and their
@@ -78,6 +79,7 @@ World::World(Model model, State state)
     double largest = 0.0;
     for (const BodyModel& b : model_.bodies) {
         scratch_->sizes.push_back(boundingRadius(b.collider));
+        scratch_->thickness.push_back(collision::thickness(b.collider));
         if (std::isfinite(scratch_->sizes.back())) largest = std::max(largest, scratch_->sizes.back());
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
@@ -146,7 +148,7 @@ void World::detect(double t0, double h) {
 
     t = Clock::now();
     findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, s.resting, s.sizes,
-                model_.settings.impacts == ImpactTiming::EndOfStep, d);
+                model_.settings.impacts == ImpactTiming::EndOfStep ? &s.thickness : nullptr, d);
     profile_.timeOfImpact += since(t);
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again

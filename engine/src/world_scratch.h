@@ -25,7 +25,8 @@ struct World::Scratch {
     SleepScratch sleep;
     EnergyGuard energy;
     State before;
-    std::vector<double> sizes;  // bounding radius per body
+    std::vector<double> sizes;      // bounding radius per body
+    std::vector<double> thickness;  // narrowest width per body (collision::thickness)
     std::vector<int> awake;     // awake dynamic bodies, when sleeping is on
     std::vector<int> seeds;
     std::vector<collision::ImpactEvent> impacts;  // of the whole step

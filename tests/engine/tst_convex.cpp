@@ -96,6 +96,32 @@ class TestConvex : public QObject {
     Q_OBJECT
 
 private slots:
+    // collision::thickness, the narrowest width of each kind of solid (end-of-step impacts
+    // look for a moment only when bodies moved more than theirs together): closed forms,
+    // and a hull's from its faces (a box's hull, a tetrahedron's height over its base).
+    void thicknessOfEachShape() {
+        QCOMPARE(thickness(Shape::sphere(0.3)), 0.6);
+        QCOMPARE(thickness(Shape::box(Vec3(0.5, 0.2, 0.7))), 0.4);
+        QCOMPARE(thickness(Shape::capsule(0.1, 2.0)), 0.2);
+        QCOMPARE(thickness(Shape::cylinder(0.4, 0.1)), 0.2);
+        QVERIFY(std::isinf(thickness(Shape::plane(Vec3(0, 1, 0), 0.0))));
+        Shape box;
+        box.kind = Kind::Hull;
+        box.hull = std::make_shared<ConvexHull>(mesh::boxHull(Vec3(0.5, 0.2, 0.7)));
+        QVERIFY(std::abs(thickness(box) - 0.4) < 1e-12);
+        // The regular tetrahedron of edge 2√2 (alternate corners of the cube ±1) is 2 wide
+        // between opposite edges, narrower than its height over a face (4/√3): a hull's
+        // figure is the ball inside it about its centre, radius 1/√3, so never above 2.
+        Shape tetra;
+        tetra.kind = Kind::Hull;
+        tetra.hull = std::make_shared<ConvexHull>(
+            mesh::convexHull({Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)}));
+        QVERIFY(std::abs(thickness(tetra) - 2.0 / std::sqrt(3.0)) < 1e-12);
+        Shape mesh;
+        mesh.kind = Kind::Mesh;
+        QCOMPARE(thickness(mesh), 0.0);
+    }
+
     void boxOnBoxFaceToFace() {
         const Shape top = Shape::box(Vec3(0.5, 0.5, 0.5)), floor = Shape::box(Vec3(2, 1, 2));
         const double yaw = 0.4;

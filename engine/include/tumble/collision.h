@@ -105,6 +105,12 @@ Aabb bounds(const Shape& shape, const Pose& pose);
 /// The largest distance from the body origin to a point of the shape (infinite for a plane).
 double boundingRadius(const Shape& shape);
 
+/// The narrowest width of the solid, or a lower bound of it (a hull: the diameter of the
+/// ball about its interior point that fits inside; infinite for a plane, a half-space; 0
+/// for a triangle mesh, which may be an open surface): a body moving less than this cannot
+/// pass through it without still overlapping it at the end.
+double thickness(const Shape& shape);
+
 struct ContactPoint {
     Vec3 position = Vec3::Zero();  ///< world, midway between the surfaces
     double depth = 0.0;            ///< > 0 when overlapping

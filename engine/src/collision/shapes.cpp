@@ -113,6 +113,27 @@ double boundingRadius(const Shape& s) {
     return 0.0;
 }
 
+double thickness(const Shape& s) {
+    switch (s.kind) {
+    case Kind::Sphere:
+    case Kind::Capsule: return 2.0 * s.radius;
+    case Kind::Box: return 2.0 * s.halfExtents.minCoeff();
+    case Kind::Cylinder: return 2.0 * std::min(s.radius, s.halfHeight);
+    case Kind::Plane: return std::numeric_limits<double>::infinity();
+    case Kind::Hull: {
+        // A lower bound: the diameter of the ball about the interior point that fits inside
+        // (every width is at least that). The widths across the faces are not one: a
+        // tetrahedron is narrower between two opposite edges than over any face.
+        double r = std::numeric_limits<double>::infinity();
+        for (const ConvexHull::Face& f : s.hull->faces)
+            r = std::min(r, f.offset - f.normal.dot(s.hull->interiorPoint));
+        return std::isfinite(r) && r > 0.0 ? 2.0 * r : 0.0;
+    }
+    case Kind::Mesh: return 0.0;  // a surface, perhaps open
+    }
+    return 0.0;
+}
+
 double Manifold::maxDepth() const {
     double d = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < count; ++i) d = std::max(d, points[i].depth);
