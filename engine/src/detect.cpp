@@ -6,6 +6,8 @@
 #include "pair_key.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace tumble {
 
@@ -128,9 +130,21 @@ void findImpacts(const Model& model, const State& before, const State& after, do
     for (const auto& [a, b] : s.broadphase.pairs()) {
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) continue;
-        if (thickness && (std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b)) ||
-                          travel(a) + travel(b) < (*thickness)[a] + (*thickness)[b]))
-            continue;
+        if (thickness) {
+            const double ta = (*thickness)[a], tb = (*thickness)[b];
+            // Touching at the end: left to the end unless the overlap can be past the middle
+            // of the thinner solid (its normal would then point out of the far side and push
+            // the body through). A plane's normal is its own whatever the overlap. A mesh's
+            // triangles (thickness 0) are trusted as the end finds them: asking for a moment
+            // whenever a body moved half its own width brought back 2.3 cuts a step in
+            // hull-rain (1.7 -> 3.4 ms); a body sinking past a triangle's plane within one
+            // step can go through, as in the peers.
+            const bool solids = std::isfinite(ta) && std::isfinite(tb) && ta > 0.0 && tb > 0.0;
+            const double thinner = solids ? std::min(ta, tb) : std::numeric_limits<double>::infinity();
+            const bool found = std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b));
+            const double limit = found ? 0.5 * thinner : ta + tb;
+            if (travel(a) + travel(b) < limit) continue;
+        }
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.

@@ -57,10 +57,11 @@ void touchingPairs(const std::vector<collision::Manifold>& contacts, double touc
 /// faster than `minApproach` there is not an impact: it is left to the contact solver.
 /// `sizes`: each body's bounding radius (a mesh's is a pass over its vertices: not per pair).
 /// With `thickness` (ImpactTiming::EndOfStep: each body's thickness()) a pair that has
-/// contacts at the end of the step (`s.contacts`) is left to the end of the step, and so is
-/// one whose bodies moved less in the step than their thicknesses together (it cannot have
-/// passed through): only paths that crossed without touching at the end (a fast body
-/// through a thin one) get a moment of impact. Null: every pair (ImpactTiming::Exact).
+/// contacts at the end of the step (`s.contacts`) is left to the end of the step if its
+/// bodies moved less than half the thinner one's thickness (the overlap cannot reach past
+/// its middle), and a pair without contacts if they moved less than their thicknesses
+/// together (they cannot have passed through): only a fast body meeting a thin one gets a
+/// moment of impact. Null: every pair (ImpactTiming::Exact).
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
                  double tolerance, double minApproach, const std::vector<double>& sizes,
                  const std::vector<double>* thickness, DetectScratch& s);
