@@ -166,9 +166,8 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
     }
 }
 
-// One pass over the manifolds, forwards on even passes and backwards on odd ones so that
-// their order leaves no bias.
-// One pass over the blocks, forwards or backwards by turns. Returns whether any impulse
+// One pass over the blocks, forwards on even passes and backwards on odd ones so that
+// their order leaves no bias. Returns whether any impulse
 // changed: a pass that changed none leaves every block's input as it found it, so every
 // later pass would change none either, bit for bit (a ball rolling on the ground is there
 // after two passes of twenty).

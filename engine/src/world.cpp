@@ -6,9 +6,9 @@
 // moment, the impulses of the impact are applied there (impact.h), and the rest of the
 // step is taken the same way (at most kMaxCuts times a step; later impacts are left to the
 // contact solver). The step ends with the contact solver (contact_solver.h) and sleeping.
-// With settings.impacts = end-of-step, only pairs that are not found in contact at the end
-// of the step and moved far enough to pass through each other cut it (paths that crossed);
-// the others' impacts are resolved at the end.
+// With settings.impacts = end-of-step, only pairs whose end of the step can be wrong cut
+// it (a fast body through a thin one, or past its middle: findImpacts); the others'
+// impacts are resolved at the end.
 //
 // Only the islands with an impact are cut (islands.h): the others are "parked" at the end
 // of their free step, flagged asleep so that no stage moves or pairs them, and their
