@@ -54,6 +54,20 @@ Bounce dropBall(ImpactTiming timing, double e, double h, double h0 = 1.0) {
     return b;
 }
 
+// A static plate 1 cm thick about z = 0 and a 5 cm ball (e = 0.5 both) starting at z0 with
+// speed v along z, no gravity, impacts at the end of the step.
+World plateAndBall(double z0, double v) {
+    BodyDesc plate = material(boxBody("plate", Vec3(1.0, 1.0, 0.005), 1.0), 0.5, 0.0);
+    plate.motion = Motion::Static;
+    plate.mass.reset();
+    BodyDesc ball = material(sphereBody("ball", 0.05, 0.1), 0.5, 0.0);
+    ball.position = Vec3(0, 0, z0);
+    ball.velocity = Vec3(0, 0, v);
+    SceneDesc scene = sceneOf({plate, ball}, Vec3::Zero());
+    scene.settings.impacts = ImpactTiming::EndOfStep;
+    return World(scene);
+}
+
 }  // namespace
 
 class TestImpactTiming : public QObject {
@@ -113,16 +127,7 @@ private slots:
     // nothing. End-of-step still cuts the step there, and the ball bounces back off the
     // plate (e = 0.5: 100 m/s back, the moment exact).
     void fastBodyThroughAThinPlateStillStops() {
-        BodyDesc plate = boxBody("plate", Vec3(1.0, 1.0, 0.005), 1.0);
-        plate.motion = Motion::Static;
-        plate.mass.reset();
-        BodyDesc ball = material(sphereBody("ball", 0.05, 0.1), 0.5, 0.0);
-        ball.position = Vec3(0, 0, -1.0);
-        ball.velocity = Vec3(0, 0, 200.0);
-        plate = material(plate, 0.5, 0.0);
-        SceneDesc scene = sceneOf({plate, ball}, Vec3::Zero());
-        scene.settings.impacts = ImpactTiming::EndOfStep;
-        World w(scene);
+        World w = plateAndBall(-1.0, 200.0);
         long cuts = 0;
         for (int i = 0; i < 6; ++i) {
             w.step(1.0 / 60);
@@ -140,15 +145,7 @@ private slots:
     // through. Its travel is more than half the plate's thickness, so it gets its moment:
     // it bounces back at e v.
     void ballPastAThinPlatesMiddleBouncesBack() {
-        BodyDesc plate = material(boxBody("plate", Vec3(1.0, 1.0, 0.005), 1.0), 0.5, 0.0);
-        plate.motion = Motion::Static;
-        plate.mass.reset();
-        BodyDesc ball = material(sphereBody("ball", 0.05, 0.1), 0.5, 0.0);
-        ball.position = Vec3(0, 0, -0.0551);
-        ball.velocity = Vec3(0, 0, 4.8);
-        SceneDesc scene = sceneOf({plate, ball}, Vec3::Zero());
-        scene.settings.impacts = ImpactTiming::EndOfStep;
-        World w(scene);
+        World w = plateAndBall(-0.0551, 4.8);
         for (int i = 0; i < 10; ++i) w.step(1.0 / 60);
         const double z = w.state().bodies[1].x.z(), vz = velocityOf(w, 1).z();
         QVERIFY2(z < -0.055, qPrintable(QString("the ball is at z = %1 m: through the plate").arg(z)));
