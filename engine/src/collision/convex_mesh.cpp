@@ -93,6 +93,12 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
         const Vec3 n = (T.triangle[1] - T.triangle[0]).cross(T.triangle[2] - T.triangle[0]);
         if (!(n.squaredNorm() > 0)) return;  // degenerate triangle: its neighbours cover it
         const Vec3 nt = n.normalized();
+        // The triangle's plane separates when the whole convex lies farther than the margin
+        // on one side of it: then GJK would find no contact either.
+        const double reach = std::max(margin, 0.0) + A.radius;
+        if ((A.support(-nt) - T.triangle[0]).dot(nt) > reach ||
+            (A.support(nt) - T.triangle[0]).dot(nt) < -reach)
+            return;
         Penetration pen = penetration(A, T, margin);
         if (!pen.hit) return;
         const double c = pen.normal.dot(nt);
