@@ -41,6 +41,9 @@ Options for --headless:
   --impacts WHEN      exact or end-of-step (overrides settings.impacts): impacts at their
                       moment, or at the end of the step that finds them (faster for piles)
   --frame-rate HZ     recorded frames per second (overrides settings.frame_rate)
+  --threads N         threads to step with, 1 to 256 (default 1): the narrow phase, the
+                      time of impact and the integrator's drift spread over them; the
+                      result is the same bit for bit for any N
   --out FILE          writes the trajectory; the format follows the extension:
                       .csv, .json (docs/export.md), .gltf (with FILE's .bin beside it) or
                       .glb (glTF 2.0: the bodies' meshes and their motion as an animation);
@@ -65,7 +68,8 @@ narrowphase_seconds, toi_seconds, impact_seconds, solve_seconds, sleep_seconds);
 contact_points, impacts, impact_moments (the steps were cut there), impact_sweep_limits,
 awake_body_steps, parked_body_steps (bodies of islands without an impact, kept out of a
 step's cuts) and island_restarts (steps taken again with every body cut) summed over the
-steps; and state_hash (the same scene and options give the same hash).
+steps; threads; and state_hash (the same scene and options give the same hash,
+whatever --threads is).
 )";
 
 struct Options {
@@ -75,6 +79,7 @@ struct Options {
     std::optional<ImpactTiming> impacts;
     std::string out, saveScene;
     int imageWidth = 1280, imageHeight = 720;
+    int threads = 1;
     bool quiet = false;
 };
 
@@ -132,6 +137,14 @@ Options parse(const std::vector<std::string>& args) {
             if (v == toString(ImpactTiming::Exact)) o.impacts = ImpactTiming::Exact;
             else if (v == toString(ImpactTiming::EndOfStep)) o.impacts = ImpactTiming::EndOfStep;
             else throw UsageError{"--impacts: '" + v + "' is not one of exact, end-of-step"};
+        }
+        else if (a == "--threads") {
+            const std::string v = next();
+            int n = 0;
+            char extra = 0;
+            if (std::sscanf(v.c_str(), "%d%c", &n, &extra) != 1 || n < 1 || n > 256)
+                throw UsageError{"--threads: '" + v + "' is not a whole number from 1 to 256"};
+            o.threads = n;
         }
         else if (a == "--out") o.out = next();
         else if (a == "--save-scene") o.saveScene = next();
@@ -200,6 +213,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     std::unique_ptr<World> world;
     try {
         world = std::make_unique<World>(scene);
+        world->setThreads(o.threads);
     } catch (const SceneError& e) {
         const std::string flag = flagFor(e.path(), o);
         if (!flag.empty()) err << "tumble: " << flag << ": " << e.message() << "\n";
@@ -302,6 +316,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "awake_body_steps: " << p.awakeBodySteps << "\n"
             << "parked_body_steps: " << p.parkedBodySteps << "\n"
             << "island_restarts: " << p.islandRestarts << "\n"
+            << "threads: " << world->threads() << "\n"
             << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }
     return kOk;

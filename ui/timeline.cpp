@@ -22,6 +22,12 @@ constexpr int kRestartDelayMs = 250;
 // The worker tells the UI about new frames at most this often.
 constexpr double kProgressInterval = 0.05;
 constexpr int kPlaybackTickMs = 15;
+
+// Threads a World steps with in the editor: the machine's cores, up to 8 (the stages spread
+// over them give the same frames bit for bit, so recorded and re-simulated frames agree).
+int stepThreads() {
+    return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1U, 8U));
+}
 }  // namespace
 
 // One run of the simulation: the worker thread, what it records, and the UI thread's own
@@ -138,7 +144,10 @@ bool Timeline::readFrame(Run& r, int frame, State* out) {
         *out = *s;
         return true;
     }
-    if (!r.scrub) r.scrub = std::make_unique<World>(Model(*r.model), State{});
+    if (!r.scrub) {
+        r.scrub = std::make_unique<World>(Model(*r.model), State{});
+        r.scrub->setThreads(stepThreads());
+    }
     const State* s = r.recording.state(frame, *r.scrub);
     if (!s) return false;
     *out = *s;
@@ -272,6 +281,7 @@ void Timeline::startRun() {
         try {
             auto model = std::make_shared<const Model>(compile(r->scene));
             World world(*model, initialState(*model, r->scene));
+            world.setThreads(stepThreads());
             {
                 std::lock_guard lock(r->mutex);
                 r->model = model;

@@ -61,16 +61,44 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
     s.broadphase.update(s.swept, s.moving, s.halfSpaces);
 }
 
+namespace {
+
+constexpr int kPairGrain = 8;  // pairs per chunk on the worker threads
+
+// Runs pair(a, b, out) for every broadphase pair, appending to s.contacts (or s.impacts) in
+// the pairs' order: on the worker threads each chunk of pairs fills a list of its own, and
+// the lists are joined in chunk order, so the result does not depend on the threads.
+template <class T, class Pair>
+void overPairs(DetectScratch& s, std::vector<T>& out, std::vector<std::vector<T>>& chunkOut, Pair&& pair) {
+    const auto& pairs = s.broadphase.pairs();
+    const int n = static_cast<int>(pairs.size());
+    if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain) {
+        for (const auto& [a, b] : pairs) pair(a, b, out);
+        return;
+    }
+    const int chunks = (n + kPairGrain - 1) / kPairGrain;
+    if (static_cast<int>(chunkOut.size()) < chunks) chunkOut.resize(chunks);
+    s.pool->run(chunks, [&](int c) {
+        std::vector<T>& mine = chunkOut[c];
+        mine.clear();
+        const int end = std::min(n, (c + 1) * kPairGrain);
+        for (int k = c * kPairGrain; k < end; ++k) pair(pairs[k].first, pairs[k].second, mine);
+    });
+    for (int c = 0; c < chunks; ++c) out.insert(out.end(), chunkOut[c].begin(), chunkOut[c].end());
+}
+
+}  // namespace
+
 void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.contacts.clear();
-    for (const auto& [a, b] : s.broadphase.pairs()) {
-        const size_t first = s.contacts.size();
-        collide(model.bodies[a].collider, s.end[a], model.bodies[b].collider, s.end[b], margin, s.contacts);
-        for (size_t k = first; k < s.contacts.size(); ++k) {
-            s.contacts[k].bodyA = a;
-            s.contacts[k].bodyB = b;
+    overPairs(s, s.contacts, s.chunkContacts, [&](int a, int b, std::vector<Manifold>& out) {
+        const size_t first = out.size();
+        collide(model.bodies[a].collider, s.end[a], model.bodies[b].collider, s.end[b], margin, out);
+        for (size_t k = first; k < out.size(); ++k) {
+            out[k].bodyA = a;
+            out[k].bodyB = b;
         }
-    }
+    });
 }
 
 namespace {
@@ -127,9 +155,9 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const BodyState &b0 = before.bodies[i], &b1 = after.bodies[i];
         return (b1.x - b0.x).norm() + b0.q.angularDistance(b1.q) * (sizes[i] + body.centerOfMass.norm());
     };
-    for (const auto& [a, b] : s.broadphase.pairs()) {
+    overPairs(s, s.impacts, s.chunkImpacts, [&](int a, int b, std::vector<ImpactEvent>& out) {
         // In contact already: no new impact.
-        if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) continue;
+        if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
         if (thickness) {
             const double ta = (*thickness)[a], tb = (*thickness)[b];
             // Touching at the end: left to the end unless the overlap can be past the middle
@@ -143,7 +171,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
             const double thinner = solids ? std::min(ta, tb) : std::numeric_limits<double>::infinity();
             const bool found = std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b));
             const double limit = found ? 0.5 * thinner : ta + tb;
-            if (travel(a) + travel(b) < limit) continue;
+            if (travel(a) + travel(b) < limit) return;
         }
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
@@ -151,12 +179,12 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const double size = std::min(sizes[a], sizes[b]);
         const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
                                       sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
-        if (!hit) continue;
+        if (!hit) return;
         // A slow approach is settling, the contact solver's work: no moment of impact.
         if (approachSpeed(model, before, after, a, b, hit->s, hit->point, hit->normal) <= minApproach)
-            continue;
-        s.impacts.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
-    }
+            return;
+        out.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
+    });
 }
 
 }  // namespace tumble

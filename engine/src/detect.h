@@ -9,6 +9,8 @@
 
 #include "collision/broadphase.h"
 
+#include "workers.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -26,6 +28,9 @@ struct DetectScratch {
     std::vector<collision::ImpactEvent> impacts;
     std::vector<std::uint64_t> touching;  // sorted keys of the pairs touching at the start of the step
     std::vector<std::uint64_t> found;     // sorted keys of the pairs with contacts at the end (findImpacts)
+    Workers* pool = nullptr;              // the world's worker threads; null: this thread only
+    std::vector<std::vector<collision::Manifold>> chunkContacts;  // per chunk of pairs (with a pool)
+    std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
 };
 
 /// True when the model has two bodies that could ever touch (at least one not static);

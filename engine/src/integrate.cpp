@@ -25,6 +25,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr int kBodyGrain = 256;  // bodies per chunk on the worker threads
+
 const std::vector<Wrench>& evaluateForces(const Model& model, const std::vector<BodyState>& bodies,
                                           double t, IntegrateScratch& scratch, Profile& profile) {
     const auto t0 = Clock::now();
@@ -206,14 +208,19 @@ void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) 
 void splitting(const Model& model, State& state, double h, IntegrateScratch& scr, Profile& prof,
                bool fourthOrderRotation) {
     const std::vector<Wrench>& w0 = evaluateForces(model, state.bodies, state.time, scr, prof);
-    for (int i : awake(model, scr)) {
-        const BodyModel& b = model.bodies[i];
-        BodyState& s = state.bodies[i];
-        s.P += 0.5 * h * w0[i].force;
-        s.L += 0.5 * h * w0[i].torque;
-        s.x += h * b.invMass * s.P;
-        freeRotation(b, s, h, fourthOrderRotation);
-    }
+    // Each body's kick and drift is its own: spread over the worker threads.
+    const std::vector<int>& bodies = awake(model, scr);
+    forEachChunk(scr.pool, static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end) {
+        for (int k = begin; k < end; ++k) {
+            const int i = bodies[k];
+            const BodyModel& b = model.bodies[i];
+            BodyState& s = state.bodies[i];
+            s.P += 0.5 * h * w0[i].force;
+            s.L += 0.5 * h * w0[i].torque;
+            s.x += h * b.invMass * s.P;
+            freeRotation(b, s, h, fourthOrderRotation);
+        }
+    });
     const std::vector<Wrench>& w1 = evaluateForces(model, state.bodies, state.time + h, scr, prof);
     for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];

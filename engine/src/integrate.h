@@ -4,6 +4,7 @@
 #pragma once
 
 #include "forces.h"
+#include "workers.h"
 
 #include <tumble/model.h>
 #include <tumble/world.h>
@@ -22,6 +23,8 @@ struct IntegrateScratch {
     std::vector<Rate> rates[4];
     /// The dynamic bodies to advance (the awake ones); null: every dynamic body.
     const std::vector<int>* awake = nullptr;
+    /// The world's worker threads for the drift of the splitting integrators; null: this thread.
+    Workers* pool = nullptr;
 };
 
 void integrate(const Model& model, State& state, double h, IntegrateScratch& scratch,

@@ -23,6 +23,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace tumble {
 
@@ -103,6 +105,19 @@ World::World(Model model, State state)
     }
     forgetSleepUnlessSleeping();
     armEnergyGuard(model_, state_, scratch_->energy);
+}
+
+void World::setThreads(int n) {
+    if (n < 1) throw std::invalid_argument("threads must be at least 1, not " + std::to_string(n));
+    Scratch& s = *scratch_;
+    if (n == threads()) return;
+    s.workers = n > 1 ? std::make_unique<Workers>(n) : nullptr;
+    s.detect.pool = s.workers.get();
+    s.integrate.pool = s.workers.get();
+}
+
+int World::threads() const {
+    return scratch_->workers ? scratch_->workers->threads() : 1;
 }
 
 // With sleeping off every body is simulated: sleep flags brought in by a state are dropped.

@@ -11,8 +11,10 @@
 #include "integrate.h"
 #include "islands.h"
 #include "sleep.h"
+#include "workers.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace tumble {
@@ -45,6 +47,7 @@ struct World::Scratch {
     std::vector<std::uint8_t> realAsleep;              // the sleep flags without the parked ones
     std::vector<collision::Manifold> parkedContacts;   // at the end of their free step
     std::vector<collision::Manifold> merged;
+    std::unique_ptr<Workers> workers;  // setThreads(n > 1)
 };
 
 }  // namespace tumble

@@ -377,6 +377,25 @@ private slots:
         QCOMPARE(report(again.out).value("state_hash"), e.value("state_hash"));
     }
 
+    // --threads spreads the step over threads; the run is the same bit for bit.
+    void threadsGiveTheSameRun() {
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/tower-20.json");
+        RUN(one, {"--headless", scene, "--duration", "1"});
+        RUN(two, {"--headless", scene, "--duration", "1", "--threads", "2"});
+        RUN(four, {"--headless", scene, "--duration=1", "--threads=4"});
+        QCOMPARE(one.code, 0);
+        QCOMPARE(two.code, 0);
+        QCOMPARE(four.code, 0);
+        const auto r1 = report(one.out), r2 = report(two.out), r4 = report(four.out);
+        QCOMPARE(r1.value("threads"), QString("1"));
+        QCOMPARE(r2.value("threads"), QString("2"));
+        QCOMPARE(r4.value("threads"), QString("4"));
+        QVERIFY(r1.value("contact_points").toLong() > 0);
+        QCOMPARE(r2.value("state_hash"), r1.value("state_hash"));
+        QCOMPARE(r4.value("state_hash"), r1.value("state_hash"));
+        QCOMPARE(r2.value("contact_points"), r1.value("contact_points"));
+    }
+
     void badOverride_data() {
         QTest::addColumn<QStringList>("args");
         QTest::addColumn<QString>("message");
@@ -398,6 +417,12 @@ private slots:
             << "tumble: --integrator: unknown integrator 'nope' (see --list-integrators)";
         QTest::newRow("impacts later")
             << QStringList({"--impacts", "later"}) << "tumble: --impacts: 'later' is not one of exact, end-of-step";
+        QTest::newRow("threads 0") << QStringList({"--threads", "0"})
+                                   << "tumble: --threads: '0' is not a whole number from 1 to 256";
+        QTest::newRow("threads 2.5") << QStringList({"--threads", "2.5"})
+                                     << "tumble: --threads: '2.5' is not a whole number from 1 to 256";
+        QTest::newRow("threads 1000") << QStringList({"--threads", "1000"})
+                                      << "tumble: --threads: '1000' is not a whole number from 1 to 256";
     }
 
     void badOverride() {

@@ -64,6 +64,13 @@ public:
     /// scene's energy runs away.
     void step(double h);
 
+    /// Worker threads for the stages whose items are independent (narrow phase and time of
+    /// impact over pairs, the splitting integrators' drift over bodies), the calling thread
+    /// included; 1 (the default) runs everything on the calling thread. The result is the
+    /// same bit for bit for any number. n < 1 throws std::invalid_argument.
+    void setThreads(int n);
+    int threads() const;
+
     /// The contact manifolds at the end of the last step (bodyA < bodyB).
     const std::vector<collision::Manifold>& contacts() const;
     /// The pairs that came into contact during the last step, with the time of first touch.

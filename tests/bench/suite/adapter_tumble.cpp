@@ -1,11 +1,14 @@
 // Tumble's adapter: the scene as it is, the mode is the integrator's name, one World::step
-// per step. A mode may end in "+end-of-step" (kEndOfStep): impacts resolved at the end of the
-// step (settings.impacts), as the speed part runs the contact scenes a second time.
+// per step. A mode may carry options (adapter_tumble.h): "+end-of-step", impacts resolved at
+// the end of the step (settings.impacts), as the speed part runs the contact scenes a second
+// time; "+2-threads", the same on two threads (World::setThreads), the third time.
 #include "adapter_tumble.h"
 
 #include <tumble/errors.h>
 #include <tumble/integrators.h>
 #include <tumble/model.h>
+
+#include <cctype>
 
 namespace tumble::bench {
 
@@ -16,24 +19,42 @@ std::vector<std::string> TumbleAdapter::modes() const {
 }
 
 bool TumbleAdapter::load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) {
-    std::string integrator = mode;
-    const bool endOfStep = integrator.ends_with(kEndOfStep);
-    if (endOfStep) integrator.resize(integrator.size() - std::string_view(kEndOfStep).size());
-    if (!findIntegrator(integrator)) {
-        if (why) *why = "no integrator named " + integrator;
-        return false;
+    // The integrator, then the options (adapter_tumble.h).
+    std::vector<std::string> parts;
+    for (size_t start = 0;;) {
+        const size_t plus = mode.find('+', start);
+        parts.push_back(mode.substr(start, plus - start));
+        if (plus == std::string::npos) break;
+        start = plus + 1;
     }
     SceneDesc s = scene;
+    int threads = 1;
+    for (size_t k = 1; k < parts.size(); ++k) {
+        const std::string& p = parts[k];
+        if ("+" + p == kEndOfStep) {
+            s.settings.impacts = ImpactTiming::EndOfStep;
+        } else if (p.ends_with("-threads") && std::isdigit(static_cast<unsigned char>(p[0]))) {
+            threads = std::stoi(p);
+        } else {
+            if (why) *why = "unknown option +" + p + " in mode " + mode;
+            return false;
+        }
+    }
+    if (!findIntegrator(parts[0])) {
+        if (why) *why = "no integrator named " + parts[0];
+        return false;
+    }
     s.settings.dt = dt;
-    s.settings.integrator = integrator;
-    if (endOfStep) s.settings.impacts = ImpactTiming::EndOfStep;
+    s.settings.integrator = parts[0];
     try {
         world_.emplace(s);
+        world_->setThreads(threads);
     } catch (const std::exception& e) {
         if (why) *why = e.what();
         return false;
     }
     dt_ = dt;
+    threads_ = threads;
     return true;
 }
 

@@ -10,8 +10,11 @@
 
 namespace tumble::bench {
 
-/// The suffix of a mode (an integrator's name) that resolves impacts at the end of the step.
+/// A mode is an integrator's name with options after it, each behind a '+':
+/// "+end-of-step" resolves impacts at the end of the step (settings.impacts), "+N-threads"
+/// steps on N threads (World::setThreads).
 inline constexpr const char* kEndOfStep = "+end-of-step";
+inline constexpr const char* kTwoThreads = "+2-threads";
 
 class TumbleAdapter : public EngineAdapter {
 public:
@@ -31,6 +34,7 @@ public:
 private:
     std::optional<World> world_;
     double dt_ = 0.0;
+    int threads_ = 1;
 };
 
 }  // namespace tumble::bench

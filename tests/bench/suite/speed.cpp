@@ -104,12 +104,15 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
     std::vector<std::unique_ptr<EngineAdapter>> engines = makeEngines(opt);
     for (const std::string& name : speedSceneNames()) {
         if (!opt.scene.empty() && opt.scene != name) continue;
-        // Tumble twice: impacts at their moment (the default), then at the end of the step as
-        // the peers resolve them.
+        // Tumble three times: impacts at their moment (the default), then at the end of the
+        // step as the peers resolve them, single-threaded (the headline) and on two threads.
         std::vector<std::pair<EngineAdapter*, std::string>> runs;
         for (auto& engine : engines) {
-            runs.emplace_back(engine.get(), engine->modes().front());
-            if (engine->name() == "tumble") runs.emplace_back(engine.get(), engine->modes().front() + kEndOfStep);
+            const std::string first = engine->modes().front();
+            runs.emplace_back(engine.get(), first);
+            if (engine->name() != "tumble") continue;
+            runs.emplace_back(engine.get(), first + kEndOfStep);
+            runs.emplace_back(engine.get(), first + kEndOfStep + kTwoThreads);
         }
         for (auto& [engine, mode] : runs) {
             SpeedRow row;

@@ -1,0 +1,70 @@
+// A small pool of worker threads for the stages whose items are independent: the narrow
+// phase and the time of impact over pairs, the drift of the integrator over bodies.
+//
+// Determinism: a stage hands the pool a number of chunks; each chunk writes only its own
+// items (or its own output list, joined in chunk order afterwards), so the result is the
+// same bit for bit whatever the number of threads and whichever thread took which chunk.
+// Nothing that sums over items (energy, the profile) runs inside a chunk.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace tumble {
+
+class Workers {
+public:
+    /// `threads` in all, the calling thread included (1: no helper threads).
+    explicit Workers(int threads);
+    ~Workers();
+    Workers(const Workers&) = delete;
+    Workers& operator=(const Workers&) = delete;
+
+    int threads() const { return static_cast<int>(helpers_.size()) + 1; }
+
+    /// Calls job(c) once for every chunk c in [0, chunks), spread over the threads, and
+    /// returns when all are done. An exception thrown by a job is rethrown here (the first
+    /// one by chunk order is not guaranteed; the others are dropped). Calls from several
+    /// threads at once take turns.
+    void run(int chunks, const std::function<void(int)>& job);
+
+private:
+    void helperLoop();
+    void takeChunks();
+
+    std::vector<std::thread> helpers_;
+    std::mutex callers_;  // one run at a time
+    std::mutex m_;        // guards the sleeping: a run is announced under it
+    std::condition_variable wake_, done_;
+    const std::function<void(int)>* job_ = nullptr;
+    int chunks_ = 0;
+    std::atomic<int> next_{0};
+    std::atomic<int> working_{0};                // helpers still in the current run
+    std::atomic<unsigned long> generation_{0};   // one per run, so that a helper joins each run once
+    std::atomic<bool> stop_{false};
+    std::exception_ptr error_;                   // under m_
+};
+
+/// Splits [0, n) into chunks of about `grain` items (at least one chunk when n > 0) and calls
+/// body(begin, end) for each, on the pool when there is one and more than one chunk.
+template <class Body>
+void forEachChunk(Workers* pool, int n, int grain, Body&& body) {
+    if (n <= 0) return;
+    const int chunks = (n + grain - 1) / grain;
+    if (!pool || pool->threads() == 1 || chunks == 1) {
+        body(0, n);
+        return;
+    }
+    pool->run(chunks, [&](int c) {
+        const int begin = static_cast<int>(static_cast<long>(n) * c / chunks);
+        const int end = static_cast<int>(static_cast<long>(n) * (c + 1) / chunks);
+        body(begin, end);
+    });
+}
+
+}  // namespace tumble

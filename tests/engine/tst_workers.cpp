@@ -1,0 +1,220 @@
+// World::setThreads: the stages whose items are independent run on a pool of threads, and
+// the result must be the same bit for bit for any number of threads (a run recorded on one
+// machine replays on another). Checked on a heap of 320 mixed bodies in a mesh bowl, with
+// impacts at their moment (cuts, parked islands) and at the end of the step, and on the
+// pool itself (every chunk once, errors carried back to the caller).
+#include "scene_builders.h"
+#include "test_meshes.h"
+#include "workers.h"
+
+#include <QtTest>
+
+#include <atomic>
+#include <cstring>
+#include <stdexcept>
+
+using namespace tumble;
+using namespace tumble::test;
+
+namespace {
+
+// A static mesh bowl of radius 4 (inside facing up) over a ground plane, and 320 boxes,
+// spheres and convex rocks dropped into it from up to 6 m: more than the pool's chunk sizes
+// of pairs and of bodies, so every parallel stage runs on several chunks.
+SceneDesc heapInBowl(ImpactTiming timing) {
+    const double R = 4.0;
+    TriangleMesh sphere = uvSphere(R, 12, 16), bowl;
+    bowl.vertices = sphere.vertices;
+    for (auto t : sphere.triangles) {
+        const Vec3 c = (sphere.vertices[t[0]] + sphere.vertices[t[1]] + sphere.vertices[t[2]]) / 3.0;
+        if (c.y() > 0.1 * R) continue;
+        std::swap(t[1], t[2]);  // seen from inside
+        bowl.triangles.push_back(t);
+    }
+    BodyDesc b;
+    b.name = "bowl";
+    b.motion = Motion::Static;
+    b.shape.type = ShapeType::Mesh;
+    b.shape.collision = MeshCollision::Triangles;
+    b.shape.file = "bowl (built by the test)";
+    b.shape.meshData = std::make_shared<const TriangleMesh>(std::move(bowl));
+    b.position = Vec3(0, R, 0);
+    std::vector<BodyDesc> bodies{groundPlane(0.3, 0.5), b};
+    const auto rock = std::make_shared<const TriangleMesh>(uvSphere(0.2, 3, 5));
+    Rng rng{11};
+    for (int k = 0; k < 320; ++k) {
+        BodyDesc body;
+        if (k % 3 == 0) {
+            body = boxBody("box", rng.vec(0.08, 0.2), rng.uniform(0.5, 3.0));
+        } else if (k % 3 == 1) {
+            body = sphereBody("ball", rng.uniform(0.08, 0.2), rng.uniform(0.5, 3.0));
+        } else {
+            body.name = "rock";
+            body.shape.type = ShapeType::Mesh;
+            body.shape.collision = MeshCollision::ConvexHull;
+            body.shape.file = "rock (built by the test)";
+            body.shape.meshData = rock;
+            body.mass = rng.uniform(0.5, 3.0);
+        }
+        body.name += std::to_string(k);
+        body.restitution = rng.uniform(0.0, 0.6);
+        body.friction = rng.uniform(0.2, 0.8);
+        // 8 x 8 columns 0.45 m apart, five layers 0.5 m apart, a little jittered.
+        const int column = k % 64, layer = k / 64;
+        body.position = Vec3(0.45 * (column % 8 - 3.5) + rng.uniform(-0.02, 0.02), 1.0 + 0.5 * layer,
+                             0.45 * (column / 8 - 3.5) + rng.uniform(-0.02, 0.02));
+        body.orientation = Quat(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1))
+                               .normalized();
+        body.velocity = rng.vec(-1.0, 1.0);
+        body.angularVelocity = rng.vec(-3.0, 3.0);
+        bodies.push_back(body);
+    }
+    SceneDesc s = sceneOf(std::move(bodies));
+    s.settings.impacts = timing;
+    return s;
+}
+
+// Every double of the state (positions, orientations, momenta, remembered impulses) and the
+// contact points, appended as raw bytes: two runs agree bit for bit when these are equal.
+QByteArray fingerprint(const World& w) {
+    QByteArray out;
+    auto add = [&](const double* p, int n) { out.append(reinterpret_cast<const char*>(p), n * sizeof(double)); };
+    for (const BodyState& b : w.state().bodies) {
+        add(b.x.data(), 3);
+        add(b.q.coeffs().data(), 4);
+        add(b.P.data(), 3);
+        add(b.L.data(), 3);
+    }
+    for (const ContactMemory& m : w.state().contacts) {
+        out.append(reinterpret_cast<const char*>(&m.bodyA), sizeof m.bodyA);
+        out.append(reinterpret_cast<const char*>(&m.bodyB), sizeof m.bodyB);
+        out.append(reinterpret_cast<const char*>(&m.feature), sizeof m.feature);
+        add(&m.normalImpulse, 1);
+        add(m.tangentImpulse.data(), 3);
+    }
+    for (const collision::Manifold& m : w.contacts()) {
+        out.append(reinterpret_cast<const char*>(&m.bodyA), sizeof m.bodyA);
+        out.append(reinterpret_cast<const char*>(&m.bodyB), sizeof m.bodyB);
+        add(m.normal.data(), 3);
+        for (int k = 0; k < m.count; ++k) {
+            add(m.points[k].position.data(), 3);
+            add(&m.points[k].depth, 1);
+        }
+    }
+    return out;
+}
+
+struct Run {
+    QByteArray end;
+    long contactPoints = 0;
+    long impactMoments = 0;
+    double lowest = 0.0;  // the lowest body centre at the end
+};
+
+Run runHeap(ImpactTiming timing, int threads, int steps) {
+    World w(heapInBowl(timing));
+    w.setThreads(threads);
+    if (w.threads() != threads) throw std::logic_error("setThreads did not take");
+    stepN(w, steps, 1.0 / 60.0);
+    Run r;
+    r.end = fingerprint(w);
+    r.contactPoints = w.profile().contactPoints;
+    r.impactMoments = w.profile().impactMoments;
+    r.lowest = 1e9;
+    for (int i : w.model().dynamicBodies) r.lowest = std::min(r.lowest, w.state().bodies[i].x.y());
+    return r;
+}
+
+}  // namespace
+
+class TestWorkers : public QObject {
+    Q_OBJECT
+private slots:
+    void everyChunkRunsOnce_data() {
+        QTest::addColumn<int>("threads");
+        for (int t : {1, 2, 4}) QTest::addRow("%d threads", t) << t;
+    }
+    void everyChunkRunsOnce() {
+        QFETCH(int, threads);
+        Workers pool(threads);
+        QCOMPARE(pool.threads(), threads);
+        for (int round = 0; round < 50; ++round) {  // many runs: the handshake between them
+            const int chunks = 1 + round * 37 % 500;
+            std::vector<std::atomic<int>> calls(chunks);
+            pool.run(chunks, [&](int c) { calls[c].fetch_add(1); });
+            for (int c = 0; c < chunks; ++c) QCOMPARE(calls[c].load(), 1);
+        }
+    }
+
+    void anErrorInAChunkReachesTheCaller() {
+        Workers pool(3);
+        std::atomic<int> ran{0};
+        bool caught = false;
+        try {
+            pool.run(40, [&](int c) {
+                ran.fetch_add(1);
+                if (c == 17) throw std::runtime_error("chunk 17 failed");
+            });
+        } catch (const std::runtime_error& e) {
+            caught = std::string(e.what()) == "chunk 17 failed";
+        }
+        QVERIFY(caught);
+        QCOMPARE(ran.load(), 40);  // the other chunks still ran: the stage's lists are whole
+        // The pool is still usable afterwards.
+        std::atomic<int> again{0};
+        pool.run(10, [&](int) { again.fetch_add(1); });
+        QCOMPARE(again.load(), 10);
+    }
+
+    void chunksCoverTheRangeInOrder() {
+        Workers pool(2);
+        for (int n : {1, 7, 256, 257, 1000}) {
+            std::vector<int> owner(n, -1);
+            forEachChunk(&pool, n, 64, [&](int begin, int end) {
+                for (int i = begin; i < end; ++i) owner[i] = begin;
+            });
+            for (int i = 0; i < n; ++i) {
+                QVERIFY(owner[i] >= 0 && owner[i] <= i);
+                if (i > 0) QVERIFY(owner[i] >= owner[i - 1]);
+            }
+        }
+    }
+
+    void threadCountMustBePositive() {
+        World w(heapInBowl(ImpactTiming::Exact));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, w.setThreads(0));
+        QCOMPARE(w.threads(), 1);
+        w.setThreads(3);
+        QCOMPARE(w.threads(), 3);
+        w.setThreads(1);
+        QCOMPARE(w.threads(), 1);
+    }
+
+    // The state after a second of the heap falling into the bowl (hundreds of contacts and
+    // moments of impact) is the same bit for bit on 1, 2 and 4 threads.
+    void sameRunOnAnyNumberOfThreads_data() {
+        QTest::addColumn<bool>("endOfStep");
+        QTest::addRow("impacts exact") << false;
+        QTest::addRow("impacts end-of-step") << true;
+    }
+    void sameRunOnAnyNumberOfThreads() {
+        QFETCH(bool, endOfStep);
+        const ImpactTiming timing = endOfStep ? ImpactTiming::EndOfStep : ImpactTiming::Exact;
+        const int steps = 45;
+        const Run one = runHeap(timing, 1, steps);
+        // The run did what the test is about: bodies fell and landed on each other and the bowl.
+        QVERIFY2(one.contactPoints > 100L * steps, qPrintable(QString::number(one.contactPoints)));
+        if (timing == ImpactTiming::Exact) QVERIFY(one.impactMoments > 0);
+        QVERIFY2(one.lowest > -0.01 && one.lowest < 0.9, qPrintable(QString::number(one.lowest)));
+        qInfo("contact points %ld, moments %ld, lowest %.3f", one.contactPoints, one.impactMoments, one.lowest);
+        for (int threads : {2, 4}) {
+            const Run many = runHeap(timing, threads, steps);
+            QCOMPARE(many.contactPoints, one.contactPoints);
+            QCOMPARE(many.impactMoments, one.impactMoments);
+            QVERIFY2(many.end == one.end, qPrintable(QString("%1 threads differ").arg(threads)));
+        }
+    }
+};
+
+QTEST_APPLESS_MAIN(TestWorkers)
+#include "tst_workers.moc"
