@@ -105,9 +105,9 @@ Aabb bounds(const Shape& shape, const Pose& pose);
 /// The largest distance from the body origin to a point of the shape (infinite for a plane).
 double boundingRadius(const Shape& shape);
 
-/// The narrowest width of the solid, or a lower bound of it (a hull: the diameter of the
-/// ball about its interior point that fits inside; infinite for a plane, a half-space; 0
-/// for a triangle mesh, which may be an open surface): a body moving less than this cannot
+/// The narrowest width of the solid, or a lower bound of it (a hull of more than 256 edges:
+/// the diameter of the ball about its interior point that fits inside; infinite for a
+/// plane, a half-space; 0 for a triangle mesh, which may be an open surface): a body moving less than this cannot
 /// pass through it without still overlapping it at the end.
 double thickness(const Shape& shape);
 

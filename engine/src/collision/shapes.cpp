@@ -113,6 +113,50 @@ double boundingRadius(const Shape& s) {
     return 0.0;
 }
 
+namespace {
+
+// Hulls with more edges than this get the lower bound below instead of the exact width
+// (the exact one looks at every pair of edges).
+constexpr std::size_t kExactWidthEdges = 256;
+
+// The extent of the hull along the unit direction n.
+double extentAlong(const ConvexHull& h, const Vec3& n) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec3& v : h.vertices) {
+        const double d = n.dot(v);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+    }
+    return hi - lo;
+}
+
+// The hull's least width. The width along a direction is smallest where the two
+// supporting planes touch a face and a vertex, or two edges: so the least width is the
+// least extent along the face normals and the edges' cross products. A tetrahedron is
+// narrower between two opposite edges than over any face. Past kExactWidthEdges edges the
+// diameter of the ball about the interior point that fits inside, a lower bound.
+double hullWidth(const ConvexHull& h) {
+    double w = std::numeric_limits<double>::infinity();
+    if (h.edges.size() <= kExactWidthEdges && !h.vertices.empty()) {
+        for (const ConvexHull::Face& f : h.faces) w = std::min(w, extentAlong(h, f.normal));
+        for (std::size_t i = 0; i < h.edges.size(); ++i) {
+            const Vec3 a = h.vertices[h.edges[i][1]] - h.vertices[h.edges[i][0]];
+            for (std::size_t j = i + 1; j < h.edges.size(); ++j) {
+                const Vec3 n = a.cross(h.vertices[h.edges[j][1]] - h.vertices[h.edges[j][0]]);
+                const double len = n.norm();
+                if (len > 1e-12 * a.squaredNorm()) w = std::min(w, extentAlong(h, n / len));
+            }
+        }
+    } else {
+        double r = std::numeric_limits<double>::infinity();
+        for (const ConvexHull::Face& f : h.faces) r = std::min(r, f.offset - f.normal.dot(h.interiorPoint));
+        w = 2.0 * r;
+    }
+    return std::isfinite(w) && w > 0.0 ? w : 0.0;
+}
+
+}  // namespace
+
 double thickness(const Shape& s) {
     switch (s.kind) {
     case Kind::Sphere:
@@ -120,15 +164,7 @@ double thickness(const Shape& s) {
     case Kind::Box: return 2.0 * s.halfExtents.minCoeff();
     case Kind::Cylinder: return 2.0 * std::min(s.radius, s.halfHeight);
     case Kind::Plane: return std::numeric_limits<double>::infinity();
-    case Kind::Hull: {
-        // A lower bound: the diameter of the ball about the interior point that fits inside
-        // (every width is at least that). The widths across the faces are not one: a
-        // tetrahedron is narrower between two opposite edges than over any face.
-        double r = std::numeric_limits<double>::infinity();
-        for (const ConvexHull::Face& f : s.hull->faces)
-            r = std::min(r, f.offset - f.normal.dot(s.hull->interiorPoint));
-        return std::isfinite(r) && r > 0.0 ? 2.0 * r : 0.0;
-    }
+    case Kind::Hull: return hullWidth(*s.hull);
     case Kind::Mesh: return 0.0;  // a surface, perhaps open
     }
     return 0.0;
