@@ -11,6 +11,10 @@
 // step makes the energy grow geometrically, so a large factor still stops it within a
 // few dozen steps, while no correct scene comes near it.
 //
+// The same check stops a run whose integrator cannot follow a body's spin at the step
+// (Euler and symplectic Euler past 0.5 rad a step, RK4 past 1.5): such a body turns over to
+// another axis, its kinetic energy up to 5.8 times, long before anything runs away.
+//
 // Cheap: one O(bodies + forces) pass every kEnergyGuardEvery steps, nothing per step.
 #pragma once
 
@@ -49,7 +53,7 @@ void armEnergyGuard(const Model& model, const State& state, EnergyGuard& guard);
 void guardEnergy(const Model& model, const State& state, EnergyGuard& guard);
 
 /// Adds what could have been put in since the last check, and throws SimulationError when
-/// the energy has run away.
+/// the energy has run away or a body spins faster than the integrator follows.
 void checkEnergy(const Model& model, const State& state, EnergyGuard& guard);
 
 /// Energy per body (kinetic + gravity, and the springs acting on it) into `out`; their sum.

@@ -170,7 +170,11 @@ private slots:
         spun.position = Vec3(0, 5, 0);
         ForceDesc twist;
         twist.type = ForceType::Torque;
-        twist.vector = Vec3(0.5, 3, 0.2);
+        // Spun up to about 14 rad/s in the 10 s (0.06 rad a step at 1/240 s): well below what
+        // every integrator follows (the guard's spin check stops the first-order ones past
+        // 0.5 rad a step; 5 times faster, symplectic Euler turned the box over to its minor
+        // axis, where it spins 5 times faster again, and was stopped there).
+        twist.vector = Vec3(0.01, 0.06, 0.004);
         spun.forces.push_back(twist);
         BodyDesc late = sphereBody("late", 0.1, 1.0);
         late.position = Vec3(0, -5, 0);
@@ -285,6 +289,49 @@ private slots:
         QCOMPARE(w.state().time, 1.0);
         QVERIFY(allFinite(w.state()));
         QVERIFY(energy(w.model(), w.state()).total() > 1e6 * before);  // what the guard stops
+    }
+
+    // A drill spun at 1 000 rad/s (4.2 rad a step at 1/240 s): the splittings sub-step it and
+    // keep its energy; Euler, symplectic Euler and RK4 would turn it over to its minor axis
+    // (kinetic energy x4.3, |L| unchanged, nothing runs away), so the run stops at the first
+    // check (8 steps), naming the body, its spin and a step that works. (Symplectic Euler at
+    // 0.4 rad a step turns the drill over within the half second, and is stopped as it spins
+    // up about the minor axis.)
+    void spinTooFastForTheIntegrator_data() {
+        QTest::addColumn<QString>("integrator");
+        QTest::addColumn<double>("spin");
+        QTest::addColumn<bool>("stops");
+        QTest::newRow("rk4 4.2 rad a step") << "rk4" << 1000.0 << true;
+        QTest::newRow("rk4 1 rad a step") << "rk4" << 240.0 << false;
+        QTest::newRow("euler 4.2 rad a step") << "euler" << 1000.0 << true;
+        QTest::newRow("symplectic-euler 0.6 rad a step") << "symplectic-euler" << 144.0 << true;
+        QTest::newRow("symplectic-euler 0.05 rad a step") << "symplectic-euler" << 12.0 << false;
+        QTest::newRow("splitting 4.2 rad a step") << "splitting" << 1000.0 << false;
+        QTest::newRow("splitting-4 4.2 rad a step") << "splitting-4" << 1000.0 << false;
+    }
+    void spinTooFastForTheIntegrator() {
+        QFETCH(QString, integrator);
+        QFETCH(double, spin);
+        QFETCH(bool, stops);
+        BodyDesc drill = boxBody("drill", Vec3(0.5, 0.2, 0.1), 1.0);
+        drill.angularVelocity = Vec3(0.01 * spin, 0.005 * spin, spin);
+        SceneDesc scene = sceneOf({drill}, Vec3::Zero(), integrator.toStdString());
+        scene.settings.dt = 1.0 / 240;
+        scene.settings.duration = 0.5;
+        World w(scene);
+        const auto stop = run(w);
+        QCOMPARE(bool(stop), stops);
+        if (!stops) return;
+        QCOMPARE(stop->body(), 0);
+        QCOMPARE(stop->time(), 8.0 / 240);
+        const QString what = stop->what();
+        QVERIFY2(what.contains("body 'drill' (bodies[0]) spins at") && what.contains("more than " + integrator) &&
+                     what.contains("use splitting"),
+                 qPrintable(what));
+        // With the guard off the run goes on, as the user asked.
+        scene.settings.energyGuard = false;
+        World off(scene);
+        QVERIFY(!run(off));
     }
 
     // The likely cause of other kinds of blow-up.
