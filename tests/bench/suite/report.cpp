@@ -122,7 +122,9 @@ void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows) {
                 for (const AccuracyRow& r : rows)
                     if (r.scene == scene && r.errorName == errorName && r.engine + "|" + r.mode == k &&
                         r.dt == dt)
-                        cell = num(r.error, "%.2g") + " (" + num(perSimSecond(r), "%.2g") + ")";
+                        // A run that stopped (its guard or a non-finite state threw) has no time.
+                        cell = r.wall < 1e299 ? num(r.error, "%.2g") + " (" + num(perSimSecond(r), "%.2g") + ")"
+                                              : std::string("stopped");
                 md << ' ' << cell << " |";
             }
             md << '\n';
