@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace tumble::test {
 
@@ -35,6 +36,21 @@ inline TriangleMesh uvSphere(double r, int rings, int segments) {
         }
     }
     return m;
+}
+
+/// The lower half (and a little more) of a UV sphere of radius r about the origin, its
+/// triangles facing the centre: the inside of a bowl, an open mesh.
+inline TriangleMesh hemisphereBowl(double r, int rings, int segments) {
+    TriangleMesh sphere = uvSphere(r, rings, segments);
+    TriangleMesh bowl;
+    bowl.vertices = sphere.vertices;
+    for (auto t : sphere.triangles) {
+        const Vec3 c = (sphere.vertices[t[0]] + sphere.vertices[t[1]] + sphere.vertices[t[2]]) / 3.0;
+        if (c.y() > 0.1 * r) continue;  // the lower half and a little more
+        std::swap(t[1], t[2]);          // seen from inside
+        bowl.triangles.push_back(t);
+    }
+    return bowl;
 }
 
 }  // namespace tumble::test

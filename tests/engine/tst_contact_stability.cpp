@@ -61,15 +61,7 @@ void addTapBall(SceneDesc& s) {
 // A hemispherical bowl of radius R (inside surface facing its centre, which is at (0, R, 0)),
 // as a static triangle mesh.
 BodyDesc meshBowl(double R) {
-    TriangleMesh sphere = uvSphere(R, 24, 32);
-    TriangleMesh bowl;
-    bowl.vertices = sphere.vertices;
-    for (auto t : sphere.triangles) {
-        const Vec3 c = (sphere.vertices[t[0]] + sphere.vertices[t[1]] + sphere.vertices[t[2]]) / 3.0;
-        if (c.y() > 0.1 * R) continue;  // the lower half and a little more
-        std::swap(t[1], t[2]);          // seen from inside
-        bowl.triangles.push_back(t);
-    }
+    TriangleMesh bowl = hemisphereBowl(R, 24, 32);
     BodyDesc b;
     b.name = "bowl";
     b.motion = Motion::Static;

@@ -23,14 +23,7 @@ namespace {
 // of pairs and of bodies, so every parallel stage runs on several chunks.
 SceneDesc heapInBowl(ImpactTiming timing) {
     const double R = 4.0;
-    TriangleMesh sphere = uvSphere(R, 12, 16), bowl;
-    bowl.vertices = sphere.vertices;
-    for (auto t : sphere.triangles) {
-        const Vec3 c = (sphere.vertices[t[0]] + sphere.vertices[t[1]] + sphere.vertices[t[2]]) / 3.0;
-        if (c.y() > 0.1 * R) continue;
-        std::swap(t[1], t[2]);  // seen from inside
-        bowl.triangles.push_back(t);
-    }
+    TriangleMesh bowl = hemisphereBowl(R, 12, 16);
     BodyDesc b;
     b.name = "bowl";
     b.motion = Motion::Static;
