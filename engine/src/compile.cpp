@@ -361,6 +361,8 @@ Model compile(const SceneDesc& scene) {
                 const Eigen::SelfAdjointEigenSolver<Mat3> eig(mp.inertia);
                 b.principalMoments = eig.eigenvalues();
                 b.principalAxes = eig.eigenvectors();
+                // A rotation, not a reflection: the free rotation turns Π about these axes.
+                if (b.principalAxes.determinant() < 0.0) b.principalAxes.col(2) *= -1.0;
                 m.dynamicBodies.push_back(index);
                 break;
             }

@@ -149,7 +149,7 @@ constexpr int kMaxSubsteps = 1000;
 Vec3 ontoEnergy(const BodyModel& b, const Vec3& bodyL, double e0) {
     const Mat3& A = b.principalAxes;
     Vec3 p = A.transpose() * bodyL;
-    const double g0 = p.squaredNorm();
+    const double g0 = p.squaredNorm(), radius = std::sqrt(g0);
     const Vec3 invI = b.principalMoments.cwiseInverse();
     double last = std::numeric_limits<double>::infinity();
     for (int it = 0; it < 50; ++it) {
@@ -157,14 +157,26 @@ Vec3 ontoEnergy(const BodyModel& b, const Vec3& bodyL, double e0) {
         const double e = p.dot(Jp) - e0;
         // Done at the level, or once rounding stops the error falling (1 % of the calls on
         // 10 000 tumbling boxes went on to the cap without this).
-        if (!(std::abs(e) > 4e-16 * e0) || !(std::abs(e) < 0.9 * last)) break;
+        if (!(std::abs(e) > 4e-16 * e0) || !(std::abs(e) < 0.9 * last)) {
+            if (it == 0) return bodyL;  // on the level already: nothing to turn
+            break;
+        }
         last = std::abs(e);
         const Vec3 d = Jp - (Jp.dot(p) / g0) * p;  // the energy's gradient along the sphere, /2
         const double dd = d.squaredNorm();
         if (!(dd > 1e-30 * Jp.squaredNorm())) break;
-        p = (p - (0.5 * e / dd) * d).normalized() * std::sqrt(g0);
+        p -= (0.5 * e / dd) * d;
+        p *= radius / p.norm();
     }
     return A * p;
+}
+
+// The rotation that takes a to b, two vectors of the same length (Π before and after the
+// projection, both on |Π| = |L|): the quaternion (|a|² + a·b, a × b), normalised, which is
+// exact for any angle short of a half turn.
+Quat turnBetween(const Vec3& a, const Vec3& b) {
+    const Vec3 c = a.cross(b);
+    return Quat(a.squaredNorm() + a.dot(b), c.x(), c.y(), c.z()).normalized();
 }
 
 void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) {
@@ -184,13 +196,22 @@ void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) 
     const double c = std::cbrt(2.0), g1 = 1.0 / (2.0 - c), g0 = -c / (2.0 - c);
     const double single[1] = {1.0}, triple[3] = {g1, g0, g1};
     const std::span<const double> weights = fourthOrder ? std::span<const double>(triple) : single;
+    // Π in principal axes is carried along: a turn by θ about principal axis k turns Π's
+    // other two components by -θ (the body turns, L stays), so L need not be read again
+    // through the quaternion at each of the five turns.
+    Vec3 p = spin;
     for (int k = 0; k < n; ++k) {
         for (const double w : weights) {
             for (int i = 0; i < 5; ++i) {
-                const Vec3 a = b.principalAxes.col(axis[i]);
-                const Vec3 bodyL = s.q.conjugate() * s.L;
-                const double angle = part[i] * w * hs * a.dot(bodyL) / b.principalMoments[axis[i]];
-                s.q = s.q * expMap(angle * a);
+                const int ax = axis[i], u = (ax + 1) % 3, v = (ax + 2) % 3;
+                const double half = 0.5 * part[i] * w * hs * p[ax] / b.principalMoments[ax];
+                const double sh = std::sin(half), ch = std::cos(half);
+                const Vec3 a = b.principalAxes.col(ax) * sh;
+                s.q = s.q * Quat(ch, a.x(), a.y(), a.z());
+                const double cs = ch * ch - sh * sh, sn = 2.0 * sh * ch;  // cos θ, sin θ
+                const double pu = p[u], pv = p[v];
+                p[u] = cs * pu + sn * pv;
+                p[v] = cs * pv - sn * pu;
             }
         }
     }
@@ -208,8 +229,9 @@ void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) 
     if (!(e0 > 0.0)) return;
     const Vec3 bodyL = s.q.conjugate() * s.L;
     const Vec3 onCurve = ontoEnergy(b, bodyL, e0);
+    if (onCurve == bodyL) return;
     // Turn the body so that the new Π is what L reads in its axes: q' Π' q'* = q Π q* = L.
-    s.q = (s.q * Quat::FromTwoVectors(onCurve, bodyL)).normalized();
+    s.q = (s.q * turnBetween(onCurve, bodyL)).normalized();
 }
 
 void splitting(const Model& model, State& state, double h, IntegrateScratch& scr, Profile& prof,
