@@ -180,6 +180,13 @@ Quat turnBetween(const Vec3& a, const Vec3& b) {
 }
 
 void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) {
+    // A body whose three moments are equal (a sphere, a cube) spins at ω = L / I, constant:
+    // one exact turn about L, whatever the step.
+    const Vec3& I = b.principalMoments;
+    if (I.maxCoeff() - I.minCoeff() <= 1e-12 * I.maxCoeff()) {
+        s.q = (expMap(h * s.L / I[0]) * s.q).normalized();
+        return;
+    }
     static constexpr int axis[5] = {0, 1, 2, 1, 0};
     static constexpr double part[5] = {0.5, 0.5, 1.0, 0.5, 0.5};
     const Vec3 bodyL0 = s.q.conjugate() * s.L;
