@@ -286,9 +286,9 @@ void solveContacts(const Model& model, State& state, const State& before,
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
     for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStart(state, cfg.h, s);
-    for (int k = 0; k < cfg.iterations; ++k)
-        if (!iterate(s, k)) break;
-    if (!s.blocks.empty()) shockPass(s, kShockPasses);
+    bool converged = false;
+    for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k);
+    if (!s.blocks.empty()) shockPass(s, kShockPasses, converged);
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;

@@ -41,7 +41,7 @@ void supportLevels(ContactSolverScratch& s) {
 // nears 1 as the stack grows); without these passes the stack sinks into itself each step
 // until the warm start has caught up. The impulses they add are kept for the next step's
 // warm start, where the lower bodies then feel them: at rest they find nothing left to do.
-void shockPass(ContactSolverScratch& s, int passes) {
+void shockPass(ContactSolverScratch& s, int passes, bool converged) {
     supportLevels(s);
     const int nb = static_cast<int>(s.blocks.size());
     auto lowerLevel = [&](int b) {
@@ -57,11 +57,13 @@ void shockPass(ContactSolverScratch& s, int passes) {
                      [&](int x, int y) { return lowerLevel(x) < lowerLevel(y); });
     std::vector<SolverBody> saved;
     std::vector<int> frozenBodies;
+    bool atFixedPoint = converged;  // nothing has changed since the passes' fixed point
     for (size_t g = 0; g < s.order.size();) {
         const int level = lowerLevel(s.order[g]);
         size_t e = g;
         while (e < s.order.size() && lowerLevel(s.order[e]) == level) ++e;
         // The lower level stands still; the blocks are prepared again for that.
+        const size_t frozenBefore = frozenBodies.size();
         for (size_t k = g; k < e; ++k) {
             const Point& p = s.points[s.blocks[s.order[k]].begin];
             const int lower = s.level[p.a] < s.level[p.b] ? p.a : p.b;
@@ -72,6 +74,13 @@ void shockPass(ContactSolverScratch& s, int passes) {
             body.invMass = 0.0;
             body.invI.setZero();
         }
+        // Nothing held still and nothing changed below: these blocks are at their fixed
+        // point already (a ball on the ground, the bottom layer of a pile).
+        if (atFixedPoint && frozenBodies.size() == frozenBefore) {
+            g = e;
+            continue;
+        }
+        atFixedPoint = false;
         s.frozen.clear();
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block block = s.blocks[s.order[k]];

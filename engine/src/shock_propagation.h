@@ -8,7 +8,9 @@ namespace tumble {
 
 /// Level by level from the bodies that cannot move, the lower bodies held still while the
 /// contacts between them and the next level are solved, `passes` times; the blocks'
-/// friction impulses are kept for the warm start.
-void shockPass(ContactSolverScratch& s, int passes);
+/// friction impulses are kept for the warm start. `converged`: the solver's passes ended
+/// at an exact fixed point, so a level whose lower bodies cannot move anyway (nothing to
+/// hold still) would change nothing while nothing below it has: it is skipped.
+void shockPass(ContactSolverScratch& s, int passes, bool converged);
 
 }  // namespace tumble
