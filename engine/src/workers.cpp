@@ -14,13 +14,16 @@ namespace {
 
 constexpr auto kSpin = std::chrono::microseconds(200);  // how long a thread spins before sleeping
 
-// Spins until ready() or kSpin has passed; true if ready.
+// Spins until ready() or kSpin has passed; true if ready. Each round yields the core, so a
+// spinning thread gives way to one with work when there are more threads than cores (four
+// threads on two cores ran a test 20 times slower with a busy spin under AddressSanitizer).
 template <class Ready>
 bool spinFor(Ready&& ready) {
     const auto until = std::chrono::steady_clock::now() + kSpin;
     for (int k = 0;; ++k) {
         if (ready()) return true;
-        if ((k & 63) == 63 && std::chrono::steady_clock::now() > until) return false;
+        std::this_thread::yield();
+        if ((k & 15) == 15 && std::chrono::steady_clock::now() > until) return false;
     }
 }
 
