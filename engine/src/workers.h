@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -27,8 +28,8 @@ public:
 
     int threads() const { return static_cast<int>(helpers_.size()) + 1; }
 
-    /// Calls job(c) once for every chunk c in [0, chunks), spread over the threads, and
-    /// returns when all are done. An exception thrown by a job is rethrown here (the first
+    /// Calls job(c) once for every chunk c in [0, chunks), chunks < 2^24, spread over the
+    /// threads, and returns when all are done (not waiting for helpers that took none). An exception thrown by a job is rethrown here (the first
     /// one by chunk order is not guaranteed; the others are dropped). Calls from several
     /// threads at once take turns.
     void run(int chunks, const std::function<void(int)>& job);
@@ -41,13 +42,15 @@ private:
     std::mutex callers_;  // one run at a time
     std::mutex m_;        // guards the sleeping: a run is announced under it
     std::condition_variable wake_, done_;
-    const std::function<void(int)>* job_ = nullptr;
-    int chunks_ = 0;
-    std::atomic<int> next_{0};
-    std::atomic<int> working_{0};                // helpers still in the current run
-    std::atomic<unsigned long> generation_{0};   // one per run, so that a helper joins each run once
+    const std::function<void(int)>* job_ = nullptr;  // the current run's; written before its tickets
+    // The current run's tickets: its generation (16 bits), its number of chunks (24 bits) and
+    // the next chunk to take (24 bits), in one word, so that a thread that comes late to a
+    // run that has ended draws a number past the end and touches nothing of the next run.
+    std::atomic<std::uint64_t> ticket_{0};
+    std::atomic<std::uint32_t> generation_{0};  // the helpers wait for it to change
+    std::atomic<int> finished_{0};              // chunks of the current run done
     std::atomic<bool> stop_{false};
-    std::exception_ptr error_;                   // under m_
+    std::exception_ptr error_;                  // under m_
 };
 
 /// Splits [0, n) into chunks of about `grain` items (at least one chunk when n > 0) and calls
