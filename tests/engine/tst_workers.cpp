@@ -10,6 +10,7 @@
 #include <QtTest>
 
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -19,7 +20,7 @@ using namespace tumble::test;
 namespace {
 
 // A static mesh bowl of radius 4 (inside facing up) over a ground plane, and 320 boxes,
-// spheres and convex rocks dropped into it from up to 2.3 m: more than the pool's chunk sizes
+// spheres and convex rocks dropped into it from up to 3 m: more than the pool's chunk sizes
 // of pairs and of bodies, so every parallel stage runs on several chunks.
 SceneDesc heapInBowl(ImpactTiming timing) {
     const double R = 4.0;
@@ -52,11 +53,14 @@ SceneDesc heapInBowl(ImpactTiming timing) {
         body.name += std::to_string(k);
         body.restitution = rng.uniform(0.0, 0.6);
         body.friction = rng.uniform(0.2, 0.8);
-        // 8 x 8 columns 0.45 m apart, five layers 0.5 m apart from just above the bowl's
-        // floor, a little jittered: the bottom layer lands within the first steps.
+        // 8 x 8 columns 0.45 m apart, five layers 0.5 m apart from 0.4 m above the bowl
+        // (clear of it whatever the turn), a little jittered: the bottom layer lands within
+        // the first dozen steps.
         const int column = k % 64, layer = k / 64;
-        body.position = Vec3(0.45 * (column % 8 - 3.5) + rng.uniform(-0.02, 0.02), 0.3 + 0.5 * layer,
-                             0.45 * (column / 8 - 3.5) + rng.uniform(-0.02, 0.02));
+        const double x = 0.45 * (column % 8 - 3.5) + rng.uniform(-0.02, 0.02);
+        const double z = 0.45 * (column / 8 - 3.5) + rng.uniform(-0.02, 0.02);
+        const double floor = R - std::sqrt(R * R - x * x - z * z);
+        body.position = Vec3(x, floor + 0.4 + 0.5 * layer, z);
         body.orientation = Quat(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1))
                                .normalized();
         body.velocity = rng.vec(-1.0, 1.0);
@@ -184,8 +188,8 @@ private slots:
         QCOMPARE(w.threads(), 1);
     }
 
-    // The state after 0.4 s of the heap falling into the bowl (hundreds of contacts and
-    // moments of impact) is the same bit for bit on 1, 2 and 4 threads.
+    // The state after the heap's first layer has landed in the bowl (hundreds of contacts
+    // and moments of impact) is the same bit for bit on 1, 2 and 4 threads.
     void sameRunOnAnyNumberOfThreads_data() {
         QTest::addColumn<bool>("endOfStep");
         QTest::addRow("impacts exact") << false;
@@ -194,10 +198,15 @@ private slots:
     void sameRunOnAnyNumberOfThreads() {
         QFETCH(bool, endOfStep);
         const ImpactTiming timing = endOfStep ? ImpactTiming::EndOfStep : ImpactTiming::Exact;
+        // Fewer steps in the sanitizer build, where a step costs thirty times as much.
+#ifdef TUMBLE_TEST_SANITIZED
+        const int steps = 16;
+#else
         const int steps = 24;
+#endif
         const Run one = runHeap(timing, 1, steps);
         // The run did what the test is about: bodies fell and landed on each other and the bowl.
-        QVERIFY2(one.contactPoints > 100L * steps, qPrintable(QString::number(one.contactPoints)));
+        QVERIFY2(one.contactPoints > 40L * steps, qPrintable(QString::number(one.contactPoints)));
         if (timing == ImpactTiming::Exact) QVERIFY(one.impactMoments > 0);
         QVERIFY2(one.lowest > -0.01 && one.lowest < 0.9, qPrintable(QString::number(one.lowest)));
         qInfo("contact points %ld, moments %ld, lowest %.3f", one.contactPoints, one.impactMoments, one.lowest);
