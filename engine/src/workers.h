@@ -28,10 +28,10 @@ public:
 
     int threads() const { return static_cast<int>(helpers_.size()) + 1; }
 
-    /// Calls job(c) once for every chunk c in [0, chunks), chunks < 2^24, spread over the
-    /// threads, and returns when all are done (not waiting for helpers that took none). An exception thrown by a job is rethrown here (the first
-    /// one by chunk order is not guaranteed; the others are dropped). Calls from several
-    /// threads at once take turns.
+    /// Calls job(c) once for every chunk c in [0, chunks), chunks < 2^23, spread over the
+    /// threads, and returns when all are done (not waiting for helpers that took none). An
+    /// exception thrown by a job is rethrown here (which one, when several throw, is not
+    /// fixed; the others are dropped). Calls from several threads at once take turns.
     void run(int chunks, const std::function<void(int)>& job);
 
 private:
