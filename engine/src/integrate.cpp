@@ -228,7 +228,7 @@ void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) 
     // tumbling about its long axis at 0.5 rad a step (splitting-4: O(h⁴), 3e-3). Projected,
     // both keep it to rounding at any turn and keep their order (2.03 and 4.01 measured);
     // the Dzhanibekov top at dt 1e-3 is 8.1e-8 rad (splitting; 5.8e-7 unprojected) and
-    // 8.3e-10 rad (splitting-4; 2.2e-11 unprojected) off RK4 at a 64 times smaller step.
+    // 3.5e-10 rad (splitting-4; 2.2e-11 unprojected) off RK4 at a 64 times smaller step.
     // Projecting only past a threshold was tried for splitting-4 and made its error erratic
     // (a kick now and then near the middle axis, where the way back to the level is long):
     // 1e-8 gave 0.032 rad on the 10 s tumbling box at 1/60 s, where it is 2.2e-5 now.

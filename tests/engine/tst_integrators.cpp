@@ -345,7 +345,7 @@ private slots:
     // The Dzhanibekov top (the tumbling box, spinning about its unstable middle axis) at
     // dt 1e-3 for 2 s, against RK4 at a 64 times smaller step (which agrees with RK4 at a
     // 128 times smaller one to 1e-12 rad). Issue 18 asks for 1e-8 rad. Measured: splitting
-    // 8.1e-8 rad (5.8e-7 before it projected every step), splitting-4 7.5e-9 (2.2e-11
+    // 8.1e-8 rad (5.8e-7 before it projected every step), splitting-4 3.5e-10 (2.2e-11
     // without the projection, which then let the energy of a tumbling box at 0.5 rad a step
     // oscillate by 3e-3).
     void dzhanibekovOrientation_data() {
