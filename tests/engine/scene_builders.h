@@ -4,9 +4,11 @@
 #include <tumble/scene.h>
 #include <tumble/world.h>
 
+#include "test_meshes.h"
 #include "test_random.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace tumble::test {
@@ -36,6 +38,20 @@ inline SceneDesc sceneOf(std::vector<BodyDesc> bodies, const Vec3& gravity = Vec
     s.settings.integrator = integrator;
     s.bodies = std::move(bodies);
     return s;
+}
+
+/// A static hemispherical bowl of radius R (hemisphereBowl: the inside of a UV sphere of
+/// `rings` x `segments`), its lowest point at the origin, as a triangle mesh.
+inline BodyDesc meshBowl(double R, int rings, int segments) {
+    BodyDesc b;
+    b.name = "bowl";
+    b.motion = Motion::Static;
+    b.shape.type = ShapeType::Mesh;
+    b.shape.collision = MeshCollision::Triangles;
+    b.shape.file = "bowl (built by the test)";
+    b.shape.meshData = std::make_shared<const TriangleMesh>(hemisphereBowl(R, rings, segments));
+    b.position = Vec3(0, R, 0);
+    return b;
 }
 
 /// The static ground: the plane y = distance, free side up.

@@ -58,18 +58,9 @@ void addTapBall(SceneDesc& s) {
     s.bodies.push_back(ball);
 }
 
-// A hemispherical bowl of radius R (inside surface facing its centre, which is at (0, R, 0)),
-// as a static triangle mesh.
-BodyDesc meshBowl(double R) {
-    TriangleMesh bowl = hemisphereBowl(R, 24, 32);
-    BodyDesc b;
-    b.name = "bowl";
-    b.motion = Motion::Static;
-    b.shape.type = ShapeType::Mesh;
-    b.shape.collision = MeshCollision::Triangles;
-    b.shape.file = "bowl (built by the test)";
-    b.shape.meshData = std::make_shared<const TriangleMesh>(std::move(bowl));
-    b.position = Vec3(0, R, 0);
+// The bowl the ball rolls in: radius R, friction 0.5 (restitution as BodyDesc's default).
+BodyDesc bowlOf(double R) {
+    BodyDesc b = meshBowl(R, 24, 32);
     b.friction = 0.5;
     return b;
 }
@@ -268,7 +259,7 @@ private slots:
             // 2 cm inside the sphere the facets approximate (they lie up to 9 mm inside it).
             const double d = R - r - 0.02;
             ball.position = Vec3(d * std::sin(a), R - d * std::cos(a), 0);
-            s = sceneOf({meshBowl(R), ball});
+            s = sceneOf({bowlOf(R), ball});
         } else {
             s = pile();
             settle = 10.0;

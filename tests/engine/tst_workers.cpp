@@ -24,16 +24,7 @@ namespace {
 // of pairs and of bodies, so every parallel stage runs on several chunks.
 SceneDesc heapInBowl(ImpactTiming timing) {
     const double R = 4.0;
-    TriangleMesh bowl = hemisphereBowl(R, 12, 16);
-    BodyDesc b;
-    b.name = "bowl";
-    b.motion = Motion::Static;
-    b.shape.type = ShapeType::Mesh;
-    b.shape.collision = MeshCollision::Triangles;
-    b.shape.file = "bowl (built by the test)";
-    b.shape.meshData = std::make_shared<const TriangleMesh>(std::move(bowl));
-    b.position = Vec3(0, R, 0);
-    std::vector<BodyDesc> bodies{groundPlane(0.3, 0.5), b};
+    std::vector<BodyDesc> bodies{groundPlane(0.3, 0.5), meshBowl(R, 12, 16)};
     const auto rock = std::make_shared<const TriangleMesh>(uvSphere(0.2, 3, 5));
     Rng rng{11};
     for (int k = 0; k < 320; ++k) {
