@@ -1,6 +1,7 @@
 // The headless command line of INTERFACES.md, run as the real executable in a fresh
-// folder: exit statuses, the key: value report, overrides, one-line errors naming the file
-// and field (or the flag), no output left behind on failure, and determinism.
+// folder: exit statuses, the key: value report, one-line errors naming the file and field,
+// no output left behind on failure, determinism and the exports. The overrides of the
+// scene's settings (--dt, --integrator, --impacts, --threads ...) are in tst_options.cpp.
 #include <tumble/integrators.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/io/trajectory_csv.h>
@@ -15,47 +16,13 @@
 #include <sys/stat.h>
 
 #include "../io/gltf_validator.h"
+#include "cli_harness.h"
 
 #include <sstream>
 
 namespace {
 
-struct Run {
-    int code = -1;
-    QString out, err;
-};
-
-// A tumbling box on a spring, with an offset centre of mass and a static ground: 0.5 s at
-// 20 frames/s in steps of 0.005 s. Its orientation is not unit length; normalised once more
-// on saving and again on loading with Eigen's normalized(), it would drift by an ulp and
-// --save-scene would not reproduce the run.
-const char* const kBox = R"({
-  "format": "tumble-scene",
-  "version": 1,
-  "settings": {"gravity": [0, -9.81, 0], "dt": 0.005, "duration": 0.5, "frame_rate": 20},
-  "bodies": [
-    {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": -5}},
-    {"name": "box", "shape": {"type": "box", "half_extents": [0.5, 0.25, 0.1]}, "mass": 2,
-     "center_of_mass": [0.1, 0, 0], "position": [0, 1, 0], "orientation": [0.1, -0.8, -0.6, 0.5],
-     "velocity": [1, 0, 0], "angular_velocity": [0.3, 4, 0.1],
-     "forces": [{"type": "spring", "anchor": [0, 2, 0], "point": [0.4, 0.2, 0], "stiffness": 30,
-                 "rest_length": 0.5, "damping": 0.2}]}
-  ]
-}
-)";
-
-// A stiff spring that explicit Euler with this step cannot hold: the energy guard stops it
-// (with "energy_guard": false, the state overflows).
-const char* const kBlowUp = R"({
-  "format": "tumble-scene",
-  "version": 1,
-  "settings": {"gravity": [0, 0, 0], "dt": 0.01, "duration": 2, "integrator": "euler", "frame_rate": 10},
-  "bodies": [
-    {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1, "position": [1, 0, 0],
-     "forces": [{"type": "spring", "anchor": [0, 0, 0], "stiffness": 1e12}]}
-  ]
-}
-)";
+using namespace tumble::clitest;
 
 // A spring that rk4 holds only for dt < 2√2/√(k/m) = 0.00894 s, at dt = 0.01 s.
 const char* const kStiff = R"({
@@ -68,24 +35,6 @@ const char* const kStiff = R"({
   ]
 }
 )";
-
-QStringList lines(const QString& text) {
-    QStringList l = text.split('\n');
-    if (!l.isEmpty() && l.last().isEmpty()) l.removeLast();
-    return l;
-}
-
-// The key: value lines of a successful run; an empty map when a line is not of that form.
-QMap<QString, QString> report(const QString& out) {
-    static const QRegularExpression line("^([a-z_]+): (\\S.*)$");
-    QMap<QString, QString> map;
-    for (const QString& l : lines(out)) {
-        const QRegularExpressionMatch m = line.match(l);
-        if (!m.hasMatch()) return {};
-        map.insert(m.captured(1), m.captured(2));
-    }
-    return map;
-}
 
 // The hash and the CSV of the same run done in this process, through the engine.
 struct Reference {
@@ -106,81 +55,11 @@ Reference reference(const std::string& scenePath) {
 
 }  // namespace
 
-// Runs the executable in the test's folder; fails the test when it crashes or hangs.
-#define RUN(result, ...)                 \
-    const Run result = run(__VA_ARGS__); \
-    if (QTest::currentTestFailed()) return
-
-class TestCli : public QObject {
+class TestCli : public QObject, private Harness {
     Q_OBJECT
 
-    std::unique_ptr<QTemporaryDir> dir_;
-
-    Run run(const QStringList& args) {
-        QProcess p;
-        p.setWorkingDirectory(dir_->path());
-        p.start(TUMBLE_EXECUTABLE, args);
-        if (!p.waitForStarted(10000)) {
-            QTest::qFail("the executable did not start", __FILE__, __LINE__);
-            return {};
-        }
-        if (!p.waitForFinished(120000)) {
-            p.kill();
-            p.waitForFinished();
-            QTest::qFail("the executable did not finish in 120 s", __FILE__, __LINE__);
-            return {};
-        }
-        Run r;
-        r.out = QString::fromUtf8(p.readAllStandardOutput());
-        r.err = QString::fromUtf8(p.readAllStandardError());
-        if (p.exitStatus() != QProcess::NormalExit) {
-            QTest::qFail(qPrintable("the executable crashed: " + args.join(' ') + "\n" + r.err), __FILE__,
-                         __LINE__);
-            return {};
-        }
-        r.code = p.exitCode();
-        return r;
-    }
-
-    QString path(const QString& name) const { return dir_->filePath(name); }
-
-    void write(const QString& name, const QByteArray& text) {
-        QFile f(path(name));
-        QVERIFY(f.open(QIODevice::WriteOnly));
-        QCOMPARE(f.write(text), text.size());
-    }
-
-    QByteArray read(const QString& name) const {
-        QFile f(path(name));
-        return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
-    }
-
-    // Every entry of the folder, hidden ones and temporaries included.
-    // A PNG's size from its IHDR chunk (bytes 16 to 23, big-endian width and height).
-    static QSize pngSize(const QString& file) {
-        QFile f(file);
-        if (!f.open(QIODevice::ReadOnly)) return {};
-        const QByteArray h = f.read(24);
-        if (h.size() < 24 || !h.startsWith("\x89PNG")) return {};
-        auto be = [&](int at) {
-            return (uchar(h[at]) << 24) | (uchar(h[at + 1]) << 16) | (uchar(h[at + 2]) << 8) |
-                   uchar(h[at + 3]);
-        };
-        return QSize(int(be(16)), int(be(20)));
-    }
-
-    QStringList entries() const {
-        return QDir(dir_->path())
-            .entryList(QDir::AllEntries | QDir::Hidden | QDir::System | QDir::NoDotAndDotDot, QDir::Name);
-    }
-
 private slots:
-    void init() {
-        dir_ = std::make_unique<QTemporaryDir>();
-        QVERIFY(dir_->isValid());
-        write("box.json", kBox);
-        write("blow.json", kBlowUp);
-    }
+    void init() { makeFolder(); }
 
     void cleanup() { dir_.reset(); }
 
@@ -190,7 +69,7 @@ private slots:
         QCOMPARE(r.err, QString());
         QVERIFY(r.out.startsWith("Usage:"));
         for (const char* flag : {"--headless", "--duration", "--dt", "--integrator", "--impacts", "--frame-rate",
-                                 "--out", "--save-scene", "--quiet", "--help", "--version", "--list-integrators"}) {
+                                 "--threads", "--out", "--save-scene", "--quiet", "--help", "--version", "--list-integrators"}) {
             QVERIFY2(r.out.contains(flag), flag);
         }
     }
@@ -303,137 +182,6 @@ private slots:
         QVERIFY(!report(r.out).value("state_hash").isEmpty());
         QCOMPARE(read("saved-again.json"), read("saved.json"));
         QCOMPARE(entries(), QStringList({"blow.json", "box.json", "saved-again.json", "saved.json"}));
-    }
-
-    void overrides_data() {
-        QTest::addColumn<QStringList>("args");
-        QTest::addColumn<int>("frames");
-        QTest::addColumn<int>("steps");
-        QTest::addColumn<double>("time");
-        QTest::addColumn<QString>("integrator");
-        const QString def = tumble::defaultIntegrator().name;
-        QTest::newRow("none") << QStringList() << 11 << 100 << 0.5 << def;
-        QTest::newRow("duration 1, dt 0.01, frame rate 10")
-            << QStringList({"--duration", "1", "--dt", "0.01", "--frame-rate", "10"}) << 11 << 100 << 1.0
-            << def;
-        QTest::newRow("duration 2") << QStringList({"--duration", "2"}) << 41 << 400 << 2.0 << def;
-        QTest::newRow("duration 0") << QStringList({"--duration", "0"}) << 1 << 0 << 0.0 << def;
-        // 0.05 s frame intervals need 3 steps of at most 0.02 s each.
-        QTest::newRow("dt 0.02") << QStringList({"--dt", "0.02"}) << 11 << 30 << 0.5 << def;
-        QTest::newRow("dt=0.01") << QStringList({"--dt=0.01"}) << 11 << 50 << 0.5 << def;
-        QTest::newRow("frame rate 4") << QStringList({"--frame-rate", "4"}) << 3 << 100 << 0.5 << def;
-        QTest::newRow("integrator rk4") << QStringList({"--integrator", "rk4"}) << 11 << 100 << 0.5 << "rk4";
-        QTest::newRow("integrator euler, dt 0.05")
-            << QStringList({"--integrator", "euler", "--dt", "0.05"}) << 11 << 10 << 0.5 << "euler";
-    }
-
-    void overrides() {
-        QFETCH(QStringList, args);
-        QFETCH(int, frames);
-        QFETCH(int, steps);
-        QFETCH(double, time);
-        QFETCH(QString, integrator);
-        RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv"}) + args);
-        QCOMPARE(r.code, 0);
-        QCOMPARE(r.err, QString());
-        const QMap<QString, QString> kv = report(r.out);
-        QCOMPARE(kv.value("steps"), QString::number(steps));
-        QCOMPARE(kv.value("frames"), QString::number(frames));
-        QCOMPARE(kv.value("simulated_time").toDouble(), time);
-        QCOMPARE(kv.value("integrator"), integrator);
-        QCOMPARE(lines(QString::fromUtf8(read("traj.csv"))).size(), 1 + 2 * frames);
-    }
-
-    // Each integrator gives its own result, and the same one on every run.
-    void integratorOverrideChangesResult() {
-        QSet<QString> hashes;
-        for (const tumble::IntegratorInfo& info : tumble::integrators()) {
-            RUN(r, {"--headless", "box.json", "--integrator", info.name});
-            QCOMPARE(r.code, 0);
-            const QString hash = report(r.out).value("state_hash");
-            QVERIFY(!hash.isEmpty());
-            QVERIFY2(!hashes.contains(hash), info.name);
-            hashes.insert(hash);
-        }
-    }
-
-    // --impacts end-of-step: the bouncing ball's impacts are resolved where the steps end
-    // (no moment of impact found within a step), the run differs from the exact one, and
-    // the scene saved as run says so.
-    void impactsOverride() {
-        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/bouncing-ball.json");
-        RUN(exact, {"--headless", scene});
-        RUN(late, {"--headless", scene, "--impacts", "end-of-step", "--save-scene", "saved.json"});
-        QCOMPARE(exact.code, 0);
-        QCOMPARE(late.code, 0);
-        const auto e = report(exact.out), l = report(late.out);
-        QVERIFY2(e.value("impacts").toInt() > 0, qPrintable(exact.out));
-        QCOMPARE(l.value("impacts"), QString("0"));
-        QVERIFY(e.value("state_hash") != l.value("state_hash"));
-        QFile saved(path("saved.json"));
-        QVERIFY(saved.open(QIODevice::ReadOnly));
-        QVERIFY(saved.readAll().contains(R"("impacts": "end-of-step")"));
-        RUN(again, {"--headless", scene, "--impacts", "exact"});
-        QCOMPARE(report(again.out).value("state_hash"), e.value("state_hash"));
-    }
-
-    // --threads spreads the step over threads; the run is the same bit for bit.
-    void threadsGiveTheSameRun() {
-        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/tower-20.json");
-        RUN(one, {"--headless", scene, "--duration", "1"});
-        RUN(two, {"--headless", scene, "--duration", "1", "--threads", "2"});
-        RUN(four, {"--headless", scene, "--duration=1", "--threads=4"});
-        QCOMPARE(one.code, 0);
-        QCOMPARE(two.code, 0);
-        QCOMPARE(four.code, 0);
-        const auto r1 = report(one.out), r2 = report(two.out), r4 = report(four.out);
-        QCOMPARE(r1.value("threads"), QString("1"));
-        QCOMPARE(r2.value("threads"), QString("2"));
-        QCOMPARE(r4.value("threads"), QString("4"));
-        QVERIFY(r1.value("contact_points").toLong() > 0);
-        QCOMPARE(r2.value("state_hash"), r1.value("state_hash"));
-        QCOMPARE(r4.value("state_hash"), r1.value("state_hash"));
-        QCOMPARE(r2.value("contact_points"), r1.value("contact_points"));
-    }
-
-    void badOverride_data() {
-        QTest::addColumn<QStringList>("args");
-        QTest::addColumn<QString>("message");
-        QTest::newRow("dt 0") << QStringList({"--dt", "0"}) << "tumble: --dt: must be greater than 0";
-        QTest::newRow("dt -0.1") << QStringList({"--dt", "-0.1"}) << "tumble: --dt: must be greater than 0";
-        QTest::newRow("dt abc") << QStringList({"--dt", "abc"}) << "tumble: --dt: 'abc' is not a number";
-        QTest::newRow("dt 0.01x") << QStringList({"--dt", "0.01x"})
-                                  << "tumble: --dt: '0.01x' is not a number";
-        QTest::newRow("dt empty") << QStringList({"--dt="}) << "tumble: --dt: '' is not a number";
-        QTest::newRow("dt inf") << QStringList({"--dt", "inf"}) << "tumble: --dt: must be a finite number";
-        QTest::newRow("dt nan") << QStringList({"--dt", "nan"}) << "tumble: --dt: must be a finite number";
-        QTest::newRow("dt without value") << QStringList({"--dt"}) << "tumble: --dt: needs a value";
-        QTest::newRow("duration -1") << QStringList({"--duration", "-1"})
-                                     << "tumble: --duration: must be 0 or greater";
-        QTest::newRow("frame rate 0")
-            << QStringList({"--frame-rate", "0"}) << "tumble: --frame-rate: must be greater than 0";
-        QTest::newRow("integrator nope")
-            << QStringList({"--integrator", "nope"})
-            << "tumble: --integrator: unknown integrator 'nope' (see --list-integrators)";
-        QTest::newRow("impacts later")
-            << QStringList({"--impacts", "later"}) << "tumble: --impacts: 'later' is not one of exact, end-of-step";
-        QTest::newRow("threads 0") << QStringList({"--threads", "0"})
-                                   << "tumble: --threads: '0' is not a whole number from 1 to 256";
-        QTest::newRow("threads 2.5") << QStringList({"--threads", "2.5"})
-                                     << "tumble: --threads: '2.5' is not a whole number from 1 to 256";
-        QTest::newRow("threads 1000") << QStringList({"--threads", "1000"})
-                                      << "tumble: --threads: '1000' is not a whole number from 1 to 256";
-    }
-
-    void badOverride() {
-        QFETCH(QStringList, args);
-        QFETCH(QString, message);
-        RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv", "--save-scene", "saved.json"}) +
-                   args);
-        QCOMPARE(r.code, 2);
-        QCOMPARE(r.out, QString());
-        QCOMPARE(r.err, message + "\n");
-        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
     }
 
     void invalidScene_data() {

@@ -1,0 +1,152 @@
+// The command line's overrides of a scene's settings (--duration, --dt, --frame-rate,
+// --integrator, --impacts) and of how it runs (--threads): what each changes, what it
+// leaves, and a bad value refused with exit 2 and a message naming the flag.
+#include <tumble/integrators.h>
+
+#include <QtTest>
+
+#include "cli_harness.h"
+
+using namespace tumble::clitest;
+
+class TestCliOptions : public QObject, private Harness {
+    Q_OBJECT
+
+private slots:
+    void init() { makeFolder(); }
+    void cleanup() { dir_.reset(); }
+
+    void overrides_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<int>("frames");
+        QTest::addColumn<int>("steps");
+        QTest::addColumn<double>("time");
+        QTest::addColumn<QString>("integrator");
+        const QString def = tumble::defaultIntegrator().name;
+        QTest::newRow("none") << QStringList() << 11 << 100 << 0.5 << def;
+        QTest::newRow("duration 1, dt 0.01, frame rate 10")
+            << QStringList({"--duration", "1", "--dt", "0.01", "--frame-rate", "10"}) << 11 << 100 << 1.0
+            << def;
+        QTest::newRow("duration 2") << QStringList({"--duration", "2"}) << 41 << 400 << 2.0 << def;
+        QTest::newRow("duration 0") << QStringList({"--duration", "0"}) << 1 << 0 << 0.0 << def;
+        // 0.05 s frame intervals need 3 steps of at most 0.02 s each.
+        QTest::newRow("dt 0.02") << QStringList({"--dt", "0.02"}) << 11 << 30 << 0.5 << def;
+        QTest::newRow("dt=0.01") << QStringList({"--dt=0.01"}) << 11 << 50 << 0.5 << def;
+        QTest::newRow("frame rate 4") << QStringList({"--frame-rate", "4"}) << 3 << 100 << 0.5 << def;
+        QTest::newRow("integrator rk4") << QStringList({"--integrator", "rk4"}) << 11 << 100 << 0.5 << "rk4";
+        QTest::newRow("integrator euler, dt 0.05")
+            << QStringList({"--integrator", "euler", "--dt", "0.05"}) << 11 << 10 << 0.5 << "euler";
+    }
+
+    void overrides() {
+        QFETCH(QStringList, args);
+        QFETCH(int, frames);
+        QFETCH(int, steps);
+        QFETCH(double, time);
+        QFETCH(QString, integrator);
+        RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv"}) + args);
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.err, QString());
+        const QMap<QString, QString> kv = report(r.out);
+        QCOMPARE(kv.value("steps"), QString::number(steps));
+        QCOMPARE(kv.value("frames"), QString::number(frames));
+        QCOMPARE(kv.value("simulated_time").toDouble(), time);
+        QCOMPARE(kv.value("integrator"), integrator);
+        QCOMPARE(lines(QString::fromUtf8(read("traj.csv"))).size(), 1 + 2 * frames);
+    }
+
+    // Each integrator gives its own result, and the same one on every run.
+    void integratorOverrideChangesResult() {
+        QSet<QString> hashes;
+        for (const tumble::IntegratorInfo& info : tumble::integrators()) {
+            RUN(r, {"--headless", "box.json", "--integrator", info.name});
+            QCOMPARE(r.code, 0);
+            const QString hash = report(r.out).value("state_hash");
+            QVERIFY(!hash.isEmpty());
+            QVERIFY2(!hashes.contains(hash), info.name);
+            hashes.insert(hash);
+        }
+    }
+
+    // --impacts end-of-step: the bouncing ball's impacts are resolved where the steps end
+    // (no moment of impact found within a step), the run differs from the exact one, and
+    // the scene saved as run says so.
+    void impactsOverride() {
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/bouncing-ball.json");
+        RUN(exact, {"--headless", scene});
+        RUN(late, {"--headless", scene, "--impacts", "end-of-step", "--save-scene", "saved.json"});
+        QCOMPARE(exact.code, 0);
+        QCOMPARE(late.code, 0);
+        const auto e = report(exact.out), l = report(late.out);
+        QVERIFY2(e.value("impacts").toInt() > 0, qPrintable(exact.out));
+        QCOMPARE(l.value("impacts"), QString("0"));
+        QVERIFY(e.value("state_hash") != l.value("state_hash"));
+        QFile saved(path("saved.json"));
+        QVERIFY(saved.open(QIODevice::ReadOnly));
+        QVERIFY(saved.readAll().contains(R"("impacts": "end-of-step")"));
+        RUN(again, {"--headless", scene, "--impacts", "exact"});
+        QCOMPARE(report(again.out).value("state_hash"), e.value("state_hash"));
+    }
+
+    // --threads spreads the step over threads; the run is the same bit for bit.
+    void threadsGiveTheSameRun() {
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/tower-20.json");
+        RUN(one, {"--headless", scene, "--duration", "1"});
+        RUN(two, {"--headless", scene, "--duration", "1", "--threads", "2"});
+        RUN(four, {"--headless", scene, "--duration=1", "--threads=4"});
+        QCOMPARE(one.code, 0);
+        QCOMPARE(two.code, 0);
+        QCOMPARE(four.code, 0);
+        const auto r1 = report(one.out), r2 = report(two.out), r4 = report(four.out);
+        QCOMPARE(r1.value("threads"), QString("1"));
+        QCOMPARE(r2.value("threads"), QString("2"));
+        QCOMPARE(r4.value("threads"), QString("4"));
+        QVERIFY(r1.value("contact_points").toLong() > 0);
+        QCOMPARE(r2.value("state_hash"), r1.value("state_hash"));
+        QCOMPARE(r4.value("state_hash"), r1.value("state_hash"));
+        QCOMPARE(r2.value("contact_points"), r1.value("contact_points"));
+    }
+
+    void badOverride_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("dt 0") << QStringList({"--dt", "0"}) << "tumble: --dt: must be greater than 0";
+        QTest::newRow("dt -0.1") << QStringList({"--dt", "-0.1"}) << "tumble: --dt: must be greater than 0";
+        QTest::newRow("dt abc") << QStringList({"--dt", "abc"}) << "tumble: --dt: 'abc' is not a number";
+        QTest::newRow("dt 0.01x") << QStringList({"--dt", "0.01x"})
+                                  << "tumble: --dt: '0.01x' is not a number";
+        QTest::newRow("dt empty") << QStringList({"--dt="}) << "tumble: --dt: '' is not a number";
+        QTest::newRow("dt inf") << QStringList({"--dt", "inf"}) << "tumble: --dt: must be a finite number";
+        QTest::newRow("dt nan") << QStringList({"--dt", "nan"}) << "tumble: --dt: must be a finite number";
+        QTest::newRow("dt without value") << QStringList({"--dt"}) << "tumble: --dt: needs a value";
+        QTest::newRow("duration -1") << QStringList({"--duration", "-1"})
+                                     << "tumble: --duration: must be 0 or greater";
+        QTest::newRow("frame rate 0")
+            << QStringList({"--frame-rate", "0"}) << "tumble: --frame-rate: must be greater than 0";
+        QTest::newRow("integrator nope")
+            << QStringList({"--integrator", "nope"})
+            << "tumble: --integrator: unknown integrator 'nope' (see --list-integrators)";
+        QTest::newRow("impacts later")
+            << QStringList({"--impacts", "later"}) << "tumble: --impacts: 'later' is not one of exact, end-of-step";
+        QTest::newRow("threads 0") << QStringList({"--threads", "0"})
+                                   << "tumble: --threads: '0' is not a whole number from 1 to 256";
+        QTest::newRow("threads 2.5") << QStringList({"--threads", "2.5"})
+                                     << "tumble: --threads: '2.5' is not a whole number from 1 to 256";
+        QTest::newRow("threads 1000") << QStringList({"--threads", "1000"})
+                                      << "tumble: --threads: '1000' is not a whole number from 1 to 256";
+    }
+
+    void badOverride() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv", "--save-scene", "saved.json"}) +
+                   args);
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestCliOptions)
+#include "tst_options.moc"
