@@ -1,4 +1,5 @@
 #include "detect.h"
+#include "workers.h"
 
 #include "collision/narrowphase.h"
 #include "collision/toi.h"

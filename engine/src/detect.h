@@ -9,12 +9,12 @@
 
 #include "collision/broadphase.h"
 
-#include "workers.h"
-
 #include <cstdint>
 #include <vector>
 
 namespace tumble {
+
+class Workers;  // workers.h: only the .cpp files that hand work to the pool include it
 
 struct DetectScratch {
     std::vector<collision::Pose> start;  // body poses at the start of the step

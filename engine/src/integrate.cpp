@@ -13,6 +13,7 @@
 //   sub-steps of a fast spin and the energy kept to rounding.
 // splitting-4: the same with a fourth-order free rotation (a composition of three).
 #include "integrate.h"
+#include "workers.h"
 
 #include <algorithm>
 #include <chrono>

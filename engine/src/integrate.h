@@ -4,14 +4,14 @@
 #pragma once
 
 #include "forces.h"
-#include "workers.h"
-
 #include <tumble/model.h>
 #include <tumble/world.h>
 
 #include <vector>
 
 namespace tumble {
+
+class Workers;  // workers.h: only the .cpp files that hand work to the pool include it
 
 struct IntegrateScratch {
     std::vector<Wrench> wrench;
