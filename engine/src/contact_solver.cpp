@@ -167,18 +167,35 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
 }
 
 // One pass over the blocks, forwards on even passes and backwards on odd ones so that
-// their order leaves no bias. Returns whether any impulse
-// changed: a pass that changed none leaves every block's input as it found it, so every
-// later pass would change none either, bit for bit (a ball rolling on the ground is there
-// after two passes of twenty).
+// their order leaves no bias. Returns whether any impulse changed: a pass that changed none
+// leaves every block's input as it found it, so every later pass would change none either,
+// bit for bit (a ball rolling on the ground is there after two passes of twenty).
+//
+// The same holds block by block: a block's update reads only its own impulses and its two
+// bodies' velocities, so a block whose last update changed nothing is skipped until another
+// block changes one of its bodies (hull-rain: a hull at rest on the ground is left alone
+// while the ones still landing iterate). Stamps count block updates within the step; a body
+// that cannot move (static, kinematic) is never stamped, since no impulse changes it.
 bool iterate(ContactSolverScratch& s, int pass) {
     const int nb = static_cast<int>(s.blocks.size());
     bool changed = false;
     for (int b = 0; b < nb; ++b) {
         const int k = pass % 2 ? nb - 1 - b : b;
         ContactSolverScratch::Block& block = s.blocks[k];
-        changed |= frictionBlock(s, block);
-        changed |= normalBlock(s, block, s.subsets[k]);
+        const Point& p = s.points[block.begin];
+        const long quiet = s.quietSince[k];
+        if (quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet) continue;
+        const long tick = ++s.tick;
+        bool moved = frictionBlock(s, block);  // friction first, then the normals
+        moved = normalBlock(s, block, s.subsets[k]) || moved;
+        if (!moved) {
+            s.quietSince[k] = tick;
+            continue;
+        }
+        s.quietSince[k] = -1;
+        changed = true;
+        for (int i : {p.a, p.b})
+            if (s.bodies[i].invMass > 0.0) s.changedAt[i] = tick;
     }
     return changed;
 }
@@ -286,6 +303,10 @@ void solveContacts(const Model& model, State& state, const State& before,
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
     for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStart(state, cfg.h, s);
+    s.quietSince.assign(s.blocks.size(), -1);
+    s.tick = 0;
+    s.changedAt.resize(s.bodies.size());
+    for (int i : s.involved) s.changedAt[i] = 0;
     bool converged = false;
     for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k);
     if (!s.blocks.empty()) shockPass(s, kShockPasses, converged);

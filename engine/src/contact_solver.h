@@ -92,6 +92,11 @@ struct ContactSolverScratch {
     std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
     std::vector<std::uint8_t> seen;  // bodiesOf's flags
+    // The passes' skipping (iterate): per block, the update after which it was quiet (-1: it
+    // changed something); per body, the update that last changed its velocity.
+    std::vector<long> quietSince;
+    std::vector<long> changedAt;
+    long tick = 0;
     std::vector<Vec3> slide;         // per body: the velocity change of sliding friction (redoPoses)
 };
 
