@@ -72,6 +72,16 @@ Shape groundStrip(int n, bool withBvh = true) {
     return meshShape(v, t, withBvh);
 }
 
+// The cube [0,1]³ as a closed mesh, outward normals.
+Shape unitCubeMesh() {
+    const std::vector<Vec3> v{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                              Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+    const std::vector<std::array<int, 3>> t{{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
+                                            {0, 1, 5}, {0, 5, 4}, {3, 7, 6}, {3, 6, 2},
+                                            {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+    return meshShape(v, t);
+}
+
 // Every expected point is matched by a contact point within tol, and the depths agree.
 bool hasPoints(const Manifold& m, const std::vector<Vec3>& expected, double depth, double tol) {
     if (m.count != static_cast<int>(expected.size())) return false;
@@ -347,12 +357,7 @@ private slots:
     void outerEdgeKeepsItsNormal() {
         // A unit cube as a closed mesh; a sphere against its top edge x = 1 from outside and
         // above: the normal points from the edge to the centre, not up.
-        const std::vector<Vec3> v{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
-                                  Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
-        const std::vector<std::array<int, 3>> t{{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
-                                                {0, 1, 5}, {0, 5, 4}, {3, 7, 6}, {3, 6, 2},
-                                                {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
-        const Shape cube = meshShape(v, t);
+        const Shape cube = unitCubeMesh();
         const Vec3 dir = Vec3(1, 1, 0).normalized();
         const Vec3 centre = Vec3(1, 1, 0.5) + (0.3 - 0.01) * dir;
         std::vector<Manifold> out;
@@ -366,6 +371,30 @@ private slots:
         QCOMPARE(out.size(), size_t(1));
         QVERIFY(hasPoints(out[0], {Vec3(0.4, 0.995, 0.6)}, 0.01, 1e-12));
         QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
+    }
+
+    void boxTippingOverARimIsNotLifted() {
+        // A plank (half 0.6 x 0.1 x 0.2) over the top edge x = 1, y = 1 of a table (the unit
+        // cube as a mesh), turned 0.3 rad about z so that its right end hangs down past the
+        // rim; the rim is 0.01 (vertically) into its bottom face, and its lowest corners are
+        // 0.024 below the top's plane, 0.044 out in the air. The centre is over the table,
+        // and the plank crosses the top's plane just inside the rim (x = 0.997): the contact
+        // is the rim's, along the plank's bottom normal and 0.0096 deep, never the top's
+        // normal with the corners' 0.024 (the face path needs the lowest point over the
+        // face too).
+        const double th = 0.3, hx = 0.6, hy = 0.1, cx = 0.5, d = 0.01;
+        const double s = (1.0 - cx + hy * std::sin(th)) / std::cos(th);  // the bottom's point at the rim
+        const double cy = 1.0 - d + hy * std::cos(th) + s * std::sin(th);
+        const Pose pa = pose(Vec3(cx, cy, 0.5), about(Vec3::UnitZ(), -th));
+        const Vec3 bottomNormal(std::sin(th), std::cos(th), 0.0);  // out of the table, into the plank
+        std::vector<Manifold> out;
+        collideConvexMesh(Shape::box(Vec3(hx, hy, 0.2)), pa, unitCubeMesh(), pose(Vec3::Zero()), 0.0, out);
+        QVERIFY(!out.empty());
+        for (const Manifold& m : out) {
+            QVERIFY2(m.normal.dot(bottomNormal) > 1.0 - 1e-9, "the rim pushes along the plank's bottom normal");
+            for (int i = 0; i < m.count; ++i)
+                QVERIFY(m.points[i].depth > 0.0 && m.points[i].depth <= d * std::cos(th) + 1e-9);
+        }
     }
 
     void posedMesh() {
@@ -384,6 +413,41 @@ private slots:
             for (double sz : {-0.3, 0.3})
                 corners.push_back(pa.toWorld(Vec3(sx, -0.5, sz)) + 0.005 * pm.R.col(1));
         QVERIFY(hasPoints(out[0], corners, 0.01, 1e-12));
+    }
+
+    void randomConvexNearATriangle() {
+        // The shortcuts of collideConvexMesh (the triangle's plane, the planes through its
+        // edges square to it, the face path) must find contact exactly where GJK does: a
+        // box, capsule, cylinder or hull at random poses about one triangle, most of them
+        // within reach of it, gives a manifold exactly when the penetration query hits.
+        std::mt19937 rng(77);
+        std::uniform_real_distribution<double> size(0.1, 0.6), u(-1.0, 1.0);
+        std::normal_distribution<double> g;
+        const Shape tri = meshShape({Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0.5, 0, 1.5)}, {{0, 2, 1}});
+        const ConvexProxy T = triangleProxy(Vec3(0, 0, 0), Vec3(0.5, 0, 1.5), Vec3(2, 0, 0));
+        const double margin = 0.05;
+        int hits = 0, misses = 0;
+        for (int trial = 0; trial < 3000; ++trial) {
+            Shape sa;
+            switch (trial % 4) {
+                case 0: sa = Shape::box(Vec3(size(rng), size(rng), size(rng))); break;
+                case 1: sa = Shape::capsule(size(rng), size(rng)); break;
+                case 2: sa = Shape::cylinder(size(rng), size(rng)); break;
+                default: {
+                    std::vector<Vec3> pts;
+                    for (int i = 0; i < 10; ++i) pts.emplace_back(size(rng) * u(rng), size(rng) * u(rng), size(rng) * u(rng));
+                    sa = hullOf(pts);
+                }
+            }
+            const Pose pa = pose(Vec3(1.0 + 1.6 * u(rng), 0.5 * u(rng), 0.75 + 1.4 * u(rng)),
+                                 Quat(g(rng), g(rng), g(rng), g(rng)));
+            std::vector<Manifold> out;
+            collideConvexMesh(sa, pa, tri, pose(Vec3::Zero()), margin, out);
+            const bool hit = penetration(proxyOf(sa, pa), T, margin).hit;
+            QVERIFY2(out.empty() != hit, qPrintable(QString("trial %1: gjk %2").arg(trial).arg(hit)));
+            hit ? ++hits : ++misses;
+        }
+        QVERIFY(hits > 500 && misses > 500);
     }
 
     void randomPairsInvariants() {

@@ -1,5 +1,9 @@
 // A convex shape against a triangle mesh: each triangle the convex's box touches (through
 // the mesh's BVH) is a convex proxy of its own, met with GJK/EPA and clipped like any face.
+// Before GJK, exact shortcuts: the triangle's plane, or a plane through one of its edges
+// square to it, with the whole convex beyond it by more than the margin: no contact; the
+// convex resting on the face (centre in front, lowest point over the triangle and crossing
+// its plane inside it): the face's normal and depth, as below, without GJK/EPA.
 //
 // Internal edges: a convex sliding over a flat mesh meets the next triangle at its edge,
 // where EPA's shortest way out can be sideways across that edge (a "ghost" contact that
@@ -96,15 +100,46 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
         // The triangle's plane separates when the whole convex lies farther than the margin
         // on one side of it: then GJK would find no contact either.
         const double reach = std::max(margin, 0.0) + A.radius;
-        if ((A.support(-nt) - T.triangle[0]).dot(nt) > reach ||
-            (A.support(nt) - T.triangle[0]).dot(nt) < -reach)
-            return;
-        Penetration pen = penetration(A, T, margin);
-        if (!pen.hit) return;
-        const double c = pen.normal.dot(nt);
-        const Vec3 w = barycentric(T.triangle, pen.pointB);
-        const bool interior = w.minCoeff() > kInterior;
-        const bool face = c >= kExactFace || (c >= kNearFace && interior);
+        const Vec3 low = A.support(-nt);
+        const double below = (low - T.triangle[0]).dot(nt);  // the core's lowest point over the plane
+        if (below > reach || (A.support(nt) - T.triangle[0]).dot(nt) < -reach) return;
+        // Resting on the face, without GJK/EPA (hull-rain: two thirds of the hull-triangle
+        // pairs): the core's centre in front of the plane, its lowest point over the
+        // triangle, and the place where it meets the plane (that point's foot, or where the
+        // way from the centre down to it crosses the plane) inside the triangle too. The
+        // core then reaches the triangle there, from in front, and the face's normal and
+        // depth are the contact's. (The lowest point alone is not enough: a box tipping
+        // over a table's rim hangs its lowest corner below the top's plane, beyond the
+        // rim, and must not be lifted by that corner's depth.)
+        const double above = (A.center() - T.triangle[0]).dot(nt);
+        bool onFace = false;
+        if (above > 0.0) {
+            const Vec3 foot = low - below * nt;
+            const Vec3 meet = below >= 0.0 ? foot : Vec3(low + (A.center() - low) * (-below / (above - below)));
+            const Vec3 w = barycentric(T.triangle, meet);
+            onFace = w.minCoeff() > kInterior && (below >= 0.0 || barycentric(T.triangle, foot).minCoeff() > kInterior);
+            // Beside the triangle: the plane through an edge the meeting place is beyond,
+            // square to the triangle, separates when the whole core lies past it by more
+            // than the reach (the neighbour's triangle holds the contact, if any).
+            for (int e = 0; e < 3 && !onFace; ++e) {
+                if (w[e] > kInterior) continue;
+                const Vec3& p = T.triangle[(e + 1) % 3];
+                Vec3 side = (T.triangle[(e + 2) % 3] - p).cross(nt);
+                if (side.dot(T.triangle[e] - p) > 0.0) side = -side;
+                side.normalize();
+                if ((A.support(-side) - p).dot(side) > reach) return;
+            }
+        }
+        Penetration pen;
+        bool face = onFace;
+        if (!onFace) {
+            pen = penetration(A, T, margin);
+            if (!pen.hit) return;
+            const double c = pen.normal.dot(nt);
+            const Vec3 w = barycentric(T.triangle, pen.pointB);
+            const bool interior = w.minCoeff() > kInterior;
+            face = c >= kExactFace || (c >= kNearFace && interior);
+        }
         if (face) {
             pen = alongFace(A, T, nt);
             if (!(pen.depth > -margin)) return;
