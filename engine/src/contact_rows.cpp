@@ -23,7 +23,7 @@ void pushPoint(SolverBody& A, SolverBody& B, const Point& p, double d) {
     A.touched = B.touched = true;
 }
 
-bool normalPoint(ContactSolverScratch& s, Point& p) {
+double normalPoint(ContactSolverScratch& s, Point& p) {
     SolverBody& A = s.bodies[p.a];
     SolverBody& B = s.bodies[p.b];
     const double vn = normalVelocity(A, B, p);
@@ -31,7 +31,7 @@ bool normalPoint(ContactSolverScratch& s, Point& p) {
     p.lambdaN = std::max(0.0, old - p.kn * (vn - p.target));
     const double d = p.lambdaN - old;
     if (d != 0.0) pushPoint(A, B, p, d);
-    return d != 0.0;
+    return std::abs(d);
 }
 
 }  // namespace
@@ -117,7 +117,7 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
-bool normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
     Point* q = &s.points[block.begin];
     const int k = block.count;
     if (k == 1) return normalPoint(s, q[0]);
@@ -134,16 +134,16 @@ bool normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
         idle = idle && lambda[i] == 0.0 && vn[i] >= q[i].target;
     }
     // λ = 0 already solves this block (a side neighbour in a pile, a point still apart).
-    if (idle) return false;
+    if (idle) return 0.0;
     const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &subsets);
     // The changes summed per body: one impulse along n and one change of spin each.
     double total = 0.0;
     Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();
-    bool changed = false;
+    double changed = 0.0;
     for (int i = 0; i < k; ++i) {
         const double d = wanted[i] - lambda[i];
         q[i].lambdaN = wanted[i];
-        changed = changed || d != 0.0;
+        changed = std::max(changed, std::abs(d));
         total += d;
         spinA += d * q[i].spinA;
         spinB += d * q[i].spinB;
@@ -155,7 +155,7 @@ bool normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& blo
     B.v -= (B.invMass * total) * n;
     B.w -= spinB;
     A.touched = B.touched = true;
-    return true;
+    return changed;
 }
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within
@@ -175,11 +175,11 @@ Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverS
             block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w)};
 }
 
-bool frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
-    if (block.mu <= 0.0) return false;
+double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
+    if (block.mu <= 0.0) return 0.0;
     const double limit = block.mu * normalImpulse(s, block);
     // No normal impulse holds no friction: nothing to do when none is held.
-    if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return false;
+    if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return 0.0;
     const Point& p = s.points[block.begin];
     const SolverBody& A = s.bodies[p.a];
     const SolverBody& B = s.bodies[p.b];
@@ -195,7 +195,10 @@ bool frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) 
     block.lambdaT = l;
     block.lambdaTwist = tw;
     applyFriction(s, block, dT, dTwist);
-    return !(dT.isZero(0.0) && dTwist == 0.0);
+    // The twist's change as an impulse at the patch's radius (a one-point patch holds none
+    // after its clamp, but may let go of a remembered one).
+    const double twistChange = block.radius > 0.0 ? std::abs(dTwist) / block.radius : std::abs(dTwist) > 0.0 ? HUGE_VAL : 0.0;
+    return std::max(dT.lpNorm<Eigen::Infinity>(), twistChange);
 }
 
 }  // namespace tumble

@@ -21,14 +21,15 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
 /// The normal impulses of one manifold together: the least-norm impulses that give every
 /// point its target velocity, none pulling.
 /// `subsets`: the cache of K's sub-inverses for this block (reset it when K changes).
-/// Returns whether any impulse changed (this one and frictionBlock).
-bool normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets);
+/// Returns the largest change of any of its impulses (0: none changed; this one and
+/// frictionBlock, whose twist counts as the impulse at the patch radius).
+double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets);
 /// The block's normal impulse, summed over its points.
 double normalImpulse(const ContactSolverScratch& s, const ContactSolverScratch::Block& block);
 /// How fast the bodies' surfaces slide over each other at the block's centroid, along t1 and t2.
 Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverScratch::Block& block);
 /// Friction of one manifold: stop the sliding and the twisting at the centroid, within the
 /// Coulomb limits of the current normal impulses.
-bool frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
+double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
 
 }  // namespace tumble

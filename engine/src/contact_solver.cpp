@@ -167,16 +167,20 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
 }
 
 // One pass over the blocks, forwards on even passes and backwards on odd ones so that
-// their order leaves no bias. Returns whether any impulse changed: a pass that changed none
-// leaves every block's input as it found it, so every later pass would change none either,
-// bit for bit (a ball rolling on the ground is there after two passes of twenty).
+// their order leaves no bias. Returns whether any block changed: a pass that changed none
+// leaves every block's input as it found it, so every later pass would change none either
+// (a ball rolling on the ground is there after two passes of twenty).
 //
 // The same holds block by block: a block's update reads only its own impulses and its two
 // bodies' velocities, so a block whose last update changed nothing is skipped until another
-// block changes one of its bodies (hull-rain: a hull at rest on the ground is left alone
-// while the ones still landing iterate). Stamps count block updates within the step; a body
-// that cannot move (static, kinematic) is never stamped, since no impulse changes it.
-bool iterate(ContactSolverScratch& s, int pass) {
+// block changes one of its bodies (a hull at rest on the ground is left alone while the
+// ones still landing iterate). "Nothing" is up to `quietSpeed` (an impulse change of at
+// most that speed times the block's first normal mass, 1e-10 of the resting speed from
+// World): the blocks of a resting pile otherwise hover in their last bits for all twenty
+// passes (piles-sleep-off: 6.0 M block updates in 600 steps, 0.52 M with the tolerance).
+// With quietSpeed 0 the skipping is exact. Stamps count block updates within the step; a
+// body that cannot move (static, kinematic) is never stamped, since no impulse changes it.
+bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     const int nb = static_cast<int>(s.blocks.size());
     bool changed = false;
     for (int b = 0; b < nb; ++b) {
@@ -186,9 +190,9 @@ bool iterate(ContactSolverScratch& s, int pass) {
         const long quiet = s.quietSince[k];
         if (quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet) continue;
         const long tick = ++s.tick;
-        bool moved = frictionBlock(s, block);  // friction first, then the normals
-        moved = normalBlock(s, block, s.subsets[k]) || moved;
-        if (!moved) {
+        const double friction = frictionBlock(s, block);  // friction first, then the normals
+        const double change = std::max(friction, normalBlock(s, block, s.subsets[k]));
+        if (!(change > quietSpeed * p.kn)) {
             s.quietSince[k] = tick;
             continue;
         }
@@ -308,7 +312,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     s.changedAt.resize(s.bodies.size());
     for (int i : s.involved) s.changedAt[i] = 0;
     bool converged = false;
-    for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k);
+    for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k, cfg.quietSpeed);
     if (!s.blocks.empty()) shockPass(s, kShockPasses, converged);
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);

@@ -103,6 +103,7 @@ struct ContactSolverScratch {
 struct ContactSolverSettings {
     int iterations = 20;  ///< velocity iterations
     int positionIterations = 4;
+    double quietSpeed = 0.0;  ///< a block whose update changes its velocity less is left alone (iterate)
     double h = 1.0 / 240.0;       ///< the (last part of the) step, for speculative points and warm starting
     double restingSpeed = 0.0;    ///< below this approach speed, no bounce
     double touchTolerance = 0.0;  ///< points deeper than minus this touch
