@@ -12,6 +12,9 @@ namespace {
 // one: a body can drift that far before it is re-inserted, while queries see boxes only a
 // little larger than the true ones (filtered exactly anyway).
 constexpr double kFatFraction = 0.1;
+// A moving body's fat box also reaches this many times its box's last shift ahead, along
+// it (a body falling fast moves farther than the margin in one step).
+constexpr double kAhead = 2.0;
 
 bool isEmpty(const Aabb& b) {
     // Written with negations so that a NaN bound makes the box empty.
@@ -34,6 +37,7 @@ void Broadphase::reset(int count, const std::vector<Aabb>& bounds) {
     staticTree_.reset(count);
     sets_.assign(static_cast<std::size_t>(count), Set::None);
     stored_.assign(static_cast<std::size_t>(count), Aabb{});
+    lastCentre_.assign(static_cast<std::size_t>(count), Vec3::Zero());
     double sum = 0.0;
     int finite = 0;
     for (const Aabb& b : bounds) {
@@ -45,8 +49,10 @@ void Broadphase::reset(int count, const std::vector<Aabb>& bounds) {
     fresh_ = true;
 }
 
-Aabb Broadphase::fattened(const Aabb& box) const {
-    return box.inflated(kFatFraction * std::max(box.extent().maxCoeff(), typicalSize_));
+Aabb Broadphase::fattened(const Aabb& box, const Vec3& shift) const {
+    Aabb fat = box.inflated(kFatFraction * std::max(box.extent().maxCoeff(), typicalSize_));
+    for (int k = 0; k < 3; ++k) (shift[k] > 0.0 ? fat.max[k] : fat.min[k]) += kAhead * shift[k];
+    return fat;
 }
 
 void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving) {
@@ -70,10 +76,18 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
         const Set old = sets_[i];
 
         bool reinsert = old != set;
+        Vec3 shift = Vec3::Zero();
+        if (set == Set::Moving) {
+            const Vec3 centre = 0.5 * (box.min + box.max);
+            if (old == Set::Moving) shift = centre - lastCentre_[i];
+            if (!shift.allFinite()) shift.setZero();
+            lastCentre_[i] = centre;
+        }
         if (!reinsert && set == Set::Moving) {
             const Aabb& fat = stored_[i];
             const double slack = kFatFraction * std::max(box.extent().maxCoeff(), typicalSize_);
-            reinsert = !encloses(fat, box) || (fat.extent() - box.extent()).sum() > 12.0 * slack;
+            const double ahead = kAhead * shift.cwiseAbs().sum();
+            reinsert = !encloses(fat, box) || (fat.extent() - box.extent()).sum() > 12.0 * slack + 2.0 * ahead;
         } else if (!reinsert && set == Set::Static) {
             reinsert = !sameBox(stored_[i], box);
         }
@@ -82,7 +96,7 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
             if (old == Set::Static) staticTree_.remove(i);
             if (set == Set::Moving || set == Set::Static) {
                 AabbTree& tree = set == Set::Moving ? movingTree_ : staticTree_;
-                stored_[i] = set == Set::Moving ? fattened(box) : box;
+                stored_[i] = set == Set::Moving ? fattened(box, shift) : box;
                 if (fresh_) {
                     tree.add(i, stored_[i]);
                 } else {

@@ -10,7 +10,9 @@
 // Three sets, each body in exactly one:
 // - moving bodies with finite boxes, in a tree of boxes fattened by a margin (a body is
 //   re-inserted only when its box leaves its fat box, or when the fat box became much
-//   larger than needed); pairs among them come from the tree's descent against itself;
+//   larger than needed; the fat box reaches ahead by two of the last update's shifts, so a
+//   falling body is not re-inserted at every step); pairs among them come from the tree's
+//   descent against itself;
 // - static bodies with finite boxes, in a tree of their exact boxes, descended only against
 //   the moving tree: static-static pairs are never looked at;
 // - unbounded bodies (a box with an infinite bound: planes), kept in a list and checked
@@ -74,13 +76,14 @@ private:
     enum class Set : std::uint8_t { None, Moving, Static, Unbounded };
 
     void reset(int count, const std::vector<Aabb>& bounds);
-    Aabb fattened(const Aabb& box) const;
+    Aabb fattened(const Aabb& box, const Vec3& shift) const;
     void addPair(int a, int b) { pairs_.emplace_back(a < b ? a : b, a < b ? b : a); }
 
     AabbTree movingTree_;
     AabbTree staticTree_;
     std::vector<Set> sets_;
     std::vector<Aabb> stored_;          // the box in the body's tree, read in body order
+    std::vector<Vec3> lastCentre_;      // a moving body's box centre at the last update
     std::vector<int> movingBodies_;     // bounded moving bodies, ascending
     std::vector<int> unbounded_;        // ascending
     std::vector<std::pair<int, int>> pairs_;
