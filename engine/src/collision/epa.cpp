@@ -131,8 +131,7 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         v.push_back(hp >= hm ? wp : wm);
     }
 
-    // The tetrahedron, faces wound outwards as seen from its centroid.
-    const Vec3 inner = 0.25 * (v[0].w + v[1].w + v[2].w + v[3].w);
+    // The tetrahedron, faces wound outwards.
     std::vector<Face> faces;
     faces.reserve(4 + 8 * kMaxIterations);
     auto makeFace = [&](int i, int j, int k) {
@@ -146,11 +145,12 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         }
         return f;
     };
-    for (const auto& t : {std::array<int, 3>{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}) {
-        Face f = makeFace(t[0], t[1], t[2]);
-        if (f.n.dot(v[t[0]].w - inner) < 0) f = makeFace(t[0], t[2], t[1]);
-        faces.push_back(f);
-    }
+    // One winding for all four faces, from the sign of the volume: decided face by face, a
+    // nearly flat tetrahedron could get faces wound both ways, whose edges then found no
+    // partner and the silhouette walked off the polytope (UBSan, tst_guard's large scene).
+    const bool flip = (v[1].w - v[0].w).cross(v[2].w - v[0].w).dot(v[3].w - v[0].w) > 0.0;
+    for (const auto& t : {std::array<int, 3>{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}})
+        faces.push_back(flip ? makeFace(t[0], t[2], t[1]) : makeFace(t[0], t[1], t[2]));
     // Edge a->b of one face meets edge b->a of another: link them.
     auto link = [&](int fa, int ea, int fb, int eb) {
         faces[fa].adj[ea] = fb, faces[fa].adjEdge[ea] = eb;
@@ -173,6 +173,7 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     };
     std::vector<HorizonEdge> horizon;
     std::vector<HorizonEdge> stack;
+    bool torn = false;
     auto silhouette = [&](int start, const Vec3& w) {
         faces[start].alive = false;
         horizon.clear();
@@ -181,6 +182,10 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         while (!stack.empty()) {
             const HorizonEdge h = stack.back();
             stack.pop_back();
+            if (h.face < 0) {  // an edge with no partner: the surface is torn
+                torn = true;
+                continue;
+            }
             Face& g = faces[h.face];
             if (!g.alive) continue;
             if (g.n.dot(w - v[g.v[0]].w) > 0.0) {
@@ -211,7 +216,7 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
         // One new face on each horizon edge, wound like the face it replaces.
         const int first = static_cast<int>(faces.size());
         const int count = static_cast<int>(horizon.size());
-        bool broken = count < 3;
+        bool broken = count < 3 || torn;
         for (const HorizonEdge& h : horizon) {
             const Face& g = faces[h.face];
             const int a = g.v[(h.edge + 1) % 3], b = g.v[h.edge];
