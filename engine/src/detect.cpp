@@ -104,6 +104,9 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
 
 namespace {
 
+// cos 45°: a contact at the end whose normal is this near the first touch's is on the near side.
+constexpr double kSameSide = 0.7071;
+
 Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& after) {
     Sweep w;
     w.c0 = before.x;
@@ -146,7 +149,8 @@ void findImpacts(const Model& model, const State& before, const State& after, do
     s.impacts.clear();
     if (thickness) {
         s.found.clear();
-        for (const Manifold& m : s.contacts) s.found.push_back(pairKey(m.bodyA, m.bodyB));
+        for (int k = 0; k < static_cast<int>(s.contacts.size()); ++k)
+            s.found.emplace_back(pairKey(s.contacts[k].bodyA, s.contacts[k].bodyB), k);
         std::sort(s.found.begin(), s.found.end());
     }
     // How far any point of body i moved in the step, at most.
@@ -159,6 +163,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
     overPairs(s, s.impacts, s.chunkImpacts, [&](int a, int b, std::vector<ImpactEvent>& out) {
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
+        int found = -1;  // the pair's first manifold at the end (end-of-step mode), if any
         if (thickness) {
             const double ta = (*thickness)[a], tb = (*thickness)[b];
             // Touching at the end: left to the end unless the overlap can be past the middle
@@ -170,8 +175,9 @@ void findImpacts(const Model& model, const State& before, const State& after, do
             // step can go through, as in the peers.
             const bool solids = std::isfinite(ta) && std::isfinite(tb) && ta > 0.0 && tb > 0.0;
             const double thinner = solids ? std::min(ta, tb) : std::numeric_limits<double>::infinity();
-            const bool found = std::binary_search(s.found.begin(), s.found.end(), pairKey(a, b));
-            const double limit = found ? 0.5 * thinner : ta + tb;
+            const auto it = std::lower_bound(s.found.begin(), s.found.end(), std::make_pair(pairKey(a, b), -1));
+            found = it != s.found.end() && it->first == pairKey(a, b) ? it->second : -1;
+            const double limit = found >= 0 ? 0.5 * thinner : ta + tb;
             if (travel(a) + travel(b) < limit) return;
         }
         const BodyModel& A = model.bodies[a];
@@ -181,6 +187,11 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
                                       sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
         if (!hit) return;
+        // Touching at the end along much the normal of the first touch: the end's contact is
+        // on the side the bodies met, not past the middle, and the contact solver resolves
+        // it there (hull-rain: nearly every landing of a hull on another moved more than
+        // half a hull and was cut for nothing, 3.8 moments a step).
+        if (found >= 0 && s.contacts[found].normal.dot(hit->normal) >= kSameSide) return;
         // A slow approach is settling, the contact solver's work: no moment of impact.
         if (approachSpeed(model, before, after, a, b, hit->s, hit->point, hit->normal) <= minApproach)
             return;

@@ -27,7 +27,9 @@ struct DetectScratch {
     std::vector<collision::Manifold> contacts;
     std::vector<collision::ImpactEvent> impacts;
     std::vector<std::uint64_t> touching;  // sorted keys of the pairs touching at the start of the step
-    std::vector<std::uint64_t> found;     // sorted keys of the pairs with contacts at the end (findImpacts)
+    // The pairs with contacts at the end, sorted by key, each with its first manifold's
+    // index in contacts (findImpacts).
+    std::vector<std::pair<std::uint64_t, int>> found;
     Workers* pool = nullptr;              // the world's worker threads; null: this thread only
     std::vector<std::vector<collision::Manifold>> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
