@@ -30,6 +30,10 @@ void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J) {
 
 bool correctPositions(State& state, ContactSolverScratch& s, int passes, double slopFactor) {
     bool moved = false;
+    // Each body's rotation matrix, made once and again only when a nudge turns the body
+    // (the same matrices as made point by point, two a point and pass before).
+    s.rotation.resize(state.bodies.size());
+    for (int i : s.involved) s.rotation[i] = state.bodies[i].q.toRotationMatrix();
     for (int pass = 0; pass < passes; ++pass) {
         double worst = 0.0;
         for (size_t i = 0; i < s.points.size(); ++i) {
@@ -39,7 +43,8 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
             BodyState& b = state.bodies[p.b];
             const SolverBody& A = s.bodies[p.a];
             const SolverBody& B = s.bodies[p.b];
-            const Mat3 RA = a.q.toRotationMatrix(), RB = b.q.toRotationMatrix();
+            const Mat3& RA = s.rotation[p.a];
+            const Mat3& RB = s.rotation[p.b];
             const Vec3 sA = a.x + RA * g.localA, sB = b.x + RB * g.localB, n = RB * g.localN;
             const double depth = n.dot(sB - sA);
             const double slop = slopFactor * g.slop;
@@ -50,8 +55,16 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
             const double k = inverseEffectiveMass(A, rA, B, rB, n);
             if (k <= 0.0) continue;
             const Vec3 J = (C / k) * n;
-            if (A.invMass > 0.0) nudge(A, a, rA, J), s.bodies[p.a].touched = true;
-            if (B.invMass > 0.0) nudge(B, b, rB, -J), s.bodies[p.b].touched = true;
+            if (A.invMass > 0.0) {
+                nudge(A, a, rA, J);
+                s.bodies[p.a].touched = true;
+                s.rotation[p.a] = a.q.toRotationMatrix();
+            }
+            if (B.invMass > 0.0) {
+                nudge(B, b, rB, -J);
+                s.bodies[p.b].touched = true;
+                s.rotation[p.b] = b.q.toRotationMatrix();
+            }
             moved = true;
         }
         if (worst <= 0.0) break;

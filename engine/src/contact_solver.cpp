@@ -354,6 +354,7 @@ void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
     for (auto* v : {&s.bodies, &s.start, &s.entry}) sizeSolverBodies(model, *v);
     s.slide.assign(n, Vec3::Zero());
     s.bodySpin.assign(n, Vec3::Zero());
+    s.rotation.assign(n, Mat3::Identity());
     s.level.assign(n, 0);
     s.seen.assign(n, 0);
 }

@@ -88,6 +88,7 @@ struct ContactSolverScratch {
     std::vector<int> involved;      // the bodies of the contacts, ascending (all the solve touches)
     std::vector<SolverBody> entry;  // the velocities the solver was given
     std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
+    std::vector<Mat3> rotation;     // per body: its rotation matrix in the position passes
     std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
     std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
