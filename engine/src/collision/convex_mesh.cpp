@@ -82,12 +82,26 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
                        double margin, std::vector<Manifold>& out) {
     const MeshShape& mesh = *meshShape.mesh;
     const ConvexProxy A = proxyOf(convex, pc);
+    const Vec3 centre = A.center();
     Pose rel;  // the convex in the mesh frame
     rel.R = pm.R.transpose() * pc.R;
     rel.p = pm.R.transpose() * (pc.p - pm.p);
     const Aabb box = bounds(convex, rel).inflated(std::max(margin, 0.0));
 
-    std::vector<TriContact> contacts;
+    // Scratch kept per thread between calls (the worker pool runs pairs side by side): the
+    // lists of a call were a good part of its cost in hull-rain (allocation per pair).
+    struct Group {
+        Vec3 normal;
+        std::vector<detail::Candidate> points;
+    };
+    struct Scratch {
+        std::vector<TriContact> contacts;
+        std::vector<Group> groups;  // the first `used` are this call's
+        std::vector<detail::Candidate> points;
+    };
+    thread_local Scratch scratch;
+    std::vector<TriContact>& contacts = scratch.contacts;
+    contacts.clear();
     double deepestFace = -std::numeric_limits<double>::infinity();
     trianglesNear(mesh, box, [&](int i) {
         const auto& tri = mesh.triangles[i];
@@ -111,11 +125,11 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
         // depth are the contact's. (The lowest point alone is not enough: a box tipping
         // over a table's rim hangs its lowest corner below the top's plane, beyond the
         // rim, and must not be lifted by that corner's depth.)
-        const double above = (A.center() - T.triangle[0]).dot(nt);
+        const double above = (centre - T.triangle[0]).dot(nt);
         bool onFace = false;
         if (above > 0.0) {
             const Vec3 foot = low - below * nt;
-            const Vec3 meet = below >= 0.0 ? foot : Vec3(low + (A.center() - low) * (-below / (above - below)));
+            const Vec3 meet = below >= 0.0 ? foot : Vec3(low + (centre - low) * (-below / (above - below)));
             const Vec3 w = barycentric(T.triangle, meet);
             onFace = w.minCoeff() > kInterior && (below >= 0.0 || barycentric(T.triangle, foot).minCoeff() > kInterior);
             // Beside the triangle: the plane through an edge the meeting place is beyond,
@@ -150,25 +164,24 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
 
     const double scale = A.size() + A.radius;
     const double slack = std::max(margin, 0.0) + 0.05 * std::max(deepestFace, 0.0) + 1e-9 * scale;
-    struct Group {
-        Vec3 normal;
-        std::vector<detail::Candidate> points;
-    };
-    std::vector<Group> groups;
-    std::vector<detail::Candidate> points;
+    std::vector<Group>& groups = scratch.groups;
+    std::vector<detail::Candidate>& points = scratch.points;
+    std::size_t used = 0;
     for (TriContact& c : contacts) {
-        if (!c.face && (A.center() - c.proxy.triangle[0]).dot(c.faceNormal) > 0) {
+        if (!c.face && (centre - c.proxy.triangle[0]).dot(c.faceNormal) > 0) {
             const Penetration f = alongFace(A, c.proxy, c.faceNormal);
             if (f.depth > -margin && f.depth <= deepestFace + slack) c.pen = f;
         }
         Vec3 normal;
         detail::contactPoints(A, c.proxy, c.pen, margin, normal, points);
         Group* g = nullptr;
-        for (Group& h : groups)
-            if (h.normal.dot(normal) >= kGroupCos) g = &h;
+        for (std::size_t k = 0; k < used; ++k)
+            if (groups[k].normal.dot(normal) >= kGroupCos) g = &groups[k];
         if (!g) {
-            groups.push_back({normal, {}});
-            g = &groups.back();
+            if (used == groups.size()) groups.emplace_back();
+            g = &groups[used++];
+            g->normal = normal;
+            g->points.clear();
         }
         for (detail::Candidate p : points) {
             p.feature = detail::mixId(p.feature, static_cast<std::uint32_t>(c.tri));
@@ -179,7 +192,7 @@ void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshSha
             if (!dup) g->points.push_back(p);
         }
     }
-    for (const Group& g : groups) detail::appendReduced(g.points, g.normal, out);
+    for (std::size_t k = 0; k < used; ++k) detail::appendReduced(groups[k].points, groups[k].normal, out);
 }
 
 }  // namespace tumble::collision

@@ -32,6 +32,11 @@ struct Face {
     bool alive;
 };
 
+// An edge of a face, seen from across it: the silhouette's walk and its result.
+struct HorizonEdge {
+    int face, edge;
+};
+
 Vec3 anyPerp(const Vec3& d) {
     const Vec3 axis =
         std::abs(d.x()) < 0.57 ? Vec3(1, 0, 0) : (std::abs(d.y()) < 0.57 ? Vec3(0, 1, 0) : Vec3(0, 0, 1));
@@ -79,7 +84,16 @@ Vec3 orient(const Vec3& n, const ConvexProxy& a, const ConvexProxy& b) {
 
 Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex* simplex, int count,
                 const Vec3& origin, double scale) {
-    std::vector<SimplexVertex> v;
+    // Lists kept per thread between calls (the worker pool runs pairs side by side): four
+    // allocations a call were a good part of a short expansion's cost.
+    struct Scratch {
+        std::vector<SimplexVertex> v;
+        std::vector<Face> faces;
+        std::vector<HorizonEdge> horizon, stack;
+    };
+    thread_local Scratch scratch;
+    std::vector<SimplexVertex>& v = scratch.v;
+    v.clear();
     v.reserve(kMaxIterations + 8);
     for (int i = 0; i < count; ++i) {
         bool dup = false;
@@ -132,7 +146,8 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     }
 
     // The tetrahedron, faces wound outwards.
-    std::vector<Face> faces;
+    std::vector<Face>& faces = scratch.faces;
+    faces.clear();
     faces.reserve(4 + 8 * kMaxIterations);
     auto makeFace = [&](int i, int j, int k) {
         Vec3 n = (v[j].w - v[i].w).cross(v[k].w - v[i].w);
@@ -168,11 +183,8 @@ Penetration epa(const ConvexProxy& A, const ConvexProxy& B, const SimplexVertex*
     // replaced, walk across edges into faces that see w, removing them; an edge into a face
     // that does not see w is on the horizon. The walk keeps the removed region connected, so
     // a sliver face whose normal rounding has turned cannot tear the surface.
-    struct HorizonEdge {
-        int face, edge;
-    };
-    std::vector<HorizonEdge> horizon;
-    std::vector<HorizonEdge> stack;
+    std::vector<HorizonEdge>& horizon = scratch.horizon;
+    std::vector<HorizonEdge>& stack = scratch.stack;
     bool torn = false;
     auto silhouette = [&](int start, const Vec3& w) {
         faces[start].alive = false;
