@@ -309,7 +309,8 @@ void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration
 
 void appendReduced(const std::vector<Candidate>& all, const Vec3& normal, std::vector<Manifold>& out) {
     // Coincident points (a degenerate face, two clips meeting at a corner) count once.
-    std::vector<Candidate> c;
+    thread_local std::vector<Candidate> c;  // kept between calls, per thread
+    c.clear();
     c.reserve(all.size());
     for (const Candidate& p : all) {
         bool dup = false;

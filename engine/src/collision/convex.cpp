@@ -13,7 +13,7 @@ void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& p
     const ConvexProxy B = proxyOf(b, pb);
     const Penetration pen = penetration(A, B, margin);
     if (!pen.hit) return;
-    std::vector<detail::Candidate> points;
+    thread_local std::vector<detail::Candidate> points;  // kept between calls (contactPoints clears it)
     Vec3 normal;
     detail::contactPoints(A, B, pen, margin, normal, points);
     detail::appendReduced(points, normal, out);
