@@ -201,4 +201,22 @@ double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block
     return std::max(dT.lpNorm<Eigen::Infinity>(), twistChange);
 }
 
+bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed) {
+    ContactSolverScratch::Block& block = s.blocks[k];
+    const Point& p = s.points[block.begin];
+    const long quiet = s.quietSince[k];
+    if (quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet) return false;
+    const long tick = ++s.tick;
+    const double friction = frictionBlock(s, block);  // friction first, then the normals
+    const double change = std::max(friction, normalBlock(s, block, s.subsets[k]));
+    if (!(change > quietSpeed * p.kn)) {
+        s.quietSince[k] = tick;
+        return false;
+    }
+    s.quietSince[k] = -1;
+    for (int i : {p.a, p.b})
+        if (s.bodies[i].invMass > 0.0) s.changedAt[i] = tick;
+    return true;
+}
+
 }  // namespace tumble

@@ -31,5 +31,10 @@ Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverS
 /// Friction of one manifold: stop the sliding and the twisting at the centroid, within the
 /// Coulomb limits of the current normal impulses.
 double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
+/// Block k of s.blocks, friction then normals, unless it is quiet: its last update changed
+/// its impulses by at most quietSpeed times its normal mass and no block has changed its
+/// bodies since (ContactSolverScratch::quietSince, changedAt). Returns whether it changed
+/// more than that (and then stamps its bodies).
+bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed);
 
 }  // namespace tumble

@@ -183,24 +183,7 @@ void warmStart(const State& state, double h, ContactSolverScratch& s) {
 bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     const int nb = static_cast<int>(s.blocks.size());
     bool changed = false;
-    for (int b = 0; b < nb; ++b) {
-        const int k = pass % 2 ? nb - 1 - b : b;
-        ContactSolverScratch::Block& block = s.blocks[k];
-        const Point& p = s.points[block.begin];
-        const long quiet = s.quietSince[k];
-        if (quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet) continue;
-        const long tick = ++s.tick;
-        const double friction = frictionBlock(s, block);  // friction first, then the normals
-        const double change = std::max(friction, normalBlock(s, block, s.subsets[k]));
-        if (!(change > quietSpeed * p.kn)) {
-            s.quietSince[k] = tick;
-            continue;
-        }
-        s.quietSince[k] = -1;
-        changed = true;
-        for (int i : {p.a, p.b})
-            if (s.bodies[i].invMass > 0.0) s.changedAt[i] = tick;
-    }
+    for (int b = 0; b < nb; ++b) changed |= updateBlock(s, pass % 2 ? nb - 1 - b : b, quietSpeed);
     return changed;
 }
 
@@ -313,7 +296,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     for (int i : s.involved) s.changedAt[i] = 0;
     bool converged = false;
     for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k, cfg.quietSpeed);
-    if (!s.blocks.empty()) shockPass(s, kShockPasses, converged);
+    if (!s.blocks.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed);
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
     if (s.points.empty()) return;

@@ -41,7 +41,7 @@ void supportLevels(ContactSolverScratch& s) {
 // nears 1 as the stack grows); without these passes the stack sinks into itself each step
 // until the warm start has caught up. The impulses they add are kept for the next step's
 // warm start, where the lower bodies then feel them: at rest they find nothing left to do.
-void shockPass(ContactSolverScratch& s, int passes, bool converged) {
+void shockPass(ContactSolverScratch& s, int passes, bool converged, double quietSpeed) {
     supportLevels(s);
     const int nb = static_cast<int>(s.blocks.size());
     auto lowerLevel = [&](int b) {
@@ -81,6 +81,14 @@ void shockPass(ContactSolverScratch& s, int passes, bool converged) {
             continue;
         }
         atFixedPoint = false;
+        // Nothing held still (the ground's contacts): the blocks are the passes' own, as
+        // prepared, and more passes over them skip the quiet ones as the passes do.
+        if (frozenBodies.size() == frozenBefore) {
+            for (int pass = 0; pass < passes; ++pass)
+                for (size_t k = g; k < e; ++k) updateBlock(s, s.order[k], quietSpeed);
+            g = e;
+            continue;
+        }
         s.frozen.clear();
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block block = s.blocks[s.order[k]];
