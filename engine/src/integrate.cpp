@@ -13,10 +13,10 @@
 //   sub-steps of a fast spin and the energy kept to rounding.
 // splitting-4: the same with a fourth-order free rotation (a composition of three).
 #include "integrate.h"
+#include "stage_clock.h"
 #include "workers.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -25,15 +25,13 @@ namespace tumble {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr int kBodyGrain = 256;  // bodies per chunk on the worker threads
 
 const std::vector<Wrench>& evaluateForces(const Model& model, const std::vector<BodyState>& bodies,
                                           double t, IntegrateScratch& scratch, Profile& profile) {
-    const auto t0 = Clock::now();
+    const std::uint64_t t0 = stage_clock::now();
     accumulateForces(model, bodies, t, scratch.wrench);
-    profile.forces += std::chrono::duration<double>(Clock::now() - t0).count();
+    profile.forces += stage_clock::since(t0);  // ticks (stage_clock.h)
     ++profile.forceEvaluations;
     return scratch.wrench;
 }

@@ -19,6 +19,7 @@
 #include "world_scratch.h"
 
 #include "guard.h"
+#include "stage_clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -34,19 +35,15 @@ constexpr int kMaxCuts = 8;                // moments of impact handled exactly 
 constexpr double kImpactTolerance = 1e-6;  // of the smaller body's size: how near "touching" is
 constexpr double kTouchTolerance = 1e-5;   // of the largest body's size: contacts this far apart count
 
-using Clock = std::chrono::steady_clock;
+// The stages are timed in ticks of stage_clock (profile() turns them into seconds).
+double since(std::uint64_t t) { return stage_clock::since(t); }
 
-double since(Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-// Back-to-back stages timed with one clock reading between them (a reading is a good part
-// of a tiny scene's step: a fifth of a ball rolling on the ground).
+// Back-to-back stages timed with one clock reading between them.
 struct Lap {
-    Clock::time_point t = Clock::now();
+    std::uint64_t t = stage_clock::now();
     double next() {
-        const Clock::time_point now = Clock::now();
-        const double d = std::chrono::duration<double>(now - t).count();
+        const std::uint64_t now = stage_clock::now();
+        const double d = static_cast<double>(now - t);
         t = now;
         return d;
     }
@@ -154,7 +151,7 @@ void World::advance(double h) {
     } else {
         s.integrate.awake = nullptr;
     }
-    const auto t = Clock::now();
+    const auto t = stage_clock::now();
     const double forcesBefore = profile_.forces;
     integrate(model_, state_, h, s.integrate, profile_);  // calls the forces stage
     state_.time += h;
@@ -184,7 +181,7 @@ void World::detect(double t0, double h) {
     // An awake body touching a sleeping one wakes it, and the contacts are found again
     // with the woken bodies among the moving ones.
     if (model_.settings.sleeping && wakeTouched(model_, state_, d.contacts, d.impacts, s.parked)) {
-        const auto t = Clock::now();
+        const auto t = stage_clock::now();
         findPairs(model_, state_, s.margin, d);
         findContacts(model_, d, s.margin);
         profile_.narrowphase += since(t);
@@ -196,7 +193,7 @@ void World::detect(double t0, double h) {
 void World::impactAt(double t0) {
     Scratch& s = *scratch_;
     DetectScratch& d = s.detect;
-    const auto t = Clock::now();
+    const auto t = stage_clock::now();
     double first = d.impacts.front().time;
     for (const auto& e : d.impacts) first = std::min(first, e.time);
     s.seeds.clear();
@@ -216,7 +213,7 @@ void World::impactAt(double t0) {
     if (first > t0) advance(first - t0);
     state_.time = first;
 
-    const auto t2 = Clock::now();
+    const auto t2 = stage_clock::now();
     bodyPoses(model_, state_, d.end);
     findContacts(model_, d, s.margin);
     if (s.parkedCount > 0) dropParked();
@@ -249,6 +246,15 @@ void World::impactAt(double t0) {
     profile_.impactSolve += since(t2);
 }
 
+Profile World::profile() const {
+    Profile p = profile_;
+    const double k = scratch_->clockRate.secondsPerTick();
+    for (double* t : {&p.forces, &p.integrate, &p.broadphase, &p.narrowphase, &p.timeOfImpact, &p.impactSolve,
+                      &p.solve, &p.sleep})
+        *t *= k;
+    return p;
+}
+
 void World::step(double h) {
     Scratch& s = *scratch_;
     DetectScratch& d = s.detect;
@@ -266,12 +272,12 @@ void World::step(double h) {
         d.touching = state_.touching;  // the last step's: pairs touching at the start
     } else {
         // The first step from a state: what touches already is resting contact, not an impact.
-        auto t = Clock::now();
+        auto t = stage_clock::now();
         bodyPoses(model_, state_, d.start);
         d.end = d.start;
         findPairs(model_, state_, s.margin, d);
         profile_.broadphase += since(t);
-        t = Clock::now();
+        t = stage_clock::now();
         findContacts(model_, d, s.margin);
         touchingPairs(d.contacts, s.touchTolerance, d.touching);
         profile_.narrowphase += since(t);
@@ -318,7 +324,7 @@ void World::step(double h) {
     }
 
     if (model_.settings.sleeping) {
-        const auto t = Clock::now();
+        const auto t = stage_clock::now();
         updateSleep(model_, state_, d.contacts, s.touchTolerance, h, s.sleep, ledger_);
         profile_.sleep += since(t);
     }
@@ -331,7 +337,7 @@ void World::step(double h) {
 
 void World::impactsAtStart() {
     Scratch& s = *scratch_;
-    const auto t = Clock::now();
+    const auto t = stage_clock::now();
     approachingBodies(model_, state_, state_, s.detect.contacts, s.touchTolerance, s.resting, s.impact, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r = resolveImpacts(model_, state_, s.detect.contacts, s.seeds, s.touchTolerance,

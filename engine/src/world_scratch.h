@@ -11,6 +11,7 @@
 #include "integrate.h"
 #include "islands.h"
 #include "sleep.h"
+#include "stage_clock.h"
 #include "workers.h"
 
 #include <cstdint>
@@ -20,6 +21,7 @@
 namespace tumble {
 
 struct World::Scratch {
+    stage_clock::Rate clockRate;  // the profile's ticks to seconds (World::profile)
     IntegrateScratch integrate;
     DetectScratch detect;
     ImpactScratch impact;

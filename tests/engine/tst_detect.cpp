@@ -4,6 +4,7 @@
 
 #include <QtTest>
 
+#include <chrono>
 #include <cmath>
 
 using namespace tumble;
@@ -39,6 +40,22 @@ private slots:
         QCOMPARE(w.profile().pairs, 0L);
         QCOMPARE(w.profile().broadphase, 0.0);
         QVERIFY(w.contacts().empty());
+    }
+
+    void stageTimesAreSeconds() {
+        // The stages count ticks of a cheaper clock and the profile gives seconds: over the
+        // steps of a falling pile they lie inside the steps' wall time and fill most of it
+        // (the rest is the step's bookkeeping between stages).
+        World w(sceneOf(randomDropPile(1)));
+        const auto t0 = std::chrono::steady_clock::now();
+        stepN(w, 1000, 1.0 / 60);
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const Profile p = w.profile();
+        const double stages =
+            p.forces + p.integrate + p.broadphase + p.narrowphase + p.timeOfImpact + p.impactSolve + p.solve + p.sleep;
+        qInfo("stages %.4f s of %.4f s stepping", stages, wall);
+        QVERIFY2(stages <= wall * 1.001 && stages >= 0.5 * wall,
+                 qPrintable(QString("stages %1 s in %2 s of stepping").arg(stages).arg(wall)));
     }
 
     void staticBodiesNeverPair() {

@@ -10,7 +10,8 @@
 
 namespace tumble {
 
-/// Wall-clock time spent in each stage, accumulated over steps (seconds).
+/// Wall-clock time spent in each stage, accumulated over steps (seconds; the World counts
+/// in ticks of a cheaper clock and converts them when asked).
 struct Profile {
     double forces = 0.0;
     double integrate = 0.0;
@@ -54,7 +55,8 @@ public:
     /// so stepping on from a recorded state repeats the recorded run exactly.
     void setState(const State& state);
     void setTime(double t) { state_.time = t; }
-    const Profile& profile() const { return profile_; }
+    /// The stage profile so far, its times in seconds.
+    Profile profile() const;
     const EnergyLedger& ledger() const { return ledger_; }
 
     /// Advances the state by h seconds: forces -> integrate -> broadphase -> narrowphase ->
