@@ -363,6 +363,8 @@ Model compile(const SceneDesc& scene) {
                 b.principalAxes = eig.eigenvectors();
                 // A rotation, not a reflection: the free rotation turns Π about these axes.
                 if (b.principalAxes.determinant() < 0.0) b.principalAxes.col(2) *= -1.0;
+                b.sphericalInertia = b.invInertia.isDiagonal(0.0) && b.invInertia(0, 0) == b.invInertia(1, 1) &&
+                                     b.invInertia(1, 1) == b.invInertia(2, 2);
                 m.dynamicBodies.push_back(index);
                 break;
             }

@@ -27,9 +27,12 @@ void indexMemory(const State& state, ContactSolverScratch& s) {
         while (j < static_cast<int>(mem.size()) && mem[j].bodyA == mem[i].bodyA &&
                mem[j].bodyB == mem[i].bodyB)
             ++j;
-        s.memory.emplace(pairKey(mem[i].bodyA, mem[i].bodyB), std::make_pair(i, j));
+        s.memory.push_back({pairKey(mem[i].bodyA, mem[i].bodyB), i, j});
         i = j;
     }
+    // By pair, the first run of a pair first (the lookup takes it, as a map's first insert).
+    std::stable_sort(s.memory.begin(), s.memory.end(),
+                     [](const auto& x, const auto& y) { return x.key < y.key; });
 }
 
 // The remembered point that this point continues, not yet taken by another point of this
@@ -38,14 +41,16 @@ void indexMemory(const State& state, ContactSolverScratch& s) {
 // resting pyramid to 1.2 m/s).
 const ContactMemory* remembered(const State& state, ContactSolverScratch& s, const Point& p,
                                 const ContactSolverScratch::PointGeometry& g) {
-    const auto it = s.memory.find(pairKey(p.a, p.b));
-    if (it == s.memory.end()) return nullptr;
+    const std::uint64_t key = pairKey(p.a, p.b);
+    const auto it = std::lower_bound(s.memory.begin(), s.memory.end(), key,
+                                     [](const auto& x, std::uint64_t k) { return x.key < k; });
+    if (it == s.memory.end() || it->key != key) return nullptr;
     // The same pair of features if it is still near; else the nearest remembered point
     // (features are renamed when, say, the reference face passes from one box to the other
     // in a stack: the impulses at the same corner still hold).
     int same = -1, nearest = -1;
     double nearestD = kMatch * g.size;
-    for (int i = it->second.first; i < it->second.second; ++i) {
+    for (int i = it->begin; i < it->end; ++i) {
         if (s.used[i]) continue;
         const ContactMemory& c = state.contacts[i];
         const double d = (c.position - g.position).norm();

@@ -25,7 +25,6 @@
 #include <tumble/world.h>
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace tumble {
@@ -89,7 +88,11 @@ struct ContactSolverScratch {
     std::vector<SolverBody> entry;  // the velocities the solver was given
     std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
     std::vector<Mat3> rotation;     // per body: its rotation matrix in the position passes
-    std::unordered_map<std::uint64_t, std::pair<int, int>> memory;  // pair -> range in State::contacts
+    struct MemoryRun {
+        std::uint64_t key;  // pairKey
+        int begin, end;     // the pair's range in State::contacts
+    };
+    std::vector<MemoryRun> memory;  // sorted by key (a map's nodes were an allocation per pair and step)
     std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
     std::vector<std::uint8_t> seen;  // bodiesOf's flags

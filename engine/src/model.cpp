@@ -8,9 +8,10 @@ Derived derive(const BodyModel& b, const BodyState& s) {
     d.R = s.q.toRotationMatrix();
     switch (b.motion) {
     case Motion::Dynamic:
-        d.invInertiaWorld = d.R * b.invInertia * d.R.transpose();
+        // R c1 Rᵀ = c1: a ball's or a cube's inverse inertia needs no turning.
+        d.invInertiaWorld = b.sphericalInertia ? b.invInertia : Mat3(d.R * b.invInertia * d.R.transpose());
         d.v = b.invMass * s.P;
-        d.omega = d.invInertiaWorld * s.L;
+        d.omega = b.sphericalInertia ? Vec3(b.invInertia(0, 0) * s.L) : Vec3(d.invInertiaWorld * s.L);
         break;
     case Motion::Kinematic:
         d.invInertiaWorld.setZero();

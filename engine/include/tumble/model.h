@@ -44,6 +44,7 @@ struct BodyModel {
     Mat3 invInertia = Mat3::Zero();
     Vec3 principalMoments = Vec3::Zero(); ///< eigenvalues of inertia
     Mat3 principalAxes = Mat3::Identity();///< body frame, columns are the principal axes
+    bool sphericalInertia = false;        ///< I⁻¹ exactly c·1 (a ball, a cube): the same in every frame
     Vec3 centerOfMass = Vec3::Zero();     ///< body frame
     double restitution = 0.5;
     double friction = 0.5;
