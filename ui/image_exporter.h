@@ -84,6 +84,7 @@ private:
     struct Impl;
     void fail(const QString& message);
     void finish(bool ok, const QString& message);
+    void deleteView();
     void waitForView();
     void beginFrame();
     void requestCapture();
