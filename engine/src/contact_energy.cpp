@@ -16,7 +16,8 @@ constexpr double kFreeOverlap = 10.0;   // × the slop: deeper overlap is remove
 
 // Kinetic energy of body i moving as b, its spin taken in the axes of its orientation q.
 double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
-    const Vec3 w = q.conjugate() * b.w;
+    // Three equal moments (a ball, a cube): the same in every frame, no turn needed.
+    const Vec3 w = body.sphericalInertia ? b.w : Vec3(q.conjugate() * b.w);
     return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
 }
 

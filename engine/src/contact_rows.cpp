@@ -39,8 +39,10 @@ double normalPoint(ContactSolverScratch& s, Point& p) {
 void preparePoint(const SolverBody& A, const SolverBody& B, Point& p) {
     p.armA = p.rA.cross(p.n);
     p.armB = p.rB.cross(p.n);
-    p.spinA = A.invI * p.armA;
-    p.spinB = B.invI * p.armB;
+    // A body that cannot move (invMass 0: static, kinematic, asleep, held by the shock pass)
+    // has invI 0 too: its spins are zero without the product.
+    p.spinA = A.invMass > 0.0 ? Vec3(A.invI * p.armA) : Vec3::Zero();
+    p.spinB = B.invMass > 0.0 ? Vec3(B.invI * p.armB) : Vec3::Zero();
     // n · ((I⁻¹ (r × n)) × r) = (r × n) · I⁻¹ (r × n): the effective mass from the arms.
     p.kn = 1.0 / (A.invMass + B.invMass + p.armA.dot(p.spinA) + p.armB.dot(p.spinB));
 }
@@ -82,11 +84,11 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
         const Vec3& dir = t == 0 ? block.t1 : block.t2;
         block.armA[t] = block.rA.cross(dir);
         block.armB[t] = block.rB.cross(dir);
-        block.spinA[t] = A.invI * block.armA[t];
-        block.spinB[t] = B.invI * block.armB[t];
+        block.spinA[t] = A.invMass > 0.0 ? Vec3(A.invI * block.armA[t]) : Vec3::Zero();
+        block.spinB[t] = B.invMass > 0.0 ? Vec3(B.invI * block.armB[t]) : Vec3::Zero();
     }
-    block.twistA = A.invI * n;
-    block.twistB = B.invI * n;
+    block.twistA = A.invMass > 0.0 ? Vec3(A.invI * n) : Vec3::Zero();
+    block.twistB = B.invMass > 0.0 ? Vec3(B.invI * n) : Vec3::Zero();
     // K of the two tangents: velocity change along t_i per unit impulse along t_j, from the
     // arms and spins above as for the normals.
     const Vec3 t[2] = {block.t1, block.t2};

@@ -31,8 +31,9 @@ void indexMemory(const State& state, ContactSolverScratch& s) {
         i = j;
     }
     // By pair, the first run of a pair first (the lookup takes it, as a map's first insert).
-    std::stable_sort(s.memory.begin(), s.memory.end(),
-                     [](const auto& x, const auto& y) { return x.key < y.key; });
+    std::sort(s.memory.begin(), s.memory.end(), [](const auto& x, const auto& y) {
+        return x.key < y.key || (x.key == y.key && x.begin < y.begin);  // stable, without a buffer
+    });
 }
 
 // The remembered point that this point continues, not yet taken by another point of this
@@ -87,9 +88,10 @@ void prepare(const Model& model, const State& state, const State& before,
         const double e = std::max(ma.restitution, mb.restitution);
         const Mat3 RA = state.bodies[m.bodyA].q.toRotationMatrix();
         const Mat3 RB = state.bodies[m.bodyB].q.toRotationMatrix();
-        // Each body's turn over the step: its surface points where they were at the start.
-        const Mat3 turnA = before.bodies[m.bodyA].q.toRotationMatrix() * RA.transpose();
-        const Mat3 turnB = before.bodies[m.bodyB].q.toRotationMatrix() * RB.transpose();
+        // Each body's orientation at the start: its surface points where they were then
+        // (a point's body coordinates turned by it).
+        const Mat3 RA0 = before.bodies[m.bodyA].q.toRotationMatrix();
+        const Mat3 RB0 = before.bodies[m.bodyB].q.toRotationMatrix();
         ContactSolverScratch::Block block;
         block.begin = static_cast<int>(s.points.size());
         block.mu = std::sqrt(ma.friction * mb.friction);
@@ -110,6 +112,7 @@ void prepare(const Model& model, const State& state, const State& before,
             const Vec3 sA = p.rA - 0.5 * c.depth * p.n, sB = p.rB + 0.5 * c.depth * p.n;
             g.localA = RA.transpose() * sA;
             g.localB = RB.transpose() * sB;
+            g.localN = RB.transpose() * p.n;
             const double roundA = roundness(ma.collider), roundB = roundness(mb.collider);
             // A round body's friction arm reaches its surface point (see prepareBlock).
             g.roundShiftA = roundA > 0.0 ? Vec3(sA - p.rA) : Vec3::Zero();
@@ -125,14 +128,14 @@ void prepare(const Model& model, const State& state, const State& before,
             // point, which moves with the body, less the radius. (From the surface point
             // turned back, a rolling ball's gap0 was R(1 - cos ωh) and the ball sank by it
             // every step: 0.9 mm at 1/240 s, 7.7 mm at 1/60, and never stopped slipping.)
-            const double gap0 =
-                p.n.dot((before.bodies[m.bodyA].x + turnA * (sA + roundA * p.n) - roundA * p.n) -
-                        (before.bodies[m.bodyB].x + turnB * (sB - roundB * p.n) + roundB * p.n));
+            const Vec3 coreA = roundA > 0.0 ? Vec3(g.localA + roundA * (RA.transpose() * p.n)) : g.localA;
+            const Vec3 coreB = roundB > 0.0 ? Vec3(g.localB - roundB * g.localN) : g.localB;
+            const double gap0 = p.n.dot((before.bodies[m.bodyA].x + RA0 * coreA - roundA * p.n) -
+                                        (before.bodies[m.bodyB].x + RB0 * coreB + roundB * p.n));
             if (vn < -cfg.restingSpeed && vn0 < -cfg.restingSpeed && gap0 <= cfg.touchTolerance)
                 p.target = -e * vn;  // touching and approaching fast: a bounce
             else
                 p.target = gap0 > 0.0 ? -gap0 / cfg.h : 0.0;
-            g.localN = RB.transpose() * p.n;
             g.size = std::min(sizes[m.bodyA], sizes[m.bodyB]);
             g.slop = kSlop * g.size;
             g.feature = c.feature;

@@ -83,6 +83,8 @@ struct ContactSolverScratch {
     std::vector<int> level;         // contacts between a body and one that cannot move (shockPass)
     std::vector<int> order;         // blocks from the bottom up
     std::vector<Block> frozen;      // the blocks of one level with its lower bodies standing still
+    std::vector<int> frozenBodies;  // the lower bodies held still, all levels so far
+    std::vector<SolverBody> savedBodies;  // their entries before (the same order)
     std::vector<int> moving;        // the dynamic bodies the solver moved
     std::vector<int> involved;      // the bodies of the contacts, ascending (all the solve touches)
     std::vector<SolverBody> entry;  // the velocities the solver was given

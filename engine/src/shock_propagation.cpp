@@ -53,10 +53,15 @@ void shockPass(ContactSolverScratch& s, int passes, bool converged, double quiet
         const Point& p = s.points[s.blocks[b].begin];
         if (s.level[p.a] != s.level[p.b]) s.order.push_back(b);  // a level's own contacts are done
     }
-    std::stable_sort(s.order.begin(), s.order.end(),
-                     [&](int x, int y) { return lowerLevel(x) < lowerLevel(y); });
-    std::vector<SolverBody> saved;
-    std::vector<int> frozenBodies;
+    // By level, and within a level in block order (a stable sort's order, without its buffer).
+    std::sort(s.order.begin(), s.order.end(), [&](int x, int y) {
+        const int lx = lowerLevel(x), ly = lowerLevel(y);
+        return lx < ly || (lx == ly && x < y);
+    });
+    std::vector<SolverBody>& saved = s.savedBodies;
+    std::vector<int>& frozenBodies = s.frozenBodies;
+    saved.clear();
+    frozenBodies.clear();
     bool atFixedPoint = converged;  // nothing has changed since the passes' fixed point
     for (size_t g = 0; g < s.order.size();) {
         const int level = lowerLevel(s.order[g]);

@@ -36,7 +36,8 @@ struct PlaneTest {
 
 void convexPlane(const Shape& a, const Pose& pa, const Shape& plane, const Pose& pp, double margin,
                  std::vector<Manifold>& out) {
-    std::vector<Candidate> c;
+    thread_local std::vector<Candidate> c;  // kept between calls, per thread
+    c.clear();
     PlaneTest t{Vec3::Zero(), 0.0, margin, &c};
     worldPlane(plane, pp, t.n, t.d);
     switch (a.kind) {
