@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace tumble {
@@ -90,9 +91,56 @@ void overPairs(DetectScratch& s, std::vector<T>& out, std::vector<std::vector<T>
 
 }  // namespace
 
+namespace {
+
+static_assert(sizeof(Pose) == 12 * sizeof(double), "a pose is compared as its bytes");
+
+// The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
+bool samePose(const Pose& x, const Pose& y) { return std::memcmp(&x, &y, sizeof(Pose)) == 0; }
+
+// The pairs of this narrowphase and their manifolds, for the next one; each paired body's pose.
+void rememberPairs(const Model& model, DetectScratch& s, double margin) {
+    DetectScratch::PairMemory& next = s.nextPairs;
+    next.keys.clear();
+    next.ranges.clear();
+    next.manifolds.assign(s.contacts.begin(), s.contacts.end());
+    next.margin = margin;
+    if (s.pairedPose.size() != model.bodies.size()) s.pairedPose.assign(model.bodies.size(), Pose{});
+    size_t m = 0;
+    for (const auto& [a, b] : s.broadphase.pairs()) {
+        const size_t first = m;
+        while (m < s.contacts.size() && s.contacts[m].bodyA == a && s.contacts[m].bodyB == b) ++m;
+        next.keys.push_back(pairKey(a, b));
+        next.ranges.emplace_back(static_cast<int>(first), static_cast<int>(m));
+        s.pairedPose[a] = s.end[a];
+        s.pairedPose[b] = s.end[b];
+    }
+    std::swap(s.lastPairs, s.nextPairs);
+}
+
+}  // namespace
+
+// A pair whose two bodies stand exactly where they stood at the last narrowphase (a hull at
+// rest on the ground, still awake) takes the manifolds found then: the same result, bit for
+// bit, as finding them again. Nothing is approximated, so a run and its re-simulation from a
+// saved state agree whatever this memory held.
 void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.contacts.clear();
+    const DetectScratch::PairMemory& last = s.lastPairs;
+    const bool remembered = last.margin == margin && s.pairedPose.size() == model.bodies.size();
+    // The manifolds of (a, b) from the last narrowphase, if both bodies stand still since.
+    auto lastOf = [&](int a, int b) -> const std::pair<int, int>* {
+        if (!remembered || !samePose(s.pairedPose[a], s.end[a]) || !samePose(s.pairedPose[b], s.end[b]))
+            return nullptr;
+        const std::uint64_t key = pairKey(a, b);
+        const auto it = std::lower_bound(last.keys.begin(), last.keys.end(), key);
+        return it != last.keys.end() && *it == key ? &last.ranges[it - last.keys.begin()] : nullptr;
+    };
     overPairs(s, s.contacts, s.chunkContacts, [&](int a, int b, std::vector<Manifold>& out) {
+        if (const auto* range = lastOf(a, b)) {
+            out.insert(out.end(), last.manifolds.begin() + range->first, last.manifolds.begin() + range->second);
+            return;
+        }
         const size_t first = out.size();
         collide(model.bodies[a].collider, s.end[a], model.bodies[b].collider, s.end[b], margin, out);
         for (size_t k = first; k < out.size(); ++k) {
@@ -100,6 +148,8 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
             out[k].bodyB = b;
         }
     });
+    for (const auto& [a, b] : s.broadphase.pairs()) s.reusedPairs += lastOf(a, b) != nullptr;
+    rememberPairs(model, s, margin);
 }
 
 namespace {

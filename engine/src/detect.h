@@ -10,6 +10,7 @@
 #include "collision/broadphase.h"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace tumble {
@@ -30,6 +31,18 @@ struct DetectScratch {
     // The pairs with contacts at the end, sorted by key, each with its first manifold's
     // index in contacts (findImpacts).
     std::vector<std::pair<std::uint64_t, int>> found;
+    // The last narrowphase, for the pairs whose two bodies stand exactly where they stood
+    // then (bit for bit): a pair's manifolds are a function of the two poses, the shapes and
+    // the margin only, so they are taken as they were (findContacts).
+    struct PairMemory {
+        std::vector<std::uint64_t> keys;          // the pairs, sorted
+        std::vector<std::pair<int, int>> ranges;  // keys[k]'s manifolds: [first, second) of manifolds
+        std::vector<collision::Manifold> manifolds;
+        double margin = std::numeric_limits<double>::quiet_NaN();
+    };
+    PairMemory lastPairs, nextPairs;
+    std::vector<collision::Pose> pairedPose;  // each body's pose when it was last in a pair
+    long reusedPairs = 0;                     // pairs taken from lastPairs, summed
     Workers* pool = nullptr;              // the world's worker threads; null: this thread only
     std::vector<std::vector<collision::Manifold>> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;

@@ -135,6 +135,7 @@ void World::forgetSleepUnlessSleeping() {
 void World::setState(const State& state) {
     state_ = state;
     scratch_->detect.contacts.clear();
+    scratch_->detect.lastPairs.keys.clear();  // nothing is taken from before the new state
     // Static bodies may stand elsewhere in this state: their poses and boxes again.
     scratch_->detect.start.clear();
     scratch_->detect.end.clear();
@@ -248,6 +249,7 @@ void World::impactAt(double t0) {
 
 Profile World::profile() const {
     Profile p = profile_;
+    p.pairsReused = scratch_->detect.reusedPairs;
     const double k = scratch_->clockRate.secondsPerTick();
     for (double* t : {&p.forces, &p.integrate, &p.broadphase, &p.narrowphase, &p.timeOfImpact, &p.impactSolve,
                       &p.solve, &p.sleep})
