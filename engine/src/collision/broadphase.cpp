@@ -69,6 +69,8 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
     reinserted_ = 0;
     movingBodies_.clear();
     unbounded_.clear();
+    dirty_.assign(static_cast<std::size_t>(n), 0);
+    dirtyBodies_.clear();
     for (int i = 0; i < n; ++i) {
         const Aabb& box = bounds[i];
         Set set = Set::None;
@@ -105,10 +107,13 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
                 ++reinserted_;
             }
             sets_[i] = set;
+            dirty_[i] = 1;  // its fat box changed or went: its candidates are found again
+            dirtyBodies_.push_back(i);
         }
         if (set == Set::Moving) movingBodies_.push_back(i);
         if (set == Set::Unbounded) unbounded_.push_back(i);
     }
+    const bool fresh = fresh_;
     fresh_ = false;
     rebuilt_ = false;
     for (AabbTree* tree : {&movingTree_, &staticTree_}) {
@@ -117,15 +122,14 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
             rebuilt_ = true;
         }
     }
+    updateCandidates(fresh || 4 * dirtyBodies_.size() > static_cast<std::size_t>(n));
 
+    // Fat boxes overlapping say nothing yet: every candidate is checked on the true boxes
+    // (in the candidates' order, so these pairs come out sorted).
     pairs_.clear();
-    // Fat boxes overlapping say nothing yet: every candidate is checked on the true boxes.
-    movingTree_.selfPairs([&](int a, int b) {
-        if (bounds[a].overlaps(bounds[b])) addPair(a, b);
-    });
-    movingTree_.pairsWith(staticTree_, [&](int m, int s) {
-        if (bounds[m].overlaps(bounds[s])) addPair(m, s);
-    });
+    for (const auto& [a, b] : candidates_)
+        if (bounds[a].overlaps(bounds[b])) pairs_.emplace_back(a, b);
+    const std::size_t boundedPairs = pairs_.size();
     const HalfSpace none;
     for (std::size_t k = 0; k < unbounded_.size(); ++k) {
         const int u = unbounded_[k];
@@ -146,7 +150,47 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
             if ((moving[u] || moving[v]) && box.overlaps(bounds[v])) pairs_.emplace_back(u, v);
         }
     }
-    std::sort(pairs_.begin(), pairs_.end());
+    if (pairs_.size() > boundedPairs) {  // the unbounded bodies' pairs, merged in
+        std::sort(pairs_.begin() + static_cast<std::ptrdiff_t>(boundedPairs), pairs_.end());
+        std::inplace_merge(pairs_.begin(), pairs_.begin() + static_cast<std::ptrdiff_t>(boundedPairs), pairs_.end());
+    }
+}
+
+// The candidates are the pairs whose fat boxes overlap, one moving and the other moving or
+// static. A pair's answer changes only when one of its fat boxes does, i.e. when one of its
+// bodies was re-inserted or changed sets (dirty): the other pairs are kept as they were, and
+// each dirty body asks the trees for its own. From scratch (both trees descended) after a
+// reset or when many bodies are dirty.
+void Broadphase::updateCandidates(bool fromScratch) {
+    if (fromScratch) {
+        candidates_.clear();
+        auto add = [&](int a, int b) { candidates_.emplace_back(a < b ? a : b, a < b ? b : a); };
+        movingTree_.selfPairs(add);
+        movingTree_.pairsWith(staticTree_, add);
+        std::sort(candidates_.begin(), candidates_.end());
+        return;
+    }
+    if (dirtyBodies_.empty()) return;
+    std::erase_if(candidates_, [&](const std::pair<int, int>& c) { return dirty_[c.first] || dirty_[c.second]; });
+    const std::size_t kept = candidates_.size();
+    for (int i : dirtyBodies_) {
+        auto add = [&](int j) { candidates_.emplace_back(i < j ? i : j, i < j ? j : i); };
+        if (sets_[i] == Set::Moving) {
+            // A pair of two dirty moving bodies is found by both: the lower one adds it.
+            movingTree_.query(stored_[i], [&](int j) {
+                if (j != i && (!dirty_[j] || i < j)) add(j);
+            });
+            staticTree_.query(stored_[i], add);
+        } else if (sets_[i] == Set::Static) {
+            // A dirty moving body found this pair from its side already.
+            movingTree_.query(stored_[i], [&](int j) {
+                if (!dirty_[j]) add(j);
+            });
+        }
+    }
+    const auto middle = candidates_.begin() + static_cast<std::ptrdiff_t>(kept);
+    std::sort(middle, candidates_.end());
+    std::inplace_merge(candidates_.begin(), middle, candidates_.end());
 }
 
 std::vector<std::pair<int, int>> bruteForcePairs(const std::vector<Aabb>& bounds,

@@ -78,6 +78,7 @@ private:
     void reset(int count, const std::vector<Aabb>& bounds);
     Aabb fattened(const Aabb& box, const Vec3& shift) const;
     void addPair(int a, int b) { pairs_.emplace_back(a < b ? a : b, a < b ? b : a); }
+    void updateCandidates(bool fromScratch);
 
     AabbTree movingTree_;
     AabbTree staticTree_;
@@ -87,6 +88,9 @@ private:
     std::vector<int> movingBodies_;     // bounded moving bodies, ascending
     std::vector<int> unbounded_;        // ascending
     std::vector<std::pair<int, int>> pairs_;
+    std::vector<std::pair<int, int>> candidates_;  // fat boxes overlapping, sorted (updateCandidates)
+    std::vector<std::uint8_t> dirty_;   // per body: its fat box changed or it changed sets
+    std::vector<int> dirtyBodies_;      // those bodies, ascending
     double typicalSize_ = 0.0;          // mean largest side of the finite boxes at reset
     int reinserted_ = 0;
     bool rebuilt_ = false;
