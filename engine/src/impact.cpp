@@ -135,23 +135,22 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
 }  // namespace
 
 void approachingBodies(const Model& model, const State& before, const State& state,
-                       const std::vector<Manifold>& contacts, double tol, double speed, ImpactScratch& s,
+                       const std::vector<Manifold>& contacts, double tol, double speed,
                        std::vector<int>& seeds) {
     seeds.clear();
-    if (contacts.empty()) return;
-    bodiesOf(contacts, s.seen, s.involved);
-    loadSolverBodies(model, state, s.bodies, s.involved);
-    loadSolverBodies(model, before, s.start, s.involved);
+    // Each manifold's bodies are loaded when one of its points touches, and their velocities
+    // at the start only when a point approaches now (most resting contacts do not).
     for (const Manifold& m : contacts) {
-        const SolverBody& A = s.bodies[m.bodyA];
-        const SolverBody& B = s.bodies[m.bodyB];
-        const SolverBody& A0 = s.start[m.bodyA];
-        const SolverBody& B0 = s.start[m.bodyB];
+        bool loaded = false, loadedStart = false;
+        SolverBody A, B, A0, B0;
         for (int i = 0; i < m.count; ++i) {
+            if (m.points[i].depth < -tol) continue;
+            if (!loaded) A = solverBody(model, state, m.bodyA), B = solverBody(model, state, m.bodyB), loaded = true;
             const Vec3& p = m.points[i].position;
-            if (m.points[i].depth < -tol || m.normal.dot(relativeVelocity(A, p - A.x, B, p - B.x)) >= -speed ||
-                m.normal.dot(relativeVelocity(A0, p - A.x, B0, p - B.x)) >= -speed)
-                continue;
+            if (m.normal.dot(relativeVelocity(A, p - A.x, B, p - B.x)) >= -speed) continue;
+            if (!loadedStart)
+                A0 = solverBody(model, before, m.bodyA), B0 = solverBody(model, before, m.bodyB), loadedStart = true;
+            if (m.normal.dot(relativeVelocity(A0, p - A.x, B0, p - B.x)) >= -speed) continue;
             seeds.push_back(m.bodyA);
             seeds.push_back(m.bodyB);
             break;

@@ -59,7 +59,7 @@ void sizeImpacts(const Model& model, ImpactScratch& scratch);
 /// because of this step's forces (a body pressed onto its support) is resting, not bouncing.
 void approachingBodies(const Model& model, const State& before, const State& state,
                        const std::vector<collision::Manifold>& contacts, double touchTolerance, double speed,
-                       ImpactScratch& scratch, std::vector<int>& seeds);
+                       std::vector<int>& seeds);
 
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,

@@ -13,7 +13,11 @@ namespace {
 void loadBody(const Model& model, const State& state, int i, SolverBody& o) {
     const BodyModel& b = model.bodies[i];
     const BodyState& s = state.bodies[i];
-    o = SolverBody{};  // every field, whatever the entry held before
+    o.v.setZero();  // every field, whatever the entry held before
+    o.w.setZero();
+    o.invMass = 0.0;
+    o.invI.setZero();
+    o.touched = false;
     o.x = s.x;
     if (b.motion == Motion::Kinematic) {
         o.v = b.kinematicVelocity;
@@ -43,6 +47,12 @@ void storeBody(const Model& model, const SolverBody& body, int i, State& state) 
 }
 
 }  // namespace
+
+SolverBody solverBody(const Model& model, const State& state, int i) {
+    SolverBody o;
+    loadBody(model, state, i, o);
+    return o;
+}
 
 void uniqueBodies(std::vector<int>& list, std::vector<std::uint8_t>& seen) {
     // Flags first, then a sort of the distinct bodies only: a pile's manifolds name each

@@ -38,6 +38,9 @@ void sizeSolverBodies(const Model& model, std::vector<SolverBody>& out);
 
 /// Loads the bodies `only` of `state` (ascending); the others are left standing still with
 /// no mass (`out` is resized to the body count). The solver's cost stays with its contacts.
+/// Body i of `state` as the solver sees it: its velocities, and its inverse mass and world
+/// inverse inertia if it can move (dynamic and awake); the same as loadSolverBodies loads.
+SolverBody solverBody(const Model& model, const State& state, int i);
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
                       const std::vector<int>& only);
 

@@ -340,7 +340,7 @@ void World::step(double h) {
 void World::impactsAtStart() {
     Scratch& s = *scratch_;
     const auto t = stage_clock::now();
-    approachingBodies(model_, state_, state_, s.detect.contacts, s.touchTolerance, s.resting, s.impact, s.seeds);
+    approachingBodies(model_, state_, state_, s.detect.contacts, s.touchTolerance, s.resting, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r = resolveImpacts(model_, state_, s.detect.contacts, s.seeds, s.touchTolerance,
                                               s.resting, s.impact, ledger_);
@@ -356,7 +356,7 @@ void World::impactsAtStart() {
 void World::finishStep(const State& before, const std::vector<collision::Manifold>& contacts) {
     Scratch& s = *scratch_;
     Lap lap;
-    approachingBodies(model_, before, state_, contacts, s.touchTolerance, s.resting, s.impact, s.seeds);
+    approachingBodies(model_, before, state_, contacts, s.touchTolerance, s.resting, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r =
             resolveImpacts(model_, state_, contacts, s.seeds, s.touchTolerance, s.resting, s.impact, ledger_);
