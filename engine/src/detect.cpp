@@ -121,10 +121,13 @@ void rememberPairs(const Model& model, DetectScratch& s, double margin) {
 
 }  // namespace
 
-// A pair whose two bodies stand exactly where they stood at the last narrowphase (a hull at
-// rest on the ground, still awake) takes the manifolds found then: the same result, bit for
-// bit, as finding them again. Nothing is approximated, so a run and its re-simulation from a
-// saved state agree whatever this memory held.
+// A pair whose two bodies stand exactly where they stood at the last narrowphase takes the
+// manifolds found then: the same result, bit for bit, as finding them again. Mostly these
+// are the pairs a step looks at again after a cut at a moment of impact, away from the
+// impact (the islands without one keep their end of the step: hull-rain, 90 of its 93 such
+// pairs a step), and a few bodies that stand exactly still from one step to the next.
+// Nothing is approximated, so a run and its re-simulation from a saved state agree
+// whatever this memory held.
 void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.contacts.clear();
     const DetectScratch::PairMemory& last = s.lastPairs;

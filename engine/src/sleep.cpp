@@ -42,17 +42,25 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
     const int n = static_cast<int>(model.bodies.size());
     state.restTime.resize(n, 0.0);
     state.asleep.resize(n, 0);
+
+    bool restedLongEnough = false;
+    for (int i : model.dynamicBodies) {
+        if (state.asleep[i]) continue;
+        const BodyModel& b = model.bodies[i];
+        const BodyState& bs = state.bodies[i];
+        // derive()'s v and ω (a ball's or a cube's ω without the turned inertia).
+        const Vec3 v = b.invMass * bs.P;
+        const Vec3 omega = b.sphericalInertia ? Vec3(b.invInertia(0, 0) * bs.L) : derive(b, bs).omega;
+        const bool resting = v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
+                             omega.squaredNorm() < kSleepSpin * kSleepSpin && !forceActs(model, i, state.time);
+        state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
+        restedLongEnough = restedLongEnough || state.restTime[i] >= kTimeToSleep;
+    }
+    // An island falls asleep when all its bodies rested long enough: none did, none sleeps.
+    if (!restedLongEnough) return false;
     s.parent.resize(n);
     for (int i = 0; i < n; ++i) s.parent[i] = i;
     s.blocked.assign(n, 0);
-
-    for (int i : model.dynamicBodies) {
-        if (state.asleep[i]) continue;
-        const Derived d = derive(model.bodies[i], state.bodies[i]);
-        const bool resting = d.v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
-                             d.omega.squaredNorm() < kSleepSpin * kSleepSpin && !forceActs(model, i, state.time);
-        state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
-    }
     for (const Manifold& m : contacts) {
         if (!touches(m, tol)) continue;
         const int a = m.bodyA, b = m.bodyB;

@@ -205,12 +205,11 @@ void World::impactAt(double t0) {
         s.seeds.push_back(e.bodyB);
     }
     profile_.impactSolve += since(t);
-    // Back to the start of the sub-step, keeping who was woken since.
-    std::vector<double> rest = std::move(state_.restTime);
-    std::vector<std::uint8_t> asleep = std::move(state_.asleep);
-    state_ = s.before;
-    state_.restTime = std::move(rest);
-    state_.asleep = std::move(asleep);
+    // Back to the start of the sub-step, keeping who was woken since (the contact memory
+    // and the touching pairs are as they were then: only the solver and the step's end
+    // change them).
+    state_.time = s.before.time;
+    state_.bodies = s.before.bodies;
     if (first > t0) advance(first - t0);
     state_.time = first;
 
@@ -294,7 +293,7 @@ void World::step(double h) {
     s.parked.clear();
     bool mayPark = true;
     for (int cut = 0;; ++cut) {
-        s.before = state_;
+        copyMotion(state_, s.before);
         const double t0 = state_.time;
         advance(tEnd - t0);
         state_.time = tEnd;

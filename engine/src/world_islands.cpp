@@ -17,7 +17,8 @@ void World::park() {
         return;
     }
     profile_.parkedBodySteps += s.parkedCount;
-    s.stepStart = s.before;
+    s.stepStart = state_;  // the contact memory and touching pairs of the step's start: unchanged so far
+    copyMotion(s.before, s.stepStart);
     s.touchingAtStart = d.touching;
     s.ledgerAtStart = ledger_;
     s.realAsleep = state_.asleep;

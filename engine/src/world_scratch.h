@@ -28,6 +28,9 @@ struct World::Scratch {
     ContactSolverScratch solver;
     SleepScratch sleep;
     EnergyGuard energy;
+    // The motion at the start of the (sub-)step: time, bodies, rest times and sleep flags
+    // (copyMotion). Its contact memory and touching pairs are not kept: nothing from the
+    // start of a sub-step to its cut changes them, so a cut takes them as they are.
     State before;
     std::vector<double> sizes;      // bounding radius per body
     std::vector<double> thickness;  // narrowest width per body (collision::thickness)
@@ -51,5 +54,14 @@ struct World::Scratch {
     std::vector<collision::Manifold> merged;
     std::unique_ptr<Workers> workers;  // setThreads(n > 1)
 };
+
+// What a cut goes back to: the state without its contact memory and touching pairs, which
+// a pile has thousands of and a sub-step does not change.
+inline void copyMotion(const State& from, State& to) {
+    to.time = from.time;
+    to.bodies = from.bodies;
+    to.restTime = from.restTime;
+    to.asleep = from.asleep;
+}
 
 }  // namespace tumble
