@@ -42,6 +42,13 @@ void supportLevels(ContactSolverScratch& s) {
 // until the warm start has caught up. The impulses they add are kept for the next step's
 // warm start, where the lower bodies then feel them: at rest they find nothing left to do.
 void shockPass(ContactSolverScratch& s, int passes, bool converged, double quietSpeed) {
+    // At the passes' fixed point with every contact against a body that cannot move (a ball
+    // on the ground, boxes side by side on it), no level holds anything still: nothing to do.
+    if (converged && std::all_of(s.blocks.begin(), s.blocks.end(), [&](const ContactSolverScratch::Block& b) {
+            const Point& p = s.points[b.begin];
+            return s.bodies[p.a].invMass == 0.0 || s.bodies[p.b].invMass == 0.0;
+        }))
+        return;
     supportLevels(s);
     const int nb = static_cast<int>(s.blocks.size());
     auto lowerLevel = [&](int b) {
