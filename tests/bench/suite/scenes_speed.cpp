@@ -115,8 +115,9 @@ std::shared_ptr<const TriangleMesh> terrain() {
     return m;
 }
 
-SceneDesc hullRain(int count) {
+SceneDesc hullRain(int count, bool sleeping) {
     SceneDesc s;
+    s.settings.sleeping = sleeping;
     BodyDesc g;
     g.name = "terrain";
     g.motion = Motion::Static;
@@ -204,7 +205,9 @@ std::vector<SpeedScene> speedScenes() {
     out.push_back({"piles-sleep-off", "piles-sleep-on with sleeping off",
                    [] { return named(piles(100, false)); }, 1.0 / 60.0, 600, 20});
     out.push_back({"hull-rain", "300 convex hulls (jittered octahedra) raining on a 800-triangle mesh ground",
-                   [] { return named(hullRain(300)); }, 1.0 / 60.0, 300, 10});
+                   [] { return named(hullRain(300, true)); }, 1.0 / 60.0, 300, 10});
+    out.push_back({"hull-rain-sleep-off", "hull-rain with sleeping off (every engine steps every rock)",
+                   [] { return named(hullRain(300, false)); }, 1.0 / 60.0, 300, 10});
     out.push_back({"static-field",
                    "900 overlapping static boxes (3 000+ static pairs) under 10 resting boxes",
                    [] { return named(staticField()); }, 1.0 / 60.0, 120, 5});
