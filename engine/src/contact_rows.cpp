@@ -129,9 +129,11 @@ double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& b
                     vn = Eigen::Vector4d::Zero();
     bool idle = true;  // nothing pushes and nothing approaches faster than its target
     for (int i = 0; i < k; ++i) lambda[i] = q[i].lambdaN;
+    // The points share the normal: n · (vA - vB) once (normalVelocity's first term).
+    const double along = q[0].n.dot(A.v - B.v);
     for (int i = 0; i < k; ++i) {
         // What the impulses must add to the velocity the point would have without them.
-        vn[i] = normalVelocity(A, B, q[i]);
+        vn[i] = along + q[i].armA.dot(A.w) - q[i].armB.dot(B.w);
         rhs[i] = q[i].target - (vn[i] - block.K.row(i).dot(lambda));  // zero beyond k
         idle = idle && lambda[i] == 0.0 && vn[i] >= q[i].target;
     }
