@@ -100,7 +100,11 @@ inline bool boundingSphere(const BodyDesc& b, const Vec3& position, Vec3* centre
 }  // namespace viewport_detail
 
 struct Viewport::Impl {
-    Document* doc = nullptr;
+    // Guarded: the main window deletes its document before the timeline and the timeline
+    // before its widgets, so the timeline's last signals reach a viewport whose document is
+    // gone (the sanitized editor build caught a call on the destroyed document when the
+    // window closed with a frame shown).
+    QPointer<Document> doc;
     Qt3DExtras::Qt3DWindow* window = nullptr;
     QWidget* container = nullptr;
     Qt3DCore::QEntity* root = nullptr;

@@ -47,6 +47,7 @@ QMatrix4x4 Viewport::drawnTransform(int index) const {
 }
 
 void Viewport::refreshPlayback() {
+    if (!d_->doc) return;  // the window is closing: nothing is drawn again
     const State* state = d_->frameState();
     const int frame = state ? d_->timeline->currentFrame() : 0;
     if (frame > 0) {
