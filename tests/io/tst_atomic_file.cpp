@@ -7,10 +7,12 @@
 #include <QtTest>
 
 #include <fcntl.h>
+#include <linux/capability.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -284,6 +286,46 @@ private slots:
                      target.string() + ": cannot be written (no such folder, or no permission)");
         }
         QVERIFY(!fs::exists(target.parent_path()));
+    }
+
+    // A folder the user may not write into: the save is refused naming the file, the old
+    // file stays as it was and nothing is left beside it. The tests run as root, whom
+    // permission bits do not stop: the save runs in a child that first gives up the
+    // capabilities that pass them by (an ordinary user has none to give up).
+    void aReadOnlyFolderIsRefusedAndTheOldFileKept() {
+        QTemporaryDir dir;
+        const fs::path folder = fs::path(dir.path().toStdString()) / "locked";
+        fs::create_directory(folder);
+        const fs::path target = folder / "scene.json";
+        writeBytes(target, "before");
+        fs::permissions(folder, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                    fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+        const pid_t child = ::fork();
+        QVERIFY(child >= 0);
+        if (child == 0) {
+            __user_cap_header_struct header{_LINUX_CAPABILITY_VERSION_3, 0};
+            __user_cap_data_struct caps[2]{};
+            if (::syscall(SYS_capget, &header, caps) != 0) ::_exit(10);
+            for (int cap : {CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH, CAP_FOWNER}) {
+                caps[cap / 32].effective &= ~(1u << (cap % 32));
+                caps[cap / 32].permitted &= ~(1u << (cap % 32));
+            }
+            if (::syscall(SYS_capset, &header, caps) != 0) ::_exit(11);
+            try {
+                io::writeFileAtomically(target, "after");
+            } catch (const std::runtime_error& e) {
+                const std::string expected = target.string() + ": cannot be written (no such folder, or no permission)";
+                ::_exit(std::string(e.what()) == expected ? 0 : 12);
+            }
+            ::_exit(13);  // written: the folder did not stop it
+        }
+        int status = 0;
+        QCOMPARE(::waitpid(child, &status, 0), child);
+        fs::permissions(folder, fs::perms::owner_all);  // for QTemporaryDir to remove it
+        QVERIFY2(WIFEXITED(status), "the child did not exit");
+        QCOMPARE(WEXITSTATUS(status), 0);  // 12: another message; 13: the save went through
+        QCOMPARE(readBytes(target), std::string("before"));
+        QCOMPARE(namesIn(folder), std::set<std::string>{"scene.json"});
     }
 
     // As QSaveFile did: a link is saved through (the file it points to is replaced, the link
