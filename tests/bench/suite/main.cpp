@@ -3,7 +3,8 @@
 //   tumble-bench --quick              a reduced set in under a minute (the CI smoke run):
 //                                     steps 1/60 and 1/240, a few steps of each speed scene,
 //                                     shorter stress runs on Tumble alone
-//   tumble-bench --scene NAME         one scene or stress test (see --list)
+//   tumble-bench --scene NAME         one scene or stress test (see --list), or a whole part:
+//                                     accuracy, speed or stress
 //   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
 //   tumble-bench --runs N             timed runs per accuracy point, the minimum kept (3)
@@ -104,8 +105,12 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    const bool all = opt.scene.empty();
-    if (!all && !contains(accuracySceneNames(), opt.scene) && !contains(speedSceneNames(), opt.scene) &&
+    // A part's name runs the whole part (the speed part's stage plot shows every scene).
+    const bool part = opt.scene == "accuracy" || opt.scene == "speed" || opt.scene == "stress";
+    const std::string only = part ? opt.scene : std::string();
+    if (part) opt.scene.clear();
+    const bool all = opt.scene.empty() && !part;
+    if (!all && !part && !contains(accuracySceneNames(), opt.scene) && !contains(speedSceneNames(), opt.scene) &&
         !contains(stressTestNames(), opt.scene)) {
         std::fprintf(stderr, "no scene or test named %s (see --list)\n", opt.scene.c_str());
         return 2;
@@ -116,21 +121,21 @@ int main(int argc, char** argv) {
     bool ok = true;
 
     std::vector<AccuracyRow> accuracy;
-    if (all || contains(accuracySceneNames(), opt.scene)) {
+    if (all || only == "accuracy" || contains(accuracySceneNames(), opt.scene)) {
         std::printf("# Work-precision%s\n", opt.quick ? " (quick: steps 1/60 and 1/240, one run)" : "");
         ok = runAccuracy(opt, accuracy) && ok;
         writeAccuracy(opt, accuracy);
         std::printf("(work-precision: %.1f s)\n", wallNow() - t0);
     }
     std::vector<SpeedRow> speed;
-    if (all || contains(speedSceneNames(), opt.scene)) {
+    if (all || only == "speed" || contains(speedSceneNames(), opt.scene)) {
         std::printf("\n# Speed%s\n", opt.quick ? " (quick: a few steps each)" : "");
         ok = runSpeed(opt, speed) && ok;
         writeSpeed(opt, speed);
         std::printf("(so far: %.1f s)\n", wallNow() - t0);
     }
     std::vector<StressRow> stress;
-    if (all || contains(stressTestNames(), opt.scene)) {
+    if (all || only == "stress" || contains(stressTestNames(), opt.scene)) {
         std::printf("\n# Stability stress%s\n", opt.quick ? " (quick: shorter runs, Tumble alone)" : "");
         ok = runStress(opt, stress) && ok;
         writeStress(opt, stress);

@@ -167,6 +167,60 @@ void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows) {
     }
 }
 
+namespace {
+
+// Tumble's step by stage, as a share of the fastest peer's step in the same run, one stacked
+// bar per scene (the headline mode, end-of-step, one thread): the issue-17 target is a bar
+// at or below the line at 1.
+void plotStages(const Options& opt, const std::vector<SpeedRow>& rows) {
+    const std::string headline = "splitting+end-of-step";
+    std::filesystem::create_directories(opt.out / "data");
+    std::ofstream dat = openOut(opt, "data/speed-stages.dat");
+    dat << "# scene integrate broadphase narrowphase time-of-impact impact-solve contact-solve rest peer\n";
+    int bars = 0;
+    for (const SpeedRow& t : rows) {
+        if (t.engine != "tumble" || t.mode != headline || !t.note.empty() || !(t.msPerStep > 0)) continue;
+        const SpeedRow* peer = nullptr;
+        for (const SpeedRow& r : rows)
+            if (r.scene == t.scene && r.engine != "tumble" && r.note.empty() && r.msPerStep > 0 &&
+                (!peer || r.msPerStep < peer->msPerStep))
+                peer = &r;
+        if (!peer) continue;
+        const double k = 1.0 / peer->msPerStep;
+        const double stages = t.forces + t.integrate + t.broadphase + t.narrowphase + t.toi + t.impact +
+                              t.solve + t.sleep;
+        dat << t.scene << ' ' << num((t.forces + t.integrate) * k, "%.4g") << ' ' << num(t.broadphase * k, "%.4g")
+            << ' ' << num(t.narrowphase * k, "%.4g") << ' ' << num(t.toi * k, "%.4g") << ' '
+            << num(t.impact * k, "%.4g") << ' ' << num(t.solve * k, "%.4g") << ' '
+            << num(std::max(0.0, t.msPerStep - stages) * k + t.sleep * k, "%.4g") << " \"" << peer->engine
+            << "\"\n";
+        ++bars;
+    }
+    dat.close();
+    if (bars == 0) return;
+    std::ofstream gp = openOut(opt, "bench-speed-stages.gp");
+    gp << "# Tumble's step by stage over the fastest peer's step, written by tumble-bench; run in "
+       << opt.out.string() << "\n"
+       << "set terminal pngcairo size 900,520 noenhanced font 'DejaVu Sans,10'\n"
+       << "set output 'bench-speed-stages.png'\n"
+       << "set title 'Tumble (" << headline << ", one thread): step time by stage / fastest peer step time'\n"
+       << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border -1\n"
+       << "set boxwidth 0.7\nset key outside right\nset grid y\nset yrange [0:*]\n"
+       << "set xtics rotate by -30\nset ylabel 'share of the fastest peer step (1 = level)'\n"
+       << "plot 'data/speed-stages.dat' using 2:xtic(1) title 'integrate', \\\n"
+       << "     '' using 3 title 'broadphase', '' using 4 title 'narrowphase', \\\n"
+       << "     '' using 5 title 'time of impact', '' using 6 title 'impact solve', \\\n"
+       << "     '' using 7 title 'contact solve', '' using 8 title 'sleep and the rest', \\\n"
+       << "     1 with lines linewidth 2 linecolor rgb 'black' title 'fastest peer'\n";
+    gp.close();
+    if (haveGnuplot()) {
+        const std::string cmd = "cd '" + opt.out.string() + "' && gnuplot bench-speed-stages.gp 2>&1";
+        if (std::system(cmd.c_str()) != 0) std::printf("gnuplot failed on bench-speed-stages.gp\n");
+    }
+}
+
+}  // namespace
+
 void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
     if (rows.empty()) return;
     std::ofstream csv = openOut(opt, "speed.csv");
@@ -208,6 +262,7 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
                << num(r.pairsPerStep, "%.0f") << " | " << num(r.awakePerStep, "%.0f") << " | "
                << num(r.cutsPerStep, "%.2f") << " | " << num(r.parkedPerStep, "%.0f") << " | "
                << num(r.restartsPerStep, "%.3f") << " |\n";
+    plotStages(opt, rows);
 }
 
 void writeStress(const Options& opt, const std::vector<StressRow>& rows) {
