@@ -63,15 +63,21 @@ build() {
 # The sanitizer build: clang with AddressSanitizer, UndefinedBehaviorSanitizer (LeakSanitizer
 # comes with ASan) and libFuzzer's coverage, without the editor; only what its tests need.
 SAN_DIR=${BUILD_DIR}-san
-build_sanitized() {
+# One sanitized tree: DIR, then its own cmake options.
+build_sanitized_tree() {
+  local dir=$1
+  shift
   # Its objects carry debug lines (for the reports' stacks); ccache keys them by path relative
   # to the source folder, so a clean checkout elsewhere finds them in the cache.
   export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
-  if [ ! -f "$SAN_DIR/build.ninja" ]; then
-    cmake -S . -B "$SAN_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
-      -DTUMBLE_SANITIZE=ON -DTUMBLE_FUZZ=ON -DTUMBLE_BUILD_UI=OFF -DTUMBLE_BUILD_BENCH=OFF
+  if [ ! -f "$dir/build.ninja" ]; then
+    cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+      -DTUMBLE_SANITIZE=ON -DTUMBLE_BUILD_BENCH=OFF "$@"
   fi
-  cmake --build "$SAN_DIR" -j2
+  cmake --build "$dir" -j2
+}
+build_sanitized() {
+  build_sanitized_tree "$SAN_DIR" -DTUMBLE_FUZZ=ON -DTUMBLE_BUILD_UI=OFF
 }
 run_sanitized() {
   # Any report fails the test that caused it: ASan and LSan abort, UBSan is built not to
@@ -92,12 +98,7 @@ run_sanitized() {
 # library); ui/soak reads glibc's heap figures, which ASan replaces.
 SAN_UI_DIR=${BUILD_DIR}-san-ui
 build_sanitized_ui() {
-  export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
-  if [ ! -f "$SAN_UI_DIR/build.ninja" ]; then
-    cmake -S . -B "$SAN_UI_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
-      -DTUMBLE_SANITIZE=ON -DTUMBLE_FUZZ=OFF -DTUMBLE_BUILD_UI=ON -DTUMBLE_BUILD_BENCH=OFF
-  fi
-  cmake --build "$SAN_UI_DIR" -j2
+  build_sanitized_tree "$SAN_UI_DIR" -DTUMBLE_FUZZ=OFF -DTUMBLE_BUILD_UI=ON
 }
 run_sanitized_ui() {
   local run=(ctest --timeout 2400 --test-dir "$SAN_UI_DIR" --output-on-failure -j2 -L ui -LE soak "$@")
