@@ -65,6 +65,9 @@ struct StressRow {
     bool pass = false;
     std::string figure;
     bool broken = false;  ///< the run threw or left a non-finite state
+    /// A stack's run (`stands`): its step and its largest move (drift or sink, m) for the
+    /// stability-against-step plot; 0 when the test is not a stack.
+    double dt = 0.0, largestMove = 0.0;
 };
 bool runStress(const Options& opt, std::vector<StressRow>& rows);
 

@@ -4,7 +4,8 @@
 //                                     steps 1/60 and 1/240, a few steps of each speed scene,
 //                                     shorter stress runs on Tumble alone
 //   tumble-bench --scene NAME         one scene or stress test (see --list), or a whole part:
-//                                     accuracy, speed or stress
+//                                     accuracy, speed or stress; or stacks (the stress tests
+//                                     STACK@1/N, with the stability-against-step plot)
 //   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
 //   tumble-bench --runs N             timed runs per accuracy point, the minimum kept (3)
@@ -110,7 +111,7 @@ int main(int argc, char** argv) {
     const std::string only = part ? opt.scene : std::string();
     if (part) opt.scene.clear();
     const bool all = opt.scene.empty() && !part;
-    if (!all && !part && !contains(accuracySceneNames(), opt.scene) && !contains(speedSceneNames(), opt.scene) &&
+    if (!all && !part && opt.scene != "stacks" && !contains(accuracySceneNames(), opt.scene) && !contains(speedSceneNames(), opt.scene) &&
         !contains(stressTestNames(), opt.scene)) {
         std::fprintf(stderr, "no scene or test named %s (see --list)\n", opt.scene.c_str());
         return 2;
@@ -135,7 +136,7 @@ int main(int argc, char** argv) {
         std::printf("(so far: %.1f s)\n", wallNow() - t0);
     }
     std::vector<StressRow> stress;
-    if (all || only == "stress" || contains(stressTestNames(), opt.scene)) {
+    if (all || only == "stress" || opt.scene == "stacks" || contains(stressTestNames(), opt.scene)) {
         std::printf("\n# Stability stress%s\n", opt.quick ? " (quick: shorter runs, Tumble alone)" : "");
         ok = runStress(opt, stress) && ok;
         writeStress(opt, stress);

@@ -265,6 +265,62 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
     plotStages(opt, rows);
 }
 
+namespace {
+
+// The stacks at the steps people use: each stack's largest move against the step, a line per
+// engine, one panel per stack (the tests named "STACK@1/N"); a run that broke or fell over
+// is drawn at 10 m.
+void plotStability(const Options& opt, const std::vector<StressRow>& rows) {
+    std::vector<std::string> stacks, engines;
+    for (const StressRow& r : rows) {
+        const size_t at = r.test.find("@1/");
+        if (at == std::string::npos || !(r.dt > 0)) continue;
+        const std::string stack = r.test.substr(0, at);
+        if (std::find(stacks.begin(), stacks.end(), stack) == stacks.end()) stacks.push_back(stack);
+        if (std::find(engines.begin(), engines.end(), r.engine) == engines.end()) engines.push_back(r.engine);
+    }
+    if (stacks.empty()) return;
+    std::filesystem::create_directories(opt.out / "data");
+    for (const std::string& stack : stacks)
+        for (const std::string& engine : engines) {
+            std::vector<std::pair<double, double>> points;  // steps per second, largest move
+            for (const StressRow& r : rows)
+                if (r.engine == engine && r.dt > 0 && r.test.rfind(stack + "@1/", 0) == 0)
+                    points.emplace_back(1.0 / r.dt, std::clamp(r.largestMove, 1e-16, 10.0));
+            std::sort(points.begin(), points.end());
+            std::ofstream dat = openOut(opt, "data/stability." + stack + "." + engine + ".dat");
+            for (const auto& [rate, move] : points) dat << num(rate, "%.0f") << ' ' << num(move, "%.4g") << '\n';
+        }
+    const int columns = stacks.size() > 2 ? 3 : static_cast<int>(stacks.size());
+    const int lines = (static_cast<int>(stacks.size()) + columns - 1) / columns;
+    std::ofstream gp = openOut(opt, "bench-stability.gp");
+    gp << "# the stacks' largest move against the step, written by tumble-bench; run in " << opt.out.string()
+       << "\nset terminal pngcairo size " << 380 * columns << "," << 320 * lines
+       << " noenhanced font 'DejaVu Sans,9'\nset output 'bench-stability.png'\n"
+       << "set multiplot layout " << lines << "," << columns
+       << " title 'largest drift or sink of a box (m) against steps per second, sleeping off'\n"
+       << "set logscale xy\nset format y '%.0e'\nset grid\nset xrange [20:400]\nset yrange [1e-16:20]\n"
+       << "set xtics (30, 60, 240)\nset key bottom right\n";
+    for (const std::string& stack : stacks) {
+        gp << "set title '" << stack << "'\nplot ";
+        for (size_t i = 0; i < engines.size(); ++i) {
+            const int dash = engines[i] == "tumble" ? 1 : engines[i] == "bullet" ? 2 : engines[i] == "ode" ? 3 : 4;
+            gp << (i ? ", " : "") << "'data/stability." << stack << "." << engines[i]
+               << ".dat' using 1:2 with linespoints dashtype " << dash << " linewidth " << (dash == 1 ? 2 : 1)
+               << " title '" << engines[i] << "'";
+        }
+        gp << ", 0.01 with lines linecolor rgb 'gray' title '1 cm'\n";
+    }
+    gp << "unset multiplot\n";
+    gp.close();
+    if (haveGnuplot()) {
+        const std::string cmd = "cd '" + opt.out.string() + "' && gnuplot bench-stability.gp 2>&1";
+        if (std::system(cmd.c_str()) != 0) std::printf("gnuplot failed on bench-stability.gp\n");
+    }
+}
+
+}  // namespace
+
 void writeStress(const Options& opt, const std::vector<StressRow>& rows) {
     if (rows.empty()) return;
     std::ofstream csv = openOut(opt, "stress.csv");
@@ -279,6 +335,7 @@ void writeStress(const Options& opt, const std::vector<StressRow>& rows) {
         md << "| " << r.test << " | " << r.engine << " | " << (r.pass ? "PASS" : "**FAIL**") << " | "
            << figure << " |\n";
     }
+    plotStability(opt, rows);
 }
 
 }  // namespace tumble::bench

@@ -99,7 +99,10 @@ StressRow stands(EngineAdapter& e, const std::string& test, const SceneDesc& sce
         "%.0f s at 1/%.0f s: drift %.2e m, vertical %.2e m, tilt %.2e deg (bounds %g cm, %g cm, 1 deg)%s",
         seconds, 1 / dt, drift, sink, tilt, 100 * bound, 100 * bound,
         error.empty() ? "" : (", " + error).c_str());
-    return {test, e.name(), pass, buf, !ran};
+    StressRow row{test, e.name(), pass, buf, !ran};
+    row.dt = dt;
+    row.largestMove = ran ? std::max(drift, sink) : HUGE_VAL;
+    return row;
 }
 
 // A body that must not pass through: coordinate `axis` of body `i` never below `bound`.
@@ -286,7 +289,9 @@ bool runStress(const Options& opt, std::vector<StressRow>& rows) {
     bool ok = true;
     std::vector<std::unique_ptr<EngineAdapter>> engines = makeEngines(opt);
     for (const StressTest& t : stressTests()) {
-        if (!opt.scene.empty() && opt.scene != t.name) continue;
+        // "stacks": the stacks at the three steps (the tests named STACK@1/N).
+        const bool stack = t.name.find("@1/") != std::string::npos;
+        if (!opt.scene.empty() && opt.scene != t.name && !(opt.scene == "stacks" && stack)) continue;
         for (auto& engine : engines) {
             // --quick: the peers' adapters are exercised by the other parts; building their
             // bigger models here costs seconds each (MuJoCo's contact buffers).
