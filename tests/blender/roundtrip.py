@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Blender round trip (ctest blender/roundtrip, issue 19): a scene is exported by
+`tumble --headless` as .glb and as .gltf, and as the trajectory CSV; Blender's own glTF
+importer reads each file (import_gltf.py, headless), and every body's location and rotation
+at several frames must be the CSV's, within 1e-5 m and 1e-5 rad, with the objects named as
+the bodies and the animation's keys from frame 0 to the last frame.
+
+usage: roundtrip.py TUMBLE SCENE [SCENE ...]   (needs `blender` on the PATH: ./dev.sh installs it)
+"""
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOLERANCE = 1e-5  # m and rad; the file stores 32-bit floats (about 6e-8 relative)
+
+
+def fail(message):
+    print("FAIL: " + message)
+    sys.exit(1)
+
+
+def read_csv(path):
+    """{body: {frame: (x, y, z, qw, qx, qy, qz)}}, frames counted from the rows' times."""
+    poses, times = {}, []
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            t = float(row["time"])
+            if t not in times:
+                times.append(t)
+            poses.setdefault(row["body"], {})[times.index(t)] = tuple(
+                float(row[k]) for k in ("x", "y", "z", "qw", "qx", "qy", "qz"))
+    return poses, times
+
+
+def to_blender(pose):
+    """glTF (and Tumble) is +Y up, Blender +Z up: the importer maps (x, y, z) to (x, -z, y),
+    positions and the axes of rotations alike."""
+    x, y, z, qw, qx, qy, qz = pose
+    return (x, -z, y), (qw, qx, -qz, qy)
+
+
+def angle_between(q1, q2):
+    dot = abs(sum(a * b for a, b in zip(q1, q2)))
+    n1 = math.sqrt(sum(a * a for a in q1))
+    n2 = math.sqrt(sum(a * a for a in q2))
+    return 2.0 * math.acos(min(1.0, dot / (n1 * n2)))
+
+
+def check(tumble, scene, fmt, work):
+    name = os.path.splitext(os.path.basename(scene))[0]
+    exported = os.path.join(work, name + "." + fmt)
+    table = os.path.join(work, name + ".csv")
+    for out in (exported, table):
+        subprocess.run([tumble, "--headless", scene, "--out", out, "--quiet"], check=True)
+    poses, times = read_csv(table)
+    rate = round(1.0 / (times[1] - times[0]))
+    last = len(times) - 1
+    frames = sorted({0, 1, last // 3, last // 2, last - 1, last})
+    report = os.path.join(work, name + "." + fmt + ".blender.json")
+    run = subprocess.run(
+        ["blender", "-b", "--factory-startup", "--python", os.path.join(HERE, "import_gltf.py"), "--",
+         exported, str(rate), ",".join(map(str, frames)), report],
+        capture_output=True, text=True, timeout=600)
+    if run.returncode != 0 or not os.path.exists(report):
+        fail(f"{name}.{fmt}: Blender did not import it (exit {run.returncode}):\n{run.stdout[-2000:]}{run.stderr[-2000:]}")
+    with open(report) as f:
+        got = json.load(f)
+    # The objects are the bodies, named as in the scene, and the scene's root node above them.
+    extra = set(got["objects"]) - set(poses)
+    if not set(poses) <= set(got["objects"]) or extra != {name}:
+        fail(f"{name}.{fmt}: Blender's objects {sorted(got['objects'])} are not the bodies {sorted(poses)} "
+             "and one root")
+    moving = [b for b in poses if any(poses[b][k] != poses[b][0] for k in poses[b])]
+    if moving and (got["first_key"] != 0 or got["last_key"] != last):
+        fail(f"{name}.{fmt}: the animation's keys run from frame {got['first_key']} to {got['last_key']}, "
+             f"not 0 to {last}")
+    worst_move, worst_turn = 0.0, 0.0
+    for body, by_frame in poses.items():
+        for frame in frames:
+            position, rotation = to_blender(by_frame[frame])
+            seen = got["objects"][body][str(frame)]
+            move = math.dist(position, seen[:3])
+            turn = angle_between(rotation, seen[3:])
+            worst_move, worst_turn = max(worst_move, move), max(worst_turn, turn)
+            if move > TOLERANCE or turn > TOLERANCE:
+                fail(f"{name}.{fmt}: {body} at frame {frame} (t = {times[frame]} s): Blender has "
+                     f"{seen}, the CSV {by_frame[frame]} ({move:.2e} m, {turn:.2e} rad apart)")
+    print(f"{name}.{fmt}: {len(poses)} objects ({len(moving)} moving), frames {frames} of 0..{last} at "
+          f"{rate}/s: at most {worst_move:.1e} m and {worst_turn:.1e} rad from the CSV")
+
+
+def main():
+    if len(sys.argv) < 3:
+        fail(__doc__)
+    if shutil.which("blender") is None:
+        fail("blender is not installed (./dev.sh test installs it: apt-get install blender python3-numpy)")
+    tumble, scenes = sys.argv[1], sys.argv[2:]
+    with tempfile.TemporaryDirectory() as work:
+        for scene in scenes:
+            for fmt in ("glb", "gltf"):
+                check(tumble, scene, fmt, work)
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
