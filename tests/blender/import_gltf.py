@@ -31,6 +31,12 @@ result = {
     "first_key": min((r[0] for r in ranges), default=None),
     "last_key": max((r[1] for r in ranges), default=None),
     "objects": {},
+    # Each mesh object's vertices in its own axes: least and greatest x, y, z.
+    "bounds": {
+        ob.name: [min(v.co[k] for v in ob.data.vertices) for k in range(3)] +
+                 [max(v.co[k] for v in ob.data.vertices) for k in range(3)]
+        for ob in scene.objects if ob.type == "MESH" and len(ob.data.vertices) > 0
+    },
 }
 for frame in frames:
     scene.frame_set(frame)

@@ -38,6 +38,19 @@ def read_csv(path):
     return poses, times
 
 
+def mesh_bounds(path, scale):
+    """The least and greatest x, y, z of an OBJ's or an ASCII STL's vertices, scaled, in
+    Blender's axes: what the body's mesh must be in Blender, read from the file itself."""
+    points = []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if words[:1] == ["v"] or words[:1] == ["vertex"]:
+                x, y, z = (float(w) * s for w, s in zip(words[1:4], scale))
+                points.append((x, -z, y))
+    return [min(p[k] for p in points) for k in range(3)] + [max(p[k] for p in points) for k in range(3)]
+
+
 def to_blender(pose):
     """glTF (and Tumble) is +Y up, Blender +Z up: the importer maps (x, y, z) to (x, -z, y),
     positions and the axes of rotations alike."""
@@ -91,6 +104,20 @@ def check(tumble, scene, fmt, work):
             if move > TOLERANCE or turn > TOLERANCE:
                 fail(f"{name}.{fmt}: {body} at frame {frame} (t = {times[frame]} s): Blender has "
                      f"{seen}, the CSV {by_frame[frame]} ({move:.2e} m, {turn:.2e} rad apart)")
+    # The meshes read from OBJ and STL files (through assimp) come out with their own
+    # vertices, scaled, in the body's axes.
+    with open(scene) as f:
+        bodies = json.load(f)["bodies"]
+    for body in bodies:
+        shape = body["shape"]
+        if shape["type"] != "mesh" or not shape["file"].endswith((".obj", ".stl")):
+            continue
+        source = os.path.join(os.path.dirname(os.path.abspath(scene)), shape["file"])
+        want = mesh_bounds(source, shape.get("scale", [1, 1, 1]))
+        have = got["bounds"].get(body["name"])
+        if have is None or max(abs(a - b) for a, b in zip(want, have)) > TOLERANCE:
+            fail(f"{name}.{fmt}: {body['name']}'s mesh in Blender spans {have}, its file {want}")
+        print(f"{name}.{fmt}: {body['name']}'s mesh ({os.path.basename(source)}) spans its file's box")
     print(f"{name}.{fmt}: {len(poses)} objects ({len(moving)} moving), frames {frames} of 0..{last} at "
           f"{rate}/s: at most {worst_move:.1e} m and {worst_turn:.1e} rad from the CSV")
 
@@ -102,7 +129,18 @@ def main():
         fail("blender is not installed (./dev.sh test installs it: apt-get install blender python3-numpy)")
     tumble, scenes = sys.argv[1], sys.argv[2:]
     with tempfile.TemporaryDirectory() as work:
-        for scene in scenes:
+        # An STL too: the sample cube, stretched, thrown spinning.
+        stl = os.path.join(os.path.dirname(os.path.abspath(scenes[0])), "..", "meshes", "box.stl")
+        thrown = os.path.join(work, "thrown-stl.json")
+        with open(thrown, "w") as f:
+            json.dump({"format": "tumble-scene", "version": 1,
+                       "settings": {"duration": 1, "frame_rate": 30},
+                       "bodies": [{"name": "stl-box", "mass": 1, "position": [0, 2, 0],
+                                   "velocity": [1, 2, 0.5], "angular_velocity": [3, 1, 2],
+                                   "shape": {"type": "mesh", "file": os.path.abspath(stl),
+                                             "scale": [0.5, 0.25, 0.75], "collision": "convex-hull"}}]},
+                      f)
+        for scene in scenes + [thrown]:
             for fmt in ("glb", "gltf"):
                 check(tumble, scene, fmt, work)
     print("PASS")
