@@ -127,7 +127,7 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
     iterations_->setKeyboardTracking(false);
     iterations_->setToolTip(tr("Velocity iterations of the contact solver per step"));
     iterationsMessage_ = newMessage(QStringLiteral("iterationsMessage"));
-    form->addRow(tr("Solver &iterations"), withMessage(iterations_, iterationsMessage_));
+    form->addRow(tr("Solver i&terations"), withMessage(iterations_, iterationsMessage_));
 
     energyGuard_ = new QCheckBox(tr("Stop a run whose energy runs away"));
     energyGuard_->setObjectName(QStringLiteral("energyGuard"));
@@ -135,7 +135,7 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
         tr("A run that blows up (a step too large for a stiff spring, say) stops early with the body, "
            "the time and the likely cause; off, only a state that is no longer finite stops it"));
     energyGuardMessage_ = newMessage(QStringLiteral("energyGuardMessage"));
-    form->addRow(tr("Energy &guard"), withMessage(energyGuard_, energyGuardMessage_));
+    form->addRow(tr("Energy g&uard"), withMessage(energyGuard_, energyGuardMessage_));
 
     impacts_ = new QComboBox;
     impacts_->setObjectName(QStringLiteral("impacts"));

@@ -31,6 +31,27 @@ class TestSettingsDock : public QObject {
     }
 
 private slots:
+    void eachLabelHasItsOwnAltKey() {
+        // Alt+letter moves to a field: two labels with one letter (Gravity and Energy guard
+        // both had G, Integrator and Solver iterations I) made the second unreachable.
+        Document doc;
+        SettingsDock dock(&doc, nullptr);
+        QMap<QChar, QString> taken;
+        int labels = 0;
+        for (const QLabel* label : dock.findChildren<QLabel*>()) {
+            const QString text = QString(label->text()).replace("&&", "");
+            const qsizetype at = text.indexOf('&');
+            if (at < 0 || at + 1 >= text.size()) continue;
+            const QChar key = text[at + 1].toLower();
+            QVERIFY2(!taken.contains(key), qPrintable(QString("'%1' and '%2' share Alt+%3")
+                                                          .arg(taken.value(key), label->text(), key)));
+            taken.insert(key, label->text());
+            QVERIFY2(label->buddy() != nullptr, qPrintable(label->text() + " moves to no field"));
+            ++labels;
+        }
+        QVERIFY(labels >= 9);  // every row of the form
+    }
+
     void showsTheDocumentsSettingsWithUnits() {
         Document doc;
         SettingsDock dock(&doc, nullptr);
