@@ -20,11 +20,31 @@
 #include <QWindow>
 #include <QtMath>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace tumble::ui {
+
+namespace {
+
+// The process's umask, read from /proc (umask() reads it only by setting it, which the other
+// threads would see in between); 022 when it cannot be read.
+mode_t processUmask() {
+    QFile status(QStringLiteral("/proc/self/status"));
+    if (status.open(QIODevice::ReadOnly)) {
+        for (const QByteArray& line : status.readAll().split('\n')) {
+            bool ok = false;
+            const uint mask = line.startsWith("Umask:") ? line.mid(6).trimmed().toUInt(&ok, 8) : 0;
+            if (ok) return static_cast<mode_t>(mask & 0777);
+        }
+    }
+    return 022;
+}
+
+}  // namespace
 
 namespace {
 
@@ -485,12 +505,18 @@ void ImageExporter::onEncoded() {
             false, tr("ffmpeg could not make the video %1 (%2); the %n image(s) were saved in %3", nullptr, n)
                        .arg(video, why, where));
     }
+    // The video gets the mode a plain write would give it (a temporary file is made 0600):
+    // the replaced file's, or 0666 less the umask for a new one.
+    const QByteArray target = QFile::encodeName(d.opt.videoFile);
+    struct stat old {};
+    const bool replacing = ::stat(target.constData(), &old) == 0 && S_ISREG(old.st_mode);
     QFile::remove(d.opt.videoFile);
     if (!d.tempVideo->rename(d.opt.videoFile)) {
         return finish(false, tr("Cannot write the video %1: %2; the %n image(s) were saved in %3", nullptr, n)
                                  .arg(video, d.tempVideo->errorString(), where));
     }
     d.tempVideo->setAutoRemove(false);
+    ::chmod(target.constData(), replacing ? (old.st_mode & 07777) : (0666 & ~processUmask()));
     finish(true, tr("%n image(s) saved in %1 and the video %2", nullptr, n).arg(where, video));
 }
 

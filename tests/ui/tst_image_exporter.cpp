@@ -307,6 +307,13 @@ private slots:
         QVERIFY2(ok, qPrintable(message));
         QCOMPARE(entries(dir.path()), QStringList({"images", "motion.mp4"}));  // no temporary video left
         QCOMPARE(entries(o.folder).size(), 21);
+        // The video's mode is a plain write's (it was the temporary file's 0600), as the images'.
+        QFile plain(dir.filePath("plain.txt"));
+        QVERIFY(plain.open(QIODevice::WriteOnly));
+        plain.close();
+        QCOMPARE(QFileInfo(o.videoFile).permissions(), QFileInfo(plain.fileName()).permissions());
+        QCOMPARE(QFileInfo(o.videoFile).permissions(), QFileInfo(o.folder + "/" + entries(o.folder).first()).permissions());
+        QFile::remove(plain.fileName());
 
         QProcess probe;
         probe.start(ffprobe,
