@@ -214,7 +214,6 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
 void sizeImpacts(const Model& model, ImpactScratch& s) {
     const size_t n = model.bodies.size();
     sizeSolverBodies(model, s.bodies);
-    sizeSolverBodies(model, s.start);
     s.inIsland.assign(n, 0);
     s.seen.assign(n, 0);
     s.first.assign(n + 1, 0);

@@ -28,7 +28,6 @@ namespace tumble {
 
 struct ImpactScratch {
     std::vector<SolverBody> bodies;
-    std::vector<SolverBody> start;  // the velocities at the start of the step
     std::vector<std::uint8_t> inIsland;
     std::vector<std::uint8_t> seen;  // bodiesOf's flags
     std::vector<int> manifolds;  // in the order of the contacts

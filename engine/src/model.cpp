@@ -27,6 +27,10 @@ Derived derive(const BodyModel& b, const BodyState& s) {
     return d;
 }
 
+Vec3 angularVelocity(const BodyModel& b, const BodyState& s) {
+    return b.sphericalInertia ? Vec3(b.invInertia(0, 0) * s.L) : derive(b, s).omega;
+}
+
 Vec3 bodyFramePosition(const BodyModel& b, const BodyState& s) {
     return s.x - s.q * b.centerOfMass;
 }

@@ -48,9 +48,8 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
         if (state.asleep[i]) continue;
         const BodyModel& b = model.bodies[i];
         const BodyState& bs = state.bodies[i];
-        // derive()'s v and ω (a ball's or a cube's ω without the turned inertia).
-        const Vec3 v = b.invMass * bs.P;
-        const Vec3 omega = b.sphericalInertia ? Vec3(b.invInertia(0, 0) * bs.L) : derive(b, bs).omega;
+        const Vec3 v = b.invMass * bs.P;  // derive()'s
+        const Vec3 omega = angularVelocity(b, bs);
         const bool resting = v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
                              omega.squaredNorm() < kSleepSpin * kSleepSpin && !forceActs(model, i, state.time);
         state.restTime[i] = resting ? state.restTime[i] + h : 0.0;

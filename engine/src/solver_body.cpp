@@ -25,7 +25,7 @@ void loadBody(const Model& model, const State& state, int i, SolverBody& o) {
     } else if (b.motion == Motion::Dynamic && !state.isAsleep(i) && b.sphericalInertia) {
         // derive() without the rotation matrix, which a ball's or a cube's I⁻¹ does not need.
         o.v = b.invMass * s.P;
-        o.w = b.invInertia(0, 0) * s.L;
+        o.w = angularVelocity(b, s);
         o.invMass = b.invMass;
         o.invI = b.invInertia;
     } else if (b.motion == Motion::Dynamic && !state.isAsleep(i)) {

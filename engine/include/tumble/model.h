@@ -91,6 +91,9 @@ struct Derived {
     Mat3 invInertiaWorld;
 };
 Derived derive(const BodyModel& body, const BodyState& s);
+/// ω of a dynamic body, bit for bit derive()'s, without the rotation matrix for a ball or a
+/// cube (three equal moments: I⁻¹ is c·1 in every frame).
+Vec3 angularVelocity(const BodyModel& body, const BodyState& s);
 
 /// World pose of the body frame (not the centre of mass): what the CSV and the viewport show.
 Vec3 bodyFramePosition(const BodyModel& body, const BodyState& s);
