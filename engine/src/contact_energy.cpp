@@ -35,10 +35,20 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
     // (the same matrices as made point by point, two a point and pass before).
     s.rotation.resize(state.bodies.size());
     for (int i : s.involved) s.rotation[i] = state.bodies[i].q.toRotationMatrix();
+    // A point found within its slop is passed over until a nudge moves one of its bodies:
+    // it would be found there again (its bodies' poses are what they were), and it adds
+    // nothing to `worst` either. Counted in nudges within this call; a body that cannot move
+    // is never nudged. (hull-rain: 87 % of the points' visits found nothing to do.)
+    s.nudgedAt.resize(state.bodies.size());
+    for (int i : s.involved) s.nudgedAt[i] = 0;
+    s.settledAt.assign(s.points.size(), -1);
+    long nudges = 0;
     for (int pass = 0; pass < passes; ++pass) {
         double worst = 0.0;
         for (size_t i = 0; i < s.points.size(); ++i) {
             const Point& p = s.points[i];
+            const long settled = s.settledAt[i];
+            if (settled >= 0 && s.nudgedAt[p.a] <= settled && s.nudgedAt[p.b] <= settled) continue;
             const ContactSolverScratch::PointGeometry& g = s.geometry[i];
             BodyState& a = state.bodies[p.a];
             BodyState& b = state.bodies[p.b];
@@ -50,21 +60,28 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
             const double depth = n.dot(sB - sA);
             const double slop = slopFactor * g.slop;
             worst = std::max(worst, depth - slop);
+            if (depth - slop <= 0.0) {
+                s.settledAt[i] = nudges;
+                continue;
+            }
             const double C = std::min(kBaumgarte * (depth - slop), kMaxCorrection * g.size);
             if (C <= 0.0) continue;
             const Vec3 rA = sA - a.x, rB = sB - b.x;
             const double k = inverseEffectiveMass(A, rA, B, rB, n);
             if (k <= 0.0) continue;
             const Vec3 J = (C / k) * n;
+            ++nudges;
             if (A.invMass > 0.0) {
                 nudge(A, a, rA, J);
                 s.bodies[p.a].touched = true;
                 s.rotation[p.a] = a.q.toRotationMatrix();
+                s.nudgedAt[p.a] = nudges;
             }
             if (B.invMass > 0.0) {
                 nudge(B, b, rB, -J);
                 s.bodies[p.b].touched = true;
                 s.rotation[p.b] = b.q.toRotationMatrix();
+                s.nudgedAt[p.b] = nudges;
             }
             moved = true;
         }

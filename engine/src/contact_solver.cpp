@@ -346,6 +346,7 @@ void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
     s.slide.assign(n, Vec3::Zero());
     s.bodySpin.assign(n, Vec3::Zero());
     s.rotation.assign(n, Mat3::Identity());
+    s.nudgedAt.assign(n, 0);
     s.level.assign(n, 0);
     s.seen.assign(n, 0);
 }

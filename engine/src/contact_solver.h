@@ -90,6 +90,10 @@ struct ContactSolverScratch {
     std::vector<SolverBody> entry;  // the velocities the solver was given
     std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
     std::vector<Mat3> rotation;     // per body: its rotation matrix in the position passes
+    // The position passes' skipping (correctPositions): per body, the nudge that last moved
+    // it; per point, the nudge count when it was last found within its slop (-1: not).
+    std::vector<long> nudgedAt;
+    std::vector<long> settledAt;
     struct MemoryRun {
         std::uint64_t key;  // pairKey
         int begin, end;     // the pair's range in State::contacts
