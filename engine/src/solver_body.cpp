@@ -142,8 +142,15 @@ bool conditionedInverse(const Eigen::Matrix4d& M, Eigen::Matrix4d& inv) {
 // K directly. A K that is not that well conditioned (points in a line, nearly coincident)
 // takes the eigen-decomposition.
 Eigen::Matrix4d leastNormInverse(const Eigen::Matrix4d& K, int k) {
+    if (k == 1) {
+        // What the eigen-decomposition gives for one point, without it (a subset of one
+        // point in pushingImpulses: a third of hull-rain's inverses went the long way).
+        Eigen::Matrix4d inv = Eigen::Matrix4d::Zero();
+        if (K(0, 0) > 0.0) inv(0, 0) = 1.0 / K(0, 0);
+        return inv;
+    }
     const double scale = K.topLeftCorner(k, k).trace() / k;
-    if (k <= 1 || !(scale > 0.0)) return pseudoInverseByEigen(K, k);
+    if (!(scale > 0.0)) return pseudoInverseByEigen(K, k);
     if (k < 4) {
         // Padded with the scale of K, so that the condition is K's own.
         Eigen::Matrix4d M = scale * Eigen::Matrix4d::Identity();

@@ -14,7 +14,7 @@ namespace {
 constexpr double kFatFraction = 0.1;
 // A moving body's fat box also reaches this many times its box's last shift ahead, along
 // it (a body falling fast moves farther than the margin in one step).
-constexpr double kAhead = 2.0;
+constexpr double kAhead = 6.0;
 
 bool isEmpty(const Aabb& b) {
     // Written with negations so that a NaN bound makes the box empty.
