@@ -68,15 +68,16 @@ namespace {
 
 constexpr int kPairGrain = 8;  // pairs per chunk on the worker threads
 
-// Runs pair(a, b, out) for every broadphase pair, appending to s.contacts (or s.impacts) in
-// the pairs' order: on the worker threads each chunk of pairs fills a list of its own, and
-// the lists are joined in chunk order, so the result does not depend on the threads.
+// Runs pair(k, a, b, out) for every broadphase pair k = (a, b), appending to s.contacts (or
+// s.impacts) in the pairs' order: on the worker threads each chunk of pairs fills a list of
+// its own, and the lists are joined in chunk order, so the result does not depend on the
+// threads.
 template <class T, class Pair>
 void overPairs(DetectScratch& s, std::vector<T>& out, std::vector<std::vector<T>>& chunkOut, Pair&& pair) {
     const auto& pairs = s.broadphase.pairs();
     const int n = static_cast<int>(pairs.size());
     if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain) {
-        for (const auto& [a, b] : pairs) pair(a, b, out);
+        for (int k = 0; k < n; ++k) pair(k, pairs[k].first, pairs[k].second, out);
         return;
     }
     const int chunks = (n + kPairGrain - 1) / kPairGrain;
@@ -85,7 +86,7 @@ void overPairs(DetectScratch& s, std::vector<T>& out, std::vector<std::vector<T>
         std::vector<T>& mine = chunkOut[c];
         mine.clear();
         const int end = std::min(n, (c + 1) * kPairGrain);
-        for (int k = c * kPairGrain; k < end; ++k) pair(pairs[k].first, pairs[k].second, mine);
+        for (int k = c * kPairGrain; k < end; ++k) pair(k, pairs[k].first, pairs[k].second, mine);
     });
     for (int c = 0; c < chunks; ++c) out.insert(out.end(), chunkOut[c].begin(), chunkOut[c].end());
 }
@@ -104,6 +105,7 @@ void rememberPairs(const Model& model, DetectScratch& s, double margin) {
     DetectScratch::PairMemory& next = s.nextPairs;
     next.keys.clear();
     next.ranges.clear();
+    next.apart.assign(s.apart.begin(), s.apart.end());
     next.manifolds.assign(s.contacts.begin(), s.contacts.end());
     next.margin = margin;
     if (s.pairedPose.size() != model.bodies.size()) s.pairedPose.assign(model.bodies.size(), Pose{});
@@ -140,21 +142,44 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
         const auto it = std::lower_bound(last.keys.begin(), last.keys.end(), key);
         return it != last.keys.end() && *it == key ? &last.ranges[it - last.keys.begin()] : nullptr;
     };
-    std::atomic<long> reused{0};
-    overPairs(s, s.contacts, s.chunkContacts, [&](int a, int b, std::vector<Manifold>& out) {
+    // The direction along which (a, b) were found apart last time, if they were (zero if not).
+    auto lastApart = [&](int a, int b) -> Vec3 {
+        const std::uint64_t key = pairKey(a, b);
+        const auto it = std::lower_bound(last.keys.begin(), last.keys.end(), key);
+        return it != last.keys.end() && *it == key ? last.apart[it - last.keys.begin()] : Vec3::Zero();
+    };
+    s.apart.assign(s.broadphase.pairs().size(), Vec3::Zero());
+    std::atomic<long> reused{0}, provedApart{0};
+    overPairs(s, s.contacts, s.chunkContacts, [&](int k, int a, int b, std::vector<Manifold>& out) {
         if (const auto* range = lastOf(a, b)) {
             out.insert(out.end(), last.manifolds.begin() + range->first, last.manifolds.begin() + range->second);
+            s.apart[k] = last.apart[range - last.ranges.data()];
             reused.fetch_add(1, std::memory_order_relaxed);
             return;
         }
+        const Shape& A = model.bodies[a].collider;
+        const Shape& B = model.bodies[b].collider;
         const size_t first = out.size();
-        collide(model.bodies[a].collider, s.end[a], model.bodies[b].collider, s.end[b], margin, out);
+        if (generalConvex(A.kind, B.kind)) {
+            // Two convex shapes found apart last time are still apart if the same direction
+            // still separates them by the margin; else GJK looks, and tells the new one.
+            const Vec3 axis = lastApart(a, b);
+            if (!axis.isZero(0.0) && apartAlong(A, s.end[a], B, s.end[b], axis, margin)) {
+                s.apart[k] = axis;
+                provedApart.fetch_add(1, std::memory_order_relaxed);
+                return;
+            }
+            collide(A, s.end[a], B, s.end[b], margin, out, s.apart[k]);
+        } else {
+            collide(A, s.end[a], B, s.end[b], margin, out);
+        }
         for (size_t k = first; k < out.size(); ++k) {
             out[k].bodyA = a;
             out[k].bodyB = b;
         }
     });
     s.reusedPairs += reused.load();
+    s.apartPairs += provedApart.load();
     rememberPairs(model, s, margin);
 }
 
@@ -216,7 +241,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const BodyState &b0 = before.bodies[i], &b1 = after.bodies[i];
         return (b1.x - b0.x).norm() + b0.q.angularDistance(b1.q) * (sizes[i] + body.centerOfMass.norm());
     };
-    overPairs(s, s.impacts, s.chunkImpacts, [&](int a, int b, std::vector<ImpactEvent>& out) {
+    overPairs(s, s.impacts, s.chunkImpacts, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
         int found = -1;  // the pair's first manifold at the end (end-of-step mode), if any

@@ -34,15 +34,21 @@ struct DetectScratch {
     // The last narrowphase, for the pairs whose two bodies stand exactly where they stood
     // then (bit for bit): a pair's manifolds are a function of the two poses, the shapes and
     // the margin only, so they are taken as they were (findContacts).
+    // A pair of convex shapes found apart keeps the direction that showed it, for the next
+    // narrowphase to try first (collision::apartAlong): that needs no bit-for-bit pose, and
+    // proves what GJK would find, so nothing depends on what this memory held either.
     struct PairMemory {
         std::vector<std::uint64_t> keys;          // the pairs, sorted
         std::vector<std::pair<int, int>> ranges;  // keys[k]'s manifolds: [first, second) of manifolds
+        std::vector<Vec3> apart;                  // keys[k]'s direction apart (out of b towards a), or zero
         std::vector<collision::Manifold> manifolds;
         double margin = std::numeric_limits<double>::quiet_NaN();
     };
     PairMemory lastPairs, nextPairs;
+    std::vector<Vec3> apart;  // per broadphase pair of this narrowphase: as PairMemory::apart
     std::vector<collision::Pose> pairedPose;  // each body's pose when it was last in a pair
     long reusedPairs = 0;                     // pairs taken from lastPairs, summed
+    long apartPairs = 0;                      // pairs shown apart by their last direction, summed
     Workers* pool = nullptr;              // the world's worker threads; null: this thread only
     std::vector<std::vector<collision::Manifold>> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;

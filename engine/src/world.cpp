@@ -249,6 +249,7 @@ void World::impactAt(double t0) {
 Profile World::profile() const {
     Profile p = profile_;
     p.pairsReused = scratch_->detect.reusedPairs;
+    p.pairsApart = scratch_->detect.apartPairs;
     const double k = scratch_->clockRate.secondsPerTick();
     for (double* t : {&p.forces, &p.integrate, &p.broadphase, &p.narrowphase, &p.timeOfImpact, &p.impactSolve,
                       &p.solve, &p.sleep})

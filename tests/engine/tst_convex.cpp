@@ -4,6 +4,7 @@
 #include "collision/bvh.h"
 #include "collision/convex.h"
 #include "collision/gjk.h"
+#include "collision/narrowphase.h"
 #include "mesh/convex_hull.h"
 #include "test_random.h"
 
@@ -448,6 +449,52 @@ private slots:
             hit ? ++hits : ++misses;
         }
         QVERIFY(hits > 500 && misses > 500);
+    }
+
+    void apartAlongProvesWhatGjkFinds() {
+        // Hull and cylinder pairs at random poses: whenever a direction shows them apart by
+        // more than the margin, the narrowphase finds nothing there (the detect stage skips
+        // GJK on that proof); and a pair the narrowphase finds apart gives a direction that
+        // proves it, up to the hair apartAlong leaves for rounding.
+        test::Rng rng{2026};
+        const double margin = 0.02;
+        int proofs = 0, apartPairs = 0, told = 0;
+        for (int trial = 0; trial < 2000; ++trial) {
+            auto shape = [&](int kind) {
+                if (kind == 0) return Shape::cylinder(rng.uniform(0.1, 0.5), rng.uniform(0.1, 0.5));
+                std::vector<Vec3> pts;
+                for (int i = 0; i < 8; ++i) pts.push_back(rng.vec(-0.5, 0.5));
+                return hullOf(pts);
+            };
+            const Shape a = shape(trial % 3 == 0 ? 0 : 1), b = shape(trial % 5 == 0 ? 0 : 1);
+            Pose pa, pb;
+            pa.R = rng.rotation();
+            pa.p = rng.vec(-0.8, 0.8);
+            pb.R = rng.rotation();
+            pb.p = rng.vec(-0.8, 0.8);
+            const double distance = gjkDistance(proxyOf(a, pa), proxyOf(b, pb)).distance;
+            for (int d = 0; d < 4; ++d) {
+                const Vec3 n = d == 0 ? Vec3((pa.p - pb.p).normalized()) : rng.direction();
+                if (!apartAlong(a, pa, b, pb, n, margin)) continue;
+                ++proofs;
+                std::vector<Manifold> out;
+                collideConvex(a, pa, b, pb, margin, out);
+                QVERIFY2(out.empty() && distance > margin,
+                         qPrintable(QString("trial %1: apart along n, yet %2 manifolds, distance %3")
+                                        .arg(trial).arg(out.size()).arg(distance)));
+            }
+            std::vector<Manifold> out;
+            Vec3 apart = Vec3::Zero();
+            collide(a, pa, b, pb, margin, out, apart);
+            QCOMPARE(out.empty(), distance > margin);
+            if (!out.empty() || distance < margin + 1e-6) continue;
+            ++apartPairs;
+            QVERIFY(std::abs(apart.norm() - 1.0) < 1e-12);
+            if (apartAlong(a, pa, b, pb, apart, margin)) ++told;
+        }
+        qInfo("%d proofs; %d of %d pairs apart proved by their own direction", proofs, told, apartPairs);
+        QVERIFY(proofs > 500 && apartPairs > 200);
+        QCOMPARE(told, apartPairs);
     }
 
     void randomPairsInvariants() {

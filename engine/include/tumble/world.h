@@ -25,6 +25,7 @@ struct Profile {
     long forceEvaluations = 0;
     long pairs = 0;          ///< broadphase pairs, summed over steps
     long pairsReused = 0;    ///< narrowphase pairs taken as last found (both bodies exactly where they were)
+    long pairsApart = 0;     ///< convex pairs shown apart by their last direction apart, without GJK
     long contactPoints = 0;  ///< narrowphase contact points, summed over steps
     long impacts = 0;        ///< pairs that came into contact within a step
     long impactMoments = 0;  ///< moments of impact the step was cut at

@@ -12,6 +12,10 @@ namespace tumble::collision {
 /// Appends nothing when the shapes are farther apart than `margin`.
 void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
                    std::vector<Manifold>& out);
+/// The same; when the shapes are farther apart than `margin` (nothing appended), `apart`
+/// gets the unit direction out of b towards a along which GJK found them apart.
+void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
+                   std::vector<Manifold>& out, Vec3& apart);
 
 /// A convex shape against a triangle mesh (Shape kind Mesh) through the mesh's BVH.
 /// The convex is A, the mesh is B: normals point out of the mesh towards the convex.

@@ -3,7 +3,10 @@
 #include "collision/narrowphase.h"
 
 #include "collision/convex.h"
+#include "collision/gjk.h"
 #include "collision/mesh_pairs.h"
+
+#include <algorithm>
 
 namespace tumble::collision {
 
@@ -30,12 +33,45 @@ Routine routineFor(Kind a, Kind b) {
         // Pairs with a dedicated routine in the other order are swapped, not sent here.
         const bool dedicatedOtherWay = (is(Kind::Capsule, Kind::Sphere) || is(Kind::Box, Kind::Sphere) ||
                                         is(Kind::Box, Kind::Capsule));
-        return dedicatedOtherWay ? nullptr : collideConvex;
+        if (dedicatedOtherWay) return nullptr;
+        return collideConvex;
     }
     return nullptr;
 }
 
 }  // namespace
+
+bool generalConvex(Kind a, Kind b) {
+    const Routine general = collideConvex;
+    return routineFor(a, b) == general || routineFor(b, a) == general;
+}
+
+void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
+             std::vector<Manifold>& out, Vec3& apart) {
+    const Routine general = collideConvex;
+    if (routineFor(a.kind, b.kind) == general) {
+        collideConvex(a, pa, b, pb, margin, out, apart);
+        return;
+    }
+    if (routineFor(b.kind, a.kind) != general) {
+        collide(a, pa, b, pb, margin, out);
+        return;
+    }
+    const size_t first = out.size();
+    Vec3 found = Vec3::Zero();
+    collideConvex(b, pb, a, pa, margin, out, found);
+    for (size_t i = first; i < out.size(); ++i) out[i].normal = -out[i].normal;
+    if (out.size() == first) apart = -found;
+}
+
+bool apartAlong(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& n, double margin) {
+    const ConvexProxy A = proxyOf(a, pa);
+    const ConvexProxy B = proxyOf(b, pb);
+    const double low = n.dot(A.support(-n)) - A.radius;  // a's lowest point along n
+    const double high = n.dot(B.support(n)) + B.radius;  // b's highest
+    const double hair = 1e-9 * (A.size() + B.size() + A.radius + B.radius);
+    return low - high > std::max(margin, 0.0) + hair;
+}
 
 void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
              std::vector<Manifold>& out) {
