@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -54,8 +55,16 @@ int childMain(int argc, char** argv) {
         std::unique_ptr<EngineAdapter> engine = makeEngine(engineName);
         std::string why;
         bool loaded = false;
+        // Which bodies move, and the lowest static body's place: a body that ends a metre
+        // below it has fallen through the ground.
+        std::vector<bool> dynamic;
+        double floorY = std::numeric_limits<double>::infinity();
         {
             const SceneDesc scene = sc.build();  // freed once the engine has its own copy
+            for (const BodyDesc& b : scene.bodies) {
+                dynamic.push_back(b.motion == Motion::Dynamic);
+                if (b.motion == Motion::Static) floorY = std::min(floorY, b.position.y());
+            }
             loaded = engine && engine->load(scene, mode, sc.dt, &why);
         }
         if (!loaded) {
@@ -77,9 +86,19 @@ int childMain(int argc, char** argv) {
             std::printf("FAIL %s\n", e.what());
             return 1;
         }
-        std::printf("RESULT bodies=%d steps=%d ms=%.6g max=%.6g contacts=%.6g peak=%.6g base=%.6g",
+        // How settled the scene is at the end (what the speed bought): the bodies still
+        // moving faster than 1 cm/s (a heap that has come to rest has few; rocks that keep
+        // jittering or rolling count), and those that fell through the ground.
+        int stillMoving = 0, fellThrough = 0;
+        for (int i = 0; i < engine->bodyCount(); ++i) {
+            if (i >= static_cast<int>(dynamic.size()) || !dynamic[i]) continue;
+            const BodySample b = engine->body(i);
+            stillMoving += b.v.norm() > 0.01;
+            fellThrough += b.x.y() < floorY - 1.0;
+        }
+        std::printf("RESULT bodies=%d steps=%d ms=%.6g max=%.6g contacts=%.6g peak=%.6g base=%.6g moving=%d fell=%d",
                     engine->bodyCount(), steps, 1e3 * total / steps, 1e3 * worst, contacts / steps,
-                    vmKB("VmHWM:") / 1024, base / 1024);
+                    vmKB("VmHWM:") / 1024, base / 1024, stillMoving, fellThrough);
         if (auto* t = dynamic_cast<TumbleAdapter*>(engine.get())) {
             const Profile& p = t->world().profile();
             const double k = 1e3 / steps;
@@ -160,6 +179,8 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
                 row.msMaxStep = kv["max"];
                 row.contactsPerStep = kv["contacts"];
                 row.peakMB = kv["peak"];
+                row.movingAtEnd = static_cast<int>(kv["moving"]);
+                row.fellThrough = static_cast<int>(kv["fell"]);
                 row.baseMB = kv["base"];
                 row.forces = kv["forces"], row.integrate = kv["integrate"], row.broadphase = kv["broadphase"];
                 row.narrowphase = kv["narrowphase"], row.toi = kv["toi"], row.impact = kv["impact"];
@@ -167,9 +188,10 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
                 row.pairsPerStep = kv["pairs"], row.awakePerStep = kv["awake"];
                 row.cutsPerStep = kv["cuts"], row.parkedPerStep = kv["parked"], row.restartsPerStep = kv["restarts"];
             }
-            std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %s\n",
+            std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %4d moving %4d fell  %s\n",
                         name.c_str(), row.engine.c_str(), row.mode.c_str(), row.msPerStep, row.msMaxStep,
-                        row.contactsPerStep, row.peakMB - row.baseMB, row.note.c_str());
+                        row.contactsPerStep, row.peakMB - row.baseMB, row.movingAtEnd, row.fellThrough,
+                        row.note.c_str());
             std::fflush(stdout);
             rows.push_back(row);
         }
