@@ -22,6 +22,8 @@
 #include <assimp/scene.h>
 #endif
 
+#include <atomic>
+#include <thread>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -350,6 +352,41 @@ private slots:
             QCOMPARE(QString::fromStdString(e.file()), QString::fromStdString(file.string()));
             QVERIFY2(e.message().starts_with("the mesh reader (assimp) crashed on it (signal 6"), e.what());
         }
+    }
+
+    // The editor's Cancel: a read stopped from another thread ends within a moment, the
+    // reader's child killed, with MeshImportCancelled (not an error of the file).
+    void aCancelledReadStopsAtOnce() {
+        QTemporaryDir dir;
+        const fs::path file = fs::path(dir.path().toStdString()) / "noend.ply";
+        writeText(file,
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\n0 0 0\n1 0 0\n0 1 0\n");
+        std::atomic<bool> cancel{false};
+        tumble::io::MeshImportOptions options;
+        options.timeLimit = 60;
+        options.refuseKnownHangs = false;  // a reader that would loop until the time limit
+        options.cancel = &cancel;
+        std::thread user([&] {
+            std::this_thread::sleep_for(std::chrono::milliseconds(300));
+            cancel = true;
+        });
+        QElapsedTimer clock;
+        clock.start();
+        bool cancelled = false;
+        try {
+            tumble::io::importMesh(file, Vec3(1, 1, 1), options);
+        } catch (const tumble::io::MeshImportCancelled&) {
+            cancelled = true;
+        }
+        user.join();
+        QVERIFY(cancelled);
+        QVERIFY2(clock.elapsed() < 5000, qPrintable(QString::number(clock.elapsed())));
+        // Not set: the same options read a good file as usual.
+        const fs::path good = fs::path(dir.path().toStdString()) / "tri.obj";
+        writeText(good, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        cancel = false;
+        QCOMPARE(tumble::io::importMesh(good, Vec3(1, 1, 1), options).triangles.size(), size_t(1));
     }
 
     // A reader that never finishes is killed at the time limit: here a PLY without end_header

@@ -1,6 +1,9 @@
 #include "mesh_child.h"
 
+#include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
+
+#include <fcntl.h>
 
 #include <poll.h>
 #include <signal.h>
@@ -148,9 +151,11 @@ std::string describe(int status) {
 }  // namespace
 
 TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
-                             const std::function<TriangleMesh()>& read) {
+                             const std::function<TriangleMesh()>& read, const std::atomic<bool>* cancel) {
     int fds[2];
-    if (::pipe(fds) != 0) return read();  // no pipe, no child: read here, unprotected
+    // Close-on-exec: a program another thread starts meanwhile (the editor's video encoder)
+    // must not hold the write end, or the answer would never end.
+    if (::pipe2(fds, O_CLOEXEC) != 0) return read();  // no pipe, no child: read here, unprotected
     const pid_t pid = ::fork();
     if (pid < 0) {
         ::close(fds[0]);
@@ -174,8 +179,15 @@ TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
     const auto deadline = Clock::now() + std::chrono::duration<double>(timeLimit);
     std::string data;
     std::vector<char> buffer(1 << 16);
-    bool timedOut = false;
+    bool timedOut = false, cancelled = false;
+    // Waits of at most a tenth of a second when someone may cancel, so that a cancel is
+    // heard at once; else of a second.
+    const std::chrono::milliseconds::rep slice = cancel ? 100 : 1000;
     for (;;) {
+        if (cancel && cancel->load()) {
+            cancelled = true;
+            break;
+        }
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
         if (left <= 0) {
@@ -183,7 +195,7 @@ TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
             break;
         }
         pollfd p{fds[0], POLLIN, 0};
-        const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+        const int ready = ::poll(&p, 1, static_cast<int>(std::min(left, slice)));
         if (ready < 0 && errno == EINTR) continue;
         if (ready <= 0) continue;
         const ssize_t n = ::read(fds[0], buffer.data(), buffer.size());
@@ -192,10 +204,11 @@ TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
         data.append(buffer.data(), static_cast<std::size_t>(n));
     }
     ::close(fds[0]);
-    if (timedOut) ::kill(pid, SIGKILL);
+    if (timedOut || cancelled) ::kill(pid, SIGKILL);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
+    if (cancelled) throw MeshImportCancelled("reading " + name + " was cancelled");
     if (timedOut) {
         char limit[32];
         std::snprintf(limit, sizeof limit, "%g", timeLimit);

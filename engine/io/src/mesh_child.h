@@ -6,6 +6,7 @@
 
 #include <tumble/mass.h>
 
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -14,8 +15,10 @@ namespace tumble::io {
 /// Runs `read` in a forked child and returns the mesh it read. An InputError it throws comes
 /// back as an InputError for `name` with the same message; a child that dies (a signal) or
 /// does not finish within `timeLimit` seconds (it is killed) gives an InputError for `name`
-/// that says so.
+/// that says so. When `cancel` is set while it waits, the child is killed and
+/// MeshImportCancelled thrown.
 TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
-                             const std::function<TriangleMesh()>& read);
+                             const std::function<TriangleMesh()>& read,
+                             const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace tumble::io

@@ -102,7 +102,7 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale,
         if (const auto hang = meshFileAssimpWouldHangOn(file)) throw InputError(name, "", *hang);
     }
     const auto read = [&] { return readWithAssimp(name, scale); };
-    return options.timeLimit > 0 ? readMeshInChild(name, options.timeLimit, read) : read();
+    return options.timeLimit > 0 ? readMeshInChild(name, options.timeLimit, read, options.cancel) : read();
 }
 
 void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName,

@@ -4,7 +4,9 @@
 #include <tumble/io/scene_file.h>
 #include <tumble/mass.h>
 
+#include <atomic>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,17 @@ struct MeshImportOptions {
     /// Refuse the files assimp 5.2 is known to loop on before it sees them (mesh_precheck);
     /// off only to test the time limit.
     bool refuseKnownHangs = true;
+    /// Set (from another thread) to stop the read: the reader's child is killed within a
+    /// tenth of a second and importMesh throws MeshImportCancelled. Null: no way to stop it.
+    /// (Not heard with timeLimit 0, where assimp reads in the calling thread.)
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+/// What importMesh throws when MeshImportOptions::cancel was set: the user's choice, not an
+/// error of the file.
+class MeshImportCancelled : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
 };
 
 /// Reads every mesh of `file` (OBJ, STL ascii or binary, PLY, OFF, glTF 2, FBX, ... any
