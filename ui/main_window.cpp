@@ -1,5 +1,7 @@
 #include "main_window.h"
 
+#include "mesh_import_job.h"
+
 #include "document.h"
 #include "editor_main.h"
 #include "plots_dock.h"
@@ -18,18 +20,13 @@
 #include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
-#include <QComboBox>
-#include <QDialog>
-#include <QDialogButtonBox>
 #include <QDir>
 #include <QDockWidget>
-#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMetaEnum>
@@ -52,24 +49,6 @@ const char* const kSamples[] = {"tumbling-box",     "spring-pendulum",   "projec
 
 bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);
-}
-
-// The mesh formats offered by Import Mesh and accepted by a drop (assimp reads more; the
-// import dialog's "All files" reaches them).
-const char* const kMeshExtensions[] = {"obj", "stl", "ply", "off", "gltf",
-                                       "glb", "fbx", "dae", "3ds", "blend"};
-
-bool isMeshFile(const QString& path) {
-    const QString suffix = QFileInfo(path).suffix().toLower();
-    for (const char* e : kMeshExtensions)
-        if (suffix == QLatin1String(e)) return true;
-    return false;
-}
-
-QString meshFilter() {
-    QStringList patterns;
-    for (const char* e : kMeshExtensions) patterns << QStringLiteral("*.%1").arg(e);
-    return QObject::tr("Meshes (%1);;All files (*)").arg(patterns.join(' '));
 }
 
 }  // namespace
@@ -129,7 +108,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
     updateTitle();
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() {
+    delete importJob_;  // stops a read still running before the document goes
+}
 
 const SceneDesc& MainWindow::scene() const {
     return doc_->scene();
@@ -336,55 +317,6 @@ void MainWindow::revert() {
     if (!openScene(source_, &error)) QMessageBox::warning(this, tr("Revert"), error);
 }
 
-bool MainWindow::importMesh(const QString& path, bool convexHull, double scale, QString* error) {
-    BodyDesc body;
-    try {
-        body.shape.type = ShapeType::Mesh;
-        body.shape.scale = Vec3::Constant(scale);
-        body.shape.collision = convexHull ? MeshCollision::ConvexHull : MeshCollision::Triangles;
-        body.shape.meshData =
-            std::make_shared<const TriangleMesh>(io::importMesh(path.toStdString(), body.shape.scale));
-    } catch (const std::exception& e) {
-        if (error) *error = QString::fromStdString(e.what());
-        return false;
-    }
-    // The document holds mesh files as absolute paths; a save writes them relative to the
-    // scene's folder.
-    body.shape.file = QFileInfo(path).absoluteFilePath().toStdString();
-    body.name = QFileInfo(path).completeBaseName().toStdString();
-    body.density = 1000.0;
-    body.mass.reset();
-    const QVector3D at = viewport_->cameraTarget();
-    body.position = Vec3(at.x(), std::max(static_cast<double>(at.y()), 1.0), at.z());
-    const int index = doc_->addBody(body);
-    doc_->setSelection({index});
-    return true;
-}
-
-void MainWindow::importDialog() {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Import mesh"), QString(), meshFilter());
-    if (path.isEmpty()) return;
-    QDialog dialog(this);
-    dialog.setWindowTitle(tr("Import %1").arg(QFileInfo(path).fileName()));
-    auto* form = new QFormLayout(&dialog);
-    auto* collision = new QComboBox(&dialog);
-    collision->addItems({tr("Convex hull"), tr("Triangles (concave allowed)")});
-    auto* scale = new QDoubleSpinBox(&dialog);
-    scale->setRange(1e-6, 1e6);
-    scale->setDecimals(6);
-    scale->setValue(1.0);
-    form->addRow(tr("Collision"), collision);
-    form->addRow(tr("Scale"), scale);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
-    form->addRow(buttons);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    if (dialog.exec() != QDialog::Accepted) return;
-    QString error;
-    if (!importMesh(path, collision->currentIndex() == 0, scale->value(), &error))
-        QMessageBox::warning(this, tr("Import mesh"), error);
-}
-
 void MainWindow::addRecent(const QString& path) {
     QSettings s;
     QStringList recent = s.value("recentFiles").toStringList();
@@ -488,14 +420,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
     }
     if (meshes.isEmpty()) return;
     event->acceptProposedAction();
-    if (meshes.size() > 1) doc_->beginMacro(tr("Import %1 Meshes").arg(meshes.size()));
-    QStringList errors;
-    for (const QString& path : meshes) {
-        QString error;
-        if (!importMesh(path, true, 1.0, &error)) errors << error;
-    }
-    if (meshes.size() > 1) doc_->endMacro();
-    if (!errors.isEmpty()) QMessageBox::warning(this, tr("Import mesh"), errors.join("\n\n"));
+    startImport(meshes, true, 1.0);
 }
 
 int runEditor(int argc, char** argv) {

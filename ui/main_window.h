@@ -5,6 +5,7 @@
 
 #include <tumble/scene.h>
 
+#include <tumble/io/mesh_import.h>
 #include <tumble/io/trajectory_writer.h>
 
 #include <QMainWindow>
@@ -18,6 +19,7 @@ namespace tumble::ui {
 
 class Document;
 class ImageExporter;
+class MeshImportJob;
 class TrajectoryExport;
 class SceneTreeDock;
 class Timeline;
@@ -43,8 +45,21 @@ public:
     /// The file or sample the scene came from ("" for a new scene).
     const QString& scenePath() const { return source_; }
 
-    /// Imports a mesh file as a new body in front of the camera (one undo step). On failure
-    /// the scene is untouched and `error` names the file and the reason.
+    /// Imports mesh files as new bodies in front of the camera, one undo step for all of
+    /// them, reading them in the background (MeshImportJob: a progress dialog with Cancel
+    /// after a moment; the window keeps running). Returns at once; importFinished() follows.
+    /// A file that cannot be read adds nothing; its error is in the signal, and in a
+    /// message box when `tellUser`. Refused (false) while another import runs.
+    bool startImport(const QStringList& paths, bool convexHull, double scale, bool tellUser = true);
+    bool isImporting() const;
+    void cancelImport();
+    /// The import running now, or null (its progress dialog, for tests).
+    MeshImportJob* importJob() const { return importJob_; }
+    /// The reader's time limit and checks for the imports started from now on.
+    void setMeshImportOptions(const io::MeshImportOptions& options) { importOptions_ = options; }
+    /// One mesh file, as startImport, returning when it is read (the event loop turns
+    /// meanwhile). On failure the scene is untouched and `error` names the file and the
+    /// reason; a cancelled import returns false with an empty error.
     bool importMesh(const QString& path, bool convexHull, double scale, QString* error);
 
     /// Exports the recording to `target` as the dialog's options say (see ExportDialog): a
@@ -71,6 +86,9 @@ public:
 
 signals:
     void exportFinished(bool ok, const QString& message);
+    /// An import ended: `added` bodies were added; `errors` has a line per file that could
+    /// not be read (empty if none); nothing was added if it was cancelled.
+    void importFinished(int added, const QString& errors, bool cancelled);
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -88,7 +106,9 @@ private:
     bool save();
     bool saveAsDialog();
     void revert();
+    // File > Import Mesh, drops and the import job (ui/main_window_import.cpp).
     void importDialog();
+    void importDone();
     // File > Export and Save with Meshes (ui/main_window_export.cpp).
     void exportDialog();
     bool saveWithMeshesDialog();
@@ -106,6 +126,13 @@ private:
     QTimer* autosaveTimer_ = nullptr;
     TrajectoryExport* trajectoryExport_ = nullptr;
     ImageExporter* imageExport_ = nullptr;
+    MeshImportJob* importJob_ = nullptr;
+    io::MeshImportOptions importOptions_;
+    struct ImportRequest {
+        bool convexHull = true;
+        double scale = 1.0;
+        bool tellUser = true;
+    } importRequest_;
 };
 
 }  // namespace tumble::ui

@@ -4,6 +4,7 @@
 // its viewport shows one entity per body.
 #include "document.h"
 #include "main_window.h"
+#include "mesh_import_job.h"
 #include "timeline.h"
 #include "viewport.h"
 
@@ -19,6 +20,8 @@
 #include <QFile>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QProgressDialog>
+#include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QTimer>
@@ -179,6 +182,90 @@ private slots:
         QVERIFY(!w.document()->undoStack()->canUndo());
     }
 
+    // A slow read (a PLY assimp loops on, let through on purpose) runs beside the window:
+    // its timers fire and it paints while the progress dialog is up, the dialog's Cancel
+    // stops the read at once, and nothing is added.
+    void importRunsInTheBackgroundAndCancels() {
+        QTemporaryDir dir;
+        const QString file = dir.filePath("noend.ply");
+        QFile f(file);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\n0 0 0\n1 0 0\n0 1 0\n");
+        f.close();
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        io::MeshImportOptions options;
+        options.timeLimit = 60;
+        options.refuseKnownHangs = false;
+        w.setMeshImportOptions(options);
+        const SceneDesc before = w.scene();
+        QSignalSpy finished(&w, &MainWindow::importFinished);
+        int ticks = 0;
+        QTimer ticker;
+        ticker.setInterval(50);
+        connect(&ticker, &QTimer::timeout, [&] { ++ticks; });
+        ticker.start();
+        QElapsedTimer clock;
+        clock.start();
+        QVERIFY(w.startImport({file}, true, 1.0, false));
+        QVERIFY(!w.startImport({file}, true, 1.0, false));  // one import at a time
+        QTRY_VERIFY_WITH_TIMEOUT(w.importJob()->progressDialog() && w.importJob()->progressDialog()->isVisible(),
+                                 10000);
+        QVERIFY(w.isImporting());
+        QVERIFY2(w.importJob()->progressDialog()->labelText().contains("noend.ply"),
+                 qPrintable(w.importJob()->progressDialog()->labelText()));
+        QTest::qWait(600);
+        QVERIFY2(ticks >= 10, qPrintable(QString("%1 ticks in %2 ms").arg(ticks).arg(clock.elapsed())));
+        QVERIFY(finished.isEmpty());
+        // The user presses Cancel.
+        QAbstractButton* cancel = nullptr;
+        for (QAbstractButton* b : w.importJob()->progressDialog()->findChildren<QAbstractButton*>())
+            if (b->text().remove('&') == "Cancel") cancel = b;
+        QVERIFY(cancel);
+        clock.restart();
+        QTest::mouseClick(cancel, Qt::LeftButton);
+        QVERIFY(finished.wait(5000));
+        QVERIFY2(clock.elapsed() < 3000, qPrintable(QString::number(clock.elapsed())));
+        QCOMPARE(finished[0][0].toInt(), 0);
+        QCOMPARE(finished[0][2].toBool(), true);
+        QVERIFY(!w.isImporting());
+        QCOMPARE(w.scene(), before);
+        QVERIFY(!w.document()->undoStack()->canUndo());
+        QTRY_VERIFY(w.findChildren<QProgressDialog*>().isEmpty());
+    }
+
+    // Several files at once (a drop of three): the good ones added as one undo step, the
+    // bad one named in the message, and the dialog counts the files.
+    void severalMeshesAreOneStepAndTheBadOneNamed() {
+        QTemporaryDir dir;
+        const QString junk = dir.filePath("junk.obj");
+        QFile f(junk);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("this is not a mesh\n");
+        f.close();
+        MainWindow w;
+        const int bodies = w.document()->bodyCount();
+        const int steps = w.document()->undoStack()->count();
+        QSignalSpy finished(&w, &MainWindow::importFinished);
+        QVERIFY(w.startImport({TUMBLE_SCENES_DIR "/../meshes/box.stl", junk, TUMBLE_SCENES_DIR "/../meshes/l-prism.obj"},
+                              false, 0.5, false));
+        QVERIFY(finished.wait(30000));
+        QCOMPARE(finished[0][0].toInt(), 2);
+        QVERIFY2(finished[0][1].toString().contains("junk.obj"), qPrintable(finished[0][1].toString()));
+        QCOMPARE(finished[0][2].toBool(), false);
+        QCOMPARE(w.document()->bodyCount(), bodies + 2);
+        QCOMPARE(w.document()->body(bodies).name, std::string("box"));
+        QCOMPARE(w.document()->body(bodies + 1).name, std::string("l-prism"));
+        QCOMPARE(w.document()->body(bodies + 1).shape.collision, MeshCollision::Triangles);
+        QCOMPARE(w.document()->body(bodies + 1).shape.scale, Vec3(0.5, 0.5, 0.5));
+        QCOMPARE(w.document()->selection(), QList<int>({bodies, bodies + 1}));
+        QCOMPARE(w.document()->undoStack()->count(), steps + 1);
+        w.document()->undoStack()->undo();
+        QCOMPARE(w.document()->bodyCount(), bodies);
+    }
+
     void autosaveAndRecovery() {
         QFile::remove(MainWindow::autosavePath());
         SceneDesc edited;
@@ -289,7 +376,9 @@ private slots:
         const SceneDesc before = w.scene();
         const int bodies = w.document()->bodyCount();
         const int steps = w.document()->undoStack()->count();
+        QSignalSpy imported(&w, &MainWindow::importFinished);
         QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/box.stl")}));
+        QVERIFY(imported.wait(20000));  // read in the background
         QCOMPARE(w.document()->bodyCount(), bodies + 1);
         const BodyDesc& b = w.document()->body(bodies);
         QCOMPARE(b.name, std::string("box"));
@@ -315,6 +404,7 @@ private slots:
         // Two meshes dropped together: one undo step.
         QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/box.stl"),
                               QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/tetrahedron.off")}));
+        QVERIFY(imported.wait(20000));
         QCOMPARE(w.document()->bodyCount(), bodies + 2);
         QCOMPARE(w.document()->undoStack()->count(), steps + 1);
         QCOMPARE(w.document()->undoStack()->undoText(), QString("Import 2 Meshes"));
