@@ -94,7 +94,7 @@ int childMain(int argc, char** argv) {
             if (i >= static_cast<int>(dynamic.size()) || !dynamic[i]) continue;
             const BodySample b = engine->body(i);
             stillMoving += b.v.norm() > 0.01;
-            fellThrough += b.x.y() < floorY - 1.0;
+            fellThrough += std::isfinite(floorY) && b.x.y() < floorY - 1.0;  // no ground, no falling through
         }
         std::printf("RESULT bodies=%d steps=%d ms=%.6g max=%.6g contacts=%.6g peak=%.6g base=%.6g moving=%d fell=%d",
                     engine->bodyCount(), steps, 1e3 * total / steps, 1e3 * worst, contacts / steps,
