@@ -28,11 +28,11 @@
 //   --viewport-only  only the viewport alone (888 x 959, the editor's viewport at 1600 x 1000)
 //   --pieces  also the property dock alone and the scene tree dock alone (with a Document,
 //             no viewport): their share of load, selection and move
-#include "document.h"
-#include "main_window.h"
-#include "property_dock.h"
-#include "scene_tree_dock.h"
-#include "viewport.h"
+#include "document/document.h"
+#include "window/main_window.h"
+#include "panels/property_dock.h"
+#include "panels/scene_tree_dock.h"
+#include "viewport/viewport.h"
 
 #include <Qt3DExtras/Qt3DWindow>
 #include <Qt3DRender/QFrameGraphNode>

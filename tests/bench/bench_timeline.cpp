@@ -8,9 +8,9 @@
 // of playback), else the Timeline runs on its own.
 //
 //   xvfb-run -a -s "-screen 0 1600x1000x24" ./build/tests/bench/tumble-bench-timeline [--window] [--quick]
-#include "document.h"
-#include "main_window.h"
-#include "timeline.h"
+#include "document/document.h"
+#include "window/main_window.h"
+#include "timeline/timeline.h"
 
 #include <QApplication>
 #include <QElapsedTimer>

@@ -1,4 +1,4 @@
-// A child process for tests/ui/tst_crash_safety.cpp, killed (SIGKILL) by the test at a
+// A child process for tests/ui/window/tst_crash_safety.cpp, killed (SIGKILL) by the test at a
 // moment of its choosing:
 //   crash_child save-loop SCENE OUT   opens SCENE and saves it to OUT again and again, each
 //                                     time with the first dynamic body moved, printing
@@ -9,8 +9,8 @@
 //   crash_child hold OUT              starts a save of OUT (an io::AtomicFile, the editor's
 //                                     way), writes part of it, prints "holding", then waits
 //                                     to be killed before the commit.
-#include "document.h"
-#include "main_window.h"
+#include "document/document.h"
+#include "window/main_window.h"
 
 #include <tumble/io/atomic_file.h>
 

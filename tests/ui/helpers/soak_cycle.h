@@ -1,14 +1,14 @@
-// The cycles of the editor soak (tests/ui/tst_soak.cpp and the leak check's helper
+// The cycles of the editor soak (tests/ui/window/tst_soak.cpp and the leak check's helper
 // soak_leaks.cpp): a large scene file opened, simulated to the end of its duration, its last
 // frame shown, and closed: by the main window (cycle) or by a document and its timeline
 // (timelineCycle); opened again in the same shown main window (reopenCycle); a viewport
 // made and destroyed unshown (viewportCycle).
 #pragma once
 
-#include "document.h"
-#include "main_window.h"
-#include "timeline.h"
-#include "viewport.h"
+#include "document/document.h"
+#include "window/main_window.h"
+#include "timeline/timeline.h"
+#include "viewport/viewport.h"
 
 #include <tumble/io/scene_file.h>
 

@@ -1,0 +1,162 @@
+// File > Export from the editor: a trajectory written from the recording reads back equal
+// to it; a cancelled export leaves no file; the dialog checks its choices and remembers
+// them.
+#include "document/document.h"
+#include "export/export_dialog.h"
+#include "window/main_window.h"
+#include "timeline/timeline.h"
+
+#include <tumble/io/trajectory_json.h>
+
+#include <QComboBox>
+#include <QImage>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QtTest>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+namespace {
+
+bool openAndRecord(MainWindow& w, const QString& sample) {
+    QString error;
+    if (!w.openScene(sample, &error)) return false;
+    return QTest::qWaitFor(
+        [&] { return w.timeline()->status() == Timeline::Status::Complete && !w.timeline()->isStale(); },
+        60000);
+}
+
+}  // namespace
+
+class TestExport : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);
+        QCoreApplication::setOrganizationName("tumble-tests");
+        QSettings().remove("export");
+    }
+
+    // Frames 0..10 step 2 of the projectile, the ball only, as JSON: six frames equal to
+    // the recording to the last bit.
+    void aTrajectoryFromTheRecording() {
+        MainWindow w;
+        QVERIFY(openAndRecord(w, ":/scenes/projectile.json"));
+        QTemporaryDir dir;
+        const QString file = dir.filePath("ball.json");
+        io::ExportOptions o;
+        o.firstFrame = 0;
+        o.lastFrame = 10;
+        o.frameStep = 2;
+        o.bodies = {1};
+        QSignalSpy finished(&w, &MainWindow::exportFinished);
+        QString error;
+        QVERIFY2(w.startExport(int(ExportDialog::Kind::Json), file, o, QSize(), &error), qPrintable(error));
+        QVERIFY(finished.wait(30000));
+        QVERIFY2(finished.first().at(0).toBool(), qPrintable(finished.first().at(1).toString()));
+        const io::Trajectory t = io::readTrajectoryJson(file.toStdString());
+        QCOMPARE(int(t.frames.size()), 6);
+        QCOMPARE(int(t.bodies.size()), 1);
+        QCOMPARE(t.bodies[0].name, std::string("ball"));
+        const auto model = w.timeline()->model();
+        for (int i = 0; i < 6; ++i) {
+            State s;
+            QVERIFY(w.timeline()->frameState(2 * i, &s));
+            const Vec3 x = bodyFramePosition(model->bodies[1], s.bodies[1]);
+            QCOMPARE(t.frames[i].time, 2 * i / 30.0);
+            QCOMPARE(t.frames[i].bodies[0].position, x);
+            QCOMPARE(t.frames[i].bodies[0].orientation.coeffs(), s.bodies[1].q.coeffs());
+        }
+    }
+
+    // Cancel as soon as it starts: finished(false) and nothing on disk.
+    void aCancelledExportLeavesNoFile() {
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(":/scenes/pyramid-15.json", &error));
+        SceneDesc s = w.scene();
+        s.settings.duration = 30.0;
+        w.document()->setSettings(s.settings, "Longer");
+        QVERIFY(QTest::qWaitFor(
+            [&] { return w.timeline()->status() == Timeline::Status::Complete && !w.timeline()->isStale(); },
+            120000));
+        QTemporaryDir dir;
+        const QString file = dir.filePath("pyramid.glb");
+        QSignalSpy finished(&w, &MainWindow::exportFinished);
+        QVERIFY2(w.startExport(int(ExportDialog::Kind::Glb), file, {}, QSize(), &error), qPrintable(error));
+        QVERIFY(w.isExporting());
+        w.cancelExport();
+        QVERIFY(finished.wait(60000));
+        QVERIFY(!finished.first().at(0).toBool());
+        QVERIFY2(finished.first().at(1).toString().contains("cancelled"),
+                 qPrintable(finished.first().at(1).toString()));
+        QVERIFY(QDir(dir.path()).entryList(QDir::NoDotAndDotDot | QDir::AllEntries | QDir::Hidden).isEmpty());
+    }
+
+    // Images and a video through the same entry point as the dialog's Export button.
+    void imagesAndVideoFromTheWindow() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QVERIFY(openAndRecord(w, ":/scenes/projectile.json"));
+        QTemporaryDir dir;
+        io::ExportOptions o;
+        o.lastFrame = 4;
+        QSignalSpy finished(&w, &MainWindow::exportFinished);
+        QString error;
+        const QString video = dir.filePath("throw.mp4");
+        QVERIFY2(w.startExport(int(ExportDialog::Kind::Video), video, o, QSize(320, 240), &error),
+                 qPrintable(error));
+        QVERIFY(finished.wait(120000));
+        QVERIFY2(finished.first().at(0).toBool(), qPrintable(finished.first().at(1).toString()));
+        QVERIFY(QFileInfo(video).size() > 0);
+        const QDir frames(dir.filePath("throw-frames"));
+        QCOMPARE(frames.entryList({"*.png"}, QDir::Files).size(), 5);
+        QCOMPARE(QImage(frames.filePath("frame_0004.png")).size(), QSize(320, 240));
+    }
+
+    void aBadTargetIsRefusedWithItsName() {
+        MainWindow w;
+        QVERIFY(openAndRecord(w, ":/scenes/projectile.json"));
+        QString error;
+        QVERIFY(
+            !w.startExport(int(ExportDialog::Kind::Csv), "/nonexistent-folder/x.csv", {}, QSize(), &error));
+        QVERIFY2(error.contains("/nonexistent-folder/x.csv"), qPrintable(error));
+    }
+
+    void theDialogChecksAndRemembers() {
+        QTemporaryDir dir;
+        {
+            ExportDialog d({"ground", "ball"}, 61, 30.0, "projectile.json");
+            d.setKind(ExportDialog::Kind::Json);
+            QCOMPARE(QFileInfo(d.target()).fileName(), QString("projectile.json"));
+            d.setTarget(dir.filePath("out.csv"));
+            QVERIFY2(d.problem().contains(".json"), qPrintable(d.problem()));
+            d.setTarget(dir.filePath("out.json"));
+            QVERIFY2(d.problem().isEmpty(), qPrintable(d.problem()));
+            d.setBodiesChecked({});
+            QVERIFY(!d.problem().isEmpty());
+            d.setBodiesChecked({1});
+            QCOMPARE(d.options().bodies, std::vector<int>({1}));
+            d.setFrameRange(20, 10, 1);
+            QVERIFY(!d.problem().isEmpty());
+            d.setFrameRange(0, 60, 3);
+            QVERIFY(d.problem().isEmpty());
+            QCOMPARE(d.options().frameStep, 3);
+            d.setTarget(dir.filePath("missing/out.json"));
+            QVERIFY(d.problem().contains("no such folder"));
+            d.setTarget(dir.filePath("out.json"));
+            d.accept();
+        }
+        ExportDialog again({"ground", "ball"}, 61, 30.0, "projectile.json");
+        QCOMPARE(again.kind(), ExportDialog::Kind::Json);
+        QCOMPARE(again.options().frameStep, 3);
+        QCOMPARE(QFileInfo(again.target()).absolutePath(), QFileInfo(dir.path()).absoluteFilePath());
+    }
+};
+
+QTEST_MAIN(TestExport)
+#include "tst_export.moc"

@@ -1,0 +1,320 @@
+// The scene tree: its rows follow the document through add, duplicate, delete, rename and
+// undo; a taken or empty name is refused; the selection is the document's, both ways.
+#include "document/body_presets.h"
+#include "document/document.h"
+#include "panels/scene_tree_dock.h"
+#include "panels/scene_tree_model.h"
+
+#include <QAbstractItemModelTester>
+#include <QAction>
+#include <QItemSelectionModel>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMainWindow>
+#include <QSignalSpy>
+#include <QTreeView>
+#include <QUndoStack>
+#include <QtTest>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+namespace {
+
+QStringList names(const QAbstractItemModel& m) {
+    QStringList out;
+    for (int r = 0; r < m.rowCount(); ++r) out << m.index(r, SceneTreeModel::NameColumn).data().toString();
+    return out;
+}
+
+QStringList documentNames(const Document& doc) {
+    QStringList out;
+    for (int i = 0; i < doc.bodyCount(); ++i) out << QString::fromStdString(doc.body(i).name);
+    return out;
+}
+
+QList<int> viewRows(const QTreeView* view) {
+    QList<int> rows;
+    for (const QModelIndex& i : view->selectionModel()->selectedRows()) rows << i.row();
+    std::sort(rows.begin(), rows.end());
+    return rows;
+}
+
+// Lowest and highest world y of an upright primitive.
+double bottom(const BodyDesc& b) {
+    return b.position.y() - halfHeightAboveOrigin(b);
+}
+double top(const BodyDesc& b) {
+    return b.position.y() + halfHeightAboveOrigin(b);
+}
+
+}  // namespace
+
+class TestSceneTree : public QObject {
+    Q_OBJECT
+private slots:
+    void columnsShowNameMotionShape() {
+        Document doc;
+        SceneTreeModel model(&doc);
+        QAbstractItemModelTester tester(&model, QAbstractItemModelTester::FailureReportingMode::QtTest);
+        QCOMPARE(model.rowCount(), 1);
+        QCOMPARE(model.columnCount(), 3);
+        QCOMPARE(model.index(0, SceneTreeModel::NameColumn).data().toString(), QString("ground"));
+        QCOMPARE(model.index(0, SceneTreeModel::MotionColumn).data().toString(), QString("static"));
+        QCOMPARE(model.index(0, SceneTreeModel::ShapeColumn).data().toString(), QString("plane"));
+        QVERIFY(model.flags(model.index(0, SceneTreeModel::NameColumn)) & Qt::ItemIsEditable);
+        QVERIFY(!(model.flags(model.index(0, SceneTreeModel::ShapeColumn)) & Qt::ItemIsEditable));
+    }
+
+    void rowsFollowAddDuplicateDeleteAndUndo() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        QAbstractItemModelTester tester(dock.model(), QAbstractItemModelTester::FailureReportingMode::QtTest);
+        QSignalSpy inserted(dock.model(), &QAbstractItemModel::rowsInserted);
+        QSignalSpy removed(dock.model(), &QAbstractItemModel::rowsRemoved);
+
+        dock.addBodyAction(ShapeType::Sphere)->trigger();
+        dock.addBodyAction(ShapeType::Box)->trigger();
+        dock.addBodyAction(ShapeType::Capsule)->trigger();
+        dock.addBodyAction(ShapeType::Cylinder)->trigger();
+        QCOMPARE(inserted.count(), 4);
+        QCOMPARE(names(*dock.model()), QStringList({"ground", "sphere", "box", "capsule", "cylinder"}));
+        QCOMPARE(doc.selection(), QList<int>({4}));  // the new body is the selection
+        QCOMPARE(dock.model()->index(2, SceneTreeModel::ShapeColumn).data().toString(), QString("box"));
+
+        // Sensible defaults: 1 kg, above the ground, none overlapping the one before.
+        for (int i = 1; i < doc.bodyCount(); ++i) {
+            QCOMPARE(doc.body(i).mass.value_or(0.0), 1.0);
+            QVERIFY(bottom(doc.body(i)) > 0.0);
+            if (i > 1)
+                QVERIFY2(bottom(doc.body(i)) > top(doc.body(i - 1)), qPrintable(documentNames(doc)[i]));
+        }
+
+        // Duplicate the selection (sphere and box): copies at the end, selected.
+        doc.setSelection({1, 2});
+        dock.duplicateAction()->trigger();
+        QCOMPARE(names(*dock.model()),
+                 QStringList({"ground", "sphere", "box", "capsule", "cylinder", "sphere-2", "box-2"}));
+        QCOMPARE(doc.selection(), QList<int>({5, 6}));
+        QCOMPARE(viewRows(dock.view()), QList<int>({5, 6}));
+        QCOMPARE(doc.undoStack()->undoText(), QString("Duplicate 2 bodies"));
+        // The copies keep everything but their height: they start above the pile.
+        for (int k : {0, 1}) {
+            const BodyDesc& original = doc.body(1 + k);
+            const BodyDesc& copy = doc.body(5 + k);
+            QCOMPARE(copy.shape, original.shape);
+            QCOMPARE(copy.position.x(), original.position.x());
+            QCOMPARE(copy.mass, original.mass);
+            for (int i = 1; i < 5 + k; ++i) QVERIFY(bottom(copy) > top(doc.body(i)));
+        }
+
+        // Delete box and capsule.
+        doc.setSelection({2, 3});
+        dock.deleteAction()->trigger();
+        QCOMPARE(removed.count(), 2);
+        QCOMPARE(names(*dock.model()), QStringList({"ground", "sphere", "cylinder", "sphere-2", "box-2"}));
+        QCOMPARE(names(*dock.model()), documentNames(doc));
+        QVERIFY(doc.selection().isEmpty());
+        QVERIFY(viewRows(dock.view()).isEmpty());
+        QVERIFY(!dock.deleteAction()->isEnabled());
+
+        // Undo the delete, the duplicate, then two adds; redo one.
+        doc.undoStack()->undo();
+        QCOMPARE(names(*dock.model()),
+                 QStringList({"ground", "sphere", "box", "capsule", "cylinder", "sphere-2", "box-2"}));
+        doc.undoStack()->undo();
+        QCOMPARE(names(*dock.model()), QStringList({"ground", "sphere", "box", "capsule", "cylinder"}));
+        doc.undoStack()->undo();
+        doc.undoStack()->undo();
+        QCOMPARE(names(*dock.model()), QStringList({"ground", "sphere", "box"}));
+        doc.undoStack()->redo();
+        QCOMPARE(names(*dock.model()), QStringList({"ground", "sphere", "box", "capsule"}));
+        QCOMPARE(names(*dock.model()), documentNames(doc));
+    }
+
+    void aPlaneIsStaticAndAMeshAsksForAFile() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        QSignalSpy importRequested(&dock, &SceneTreeDock::importMeshRequested);
+        dock.addBodyAction(ShapeType::Plane)->trigger();
+        QCOMPARE(doc.bodyCount(), 2);
+        QCOMPARE(doc.body(1).motion, Motion::Static);
+        QVERIFY(!doc.body(1).mass && !doc.body(1).density);  // the engine refuses mass on a static body
+        dock.addBodyAction(ShapeType::Mesh)->trigger();
+        QCOMPARE(importRequested.count(), 1);
+        QCOMPARE(doc.bodyCount(), 2);
+    }
+
+    void theDeleteKeyDeletesTheSelection() {
+        Document doc;
+        QMainWindow window;
+        auto* dock = new SceneTreeDock(&doc, &window);
+        window.addDockWidget(Qt::LeftDockWidgetArea, dock);
+        window.show();
+        window.activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(&window));
+        dock->addBody(ShapeType::Sphere);
+        dock->addBody(ShapeType::Box);
+        doc.setSelection({1});
+        dock->view()->setFocus();
+        QTest::keyClick(dock->view(), Qt::Key_Delete);
+        QCOMPARE(documentNames(doc), QStringList({"ground", "box"}));
+        QCOMPARE(names(*dock->model()), QStringList({"ground", "box"}));
+        doc.undoStack()->undo();
+        QCOMPARE(names(*dock->model()), QStringList({"ground", "sphere", "box"}));
+    }
+
+    void renameInPlaceReachesTheDocumentAndUndoes() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        dock.addBody(ShapeType::Sphere);
+        SceneTreeModel* model = dock.model();
+        const QModelIndex name = model->index(1, SceneTreeModel::NameColumn);
+        QVERIFY(model->setData(name, QString("  ball ")));  // trimmed
+        QCOMPARE(doc.body(1).name, std::string("ball"));
+        QCOMPARE(name.data().toString(), QString("ball"));
+        QCOMPARE(doc.undoStack()->undoText(), QString("Rename sphere to ball"));
+        doc.undoStack()->undo();
+        QCOMPARE(doc.body(1).name, std::string("sphere"));
+        QCOMPARE(name.data().toString(), QString("sphere"));
+        doc.undoStack()->redo();
+        QCOMPARE(name.data().toString(), QString("ball"));
+    }
+
+    void renameThroughTheViewsEditor() {
+        Document doc;
+        QMainWindow window;
+        auto* dock = new SceneTreeDock(&doc, &window);
+        window.addDockWidget(Qt::LeftDockWidgetArea, dock);
+        window.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&window));
+        dock->addBody(ShapeType::Box);
+        const QModelIndex name = dock->model()->index(1, SceneTreeModel::NameColumn);
+        dock->view()->edit(name);
+        auto* editor = dock->view()->findChild<QLineEdit*>();
+        QVERIFY(editor);
+        editor->selectAll();
+        QTest::keyClicks(editor, "crate");
+        QTest::keyClick(editor, Qt::Key_Return);
+        QTRY_COMPARE(doc.body(1).name, std::string("crate"));  // the delegate commits queued
+        doc.undoStack()->undo();
+        QCOMPARE(doc.body(1).name, std::string("box"));
+    }
+
+    void aTakenOrEmptyNameIsRefused() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        dock.addBody(ShapeType::Sphere);
+        SceneTreeModel* model = dock.model();
+        const int steps = doc.undoStack()->count();
+        QSignalSpy refused(model, &SceneTreeModel::renameRefused);
+        QSignalSpy changed(model, &QAbstractItemModel::dataChanged);
+        const QModelIndex name = model->index(1, SceneTreeModel::NameColumn);
+
+        QVERIFY(!model->setData(name, QString("ground")));
+        QCOMPARE(refused.count(), 1);
+        QVERIFY(refused.at(0).at(0).toString().contains("already the name"));
+        auto* message = dock.findChild<QLabel*>("sceneTreeMessage");
+        QVERIFY(message);
+        QVERIFY(!message->isHidden());
+        QCOMPARE(message->text(), refused.at(0).at(0).toString());
+
+        QVERIFY(!model->setData(name, QString("   ")));
+        QCOMPARE(refused.count(), 2);
+
+        QCOMPARE(doc.body(1).name, std::string("sphere"));
+        QCOMPARE(name.data().toString(), QString("sphere"));
+        QCOMPARE(doc.undoStack()->count(), steps);
+        QCOMPARE(changed.count(), 0);
+        // Other columns are not editable through the model.
+        QVERIFY(!model->setData(model->index(1, SceneTreeModel::ShapeColumn), QString("box")));
+    }
+
+    void viewSelectionSetsTheDocuments() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        dock.addBody(ShapeType::Sphere);
+        dock.addBody(ShapeType::Box);
+        dock.addBody(ShapeType::Capsule);
+        QSignalSpy docSelection(&doc, &Document::selectionChanged);
+        QItemSelectionModel* sm = dock.view()->selectionModel();
+        SceneTreeModel* model = dock.model();
+
+        sm->select(model->index(1, 0), QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+        QCOMPARE(doc.selection(), QList<int>({1}));
+        sm->select(model->index(3, 0), QItemSelectionModel::Select | QItemSelectionModel::Rows);
+        QCOMPARE(doc.selection(), QList<int>({1, 3}));
+        QCOMPARE(docSelection.count(), 2);  // one per change, no echo
+        sm->clearSelection();
+        QVERIFY(doc.selection().isEmpty());
+
+        // A click selects; a control-click extends.
+        QTreeView* view = dock.view();
+        dock.resize(400, 300);
+        dock.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dock));
+        QTest::mouseClick(view->viewport(), Qt::LeftButton, {},
+                          view->visualRect(model->index(2, 0)).center());
+        QCOMPARE(doc.selection(), QList<int>({2}));
+        QTest::mouseClick(view->viewport(), Qt::LeftButton, Qt::ControlModifier,
+                          view->visualRect(model->index(0, 0)).center());
+        QCOMPARE(doc.selection(), QList<int>({0, 2}));
+    }
+
+    void documentSelectionSetsTheViews() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        dock.addBody(ShapeType::Sphere);
+        dock.addBody(ShapeType::Box);
+        dock.addBody(ShapeType::Capsule);
+        QSignalSpy docSelection(&doc, &Document::selectionChanged);
+        doc.setSelection({0, 2});
+        QCOMPARE(viewRows(dock.view()), QList<int>({0, 2}));
+        QCOMPARE(docSelection.count(), 1);  // the view did not write it back
+        QCOMPARE(doc.selection(), QList<int>({0, 2}));
+
+        // A removal before the selection shifts it in both.
+        doc.setSelection({3});
+        doc.removeBodies({1});
+        QCOMPARE(doc.selection(), QList<int>({2}));
+        QCOMPARE(viewRows(dock.view()), QList<int>({2}));
+        QCOMPARE(dock.model()->index(2, 0).data().toString(), QString("capsule"));
+
+        // Removing the selected body empties both.
+        doc.removeBodies({2});
+        QVERIFY(doc.selection().isEmpty());
+        QVERIFY(viewRows(dock.view()).isEmpty());
+    }
+
+    void followsADocumentThatIsOpened() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        QAbstractItemModelTester tester(dock.model(), QAbstractItemModelTester::FailureReportingMode::QtTest);
+        QString error;
+        QVERIFY2(doc.open(":/scenes/newtons-cradle.json", &error), qPrintable(error));
+        QCOMPARE(names(*dock.model()), documentNames(doc));
+        QVERIFY(doc.bodyCount() > 2);
+        doc.newScene();
+        QCOMPARE(names(*dock.model()), QStringList({"ground"}));
+    }
+
+    void aBodyChangeUpdatesItsRow() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        dock.addBody(ShapeType::Sphere);
+        QSignalSpy changed(dock.model(), &QAbstractItemModel::dataChanged);
+        BodyDesc b = doc.body(1);
+        b.motion = Motion::Kinematic;
+        b.mass.reset();
+        doc.setBody(1, b, "Make kinematic");
+        QCOMPARE(changed.count(), 1);
+        QCOMPARE(changed.at(0).at(0).value<QModelIndex>().row(), 1);
+        QCOMPARE(dock.model()->index(1, SceneTreeModel::MotionColumn).data().toString(),
+                 QString("kinematic"));
+        doc.undoStack()->undo();
+        QCOMPARE(dock.model()->index(1, SceneTreeModel::MotionColumn).data().toString(), QString("dynamic"));
+    }
+};
+
+QTEST_MAIN(TestSceneTree)
+#include "tst_scene_tree.moc"

@@ -1,0 +1,163 @@
+// The timeline dock as a user drives it: the slider scrubs, the buttons and the window's
+// keys move the playhead, the labels say where and how far the run is, Cancel stops it and
+// keeps the scene, "Use Frame as Start" is one undo step.
+#include "document/document.h"
+#include "window/main_window.h"
+#include "timeline/timeline.h"
+#include "timeline/timeline_dock.h"
+#include "viewport/viewport.h"
+
+#include <QAction>
+#include <QLabel>
+#include <QProgressBar>
+#include <QSettings>
+#include <QSlider>
+#include <QSpinBox>
+#include <QUndoStack>
+#include <QtTest>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+namespace {
+constexpr int kWaitMs = 60000;
+}
+
+class TestTimelineDock : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);
+        QCoreApplication::setOrganizationName("tumble-tests");
+    }
+
+    void sliderScrubsAndLabelsFollow() {
+        Document doc;
+        QString error;
+        QVERIFY(doc.open(":/scenes/projectile.json", &error));
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        dock.show();
+        t.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        QCoreApplication::processEvents();
+        const int last = t.frameCount() - 1;  // 2 s at 30 frames/s
+        QCOMPARE(last, 60);
+        QCOMPARE(dock.slider()->maximum(), last);
+        auto* progress = dock.findChild<QProgressBar*>("progress");
+        QCOMPARE(progress->value(), last + 1);
+        QVERIFY2(dock.statusText().startsWith("Done"), qPrintable(dock.statusText()));
+
+        dock.slider()->setValue(30);
+        QCOMPARE(t.currentFrame(), 30);
+        QCOMPARE(dock.positionText(), QString("t = 1.000 s   frame 30 / 60"));
+        t.seek(45);
+        QCOMPARE(dock.slider()->value(), 45);
+
+        dock.stepBackAction()->trigger();
+        QCOMPARE(t.currentFrame(), 44);
+        dock.stepForwardAction()->trigger();
+        dock.stepForwardAction()->trigger();
+        QCOMPARE(t.currentFrame(), 46);
+        dock.toStartAction()->trigger();
+        QCOMPARE(t.currentFrame(), 0);
+        QVERIFY(!dock.useFrameAction()->isEnabled());  // frame 0 is the start already
+        dock.toEndAction()->trigger();
+        QCOMPARE(t.currentFrame(), last);
+        QVERIFY(dock.useFrameAction()->isEnabled());
+
+        dock.playAction()->trigger();  // from the end: plays from the start
+        QVERIFY(t.isPlaying());
+        QCOMPARE(dock.playAction()->text(), QString("Pause"));
+        dock.playAction()->trigger();
+        QVERIFY(!t.isPlaying());
+        QCOMPARE(dock.playAction()->text(), QString("Play"));
+    }
+
+    void editMarksStaleInTheStatus() {
+        Document doc;
+        QString error;
+        QVERIFY(doc.open(":/scenes/projectile.json", &error));
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        t.setAutoSimulate(false);
+        t.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        BodyDesc b = doc.body(1);
+        b.velocity.x() = 4.0;
+        doc.setBody(1, b, "Velocity");
+        QVERIFY2(dock.statusText().contains("stale"), qPrintable(dock.statusText()));
+        t.toEnd();
+        QVERIFY(!dock.useFrameAction()->isEnabled());  // a stale frame is not the edited scene's
+        dock.simulateAction()->trigger();
+        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        QVERIFY(!dock.statusText().contains("stale"));
+    }
+
+    // In the editor: the window's keys drive the playhead wherever the focus is, and
+    // Cancel during a long run keeps the scene and its undo history.
+    void windowKeysAndCancel() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QString error;
+        QVERIFY(w.openScene(":/scenes/projectile.json", &error));
+        Timeline* t = w.timeline();
+        QVERIFY(QTest::qWaitFor([&] { return t->status() == Timeline::Status::Complete; }, kWaitMs));
+        w.activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(&w));
+        QTest::keyClick(&w, Qt::Key_End);
+        QCOMPARE(t->currentFrame(), t->frameCount() - 1);
+        QTest::keyClick(&w, Qt::Key_Left);
+        QCOMPARE(t->currentFrame(), t->frameCount() - 2);
+        QTest::keyClick(&w, Qt::Key_Home);
+        QCOMPARE(t->currentFrame(), 0);
+        QTest::keyClick(&w, Qt::Key_Right);
+        QCOMPARE(t->currentFrame(), 1);
+        QTest::keyClick(&w, Qt::Key_Space);
+        QVERIFY(t->isPlaying());
+        QTest::keyClick(&w, Qt::Key_Space);
+        QVERIFY(!t->isPlaying());
+        // With the 3D view focused too (its own keys are the letters and Shift+arrows).
+        w.viewport()->setFocus();
+        QTest::keyClick(w.viewport()->renderWindow(), Qt::Key_Right);
+        QCOMPARE(t->currentFrame(), 2);
+        QTest::keyClick(w.viewport()->renderWindow(), Qt::Key_End);
+        QCOMPARE(t->currentFrame(), t->frameCount() - 1);
+
+        // A long run: cancel keeps the frames made and the scene.
+        SceneDesc s = w.document()->scene();
+        s.settings.duration = 100000.0;
+        s.settings.dt = 2e-5;  // 5e9 steps: long, under the 10^10 a scene may ask
+        w.document()->setSettings(s.settings, "Long");
+        const SceneDesc scene = w.document()->scene();
+        const int undo = w.document()->undoStack()->count();
+        QVERIFY(QTest::qWaitFor(
+            [&] { return t->status() == Timeline::Status::Running && t->framesDone() > 2; }, kWaitMs));
+        w.timelineDock()->cancelAction()->trigger();
+        QVERIFY(QTest::qWaitFor([&] { return t->status() == Timeline::Status::Cancelled; }, kWaitMs));
+        QVERIFY(w.document()->scene() == scene);
+        QCOMPARE(w.document()->undoStack()->count(), undo);
+        QVERIFY(w.timelineDock()->statusText().startsWith("Cancelled"));
+    }
+
+    void memoryCapField() {
+        QSettings().remove("timeline/memoryCapMB");
+        Document doc;
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        auto* cap = dock.findChild<QSpinBox*>("memoryCap");
+        QCOMPARE(cap->value(), 512);
+        cap->setValue(64);
+        QCOMPARE(t.memoryCap(), std::size_t(64) << 20);
+        // Remembered for the next window.
+        Timeline t2(&doc);
+        TimelineDock dock2(&t2);
+        QCOMPARE(t2.memoryCap(), std::size_t(64) << 20);
+        QCOMPARE(dock2.findChild<QSpinBox*>("memoryCap")->value(), 64);
+        cap->setValue(512);
+    }
+};
+
+QTEST_MAIN(TestTimelineDock)
+#include "tst_timeline_dock.moc"

@@ -1,0 +1,499 @@
+// The editor window, as a user sees it: it opens the samples, refuses a bad scene without
+// losing the open one, imports meshes as undoable bodies, autosaves and recovers, asks
+// before closing over unsaved changes, opens a dropped scene and imports a dropped mesh, and
+// its viewport shows one entity per body.
+#include "document/document.h"
+#include "window/main_window.h"
+#include "import/mesh_import_job.h"
+#include "timeline/timeline.h"
+#include "viewport/viewport.h"
+
+#include <tumble/mass.h>
+
+#include <QAbstractButton>
+#include <QAbstractItemView>
+#include <QAction>
+#include <QApplication>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFile>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressDialog>
+#include <QSignalSpy>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QUndoStack>
+#include <QUrl>
+#include <QtTest>
+
+#include <functional>
+#include <memory>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+namespace {
+
+// Answers the next modal message box with `button` once it is up (polling, since it opens
+// inside the call under test), and records its text.
+void answerNextMessageBox(QMessageBox::StandardButton button, QString* text) {
+    auto attempt = std::make_shared<std::function<void(int)>>();
+    *attempt = [button, text, attempt](int left) {
+        if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+            if (text) *text = box->text();
+            if (QAbstractButton* b = box->button(button)) QTest::mouseClick(b, Qt::LeftButton);
+            *attempt = nullptr;  // break the cycle
+            return;
+        }
+        if (left > 0) {
+            QTimer::singleShot(20, [attempt, left] {
+                if (*attempt) (*attempt)(left - 1);
+            });
+        } else {
+            *attempt = nullptr;
+        }
+    };
+    QTimer::singleShot(0, [attempt] {
+        if (*attempt) (*attempt)(250);
+    });  // up to 5 s
+}
+
+// A drop on the window, as a file manager makes it; whether the drag's enter was accepted.
+bool drop(QWidget* target, const QMimeData& mime) {
+    const QPoint at(target->width() / 2, target->height() / 2);
+    QDragEnterEvent enter(at, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &enter);
+    if (!enter.isAccepted()) return false;
+    QDropEvent dropped(QPointF(at), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &dropped);
+    return true;
+}
+
+bool dropUrls(QWidget* target, const QList<QUrl>& urls) {
+    QMimeData mime;
+    mime.setUrls(urls);
+    return drop(target, mime);
+}
+
+}  // namespace
+
+class TestMainWindow : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);
+        QApplication::setQuitOnLastWindowClosed(false);  // the close tests close windows
+    }
+
+    void opensTheDefaultSample() {
+        MainWindow w;
+        QString error;
+        QVERIFY2(w.openScene(MainWindow::defaultScenePath(), &error), qPrintable(error));
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QVERIFY2(w.windowTitle().startsWith("tumbling-box.json"), qPrintable(w.windowTitle()));
+        QVERIFY(!w.isWindowModified());
+        QCOMPARE(w.viewport()->entityCount(), int(w.scene().bodies.size()));
+        // The docks a user expects are there.
+        QStringList docks;
+        for (QDockWidget* d : w.findChildren<QDockWidget*>()) docks << d->objectName();
+        for (const char* name : {"SceneTreeDock", "PropertyDock", "SettingsDock", "UndoHistoryDock"})
+            QVERIFY2(docks.contains(name), name);
+    }
+
+    void everySampleOpens() {
+        MainWindow w;
+        for (const char* name :
+             {"tumbling-box", "spring-pendulum", "projectile", "bouncing-ball", "head-on",
+              "tilted-box-impact", "newtons-cradle", "sliding-block", "incline", "rolling-sphere", "tower-20",
+              "pyramid-15", "mass-ratio-stack", "sleeping-wake"}) {
+            QString error;
+            QVERIFY2(w.openScene(QString(":/scenes/%1.json").arg(name), &error), qPrintable(error));
+            QCOMPARE(w.viewport()->entityCount(), int(w.scene().bodies.size()));
+        }
+    }
+
+    void badSceneKeepsTheOpenOne() {
+        QTemporaryDir dir;
+        const QString bad = dir.filePath("bad.json");
+        QFile f(bad);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(
+            R"({"format": "tumble-scene", "version": 1, "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": -1}, "mass": 1}]})");
+        f.close();
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(MainWindow::defaultScenePath(), &error));
+        const SceneDesc before = w.scene();
+        QVERIFY(!w.openScene(bad, &error));
+        QCOMPARE(error, bad + ": bodies[0].shape.radius: must be greater than 0");
+        QCOMPARE(w.scenePath(), MainWindow::defaultScenePath());
+        QCOMPARE(w.scene(), before);
+        QVERIFY(!w.openScene(dir.filePath("missing.json"), &error));
+        QVERIFY(error.contains("missing.json"));
+    }
+
+    void importMesh_data() {
+        QTest::addColumn<QString>("file");
+        QTest::addColumn<int>("triangles");
+        QTest::newRow("obj") << QString(TUMBLE_SCENES_DIR "/../meshes/l-prism.obj") << 28;
+        QTest::newRow("stl") << QString(TUMBLE_SCENES_DIR "/../meshes/box.stl") << 12;
+        QTest::newRow("gltf") << QString("/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf")
+                              << 12;
+    }
+    void importMesh() {
+        QFETCH(QString, file);
+        QFETCH(int, triangles);
+        MainWindow w;
+        const int before = w.document()->bodyCount();
+        QString error;
+        QVERIFY2(w.importMesh(file, true, 2.0, &error), qPrintable(error));
+        QCOMPARE(w.document()->bodyCount(), before + 1);
+        const BodyDesc& b = w.document()->body(before);
+        QCOMPARE(b.shape.type, ShapeType::Mesh);
+        QCOMPARE(b.shape.scale, Vec3(2, 2, 2));
+        QVERIFY(b.shape.meshData);
+        QCOMPARE(int(b.shape.meshData->triangles.size()), triangles);
+        QCOMPARE(w.document()->selection(), QList<int>({before}));
+        QCOMPARE(w.viewport()->entityCount(), before + 1);
+        QVERIFY(w.isWindowModified());
+        w.document()->undoStack()->undo();  // one step takes it away
+        QCOMPARE(w.document()->bodyCount(), before);
+    }
+
+    void aBadMeshLeavesTheSceneUntouched() {
+        QTemporaryDir dir;
+        const QString junk = dir.filePath("junk.obj");
+        QFile f(junk);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("this is not a mesh\n");
+        f.close();
+        MainWindow w;
+        const SceneDesc before = w.scene();
+        QString error;
+        QVERIFY(!w.importMesh(junk, true, 1.0, &error));
+        QVERIFY2(error.contains("junk.obj"), qPrintable(error));
+        QVERIFY(!w.importMesh(dir.filePath("missing.stl"), true, 1.0, &error));
+        QVERIFY2(error.contains("missing.stl"), qPrintable(error));
+        QCOMPARE(w.scene(), before);
+        QVERIFY(!w.document()->undoStack()->canUndo());
+    }
+
+    // A slow read (a PLY assimp loops on, let through on purpose) runs beside the window:
+    // its timers fire and it paints while the progress dialog is up, the dialog's Cancel
+    // stops the read at once, and nothing is added.
+    void importRunsInTheBackgroundAndCancels() {
+        QTemporaryDir dir;
+        const QString file = dir.filePath("noend.ply");
+        QFile f(file);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\n0 0 0\n1 0 0\n0 1 0\n");
+        f.close();
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        io::MeshImportOptions options;
+        options.timeLimit = 60;
+        options.refuseKnownHangs = false;
+        w.setMeshImportOptions(options);
+        const SceneDesc before = w.scene();
+        QSignalSpy finished(&w, &MainWindow::importFinished);
+        int ticks = 0;
+        QTimer ticker;
+        ticker.setInterval(50);
+        connect(&ticker, &QTimer::timeout, [&] { ++ticks; });
+        ticker.start();
+        QElapsedTimer clock;
+        clock.start();
+        QVERIFY(w.startImport({file}, true, 1.0, false));
+        QVERIFY(!w.startImport({file}, true, 1.0, false));  // one import at a time
+        QTRY_VERIFY_WITH_TIMEOUT(w.importJob()->progressDialog() && w.importJob()->progressDialog()->isVisible(),
+                                 10000);
+        QVERIFY(w.isImporting());
+        QVERIFY2(w.importJob()->progressDialog()->labelText().contains("noend.ply"),
+                 qPrintable(w.importJob()->progressDialog()->labelText()));
+        QTest::qWait(600);
+        QVERIFY2(ticks >= 10, qPrintable(QString("%1 ticks in %2 ms").arg(ticks).arg(clock.elapsed())));
+        QVERIFY(finished.isEmpty());
+        // The user presses Cancel.
+        QAbstractButton* cancel = nullptr;
+        for (QAbstractButton* b : w.importJob()->progressDialog()->findChildren<QAbstractButton*>())
+            if (b->text().remove('&') == "Cancel") cancel = b;
+        QVERIFY(cancel);
+        clock.restart();
+        QTest::mouseClick(cancel, Qt::LeftButton);
+        QVERIFY(finished.wait(5000));
+        QVERIFY2(clock.elapsed() < 3000, qPrintable(QString::number(clock.elapsed())));
+        QCOMPARE(finished[0][0].toInt(), 0);
+        QCOMPARE(finished[0][2].toBool(), true);
+        QVERIFY(!w.isImporting());
+        QCOMPARE(w.scene(), before);
+        QVERIFY(!w.document()->undoStack()->canUndo());
+        QTRY_VERIFY(w.findChildren<QProgressDialog*>().isEmpty());
+    }
+
+    // Several files at once (a drop of three): the good ones added as one undo step, the
+    // bad one named in the message, and the dialog counts the files.
+    void severalMeshesAreOneStepAndTheBadOneNamed() {
+        QTemporaryDir dir;
+        const QString junk = dir.filePath("junk.obj");
+        QFile f(junk);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("this is not a mesh\n");
+        f.close();
+        MainWindow w;
+        const int bodies = w.document()->bodyCount();
+        const int steps = w.document()->undoStack()->count();
+        QSignalSpy finished(&w, &MainWindow::importFinished);
+        QVERIFY(w.startImport({TUMBLE_SCENES_DIR "/../meshes/box.stl", junk, TUMBLE_SCENES_DIR "/../meshes/l-prism.obj"},
+                              false, 0.5, false));
+        QVERIFY(finished.wait(30000));
+        QCOMPARE(finished[0][0].toInt(), 2);
+        QVERIFY2(finished[0][1].toString().contains("junk.obj"), qPrintable(finished[0][1].toString()));
+        QCOMPARE(finished[0][2].toBool(), false);
+        QCOMPARE(w.document()->bodyCount(), bodies + 2);
+        QCOMPARE(w.document()->body(bodies).name, std::string("box"));
+        QCOMPARE(w.document()->body(bodies + 1).name, std::string("l-prism"));
+        QCOMPARE(w.document()->body(bodies + 1).shape.collision, MeshCollision::Triangles);
+        QCOMPARE(w.document()->body(bodies + 1).shape.scale, Vec3(0.5, 0.5, 0.5));
+        QCOMPARE(w.document()->selection(), QList<int>({bodies, bodies + 1}));
+        QCOMPARE(w.document()->undoStack()->count(), steps + 1);
+        w.document()->undoStack()->undo();
+        QCOMPARE(w.document()->bodyCount(), bodies);
+    }
+
+    void autosaveAndRecovery() {
+        QFile::remove(MainWindow::autosavePath());
+        SceneDesc edited;
+        {
+            MainWindow w;
+            w.autosave();  // nothing unsaved: no file
+            QVERIFY(!QFile::exists(MainWindow::autosavePath()));
+            BodyDesc ball;
+            ball.name = "ball";
+            ball.mass = 2.0;
+            ball.position = Vec3(0, 3, 0);
+            w.document()->addBody(ball);
+            w.autosave();
+            QVERIFY(QFile::exists(MainWindow::autosavePath()));
+            edited = w.scene();
+            // The window is destroyed without closing: as after a crash, the file stays.
+        }
+        MainWindow next;
+        QString error;
+        QVERIFY2(next.recoverAutosave(&error), qPrintable(error));
+        QCOMPARE(next.scene(), edited);
+        QVERIFY(next.isWindowModified());  // recovered work is unsaved work
+        next.document()->undoStack()->undo();
+        QCOMPARE(next.document()->bodyCount(), 1);  // back to the new scene
+        QFile::remove(MainWindow::autosavePath());
+    }
+
+    void closingWithUnsavedChangesAsks() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("ball.json");
+        MainWindow w;
+        QString error;
+        QVERIFY2(w.openScene(":/scenes/bouncing-ball.json", &error), qPrintable(error));
+        QVERIFY2(w.document()->saveAs(path, &error), qPrintable(error));
+        QFile file(path);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QByteArray onDisk = file.readAll();
+        file.close();
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        // Nothing unsaved: it closes without asking.
+        QVERIFY(w.close());
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+
+        BodyDesc ball;
+        ball.name = "extra";
+        ball.mass = 1.0;
+        ball.position = Vec3(0, 4, 0);
+        w.document()->addBody(ball);
+        QVERIFY(w.isWindowModified());
+        const SceneDesc edited = w.scene();
+
+        // Cancel: the window stays, with the scene as it was.
+        QString asked;
+        answerNextMessageBox(QMessageBox::Cancel, &asked);
+        QVERIFY(!w.close());
+        QVERIFY2(asked.contains("ball.json"), qPrintable(asked));
+        QVERIFY(w.isVisible());
+        QCOMPARE(w.scene(), edited);
+        QVERIFY(w.isWindowModified());
+        QCOMPARE(w.document()->undoStack()->count(), 1);
+
+        // Discard: it closes, and the file on disk is as it was saved.
+        asked.clear();
+        answerNextMessageBox(QMessageBox::Discard, &asked);
+        QVERIFY(w.close());
+        QVERIFY2(asked.contains("ball.json"), qPrintable(asked));
+        QVERIFY(!w.isVisible());
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        QCOMPARE(file.readAll(), onDisk);
+    }
+
+    void droppingASceneFileOpensIt() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("dropped.json");
+        SceneDesc saved;
+        {
+            MainWindow source;
+            QString error;
+            QVERIFY(source.openScene(":/scenes/newtons-cradle.json", &error));
+            QVERIFY2(source.document()->saveAs(path, &error), qPrintable(error));
+            saved = source.scene();
+        }
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(path)}));
+        QCOMPARE(w.scenePath(), path);
+        QCOMPARE(w.scene(), saved);
+        QVERIFY(!w.isWindowModified());
+        QVERIFY2(w.windowTitle().startsWith("dropped.json"), qPrintable(w.windowTitle()));
+        QCOMPARE(w.viewport()->entityCount(), int(saved.bodies.size()));
+
+        // With unsaved changes it asks first; Cancel keeps the open scene and its changes.
+        w.document()->removeBodies({1});
+        const SceneDesc edited = w.scene();
+        answerNextMessageBox(QMessageBox::Cancel, nullptr);
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/projectile.json")}));
+        QCOMPARE(w.scenePath(), path);
+        QCOMPARE(w.scene(), edited);
+    }
+
+    void droppingAMeshFileImportsItAsOneStep() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        const SceneDesc before = w.scene();
+        const int bodies = w.document()->bodyCount();
+        const int steps = w.document()->undoStack()->count();
+        QSignalSpy imported(&w, &MainWindow::importFinished);
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/box.stl")}));
+        QVERIFY(imported.wait(20000));  // read in the background
+        QCOMPARE(w.document()->bodyCount(), bodies + 1);
+        const BodyDesc& b = w.document()->body(bodies);
+        QCOMPARE(b.name, std::string("box"));
+        QCOMPARE(b.shape.type, ShapeType::Mesh);
+        QCOMPARE(b.shape.collision, MeshCollision::ConvexHull);  // the drop's defaults
+        QCOMPARE(b.shape.scale, Vec3(1, 1, 1));
+        QVERIFY(b.shape.meshData);
+        QCOMPARE(int(b.shape.meshData->triangles.size()), 12);
+        QCOMPARE(w.document()->selection(), QList<int>({bodies}));
+        QCOMPARE(w.viewport()->entityCount(), bodies + 1);
+        QCOMPARE(w.document()->undoStack()->count(), steps + 1);
+        w.document()->undoStack()->undo();
+        QCOMPARE(w.scene(), before);
+        // Something that is no file is refused at the door.
+        QMimeData text;
+        text.setText("box.stl");
+        QVERIFY(!drop(&w, text));
+        // Nor is a file of no known kind, or a remote one.
+        QVERIFY(!dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/README.md")}));
+        QVERIFY(!dropUrls(&w, {QUrl("https://example.org/box.stl")}));
+        QCOMPARE(w.scene(), before);
+
+        // Two meshes dropped together: one undo step.
+        QVERIFY(dropUrls(&w, {QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/box.stl"),
+                              QUrl::fromLocalFile(TUMBLE_SCENES_DIR "/../meshes/tetrahedron.off")}));
+        QVERIFY(imported.wait(20000));
+        QCOMPARE(w.document()->bodyCount(), bodies + 2);
+        QCOMPARE(w.document()->undoStack()->count(), steps + 1);
+        QCOMPARE(w.document()->undoStack()->undoText(), QString("Import 2 Meshes"));
+        w.document()->undoStack()->undo();
+        QCOMPARE(w.scene(), before);
+    }
+
+    // The question on closing names the sample the scene came from, as the title does.
+    void closingAnEditedSampleNamesIt() {
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(":/scenes/bouncing-ball.json", &error));
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        BodyDesc b = w.document()->body(1);
+        b.restitution = 0.3;
+        w.document()->setBody(1, b, "Restitution");
+        QString asked;
+        answerNextMessageBox(QMessageBox::Cancel, &asked);
+        QVERIFY(!w.close());
+        QVERIFY2(asked.contains("bouncing-ball.json"), qPrintable(asked));
+        QVERIFY(w.windowTitle().startsWith("bouncing-ball.json"));
+    }
+
+    // The View menu's overlays switch the viewport's, and the next window remembers them.
+    void overlaysFromTheViewMenu() {
+        {
+            MainWindow w;
+            QCOMPARE(w.viewport()->timeline(), w.timeline());
+            auto* contacts =
+                w.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)));
+            QVERIFY(contacts);
+            QCOMPARE(contacts->text(), Viewport::overlayText(Viewport::Overlay::Contacts));
+            QVERIFY(!w.viewport()->overlay(Viewport::Overlay::Contacts));
+            contacts->trigger();
+            QVERIFY(w.viewport()->overlay(Viewport::Overlay::Contacts));
+            w.viewport()->setOverlay(Viewport::Overlay::Contacts,
+                                     false);  // from elsewhere: the check follows
+            QVERIFY(!contacts->isChecked());
+            contacts->trigger();
+        }
+        MainWindow again;
+        QVERIFY(again.viewport()->overlay(Viewport::Overlay::Contacts));
+        QVERIFY(!again.viewport()->overlay(Viewport::Overlay::Trails));
+        again.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)))
+            ->trigger();
+    }
+
+    // A scene with a missing mesh opens: the body is marked in the tree and the run fails
+    // with a message naming it, the scene untouched.
+    void aMissingMeshIsMarkedAndNamed() {
+        QTemporaryDir dir;
+        QVERIFY(QFile::copy(TUMBLE_SCENES_DIR "/../meshes/box.stl", dir.filePath("box.stl")));
+        QFile f(dir.filePath("s.json"));
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(R"({"format": "tumble-scene", "version": 1, "bodies": [
+            {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}},
+            {"name": "rock", "shape": {"type": "mesh", "file": "rock.obj"}, "density": 1000, "position": [0, 2, 0]},
+            {"name": "box", "shape": {"type": "mesh", "file": "box.stl"}, "density": 1000, "position": [3, 2, 0]}]})");
+        f.close();
+        MainWindow w;
+        QString error;
+        QVERIFY2(w.openScene(dir.filePath("s.json"), &error), qPrintable(error));
+        QCOMPARE(w.document()->openWarnings().size(), 1);
+        auto* tree = w.findChild<QAbstractItemView*>();
+        QVERIFY(tree);
+        const QModelIndex shape = tree->model()->index(1, 2);
+        QVERIFY2(shape.data().toString().contains("missing"), qPrintable(shape.data().toString()));
+        QVERIFY(shape.data(Qt::ToolTipRole).toString().contains("rock.obj"));
+        QVERIFY(!tree->model()->index(2, 2).data().toString().contains("missing"));
+        const SceneDesc scene = w.scene();
+        QVERIFY(QTest::qWaitFor([&] { return w.timeline()->status() == Timeline::Status::Failed; }, 60000));
+        QVERIFY2(w.timeline()->errorMessage().contains("bodies[1]"),
+                 qPrintable(w.timeline()->errorMessage()));
+        QCOMPARE(w.scene(), scene);
+    }
+
+    void saveAndReopen() {
+        QTemporaryDir dir;
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(":/scenes/bouncing-ball.json", &error));
+        QVERIFY(w.document()->saveAs(dir.filePath("copy.json"), &error));
+        MainWindow other;
+        QVERIFY2(other.openScene(dir.filePath("copy.json"), &error), qPrintable(error));
+        QCOMPARE(other.scene(), w.scene());
+        QVERIFY2(other.windowTitle().startsWith("copy.json"), qPrintable(other.windowTitle()));
+    }
+};
+
+QTEST_MAIN(TestMainWindow)
+#include "tst_main_window.moc"

@@ -1,0 +1,92 @@
+#include "document/body_presets.h"
+
+#include <tumble/mass.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble::ui {
+
+namespace {
+
+// Radius of a sphere about the body origin that holds the whole shape.
+double boundingRadius(const ShapeDesc& s) {
+    switch (s.type) {
+        case ShapeType::Sphere: return s.radius;
+        case ShapeType::Box: return s.halfExtents.norm();
+        case ShapeType::Capsule: return s.radius + s.halfHeight;
+        case ShapeType::Cylinder: return std::hypot(s.radius, s.halfHeight);
+        case ShapeType::Plane: return 0.0;
+        case ShapeType::Mesh: {
+            if (!s.meshData || s.meshData->vertices.empty()) return 1.0;
+            double r = 0.0;
+            for (const Vec3& v : s.meshData->vertices) r = std::max(r, v.norm());
+            return r;
+        }
+    }
+    return 1.0;
+}
+
+}  // namespace
+
+double halfHeightAboveOrigin(const BodyDesc& body) {
+    const ShapeDesc& s = body.shape;
+    // Unrotated primitives have a tight answer; anything else falls back to the sphere.
+    const bool upright = body.orientation.coeffs().isApprox(Quat::Identity().coeffs()) ||
+                         body.orientation.coeffs().isApprox(-Quat::Identity().coeffs());
+    if (upright) {
+        switch (s.type) {
+            case ShapeType::Sphere: return s.radius;
+            case ShapeType::Box: return s.halfExtents.y();
+            case ShapeType::Capsule: return s.radius + s.halfHeight;
+            case ShapeType::Cylinder: return s.halfHeight;
+            default: break;
+        }
+    }
+    return boundingRadius(s);
+}
+
+BodyDesc presetBody(ShapeType type, const SceneDesc& scene) {
+    BodyDesc b;
+    b.name = toString(type);
+    b.shape.type = type;
+    switch (type) {
+        case ShapeType::Sphere: b.shape.radius = 0.5; break;
+        case ShapeType::Box: b.shape.halfExtents = Vec3(0.5, 0.5, 0.5); break;
+        case ShapeType::Capsule:
+            b.shape.radius = 0.25;
+            b.shape.halfHeight = 0.5;
+            break;
+        case ShapeType::Cylinder:
+            b.shape.radius = 0.5;
+            b.shape.halfHeight = 0.5;
+            break;
+        case ShapeType::Plane:
+            b.name = "floor";
+            b.motion = Motion::Static;
+            b.shape.normal = Vec3::UnitY();
+            b.shape.distance = 0.0;
+            return b;
+        case ShapeType::Mesh: break;
+    }
+    b.mass = 1.0;
+
+    return placedAbove(b, pileTop(scene));
+}
+
+double pileTop(const SceneDesc& scene) {
+    double top = 0.0;
+    for (const BodyDesc& other : scene.bodies) {
+        if (other.shape.type == ShapeType::Plane) continue;
+        top = std::max(top, other.position.y() + halfHeightAboveOrigin(other));
+    }
+    return top;
+}
+
+BodyDesc placedAbove(BodyDesc body, double top) {
+    if (body.shape.type == ShapeType::Plane) return body;
+    body.position.y() = top + 0.5 + halfHeightAboveOrigin(body);
+    return body;
+}
+
+}  // namespace tumble::ui

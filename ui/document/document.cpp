@@ -1,0 +1,342 @@
+#include "document/document.h"
+
+#include "document/commands.h"
+
+#include <tumble/io/atomic_file.h>
+#include <tumble/io/mesh_import.h>
+#include <tumble/io/scene_file.h>
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QMap>
+#include <QSet>
+#include <QUndoStack>
+
+#include <algorithm>
+
+namespace tumble::ui {
+
+SceneDesc emptyScene() {
+    SceneDesc s;
+    BodyDesc ground;
+    ground.name = "ground";
+    ground.motion = Motion::Static;
+    ground.shape.type = ShapeType::Plane;
+    ground.shape.normal = Vec3::UnitY();
+    s.bodies.push_back(ground);
+    return s;
+}
+
+Document::Document(QObject* parent) : QObject(parent), undo_(new QUndoStack(this)) {
+    scene_ = emptyScene();
+    connect(undo_, &QUndoStack::cleanChanged, this, &Document::fileStateChanged);
+}
+
+Document::~Document() = default;
+
+void Document::newScene() {
+    undo_->clear();
+    scene_ = emptyScene();
+    path_.clear();
+    selection_.clear();
+    emit sceneReset();
+    emit selectionChanged();
+    emit fileStateChanged();
+}
+
+namespace {
+
+// In the document a mesh body's file is an absolute path, whatever folder the scene came
+// from; a saved scene holds it relative to the scene's own folder (what the format says), so
+// Save As to another folder keeps every mesh reachable.
+void makeMeshPathsAbsolute(SceneDesc& scene, const QString& dir) {
+    for (BodyDesc& b : scene.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString file = QString::fromStdString(b.shape.file);
+        if (QFileInfo(file).isRelative())
+            b.shape.file = QDir::cleanPath(QDir(dir).absoluteFilePath(file)).toStdString();
+    }
+}
+
+SceneDesc withMeshPathsRelativeTo(SceneDesc scene, const QString& dir) {
+    for (BodyDesc& b : scene.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString file = QString::fromStdString(b.shape.file);
+        if (QFileInfo(file).isAbsolute()) b.shape.file = QDir(dir).relativeFilePath(file).toStdString();
+    }
+    return scene;
+}
+
+// Writes `bytes` to `path` whole or not at all, through the engine's AtomicFile (which also
+// removes what earlier killed saves of `path` left beside it). Messages name the file.
+bool writeWhole(const QString& path, const QByteArray& bytes, QString* error) {
+    try {
+        io::AtomicFile out(QFile::encodeName(path).toStdString());
+        out.stream().write(bytes.constData(), bytes.size());
+        out.commit();
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromLocal8Bit(e.what());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool Document::open(const QString& path, QString* error) {
+    const bool sample = path.startsWith(":/");
+    const QString name = sample ? QFileInfo(path).fileName() : path;
+    SceneDesc scene;
+    QStringList warnings;
+    try {
+        if (sample) {
+            QFile file(path);
+            if (!file.open(QIODevice::ReadOnly)) {
+                if (error) *error = tr("%1: cannot be read (%2)").arg(name, file.errorString());
+                return false;
+            }
+            const QByteArray text = file.readAll();
+            scene = io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
+                                   name.toStdString());
+        } else {
+            if (!QFileInfo::exists(path)) {
+                if (error) *error = tr("%1: no such file").arg(name);
+                return false;
+            }
+            // A mesh that cannot be read does not keep the scene from opening: its bodies
+            // come without their mesh (the tree marks them, the engine refuses to run them
+            // and says which) and the reasons are kept for the window to show.
+            QFile file(path);
+            if (!file.open(QIODevice::ReadOnly)) {
+                if (error) *error = tr("%1: cannot be read (%2)").arg(name, file.errorString());
+                return false;
+            }
+            const QByteArray text = file.readAll();
+            scene = io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
+                                   name.toStdString());
+            // What saves of this file killed long ago left beside it goes (see open()).
+            io::removeStaleTemporaries(QFile::encodeName(path).toStdString());
+            std::vector<io::InputError> failures;
+            io::loadSceneMeshes(scene, QFileInfo(path).absolutePath().toStdString(), name.toStdString(),
+                                &failures);
+            for (const io::InputError& f : failures) warnings << QString::fromStdString(f.what());
+            makeMeshPathsAbsolute(scene, QFileInfo(path).absolutePath());
+        }
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return false;
+    }
+    undo_->clear();
+    scene_ = std::move(scene);
+    openWarnings_ = warnings;
+    path_ = sample ? QString() : path;
+    selection_.clear();
+    emit sceneReset();
+    emit selectionChanged();
+    emit fileStateChanged();
+    return true;
+}
+
+bool Document::saveAs(const QString& path, QString* error) {
+    const std::string text = io::sceneToJson(withMeshPathsRelativeTo(scene_, QFileInfo(path).absolutePath()));
+    if (!writeWhole(path, QByteArray::fromStdString(text), error)) return false;
+    path_ = path;
+    undo_->setClean();
+    emit fileStateChanged();
+    return true;
+}
+
+bool Document::saveWithMeshes(const QString& path, QString* error) {
+    const QFileInfo target(path);
+    const QString folderName = target.completeBaseName() + QStringLiteral("-meshes");
+    const QDir dir(target.absolutePath());
+    // Each distinct mesh file gets one copy, under its own name (made unique when two
+    // different files share a name).
+    QMap<QString, QString> copyOf;  // source -> name in the folder
+    QSet<QString> names;
+    for (const BodyDesc& b : scene_.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+        if (copyOf.contains(source)) continue;
+        if (!QFileInfo(source).isReadable()) {
+            if (error)
+                *error = tr("%1: body \"%2\": the mesh file cannot be read")
+                             .arg(source, QString::fromStdString(b.name));
+            return false;
+        }
+        QString name = QFileInfo(source).fileName();
+        for (int n = 2; names.contains(name); ++n)
+            name = QStringLiteral("%1-%2.%3")
+                       .arg(QFileInfo(source).completeBaseName())
+                       .arg(n)
+                       .arg(QFileInfo(source).suffix());
+        names.insert(name);
+        copyOf.insert(source, name);
+    }
+    const QString folder = dir.filePath(folderName);
+    if (!copyOf.isEmpty() && !QDir().mkpath(folder)) {
+        if (error) *error = tr("%1: the folder cannot be made").arg(folder);
+        return false;
+    }
+    QStringList written;
+    auto undoCopies = [&] {
+        for (const QString& f : written) QFile::remove(f);
+    };
+    for (auto it = copyOf.cbegin(); it != copyOf.cend(); ++it) {
+        const QString to = QDir(folder).filePath(it.value());
+        if (QFileInfo(to).absoluteFilePath() == it.key()) continue;  // saved there already
+        QFile in(it.key());
+        if (!in.open(QIODevice::ReadOnly)) {
+            if (error) *error = tr("%1: cannot be read (%2)").arg(it.key(), in.errorString());
+            undoCopies();
+            return false;
+        }
+        if (!writeWhole(to, in.readAll(), error)) {
+            undoCopies();
+            return false;
+        }
+        written << to;
+    }
+    SceneDesc moved = scene_;
+    for (BodyDesc& b : moved.bodies) {
+        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
+        const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+        b.shape.file = QDir(folder).filePath(copyOf.value(source)).toStdString();
+    }
+    const std::string text = io::sceneToJson(withMeshPathsRelativeTo(moved, dir.absolutePath()));
+    if (!writeWhole(path, QByteArray::fromStdString(text), error)) {
+        undoCopies();
+        return false;
+    }
+    // The document now refers to the copies (the same meshes); not an edit to undo.
+    for (std::size_t i = 0; i < scene_.bodies.size(); ++i)
+        scene_.bodies[i].shape.file = moved.bodies[i].shape.file;
+    path_ = path;
+    undo_->setClean();
+    emit fileStateChanged();
+    return true;
+}
+
+QString Document::displayName() const {
+    return path_.isEmpty() ? tr("untitled") : QFileInfo(path_).fileName();
+}
+
+bool Document::isModified() const {
+    return !undo_->isClean();
+}
+
+void Document::replaceScene(const SceneDesc& scene, const QString& text, bool undoable) {
+    if (undoable) {
+        undo_->push(new ReplaceSceneCommand(this, scene_, scene, text));
+    } else {
+        undo_->clear();
+        applyScene(scene);
+    }
+}
+
+void Document::setBody(int index, const BodyDesc& body, const QString& text, int mergeId) {
+    if (index < 0 || index >= bodyCount() || body == scene_.bodies[static_cast<size_t>(index)]) return;
+    undo_->push(
+        new SetBodyCommand(this, index, scene_.bodies[static_cast<size_t>(index)], body, text, mergeId));
+}
+
+void Document::setSettings(const Settings& settings, const QString& text, int mergeId) {
+    if (settings == scene_.settings) return;
+    undo_->push(new SetSettingsCommand(this, scene_.settings, settings, text, mergeId));
+}
+
+QString Document::uniqueName(const QString& base) const {
+    QSet<QString> names;
+    for (const BodyDesc& b : scene_.bodies) names.insert(QString::fromStdString(b.name));
+    if (!names.contains(base)) return base;
+    for (int k = 2;; ++k) {
+        const QString candidate = QStringLiteral("%1-%2").arg(base).arg(k);
+        if (!names.contains(candidate)) return candidate;
+    }
+}
+
+int Document::addBody(const BodyDesc& body, int index) {
+    if (index < 0 || index > bodyCount()) index = bodyCount();
+    BodyDesc b = body;
+    b.name = uniqueName(QString::fromStdString(body.name.empty() ? "body" : body.name)).toStdString();
+    undo_->push(
+        new InsertBodyCommand(this, index, b, false, tr("Add %1").arg(QString::fromStdString(b.name))));
+    return index;
+}
+
+void Document::removeBodies(QList<int> indices) {
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
+    if (indices.isEmpty()) return;
+    undo_->beginMacro(indices.size() == 1 ? tr("Delete %1").arg(QString::fromStdString(body(indices[0]).name))
+                                          : tr("Delete %n bodies", nullptr, int(indices.size())));
+    // From the last, so the earlier indices stay valid.
+    for (auto it = indices.rbegin(); it != indices.rend(); ++it)
+        undo_->push(new InsertBodyCommand(this, *it, body(*it), true, QString()));
+    undo_->endMacro();
+}
+
+void Document::duplicateBodies(QList<int> indices) {
+    std::sort(indices.begin(), indices.end());
+    indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
+    if (indices.isEmpty()) return;
+    QList<int> copies;
+    undo_->beginMacro(tr("Duplicate"));
+    for (int i : indices) copies.append(addBody(body(i)));
+    undo_->endMacro();
+    setSelection(copies);
+}
+
+void Document::beginMacro(const QString& text) {
+    undo_->beginMacro(text);
+}
+void Document::endMacro() {
+    undo_->endMacro();
+}
+
+void Document::setSelection(QList<int> indices) {
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
+    if (indices == selection_) return;
+    selection_ = indices;
+    emit selectionChanged();
+}
+
+void Document::applyBody(int index, const BodyDesc& body) {
+    scene_.bodies[static_cast<size_t>(index)] = body;
+    emit bodyChanged(index);
+}
+
+void Document::applySettings(const Settings& settings) {
+    scene_.settings = settings;
+    emit settingsChanged();
+}
+
+void Document::applyInsert(int index, const BodyDesc& body) {
+    scene_.bodies.insert(scene_.bodies.begin() + index, body);
+    for (int& s : selection_)
+        if (s >= index) ++s;
+    emit bodyInserted(index);
+}
+
+void Document::applyRemove(int index) {
+    scene_.bodies.erase(scene_.bodies.begin() + index);
+    const qsizetype before = selection_.size();
+    selection_.removeAll(index);
+    for (int& s : selection_)
+        if (s > index) --s;
+    emit bodyRemoved(index);
+    if (selection_.size() != before) emit selectionChanged();
+}
+
+void Document::applyScene(const SceneDesc& scene) {
+    scene_ = scene;
+    selection_.clear();
+    emit sceneReset();
+    emit selectionChanged();
+}
+
+}  // namespace tumble::ui

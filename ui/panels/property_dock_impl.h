@@ -1,0 +1,448 @@
+// The inside of PropertyDock, shared by property_dock.cpp (the dock, the body, shape,
+// material and state rows) and property_dock_mass.cpp (the mass and forces rows).
+#pragma once
+
+#include "panels/property_dock.h"
+
+#include "document/document.h"
+#include "panels/forces_edit.h"
+#include "panels/inertia_edit.h"
+#include "panels/property_euler.h"
+#include "panels/property_spin_box.h"
+#include "panels/vector_edit.h"
+
+#include <tumble/errors.h>
+#include <tumble/mass.h>
+#include <tumble/model.h>
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QHash>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMap>
+#include <QScrollArea>
+#include <QSignalBlocker>
+#include <QUndoStack>
+#include <QVBoxLayout>
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <optional>
+#include <tuple>
+
+namespace tumble::ui {
+
+namespace property_detail {
+
+using Change = std::function<void(BodyDesc&, int index)>;
+
+// A value every selected body agrees on, or none ("—"); `applies` is false when the field
+// means nothing for at least one of them (the row is hidden).
+template <class T>
+struct Shared {
+    bool applies = false;
+    std::optional<T> value;
+};
+
+template <class T, class Get>
+Shared<T> sharedOf(const std::vector<const BodyDesc*>& bodies, Get get) {
+    Shared<T> s;
+    if (bodies.empty()) return s;
+    s.applies = true;
+    bool same = true;
+    std::optional<T> first;
+    for (const BodyDesc* b : bodies) {
+        const std::optional<T> v = get(*b);
+        if (!v) return Shared<T>{};
+        if (!first)
+            first = v;
+        else if (!(*first == *v))
+            same = false;
+    }
+    if (same) s.value = first;
+    return s;
+}
+
+inline std::array<std::optional<double>, 3> componentsOf(
+    const std::vector<const BodyDesc*>& bodies,
+    const std::function<std::optional<Vec3>(const BodyDesc&)>& get) {
+    std::array<std::optional<double>, 3> out;
+    for (int k = 0; k < 3; ++k) {
+        out[static_cast<size_t>(k)] =
+            sharedOf<double>(bodies, [&](const BodyDesc& b) -> std::optional<double> {
+                const auto v = get(b);
+                return v ? std::optional<double>((*v)[k]) : std::nullopt;
+            }).value;
+    }
+    return out;
+}
+
+inline QLabel* errorLabel(QWidget* parent, const QString& key) {
+    auto* label = new QLabel(parent);
+    label->setObjectName(key + ".error");
+    label->setStyleSheet("color: #c62828;");
+    label->setWordWrap(true);
+    label->hide();
+    return label;
+}
+
+// What the mass properties of a body would be without its overrides.
+struct Computed {
+    double mass = 0.0;
+    Vec3 centerOfMass = Vec3::Zero();
+    Mat3 inertia = Mat3::Zero();
+};
+
+inline bool isPrimitive(ShapeType t) {
+    return t != ShapeType::Plane && t != ShapeType::Mesh;
+}
+
+}  // namespace property_detail
+
+using namespace property_detail;
+
+struct PropertyDock::Impl {
+    PropertyDock* q = nullptr;
+    Document* doc = nullptr;
+    QWidget* page = nullptr;
+    QLabel* empty = nullptr;
+    std::vector<std::function<void(const std::vector<const BodyDesc*>&)>> refreshers;
+    QMap<QString, QLabel*> errors;
+    int generation = 1;  // a new merge id per field after each editingFinished
+
+    // A multi-selection edit is a macro; consecutive edits of the same field on the same
+    // selection replace the previous macro (undo it, push again) so a scrub is one step.
+    struct LastMacro {
+        int mergeId = 0;
+        QList<int> selection;
+        int index = -1;
+        const QUndoCommand* command = nullptr;
+    } lastMacro;
+
+    // Motion switches clear what the new motion may not have; switching back restores it.
+    struct Stash {
+        bool hasMass = false;
+        std::optional<double> mass, density;
+        std::optional<Mat3> inertia;
+        std::optional<Vec3> centerOfMass;
+        std::vector<ForceDesc> forces;
+        bool hasVelocity = false;
+        Vec3 velocity = Vec3::Zero(), angularVelocity = Vec3::Zero();
+    };
+    QHash<int, Stash> stash;
+
+    // Unit-density mass properties of meshes (compiling a mesh builds its hull: cache it).
+    std::map<std::tuple<const void*, double, double, double, int>, std::optional<Computed>> meshCache;
+
+    // Euler angles last shown for a single selection, kept while they still describe the
+    // body's quaternion (so 0/120/0 does not jump to its equivalent 180/60/180).
+    Vec3 shownEuler = Vec3::Zero();
+
+    QComboBox* massKind = nullptr;
+    PropertySpinBox* mass = nullptr;
+    QLabel* massNote = nullptr;
+    QLabel* noMass = nullptr;
+    QGroupBox* massGroup = nullptr;
+    QCheckBox* comOverride = nullptr;
+    VectorEdit* com = nullptr;
+    InertiaEdit* inertia = nullptr;
+    ForcesEdit* forces = nullptr;
+    QLabel* forcesNote = nullptr;
+    QLineEdit* name = nullptr;
+
+    std::vector<const BodyDesc*> selected() const {
+        std::vector<const BodyDesc*> out;
+        for (int i : doc->selection())
+            if (i >= 0 && i < doc->bodyCount()) out.push_back(&doc->body(i));
+        return out;
+    }
+
+    std::optional<Computed> computed(const BodyDesc& b) {
+        if (b.motion != Motion::Dynamic || (!b.mass && !b.density)) return std::nullopt;
+        if (isPrimitive(b.shape.type)) {
+            const double m = b.mass ? *b.mass : *b.density * shapeVolume(b.shape);
+            if (!std::isfinite(m) || !(m > 0.0)) return std::nullopt;
+            const MassProperties mp = primitiveMassProperties(b.shape, m);
+            if (!mp.inertia.allFinite()) return std::nullopt;
+            return Computed{mp.mass, mp.centerOfMass, mp.inertia};
+        }
+        if (b.shape.type != ShapeType::Mesh || !b.shape.meshData) return std::nullopt;
+        const auto key = std::make_tuple(static_cast<const void*>(b.shape.meshData.get()), b.shape.scale.x(),
+                                         b.shape.scale.y(), b.shape.scale.z(), int(b.shape.collision));
+        auto it = meshCache.find(key);
+        if (it == meshCache.end()) {
+            std::optional<Computed> unit;
+            try {
+                SceneDesc s;
+                BodyDesc c;
+                c.name = "mesh";
+                c.shape = b.shape;
+                c.density = 1.0;
+                s.bodies.push_back(c);
+                const Model m = compile(s);
+                unit = Computed{m.bodies[0].mass, m.bodies[0].centerOfMass, m.bodies[0].inertia};
+            } catch (const std::exception&) {
+            }
+            it = meshCache.emplace(key, unit).first;
+        }
+        if (!it->second) return std::nullopt;
+        Computed c = *it->second;  // density 1: mass is the volume
+        const double density = b.mass ? *b.mass / c.mass : *b.density;
+        c.mass *= density;
+        c.inertia *= density;
+        return c;
+    }
+
+    Vec3 eulerOf(const BodyDesc& b) const {
+        if (doc->selection().size() == 1 &&
+            sameRotation(eulerDegreesToQuat(shownEuler), b.orientation, 1e-12))
+            return shownEuler;
+        return quatToEulerDegrees(b.orientation);
+    }
+
+    void setMotion(BodyDesc& b, int index, Motion m) {
+        if (b.motion == m) return;
+        Stash& s = stash[index];
+        if (b.motion == Motion::Dynamic) {
+            s.hasMass = true;
+            s.mass = b.mass;
+            s.density = b.density;
+            s.inertia = b.inertia;
+            s.centerOfMass = b.centerOfMass;
+            s.forces = b.forces;
+            b.mass.reset();
+            b.density.reset();
+            b.inertia.reset();
+            b.centerOfMass.reset();
+            b.forces.clear();
+        }
+        if (m == Motion::Static) {
+            s.hasVelocity = true;
+            s.velocity = b.velocity;
+            s.angularVelocity = b.angularVelocity;
+            b.velocity = b.angularVelocity = Vec3::Zero();
+        } else if (b.motion == Motion::Static && s.hasVelocity) {
+            b.velocity = s.velocity;
+            b.angularVelocity = s.angularVelocity;
+        }
+        if (m == Motion::Dynamic) {
+            if (s.hasMass) {
+                b.mass = s.mass;
+                b.density = s.density;
+                b.inertia = s.inertia;
+                b.centerOfMass = s.centerOfMass;
+                b.forces = s.forces;
+            }
+            if (!b.mass && !b.density) b.mass = 1.0;
+        }
+        b.motion = m;
+    }
+
+    void showError(const QString& key, const QString& message) {
+        QLabel* label = errors.value(key);
+        if (!label) return;
+        label->setText(message);
+        label->setVisible(!message.isEmpty());
+    }
+
+    void clearErrors() {
+        for (QLabel* l : errors) {
+            l->clear();
+            l->hide();
+        }
+    }
+
+    int mergeIdFor(const QString& key) const {
+        return static_cast<int>((qHash(key) ^ (static_cast<size_t>(generation) * 0x9e3779b9u)) & 0x3fffffff) |
+               1;
+    }
+
+    // Applies `change` to every selected body, if the result is a valid scene. `key` names the
+    // field (its error label); `merge` makes consecutive edits of it one undo step.
+    bool apply(const QString& key, const QString& text, const Change& change, bool merge = true,
+               const QString& mergeKey = QString()) {
+        const QList<int> sel = doc->selection();
+        if (sel.isEmpty()) return false;
+        QUndoStack* stack = doc->undoStack();
+        const int mergeId = merge ? mergeIdFor(mergeKey.isEmpty() ? key : mergeKey) : 0;
+        bool undone = false;
+        if (sel.size() > 1 && mergeId && lastMacro.mergeId == mergeId && lastMacro.selection == sel &&
+            stack->index() == lastMacro.index && stack->index() > 0 && !stack->canRedo() &&
+            stack->command(stack->index() - 1) == lastMacro.command) {
+            stack->undo();  // the previous step of this scrub: replaced below
+            undone = true;
+        }
+        std::vector<BodyDesc> bodies;
+        SceneDesc check;  // the changed bodies alone: other bodies' problems are not this field's
+        for (int i : sel) {
+            BodyDesc b = doc->body(i);
+            change(b, i);
+            bodies.push_back(b);
+            check.bodies.push_back(b);
+        }
+        QString error;
+        try {
+            validate(check);
+        } catch (const SceneError& e) {
+            QString path = QString::fromStdString(e.path());
+            const int dot = path.indexOf('.');
+            path = dot >= 0 && path.startsWith("bodies[") ? path.mid(dot + 1) : QString();
+            error = QString::fromStdString(e.message());
+            if (!path.isEmpty() && !path.startsWith(key)) error = path + ": " + error;
+            if (sel.size() > 1) {
+                // Name the body the message is about.
+                const QString full = QString::fromStdString(e.path());
+                const int open = full.indexOf('['), close = full.indexOf(']');
+                const int k = open >= 0 && close > open ? full.mid(open + 1, close - open - 1).toInt() : 0;
+                if (k >= 0 && k < static_cast<int>(bodies.size()))
+                    error = QString::fromStdString(bodies[static_cast<size_t>(k)].name) + ": " + error;
+            }
+        }
+        if (error.isEmpty() && key == "name") {
+            for (size_t n = 0; n < bodies.size(); ++n) {
+                for (int j = 0; j < doc->bodyCount(); ++j) {
+                    if (!sel.contains(j) && doc->body(j).name == bodies[n].name) {
+                        error = QObject::tr("'%1' is already the name of another body")
+                                    .arg(QString::fromStdString(bodies[n].name));
+                    }
+                }
+            }
+        }
+        if (!error.isEmpty()) {
+            if (undone) stack->redo();
+            showError(key, error);
+            refresh();  // back to the last good values
+            return false;
+        }
+        showError(key, QString());
+        if (sel.size() == 1) {
+            doc->setBody(sel[0], bodies[0], text, mergeId);
+        } else {
+            QList<int> changed;
+            for (int n = 0; n < sel.size(); ++n)
+                if (!(bodies[static_cast<size_t>(n)] == doc->body(sel[n]))) changed.append(n);
+            if (!changed.isEmpty()) {
+                doc->beginMacro(text);
+                for (int n : changed) doc->setBody(sel[n], bodies[static_cast<size_t>(n)], text);
+                doc->endMacro();
+                lastMacro = {mergeId, sel, stack->index(), stack->command(stack->index() - 1)};
+            } else {
+                lastMacro = {};
+            }
+        }
+        refresh();
+        return true;
+    }
+
+    void refresh() {
+        const auto bodies = selected();
+        empty->setVisible(bodies.empty());
+        page->setVisible(!bodies.empty());
+        if (bodies.size() == 1 && doc->selection().size() == 1) shownEuler = eulerOf(*bodies[0]);
+        for (const auto& r : refreshers) r(bodies);
+    }
+
+    // ---- Building the rows.
+
+    // The editor and its error label, one under the other, as the field of a form row.
+    QWidget* withError(QWidget* editor, const QString& key) {
+        auto* box = new QWidget;
+        auto* layout = new QVBoxLayout(box);
+        layout->setContentsMargins(0, 0, 0, 0);
+        layout->setSpacing(1);
+        layout->addWidget(editor);
+        QLabel* error = errorLabel(box, key);
+        layout->addWidget(error);
+        errors.insert(key, error);
+        return box;
+    }
+
+    PropertySpinBox* addDouble(QFormLayout* form, const QString& label, const QString& key,
+                               const QString& suffix, double min, double step, const QString& text,
+                               std::function<std::optional<double>(const BodyDesc&)> get,
+                               std::function<void(BodyDesc&, double)> set) {
+        auto* spin = new PropertySpinBox;
+        spin->setObjectName(key);
+        spin->setSuffix(suffix);
+        spin->setMinimum(min);
+        spin->setSingleStep(step);
+        QWidget* row = withError(spin, key);
+        form->addRow(label, row);
+        QObject::connect(spin, &PropertySpinBox::valueChanged, q, [this, key, text, set](double v) {
+            apply(key, text, [&](BodyDesc& b, int) { set(b, v); });
+        });
+        refreshers.push_back([form, row, spin, get](const std::vector<const BodyDesc*>& bodies) {
+            const Shared<double> s = sharedOf<double>(bodies, get);
+            form->setRowVisible(row, s.applies);
+            if (!s.applies) return;
+            if (s.value)
+                spin->showValue(*s.value);
+            else
+                spin->showMixed(get(*bodies.front()).value_or(0.0));
+        });
+        return spin;
+    }
+
+    VectorEdit* addVector(QFormLayout* form, const QString& label, const QString& key, const QString& suffix,
+                          const QString& text, std::function<std::optional<Vec3>(const BodyDesc&)> get,
+                          std::function<void(BodyDesc&, int, double)> set) {
+        auto* edit = new VectorEdit(key, suffix);
+        QWidget* row = withError(edit, key);
+        form->addRow(label, row);
+        QObject::connect(edit, &VectorEdit::componentEdited, q, [this, key, text, set](int k, double v) {
+            apply(
+                key, text, [&](BodyDesc& b, int) { set(b, k, v); }, true, key + "." + QString::number(k));
+        });
+        refreshers.push_back([form, row, edit, get](const std::vector<const BodyDesc*>& bodies) {
+            const Shared<Vec3> s = sharedOf<Vec3>(bodies, get);
+            form->setRowVisible(row, s.applies);
+            if (s.applies)
+                edit->showValue(componentsOf(bodies, get), get(*bodies.front()).value_or(Vec3::Zero()));
+        });
+        return edit;
+    }
+
+    template <class E>
+    QComboBox* addChoice(QFormLayout* form, const QString& label, const QString& key, const QString& text,
+                         const QList<std::pair<QString, E>>& items,
+                         std::function<std::optional<E>(const BodyDesc&)> get,
+                         std::function<void(BodyDesc&, int, E)> set) {
+        auto* combo = new QComboBox;
+        combo->setObjectName(key);
+        for (const auto& [name, value] : items) combo->addItem(name, int(value));
+        QWidget* row = withError(combo, key);
+        form->addRow(label, row);
+        QObject::connect(combo, &QComboBox::activated, q, [this, combo, key, text, set](int i) {
+            const E value = E(combo->itemData(i).toInt());
+            apply(
+                key, text, [&](BodyDesc& b, int index) { set(b, index, value); }, false);
+        });
+        refreshers.push_back([form, row, combo, get](const std::vector<const BodyDesc*>& bodies) {
+            const auto s = sharedOf<E>(bodies, get);
+            form->setRowVisible(row, s.applies);
+            const QSignalBlocker block(combo);
+            combo->setCurrentIndex(s.value ? combo->findData(int(*s.value)) : -1);
+        });
+        return combo;
+    }
+
+    static QFormLayout* group(QVBoxLayout* layout, const QString& title, QGroupBox** box = nullptr) {
+        auto* g = new QGroupBox(title);
+        auto* form = new QFormLayout(g);
+        form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+        layout->addWidget(g);
+        if (box) *box = g;
+        return form;
+    }
+
+    void build();
+    void buildMass(QVBoxLayout* layout);
+    void buildForces(QVBoxLayout* layout);
+};
+
+}  // namespace tumble::ui

@@ -1,0 +1,87 @@
+#include "panels/property_spin_box.h"
+
+#include <QLineEdit>
+#include <QLocale>
+#include <QSignalBlocker>
+
+#include <cmath>
+#include <limits>
+
+namespace tumble::ui {
+
+PropertySpinBox::PropertySpinBox(QWidget* parent) : QDoubleSpinBox(parent) {
+    // Decimals only limit the rounding QDoubleSpinBox applies to every value; the text is
+    // ours (textFromValue), so keep them high enough to never change a stored number visibly.
+    setDecimals(12);
+    setRange(-1e12, 1e12);
+    setKeyboardTracking(false);  // typing commits on Enter or focus out; arrows/wheel scrub
+    setAccelerated(true);
+    setCorrectionMode(QAbstractSpinBox::CorrectToPreviousValue);
+    connect(this, &QDoubleSpinBox::valueChanged, this, [this] { mixed_ = false; });
+    // Typing the number the box holds under "—" changes no value, but it is still an edit:
+    // the user wants every selected body to take it.
+    connect(this, &QAbstractSpinBox::editingFinished, this, [this] {
+        if (!mixed_ || stripped(text()) == mixedText()) return;
+        bool ok = false;
+        locale().toDouble(stripped(text()), &ok);
+        if (!ok) return;
+        mixed_ = false;
+        emit valueChanged(value());
+    });
+}
+
+void PropertySpinBox::showValue(double value) {
+    const QSignalBlocker block(this);
+    mixed_ = false;
+    setValue(value);
+    lineEdit()->setText(textFromValue(this->value()) + suffix());
+    lineEdit()->setCursorPosition(0);  // a long number shows its first digits, not its unit
+}
+
+void PropertySpinBox::showMixed(double base) {
+    const QSignalBlocker block(this);
+    setValue(base);
+    mixed_ = true;
+    lineEdit()->setText(prefix() + mixedText() + suffix());
+}
+
+QString PropertySpinBox::mixedText() {
+    return QStringLiteral("—");
+}
+
+QString PropertySpinBox::textFromValue(double value) const {
+    if (value == 0.0) value = 0.0;  // no "-0"
+    QString text = locale().toString(value, 'g', 10);
+    text.remove(locale().groupSeparator());
+    return text;
+}
+
+QString PropertySpinBox::stripped(const QString& text) const {
+    QString t = text;
+    if (!prefix().isEmpty() && t.startsWith(prefix())) t.remove(0, prefix().size());
+    if (!suffix().isEmpty() && t.endsWith(suffix())) t.chop(suffix().size());
+    return t.trimmed();
+}
+
+double PropertySpinBox::valueFromText(const QString& text) const {
+    bool ok = false;
+    const double v = locale().toDouble(stripped(text), &ok);
+    return ok ? v : value();
+}
+
+QValidator::State PropertySpinBox::validate(QString& text, int&) const {
+    const QString t = stripped(text);
+    if (t == mixedText()) return QValidator::Intermediate;
+    bool ok = false;
+    const double v = locale().toDouble(t, &ok);
+    if (ok && std::isfinite(v))
+        return v >= minimum() && v <= maximum() ? QValidator::Acceptable : QValidator::Intermediate;
+    // Partial input on the way to a number: "", "-", "1e", "1.".
+    return QValidator::Intermediate;
+}
+
+void PropertySpinBox::fixup(QString& input) const {
+    if (mixed_) input = prefix() + mixedText() + suffix();
+}
+
+}  // namespace tumble::ui

@@ -1,0 +1,254 @@
+#include "viewport/viewport_overlays.h"
+
+#include "viewport/viewport_overlay.h"
+
+#include "detect.h"
+#include "forces.h"
+
+#include <Qt3DCore/QEntity>
+#include <Qt3DExtras/QPerVertexColorMaterial>
+#include <Qt3DRender/QGeometryRenderer>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tumble::ui {
+
+namespace overlays {
+
+namespace {
+
+// The engine's touch tolerance (world.cpp): this fraction of the largest bounded body's size.
+constexpr double kTouchTolerance = 1e-5;
+
+struct Rgb {
+    float r, g, b;
+};
+
+constexpr Rgb kContactPoint{1.0f, 0.25f, 0.2f};
+constexpr Rgb kContactNormal{1.0f, 0.55f, 0.45f};
+constexpr Rgb kVelocity{0.3f, 0.9f, 0.35f};
+constexpr Rgb kAngular{0.75f, 0.45f, 1.0f};
+constexpr Rgb kForce{1.0f, 0.4f, 0.75f};
+constexpr Rgb kCentre{1.0f, 1.0f, 1.0f};
+
+void vertex(std::vector<float>& out, const Vec3& p, Rgb c) {
+    out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z()), c.r, c.g, c.b});
+}
+
+void segment(std::vector<float>& out, const Vec3& a, const Vec3& b, Rgb c) {
+    vertex(out, a, c);
+    vertex(out, b, c);
+}
+
+// Any unit vector perpendicular to the unit vector n.
+Vec3 perpendicular(const Vec3& n) {
+    const Vec3 other = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    return n.cross(other).normalized();
+}
+
+// A shaft from `from` along `vec` and a head of four lines (a fifth of the length).
+void arrow(std::vector<float>& out, const Vec3& from, const Vec3& vec, Rgb c) {
+    const double length = vec.norm();
+    if (!(length > 0) || !std::isfinite(length)) return;
+    const Vec3 tip = from + vec;
+    segment(out, from, tip, c);
+    const Vec3 n = vec / length;
+    const Vec3 u = perpendicular(n), w = n.cross(u);
+    const double head = 0.2 * length;
+    for (const Vec3& side : {u, Vec3(-u), w, Vec3(-w)})
+        segment(out, tip, tip - head * n + 0.4 * head * side, c);
+}
+
+void cross(std::vector<float>& out, const Vec3& at, double half, Rgb c) {
+    for (int axis = 0; axis < 3; ++axis) {
+        segment(out, at - half * Vec3::Unit(axis), at + half * Vec3::Unit(axis), c);
+    }
+}
+
+double radiusOf(const BodyModel& b) {
+    return collision::boundingRadius(b.collider);
+}
+
+}  // namespace
+
+Lines contacts(const Model& model, const State& state) {
+    Lines lines;
+    if (!needsContacts(model) || state.bodies.size() != model.bodies.size()) return lines;
+    double largest = 0.0;
+    for (const BodyModel& b : model.bodies) {
+        const double r = radiusOf(b);
+        if (std::isfinite(r)) largest = std::max(largest, r);
+    }
+    const double tolerance = kTouchTolerance * largest;
+    // Every body awake: a sleeping body does not pair with a static one in the broadphase,
+    // but it rests on it all the same.
+    State awake;
+    awake.time = state.time;
+    awake.bodies = state.bodies;
+    DetectScratch s;
+    bodyPoses(model, awake, s.end);
+    s.start = s.end;
+    findPairs(model, awake, tolerance, s);
+    findContacts(model, s, tolerance);
+    for (const collision::Manifold& m : s.contacts) {
+        double size =
+            std::min(radiusOf(model.bodies[size_t(m.bodyA)]), radiusOf(model.bodies[size_t(m.bodyB)]));
+        if (!std::isfinite(size) || size <= 0) size = 0.1;
+        // The manifold's normal points out of B towards A; drawn into the body it pushes
+        // away from one that stands still, else out of the lower-numbered body.
+        const bool stillA = model.bodies[size_t(m.bodyA)].standsStill();
+        const bool stillB = model.bodies[size_t(m.bodyB)].standsStill();
+        const bool intoA = stillA != stillB ? stillB : m.bodyA > m.bodyB;
+        const Vec3 normal = intoA ? m.normal : Vec3(-m.normal);
+        for (int k = 0; k < m.count; ++k) {
+            const Vec3& p = m.points[size_t(k)].position;
+            cross(lines.xyzrgb, p, size / 6.0, kContactPoint);
+            segment(lines.xyzrgb, p, p + 0.6 * size * normal, kContactNormal);
+            ++lines.items;
+        }
+    }
+    return lines;
+}
+
+Lines velocities(const Model& model, const State& state) {
+    Lines lines;
+    for (int i : model.dynamicBodies) {
+        if (size_t(i) >= state.bodies.size()) continue;
+        const Vec3 v = derive(model.bodies[size_t(i)], state.bodies[size_t(i)]).v;
+        if (!(v.norm() > kSmallest)) continue;
+        arrow(lines.xyzrgb, state.bodies[size_t(i)].x, kVelocitySeconds * v, kVelocity);
+        ++lines.items;
+    }
+    return lines;
+}
+
+Lines angularVelocities(const Model& model, const State& state) {
+    Lines lines;
+    for (int i : model.dynamicBodies) {
+        if (size_t(i) >= state.bodies.size()) continue;
+        const Vec3 omega = derive(model.bodies[size_t(i)], state.bodies[size_t(i)]).omega;
+        if (!(omega.norm() > kSmallest)) continue;
+        arrow(lines.xyzrgb, state.bodies[size_t(i)].x, kAngularMetres * omega, kAngular);
+        ++lines.items;
+    }
+    return lines;
+}
+
+Lines forces(const Model& model, const State& state) {
+    Lines lines;
+    if (state.bodies.size() != model.bodies.size()) return lines;
+    std::vector<Wrench> wrenches;
+    accumulateForces(model, state.bodies, state.time, wrenches);
+    for (int i : model.dynamicBodies) {
+        const BodyModel& b = model.bodies[size_t(i)];
+        // accumulateForces starts each body's force at m g: taking it off leaves the rest.
+        const Vec3 F = wrenches[size_t(i)].force - b.mass * model.settings.gravity;
+        if (!(F.norm() > kSmallest) || !(b.mass > 0)) continue;
+        arrow(lines.xyzrgb, state.bodies[size_t(i)].x, (kForceSeconds2 / b.mass) * F, kForce);
+        ++lines.items;
+    }
+    return lines;
+}
+
+Lines centresOfMass(const Model& model, const State& state) {
+    Lines lines;
+    for (int i : model.dynamicBodies) {
+        if (size_t(i) >= state.bodies.size()) continue;
+        double r = radiusOf(model.bodies[size_t(i)]);
+        if (!std::isfinite(r) || r <= 0) r = 0.1;
+        cross(lines.xyzrgb, state.bodies[size_t(i)].x, 0.3 * r, kCentre);
+        ++lines.items;
+    }
+    return lines;
+}
+
+Lines trails(const std::vector<std::vector<Vec3>>& tracks) {
+    Lines lines;
+    for (size_t t = 0; t < tracks.size(); ++t) {
+        const std::vector<Vec3>& track = tracks[t];
+        if (track.size() < 2) continue;
+        // A hue per body (137° apart: the first dynamic body after a ground is cyan), so that
+        // crossing trails stay apart.
+        const float hue = float((43 + t * 137) % 360) / 360.0f;
+        const float h6 = hue * 6.0f;
+        const float x = 1.0f - std::abs(std::fmod(h6, 2.0f) - 1.0f);
+        std::array<float, 3> rgb{};
+        switch (int(h6) % 6) {
+            case 0: rgb = {1, x, 0}; break;
+            case 1: rgb = {x, 1, 0}; break;
+            case 2: rgb = {0, 1, x}; break;
+            case 3: rgb = {0, x, 1}; break;
+            case 4: rgb = {x, 0, 1}; break;
+            default: rgb = {1, 0, x}; break;
+        }
+        // Pastel: halfway to white.
+        const Rgb c{0.5f + 0.5f * rgb[0], 0.5f + 0.5f * rgb[1], 0.5f + 0.5f * rgb[2]};
+        for (size_t k = 1; k < track.size(); ++k) segment(lines.xyzrgb, track[k - 1], track[k], c);
+        ++lines.items;
+    }
+    return lines;
+}
+
+int trailCap(int trails) {
+    return std::clamp(kMaxTrailPointsTotal / std::max(1, trails), kMinTrailPoints, kMaxTrailPoints);
+}
+
+std::vector<Vec3> thinned(const std::vector<Vec3>& points, int cap) {
+    const size_t n = points.size();
+    if (cap < 2 || n <= size_t(cap)) return points;
+    std::vector<Vec3> out;
+    out.reserve(size_t(cap));
+    // cap points at evenly spaced indices from the first to the last.
+    for (int k = 0; k < cap; ++k) out.push_back(points[size_t(k) * (n - 1) / size_t(cap - 1)]);
+    return out;
+}
+
+}  // namespace overlays
+
+struct ViewportOverlays::Impl {
+    Qt3DCore::QEntity* entity = nullptr;
+    Qt3DExtras::QPerVertexColorMaterial* material = nullptr;
+    std::array<Qt3DCore::QEntity*, KindCount> parts{};
+    std::array<Qt3DRender::QGeometryRenderer*, KindCount> renderers{};
+    std::array<int, KindCount> counts{};
+};
+
+ViewportOverlays::ViewportOverlays(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl>()) {
+    d_->entity = new Qt3DCore::QEntity(root);
+    d_->material = new Qt3DExtras::QPerVertexColorMaterial(d_->entity);
+}
+
+ViewportOverlays::~ViewportOverlays() = default;  // the entities belong to the root
+
+Qt3DCore::QEntity* ViewportOverlays::entity() const {
+    return d_->entity;
+}
+
+void ViewportOverlays::set(Kind kind, const overlays::Lines& lines) {
+    if (lines.xyzrgb.empty()) return clear(kind);
+    Qt3DCore::QEntity*& part = d_->parts[size_t(kind)];
+    Qt3DRender::QGeometryRenderer*& renderer = d_->renderers[size_t(kind)];
+    if (!part) {
+        part = new Qt3DCore::QEntity(d_->entity);
+        renderer = makeColouredRenderer(lines.xyzrgb, Qt3DRender::QGeometryRenderer::Lines, part);
+        part->addComponent(renderer);
+        part->addComponent(d_->material);
+    } else {
+        setColouredData(renderer, lines.xyzrgb);
+        part->setEnabled(true);
+    }
+    d_->counts[size_t(kind)] = lines.items;
+}
+
+void ViewportOverlays::clear(Kind kind) {
+    if (Qt3DCore::QEntity* part = d_->parts[size_t(kind)]) part->setEnabled(false);
+    d_->counts[size_t(kind)] = 0;
+}
+
+int ViewportOverlays::count(Kind kind) const {
+    return d_->counts[size_t(kind)];
+}
+
+}  // namespace tumble::ui

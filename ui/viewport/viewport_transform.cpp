@@ -1,0 +1,239 @@
+// The viewport's move and rotate handles (drag, snap, cancel), its collision-shape
+// wireframes and whether the selection is drawn. See viewport_impl.h.
+#include "viewport/viewport_handles.h"
+#include "viewport/viewport_impl.h"
+
+#include <Qt3DExtras/Qt3DWindow>
+
+#include <QUndoStack>
+#include <QtMath>
+
+namespace tumble::ui {
+
+using namespace viewport_detail;
+
+// ---- Handles.
+
+Viewport::TransformMode Viewport::transformMode() const {
+    return d_->mode;
+}
+
+void Viewport::setTransformMode(TransformMode mode) {
+    if (mode == d_->mode) return;
+    d_->mode = mode;
+    d_->gizmo->setMode(mode == TransformMode::Move ? ViewportGizmo::Mode::Move : ViewportGizmo::Mode::Rotate);
+    emit transformModeChanged(mode);
+}
+
+bool Viewport::handlesVisible() const {
+    return d_->handlesShown;
+}
+QVector3D Viewport::handlesOrigin() const {
+    return toQt(d_->handlesOrigin);
+}
+float Viewport::handlesSize() const {
+    return d_->handlesSize;
+}
+bool Viewport::snapping() const {
+    return d_->snapping;
+}
+void Viewport::setSnapping(bool on) {
+    d_->snapping = on;
+}
+double Viewport::translationSnap() const {
+    return d_->moveStep;
+}
+void Viewport::setTranslationSnap(double metres) {
+    if (metres > 0) d_->moveStep = metres;
+}
+double Viewport::rotationSnapDegrees() const {
+    return d_->turnStepDegrees;
+}
+void Viewport::setRotationSnapDegrees(double degrees) {
+    if (degrees > 0) d_->turnStepDegrees = degrees;
+}
+
+void Viewport::updateHandles() {
+    if (!d_->gizmo) return;
+    const QList<int> movable = d_->movableSelection();
+    // Edits are to the initial state: no handles while a later frame is drawn.
+    d_->handlesShown = !movable.isEmpty() && d_->shownFrame == 0;
+    if (d_->handlesShown) {
+        Vec3 sum = Vec3::Zero();
+        for (int i : movable) sum += d_->doc->body(i).position;
+        d_->handlesOrigin = sum / double(movable.size());
+        const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
+        d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
+        d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
+    }
+    d_->gizmo->setVisible(d_->handlesShown);
+}
+
+int Viewport::handleAt(const QPoint& widgetPos) const {
+    if (!d_->handlesShown) return -1;
+    const QPointF p(widgetPos);
+    const QVector3D o = toQt(d_->handlesOrigin);
+    const float size = d_->handlesSize;
+    const QVector3D e[3] = {QVector3D(1, 0, 0), QVector3D(0, 1, 0), QVector3D(0, 0, 1)};
+    int best = -1;
+    double bestDistance = kHandleGrabPx;
+    for (int axis = 0; axis < 3; ++axis) {
+        double distance = 1e300;
+        if (d_->mode == TransformMode::Move) {
+            const QVector3D a = projectToWidget(o), b = projectToWidget(o + size * e[axis]);
+            if (!onScreen(a) || !onScreen(b)) continue;
+            // An axis seen end-on cannot be dragged along: leave it to the others.
+            if (std::hypot(b.x() - a.x(), b.y() - a.y()) < 2 * kHandleGrabPx) continue;
+            distance = distanceToSegment(p, a.toPointF(), b.toPointF());
+        } else {
+            // The ring's polygon, as drawn (viewport_gizmo.cpp).
+            const QVector3D u = e[(axis + 1) % 3], w = e[(axis + 2) % 3];
+            QVector3D prev;
+            for (int i = 0; i <= ViewportGizmo::kRingSegments; ++i) {
+                const float t = 2.0f * float(M_PI) * float(i) / ViewportGizmo::kRingSegments;
+                const QVector3D q = projectToWidget(o + size * (std::cos(t) * u + std::sin(t) * w));
+                if (i > 0 && onScreen(prev) && onScreen(q)) {
+                    distance = std::min(distance, distanceToSegment(p, prev.toPointF(), q.toPointF()));
+                }
+                prev = q;
+            }
+        }
+        if (distance < bestDistance) {
+            bestDistance = distance;
+            best = axis;
+        }
+    }
+    return best;
+}
+
+bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
+    if (axis < 0 || axis > 2 || !d_->handlesShown) return false;
+    QVector3D o, dir;
+    rayAt(pos, &o, &dir);
+    const Vec3 a = Vec3::Unit(axis);
+    const Vec3 origin = d_->handlesOrigin;
+    if (d_->mode == TransformMode::Move) {
+        const auto s = handles::axisParameter(toVec(o), toVec(dir), origin, a);
+        if (!s) return false;
+        d_->dragStartParameter = *s;
+    } else {
+        const auto hit = handles::planeHit(toVec(o), toVec(dir), origin, a);
+        if (!hit || (*hit - origin).norm() < 1e-6) return false;
+        d_->dragStartVector = *hit - origin;
+    }
+    d_->dragAxis = axis;
+    d_->dragOrigin = origin;
+    d_->dragStart.clear();
+    for (int i : d_->movableSelection()) d_->dragStart.emplace_back(i, d_->doc->body(i));
+    d_->dragMergeId = kDragMergeBase + (++d_->dragCounter & 0xffffff);
+    d_->dragCommand = nullptr;
+    d_->gizmo->setHighlight(axis);
+    return true;
+}
+
+void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
+    if (d_->dragAxis < 0 || d_->dragStart.empty()) return;
+    QVector3D o, dir;
+    rayAt(pos, &o, &dir);
+    const Vec3 a = Vec3::Unit(d_->dragAxis);
+    const bool snap = d_->snapping || (modifiers & Qt::ControlModifier);
+    const bool move = d_->mode == TransformMode::Move;
+    double amount = 0;  // metres or radians
+    if (move) {
+        const auto s = handles::axisParameter(toVec(o), toVec(dir), d_->dragOrigin, a);
+        if (!s) return;
+        amount = *s - d_->dragStartParameter;
+        if (snap) amount = handles::snap(amount, d_->moveStep);
+    } else {
+        const auto hit = handles::planeHit(toVec(o), toVec(dir), d_->dragOrigin, a);
+        if (!hit || (*hit - d_->dragOrigin).norm() < 1e-6) return;  // edge-on or at the centre
+        amount = handles::signedAngle(d_->dragStartVector, *hit - d_->dragOrigin, a);
+        if (snap) amount = handles::snap(amount, qDegreesToRadians(d_->turnStepDegrees));
+    }
+    auto apply = [&](const BodyDesc& b) {
+        return move ? handles::moved(b, a, amount) : handles::rotated(b, d_->dragOrigin, a, amount);
+    };
+    const QString verb = move ? tr("Move") : tr("Rotate");
+    Document* doc = d_->doc;
+    QUndoStack* stack = doc->undoStack();
+    auto top = [stack]() -> const QUndoCommand* {
+        return stack->index() > 0 ? stack->command(stack->index() - 1) : nullptr;
+    };
+    // An edit that changes nothing pushes nothing: only a new step on top is the drag's.
+    const QUndoCommand* topBefore = top();
+    const int countBefore = stack->count();
+    if (d_->dragStart.size() == 1) {
+        // One body: consecutive edits with this drag's merge id are one undo step.
+        const auto& [index, before] = d_->dragStart.front();
+        doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(before.name)),
+                     d_->dragMergeId);
+    } else {
+        // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
+        if (dragCommandOnTop()) stack->undo();
+        const QString text = tr("%1 %n bodies", nullptr, int(d_->dragStart.size())).arg(verb);
+        doc->beginMacro(text);
+        for (const auto& [index, before] : d_->dragStart) doc->setBody(index, apply(before), text);
+        doc->endMacro();
+    }
+    if (top() != topBefore || stack->count() != countBefore) d_->dragCommand = top();
+}
+
+bool Viewport::dragCommandOnTop() const {
+    const QUndoStack* stack = d_->doc->undoStack();
+    return d_->dragCommand && !stack->canRedo() && stack->index() > 0 &&
+           stack->command(stack->index() - 1) == d_->dragCommand;
+}
+
+void Viewport::cancelHandleDrag() {
+    if (d_->dragAxis < 0) return;
+    // The drag's step is undone (the bodies go back) and then dropped from the stack: an
+    // obsolete command is deleted by QUndoStack::redo() instead of being redone, so neither
+    // an undo nor a redo step is left behind.
+    if (dragCommandOnTop()) {
+        QUndoStack* stack = d_->doc->undoStack();
+        stack->undo();
+        const_cast<QUndoCommand*>(stack->command(stack->index()))->setObsolete(true);
+        stack->redo();
+    }
+    d_->dragButton = Qt::NoButton;  // the button's release is then ignored
+    endHandleDrag();
+}
+
+void Viewport::endHandleDrag() {
+    d_->dragAxis = -1;
+    d_->dragStart.clear();
+    d_->dragCommand = nullptr;
+    d_->gizmo->setHighlight(-1);
+    d_->hover = -1;
+    updateHandles();
+}
+
+// ---- Collision shapes.
+
+bool Viewport::showCollisionShapes() const {
+    return d_->scene->showCollisionShapes();
+}
+
+int Viewport::collisionShapeCount() const {
+    return d_->scene->collisionShapeCount();
+}
+
+void Viewport::setShowCollisionShapes(bool show) {
+    if (show == d_->scene->showCollisionShapes()) return;
+    d_->scene->setShowCollisionShapes(show);
+    emit showCollisionShapesChanged(show);
+}
+
+bool Viewport::selectionShown() const {
+    return d_->selectionShown;
+}
+
+void Viewport::setSelectionShown(bool shown) {
+    if (shown == d_->selectionShown) return;
+    if (!shown && d_->dragAxis >= 0) cancelHandleDrag();
+    d_->selectionShown = shown;
+    d_->scene->setSelection(d_->shownSelection());
+    updateHandles();
+}
+
+}  // namespace tumble::ui

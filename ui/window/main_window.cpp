@@ -1,0 +1,443 @@
+#include "window/main_window.h"
+
+#include "import/mesh_import_job.h"
+
+#include "document/document.h"
+#include "editor_main.h"
+#include "panels/plots_dock.h"
+#include "panels/property_dock.h"
+#include "panels/scene_tree_dock.h"
+#include "panels/settings_dock.h"
+#include "timeline/timeline.h"
+#include "timeline/timeline_dock.h"
+#include "viewport/viewport.h"
+
+#include <tumble/io/atomic_file.h>
+#include <tumble/io/mesh_import.h>
+#include <tumble/io/scene_file.h>
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDir>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMetaEnum>
+#include <QMimeData>
+#include <QSettings>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QTimer>
+#include <QUndoStack>
+#include <QUndoView>
+
+namespace tumble::ui {
+
+namespace {
+
+const char* const kSamples[] = {"tumbling-box",     "spring-pendulum",   "projectile",     "bouncing-ball",
+                                "head-on",          "tilted-box-impact", "newtons-cradle", "sliding-block",
+                                "incline",          "rolling-sphere",    "tower-20",       "pyramid-15",
+                                "mass-ratio-stack", "sleeping-wake"};
+
+bool isSceneFile(const QString& path) {
+    return path.endsWith(".json", Qt::CaseInsensitive);
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document(this)) {
+    setObjectName("MainWindow");
+    timeline_ = new Timeline(doc_, this);
+    viewport_ = new Viewport(doc_, this);
+    viewport_->setTimeline(timeline_);
+    setCentralWidget(viewport_);
+
+    tree_ = new SceneTreeDock(doc_, this);
+    auto* tree = tree_;
+    tree->setObjectName("SceneTreeDock");
+    addDockWidget(Qt::LeftDockWidgetArea, tree);
+    connect(tree, &SceneTreeDock::importMeshRequested, this, &MainWindow::importDialog);
+
+    auto* properties = new PropertyDock(doc_, this);
+    properties->setObjectName("PropertyDock");
+    properties->setTimeline(timeline_);
+    addDockWidget(Qt::RightDockWidgetArea, properties);
+
+    auto* settings = new SettingsDock(doc_, this);
+    settings->setObjectName("SettingsDock");
+    addDockWidget(Qt::RightDockWidgetArea, settings);
+    tabifyDockWidget(properties, settings);
+
+    auto* history = new QDockWidget(tr("Undo History"), this);
+    history->setObjectName("UndoHistoryDock");
+    history->setWidget(new QUndoView(doc_->undoStack(), history));
+    addDockWidget(Qt::LeftDockWidgetArea, history);
+
+    timelineDock_ = new TimelineDock(timeline_, this);
+    addDockWidget(Qt::BottomDockWidgetArea, timelineDock_);
+    auto* plots = new PlotsDock(timeline_, this);
+    plots->setObjectName("PlotsDock");
+    addDockWidget(Qt::RightDockWidgetArea, plots);
+    tabifyDockWidget(settings, plots);
+    properties->raise();
+
+    buildMenus();
+    setAcceptDrops(true);
+    connect(doc_, &Document::fileStateChanged, this, &MainWindow::updateTitle);
+    statusBar();
+
+    autosaveTimer_ = new QTimer(this);
+    autosaveTimer_->setInterval(60 * 1000);
+    connect(autosaveTimer_, &QTimer::timeout, this, &MainWindow::autosave);
+    autosaveTimer_->start();
+
+    resize(1280, 800);
+    // Room for three-component fields with their units in the properties.
+    resizeDocks({properties, tree}, {440, 260}, Qt::Horizontal);
+    QSettings s;
+    restoreGeometry(s.value("window/geometry").toByteArray());
+    restoreState(s.value("window/state").toByteArray());
+    updateTitle();
+}
+
+MainWindow::~MainWindow() {
+    delete importJob_;  // stops a read still running before the document goes
+}
+
+const SceneDesc& MainWindow::scene() const {
+    return doc_->scene();
+}
+
+QString MainWindow::defaultScenePath() {
+    return QStringLiteral(":/scenes/tumbling-box.json");
+}
+
+void MainWindow::buildMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(tr("&New"), QKeySequence::New, this, &MainWindow::newScene);
+    file->addAction(tr("&Open..."), QKeySequence::Open, this, &MainWindow::openDialog);
+    recentMenu_ = file->addMenu(tr("Open &Recent"));
+    connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
+    QMenu* samples = file->addMenu(tr("&Samples"));
+    for (const char* name : kSamples) {
+        const QString path = QStringLiteral(":/scenes/%1.json").arg(name);
+        samples->addAction(QString(name), this, [this, path] { openPath(path); });
+    }
+    file->addSeparator();
+    file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save);
+    file->addAction(tr("Save &As..."), QKeySequence::SaveAs, this, &MainWindow::saveAsDialog);
+    file->addAction(tr("Save with &Meshes..."), this, &MainWindow::saveWithMeshesDialog);
+    file->addAction(tr("Re&vert"), this, &MainWindow::revert);
+    file->addSeparator();
+    file->addAction(tr("&Import Mesh..."), QKeySequence(tr("Ctrl+I")), this, &MainWindow::importDialog);
+    file->addAction(tr("&Export..."), QKeySequence(tr("Ctrl+E")), this, &MainWindow::exportDialog);
+    file->addSeparator();
+    file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    QAction* undo = doc_->undoStack()->createUndoAction(this, tr("&Undo"));
+    undo->setShortcut(QKeySequence::Undo);
+    QAction* redo = doc_->undoStack()->createRedoAction(this, tr("&Redo"));
+    redo->setShortcut(QKeySequence::Redo);
+    edit->addAction(undo);
+    edit->addAction(redo);
+    edit->addSeparator();
+    // The scene tree's own actions (their shortcuts live there; a second action with the
+    // same key would make both ambiguous).
+    edit->addMenu(tree_->addMenu());
+    edit->addAction(tree_->duplicateAction());
+    edit->addAction(tree_->deleteAction());
+    edit->addAction(tree_->renameAction());
+    edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
+        QList<int> all;
+        for (int i = 0; i < doc_->bodyCount(); ++i) all.append(i);
+        doc_->setSelection(all);
+    });
+
+    // The timeline's keys (Space, Left, Right, Home, End) work anywhere in the window; a
+    // text field that has the focus keeps its own use of them.
+    QMenu* simulation = menuBar()->addMenu(tr("&Simulation"));
+    simulation->addAction(timelineDock_->simulateAction());
+    simulation->addAction(timelineDock_->cancelAction());
+    simulation->addSeparator();
+    for (QAction* a :
+         {timelineDock_->playAction(), timelineDock_->stepBackAction(), timelineDock_->stepForwardAction(),
+          timelineDock_->toStartAction(), timelineDock_->toEndAction(), timelineDock_->loopAction()})
+        simulation->addAction(a);
+    simulation->addSeparator();
+    simulation->addAction(timelineDock_->useFrameAction());
+
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->addAction(tr("&Frame Selection"), this, [this] { viewport_->frameSelection(); });
+    view->addAction(tr("Frame &All"), this, [this] { viewport_->frameAll(); });
+    view->addSeparator();
+    // The viewport's own keys (W, E, F, A) work while it has the focus; these are the same
+    // switches for the menu.
+    auto* modes = new QActionGroup(this);
+    QAction* move = view->addAction(tr("&Move Handles"), this,
+                                    [this] { viewport_->setTransformMode(Viewport::TransformMode::Move); });
+    QAction* rotate = view->addAction(tr("&Rotate Handles"), this, [this] {
+        viewport_->setTransformMode(Viewport::TransformMode::Rotate);
+    });
+    for (QAction* a : {move, rotate}) a->setCheckable(true), modes->addAction(a);
+    move->setChecked(viewport_->transformMode() == Viewport::TransformMode::Move);
+    rotate->setChecked(!move->isChecked());
+    connect(viewport_, &Viewport::transformModeChanged, this, [move, rotate](Viewport::TransformMode m) {
+        move->setChecked(m == Viewport::TransformMode::Move);
+        rotate->setChecked(m == Viewport::TransformMode::Rotate);
+    });
+    QAction* snap = view->addAction(tr("S&nap Handles (0.1 m, 15°)"));
+    snap->setCheckable(true);
+    snap->setChecked(viewport_->snapping());
+    connect(snap, &QAction::toggled, viewport_, &Viewport::setSnapping);
+    QAction* shapes = view->addAction(tr("Show &Collision Shapes"));
+    shapes->setCheckable(true);
+    shapes->setChecked(viewport_->showCollisionShapes());
+    connect(shapes, &QAction::toggled, viewport_, &Viewport::setShowCollisionShapes);
+    // Overlays of the simulation at the playhead, each computed only while shown.
+    QMenu* overlays = view->addMenu(tr("&Overlays"));
+    for (int i = 0; i < Viewport::kOverlayCount; ++i) {
+        const auto which = static_cast<Viewport::Overlay>(i);
+        QAction* a = overlays->addAction(Viewport::overlayText(which));
+        a->setObjectName(QStringLiteral("overlay%1").arg(i));
+        a->setCheckable(true);
+        const QString key =
+            QStringLiteral("view/overlay/%1").arg(QMetaEnum::fromType<Viewport::Overlay>().key(i));
+        viewport_->setOverlay(which, QSettings().value(key, viewport_->overlay(which)).toBool());
+        a->setChecked(viewport_->overlay(which));
+        connect(a, &QAction::toggled, viewport_, [this, which, key](bool on) {
+            viewport_->setOverlay(which, on);
+            QSettings().setValue(key, on);  // the user's choice for the next session
+        });
+        connect(viewport_, &Viewport::overlayChanged, a, [a, which](Viewport::Overlay o, bool on) {
+            if (o == which) a->setChecked(on);
+        });
+    }
+    view->addSeparator();
+    for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+}
+
+QString MainWindow::sceneName() const {
+    if (doc_->filePath().isEmpty() && source_.startsWith(":/")) return QFileInfo(source_).fileName();
+    return doc_->displayName();
+}
+
+void MainWindow::updateTitle() {
+    setWindowTitle(tr("%1[*] - Tumble").arg(sceneName()));
+    setWindowModified(doc_->isModified());
+}
+
+bool MainWindow::openScene(const QString& path, QString* error) {
+    if (!doc_->open(path, error)) return false;
+    source_ = path;
+    if (!path.startsWith(":/")) addRecent(path);
+    updateTitle();
+    viewport_->frameAll();
+    return true;
+}
+
+void MainWindow::openPath(const QString& path) {
+    if (!maybeSave()) return;
+    QString error;
+    if (!openScene(path, &error))
+        QMessageBox::warning(this, tr("Open scene"), error);
+    else if (!doc_->openWarnings().isEmpty())
+        QMessageBox::warning(
+            this, tr("Open scene"),
+            tr("The scene opened, but these meshes could not be read; their bodies are marked in "
+               "red in the scene tree and the scene cannot be simulated until they are back:\n\n%1")
+                .arg(doc_->openWarnings().join("\n")));
+}
+
+bool MainWindow::maybeSave() {
+    if (!doc_->isModified()) return true;
+    const auto answer = QMessageBox::warning(
+        this, tr("Unsaved changes"), tr("%1 has unsaved changes. Save them?").arg(sceneName()),
+        QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+    if (answer == QMessageBox::Cancel) return false;
+    if (answer == QMessageBox::Save) return save();
+    return true;
+}
+
+void MainWindow::newScene() {
+    if (!maybeSave()) return;
+    doc_->newScene();
+    source_.clear();
+    updateTitle();
+}
+
+void MainWindow::openDialog() {
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open scene"), QString(), tr("Tumble scenes (*.json)"));
+    if (!path.isEmpty()) openPath(path);
+}
+
+bool MainWindow::save() {
+    if (doc_->filePath().isEmpty()) return saveAsDialog();
+    QString error;
+    if (!doc_->saveAs(doc_->filePath(), &error)) {
+        QMessageBox::warning(this, tr("Save"), error);
+        return false;
+    }
+    QFile::remove(autosavePath());
+    statusBar()->showMessage(tr("Saved %1").arg(doc_->filePath()), 3000);
+    return true;
+}
+
+bool MainWindow::saveAsDialog() {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save scene as"), doc_->filePath(),
+                                                      tr("Tumble scenes (*.json)"));
+    if (path.isEmpty()) return false;
+    QString error;
+    if (!doc_->saveAs(path, &error)) {
+        QMessageBox::warning(this, tr("Save"), error);
+        return false;
+    }
+    source_ = path;
+    addRecent(path);
+    QFile::remove(autosavePath());
+    updateTitle();
+    return true;
+}
+
+void MainWindow::revert() {
+    if (source_.isEmpty() || !doc_->isModified()) return;
+    if (QMessageBox::question(this, tr("Revert"), tr("Discard the changes and reload %1?").arg(source_)) !=
+        QMessageBox::Yes)
+        return;
+    QString error;
+    if (!openScene(source_, &error)) QMessageBox::warning(this, tr("Revert"), error);
+}
+
+void MainWindow::addRecent(const QString& path) {
+    QSettings s;
+    QStringList recent = s.value("recentFiles").toStringList();
+    recent.removeAll(path);
+    recent.prepend(path);
+    while (recent.size() > 10) recent.removeLast();
+    s.setValue("recentFiles", recent);
+}
+
+void MainWindow::fillRecentMenu() {
+    recentMenu_->clear();
+    const QStringList recent = QSettings().value("recentFiles").toStringList();
+    for (const QString& path : recent) recentMenu_->addAction(path, this, [this, path] { openPath(path); });
+    recentMenu_->setEnabled(!recent.isEmpty());
+}
+
+QString MainWindow::autosavePath() {
+    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/autosave.json";
+}
+
+void MainWindow::autosave() {
+    const QString path = autosavePath();
+    if (!doc_->isModified()) {
+        QFile::remove(path);
+        return;
+    }
+    QDir().mkpath(QFileInfo(path).absolutePath());
+    try {  // whole or not at all (io::AtomicFile); a failed autosave keeps the previous one
+        io::writeFileAtomically(QFile::encodeName(path).toStdString(), io::sceneToJson(doc_->scene()));
+    } catch (const std::exception&) {
+    }
+}
+
+void MainWindow::offerRecovery() {
+    if (!QFileInfo::exists(autosavePath())) return;
+    const auto answer = QMessageBox::question(
+        this, tr("Recover"), tr("Tumble did not close cleanly last time. Recover the unsaved scene?"),
+        QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes);
+    QString error;
+    if (answer == QMessageBox::Yes && !recoverAutosave(&error))
+        QMessageBox::warning(this, tr("Recover"), error);
+    QFile::remove(autosavePath());
+}
+
+bool MainWindow::recoverAutosave(QString* error) {
+    const QString path = autosavePath();
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) {
+        if (error) *error = tr("%1: cannot be read (%2)").arg(path, file.errorString());
+        return false;
+    }
+    try {
+        const QByteArray text = file.readAll();
+        const SceneDesc scene =
+            io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
+                           path.toStdString(), std::filesystem::path("."));
+        doc_->replaceScene(scene, tr("Recover unsaved scene"), true);
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return false;
+    }
+    return true;
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!maybeSave()) {
+        event->ignore();
+        return;
+    }
+    QFile::remove(autosavePath());  // a clean end: nothing to recover
+    QSettings s;
+    s.setValue("window/geometry", saveGeometry());
+    s.setValue("window/state", saveState());
+    event->accept();
+}
+
+// Only local scene and mesh files are taken; anything else shows no drop cursor.
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+    for (const QUrl& url : event->mimeData()->urls()) {
+        const QString path = url.toLocalFile();
+        if (!path.isEmpty() && (isSceneFile(path) || isMeshFile(path))) {
+            event->acceptProposedAction();
+            return;
+        }
+    }
+}
+
+// A dropped scene opens (the first one; meshes beside it are ignored). Dropped meshes are
+// imported together as one undo step.
+void MainWindow::dropEvent(QDropEvent* event) {
+    QStringList meshes;
+    for (const QUrl& url : event->mimeData()->urls()) {
+        const QString path = url.toLocalFile();
+        if (path.isEmpty()) continue;
+        if (isSceneFile(path)) {
+            event->acceptProposedAction();
+            openPath(path);
+            return;
+        }
+        if (isMeshFile(path)) meshes << path;
+    }
+    if (meshes.isEmpty()) return;
+    event->acceptProposedAction();
+    startImport(meshes, true, 1.0);
+}
+
+int runEditor(int argc, char** argv) {
+    QApplication app(argc, argv);
+    QApplication::setApplicationName("Tumble");
+    QApplication::setOrganizationName("Tumble");
+    MainWindow window;
+    const QStringList args = QApplication::arguments();
+    QString error;
+    const QString path = args.size() > 1 ? args[1] : MainWindow::defaultScenePath();
+    if (!window.openScene(path, &error)) {
+        QMessageBox::critical(nullptr, QObject::tr("Tumble"), error);
+        if (!window.openScene(MainWindow::defaultScenePath(), &error)) return 1;
+    }
+    window.show();
+    window.offerRecovery();
+    return app.exec();
+}
+
+}  // namespace tumble::ui

@@ -1,0 +1,138 @@
+// The editor's main window: the viewport in the centre, the scene tree, properties, scene
+// settings and undo history as docks, and the File, Edit and View menus. It owns the
+// document; every dock and the viewport work on the document, never on each other.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <tumble/io/mesh_import.h>
+#include <tumble/io/trajectory_writer.h>
+
+#include <QMainWindow>
+#include <QSize>
+#include <QString>
+
+class QMenu;
+class QTimer;
+
+namespace tumble::ui {
+
+class Document;
+class ImageExporter;
+class MeshImportJob;
+class TrajectoryExport;
+class SceneTreeDock;
+class Timeline;
+class TimelineDock;
+class Viewport;
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    Document* document() const { return doc_; }
+    Viewport* viewport() const { return viewport_; }
+    Timeline* timeline() const { return timeline_; }
+    TimelineDock* timelineDock() const { return timelineDock_; }
+
+    /// Loads a scene file (or a ":/scenes/..." sample). On failure returns false, keeps the
+    /// current scene and puts the message (file and field) in `error`. Does not ask about
+    /// unsaved changes: the menu actions do that first.
+    bool openScene(const QString& path, QString* error);
+    const SceneDesc& scene() const;
+    /// The file or sample the scene came from ("" for a new scene).
+    const QString& scenePath() const { return source_; }
+
+    /// Imports mesh files as new bodies in front of the camera, one undo step for all of
+    /// them, reading them in the background (MeshImportJob: a progress dialog with Cancel
+    /// after a moment; the window keeps running). Returns at once; importFinished() follows.
+    /// A file that cannot be read adds nothing; its error is in the signal, and in a
+    /// message box when `tellUser`. Refused (false) while another import runs.
+    bool startImport(const QStringList& paths, bool convexHull, double scale, bool tellUser = true);
+    bool isImporting() const;
+    void cancelImport();
+    /// The import running now, or null (its progress dialog, for tests).
+    MeshImportJob* importJob() const { return importJob_; }
+    /// The reader's time limit and checks for the imports started from now on.
+    void setMeshImportOptions(const io::MeshImportOptions& options) { importOptions_ = options; }
+    /// One mesh file, as startImport, returning when it is read (the event loop turns
+    /// meanwhile). On failure the scene is untouched and `error` names the file and the
+    /// reason; a cancelled import returns false with an empty error.
+    bool importMesh(const QString& path, bool convexHull, double scale, QString* error);
+
+    /// Exports the recording to `target` as the dialog's options say (see ExportDialog): a
+    /// trajectory file, or images / a video. Returns at once; exportFinished() follows.
+    /// False with the reason when it cannot start.
+    bool startExport(int kind, const QString& target, const io::ExportOptions& options,
+                     const QSize& imageSize, QString* error);
+    bool isExporting() const;
+    void cancelExport();
+
+    /// Writes the autosave file now if the scene has unsaved changes (the timer calls it
+    /// every minute); removes it when there is nothing unsaved.
+    void autosave();
+    /// Where the autosave goes: the standard app-data location.
+    static QString autosavePath();
+    /// If an autosave from a session that did not end cleanly exists, offers to recover it.
+    void offerRecovery();
+    /// Loads the autosave as one undoable step (the scene shows as modified); false with
+    /// the reason when it cannot be read.
+    bool recoverAutosave(QString* error);
+
+    /// The sample scene opened when no scene is given.
+    static QString defaultScenePath();
+
+signals:
+    void exportFinished(bool ok, const QString& message);
+    /// An import ended: `added` bodies were added; `errors` has a line per file that could
+    /// not be read (empty if none); nothing was added if it was cancelled.
+    void importFinished(int added, const QString& errors, bool cancelled);
+
+protected:
+    void closeEvent(QCloseEvent* event) override;
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
+
+private:
+    void buildMenus();
+    void updateTitle();
+    /// The file name of the scene, or of the sample it came from, or "untitled".
+    QString sceneName() const;
+    bool maybeSave();  // false: the user cancelled
+    void newScene();
+    void openDialog();
+    bool save();
+    bool saveAsDialog();
+    void revert();
+    // File > Import Mesh, drops and the import job (ui/window/main_window_import.cpp).
+    void importDialog();
+    void importDone();
+    // File > Export and Save with Meshes (ui/window/main_window_export.cpp).
+    void exportDialog();
+    bool saveWithMeshesDialog();
+    void addRecent(const QString& path);
+    void fillRecentMenu();
+    void openPath(const QString& path);
+
+    Document* doc_ = nullptr;
+    Timeline* timeline_ = nullptr;
+    Viewport* viewport_ = nullptr;
+    SceneTreeDock* tree_ = nullptr;
+    TimelineDock* timelineDock_ = nullptr;
+    QString source_;
+    QMenu* recentMenu_ = nullptr;
+    QTimer* autosaveTimer_ = nullptr;
+    TrajectoryExport* trajectoryExport_ = nullptr;
+    ImageExporter* imageExport_ = nullptr;
+    MeshImportJob* importJob_ = nullptr;
+    io::MeshImportOptions importOptions_;
+    struct ImportRequest {
+        bool convexHull = true;
+        double scale = 1.0;
+        bool tellUser = true;
+    } importRequest_;
+};
+
+}  // namespace tumble::ui
