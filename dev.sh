@@ -9,7 +9,7 @@
 #                          editor's (sanitize-ui)
 #   ./dev.sh sanitize-ui   the editor's tests built with clang, ASan and UBSan, under Xvfb
 #                          (not part of `test`: its cold build is ~10 min; $BUILD_DIR-san-ui)
-#   ./dev.sh fuzz TARGET [SECONDS]   a long fuzz run of scene or mesh (docs/reliability.md)
+#   ./dev.sh fuzz TARGET [SECONDS]   a long fuzz run of scene, mesh or meshdata (docs/reliability.md)
 #
 # Each step is skipped when it has nothing to do, so a second run is quick. Set
 # BUILD_DIR to build elsewhere (default: build). Runs apt-get as root, or through sudo.
@@ -166,7 +166,7 @@ case "$cmd" in
     run_sanitized_ui "$@"
     ;;
   fuzz)
-    target=${1:?usage: $0 fuzz scene|mesh [SECONDS]}
+    target=${1:?usage: $0 fuzz scene|mesh|meshdata [SECONDS]}
     install_missing
     build_sanitized
     exec tests/fuzz/run_fuzz.sh "$SAN_DIR/tests/fuzz/fuzz_$target" "$target" "$SAN_DIR/tests/fuzz/$target" \

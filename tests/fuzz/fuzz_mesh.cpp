@@ -55,6 +55,17 @@ void compileBody(const std::shared_ptr<const tumble::TriangleMesh>& mesh, tumble
     }
 }
 
+void keep(const std::uint8_t* data, std::size_t size) {
+    const char* dir = std::getenv("TUMBLE_FUZZ_KEEP");
+    if (!dir || !*dir) return;
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a: one file per distinct input
+    for (std::size_t i = 0; i < size; ++i) h = (h ^ data[i]) * 1099511628211ull;
+    char name[40];
+    std::snprintf(name, sizeof name, "/reader-fault-%016llx", static_cast<unsigned long long>(h));
+    std::ofstream(std::string(dir) + name, std::ios::binary).write(reinterpret_cast<const char*>(data),
+                                                                   static_cast<std::streamsize>(size));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -82,6 +93,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // own messages come after "cannot be read as a mesh: " and may quote the file.)
         if (e.message().starts_with("the mesh reader stopped without an answer"))
             bug("the mesh reader failed", e.what());
+        // assimp's own fault (a crash, a sanitizer report inside it, a loop stopped at the
+        // time limit): handled, as above, and the input kept for the regressions when the
+        // run says where (run_fuzz.sh: WORKDIR/reader-faults/), since the parent must go on
+        // refusing it cleanly.
+        if (e.message().starts_with("the mesh reader (assimp)")) keep(data, size);
     }
     std::remove(path.c_str());
     if (!mesh) return 0;

@@ -14,6 +14,7 @@ cd "$work"
 
 # Seeds. Scenes: the samples and the test scenes. Meshes: the first byte picks the extension
 # (fuzz_mesh.cpp: 0 .obj, 1 .stl, 2 .ply, 3 .off, 4 .glb), the rest is a file of that kind.
+# Mesh data: the reader's answers for those meshes (fuzz_meshdata.cpp).
 case "$target" in
   scene)
     cp "$src"/resources/scenes/*.json seeds/
@@ -31,8 +32,22 @@ case "$target" in
       i=$((i + 1))
     done
     ;;
+  meshdata)
+    # The answers of the reader's child for the same meshes (fuzz_meshdata.cpp writes them).
+    list=
+    for f in "$src"/resources/meshes/* "$models"/OBJ/*.obj "$models"/STL/*.stl "$models"/PLY/*.ply \
+             "$models"/OFF/*.off; do
+      [ -f "$f" ] && [ "$(stat -c %s "$f")" -le 65536 ] && list="$list:$f"
+    done
+    [ -n "$(ls seeds)" ] || TUMBLE_MAKE_SEEDS=seeds TUMBLE_SEED_MESHES="$list" "$program" 2>/dev/null
+    ;;
   *) echo "run_fuzz.sh: unknown target $target" >&2; exit 2 ;;
 esac
+
+# Inputs assimp itself crashed or looped on (handled: the parent refuses them with a
+# message) are kept here, to be added to the regressions.
+mkdir -p reader-faults
+export TUMBLE_FUZZ_KEEP="$PWD/reader-faults"
 
 # Leaks inside libraries Tumble cannot fix are suppressed, each with its reason.
 export LSAN_OPTIONS="suppressions=$here/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"

@@ -63,13 +63,13 @@ void watchForReaderFaults() {
 void watchForReaderFaults() {}
 #endif
 
-// The child's answer on the pipe: 'M', vertex and triangle counts, the vertices (3 doubles
-// each) and the triangles (3 int32 each); or 'E' and a message.
 void append(std::string& out, const void* data, std::size_t size) {
     out.append(static_cast<const char*>(data), size);
 }
 
-std::string encode(const TriangleMesh& mesh) {
+}  // namespace
+
+std::string encodeMeshAnswer(const TriangleMesh& mesh) {
     std::string out(1, 'M');
     const std::uint64_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
     append(out, &nv, sizeof nv);
@@ -81,6 +81,8 @@ std::string encode(const TriangleMesh& mesh) {
     }
     return out;
 }
+
+namespace {
 
 bool writeAll(int fd, const std::string& data) {
     std::size_t done = 0;
@@ -96,7 +98,7 @@ bool writeAll(int fd, const std::string& data) {
 [[noreturn]] void runChild(int fd, const std::function<TriangleMesh()>& read) {
     std::string answer;
     try {
-        answer = encode(read());
+        answer = encodeMeshAnswer(read());
     } catch (const InputError& e) {
         answer = "E" + e.message();
     } catch (const std::exception& e) {
@@ -105,7 +107,7 @@ bool writeAll(int fd, const std::string& data) {
     _exit(writeAll(fd, answer) ? 0 : 1);  // no atexit handlers, no destructors: only the answer
 }
 
-TriangleMesh decode(const std::string& name, const std::string& data) {
+TriangleMesh decode(const std::string& name, const std::string& data) {  // an 'M' answer
     const auto broken = [&] {
         return InputError(name, "", "cannot be read as a mesh: the reader's answer was cut short");
     };
@@ -218,8 +220,14 @@ TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw InputError(name, "", describe(status));
     if (data.empty()) throw InputError(name, "", describe(status));
-    if (data[0] == 'E') throw InputError(name, "", data.substr(1));
-    return decode(name, data);
+    return meshFromAnswer(name, data);
+}
+
+TriangleMesh meshFromAnswer(const std::string& name, const std::string& answer) {
+    if (!answer.empty() && answer[0] == 'E') throw InputError(name, "", answer.substr(1));
+    if (answer.empty() || answer[0] != 'M')
+        throw InputError(name, "", "cannot be read as a mesh: the reader's answer was not one");
+    return decode(name, answer);
 }
 
 }  // namespace tumble::io

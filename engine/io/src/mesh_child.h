@@ -17,6 +17,14 @@ namespace tumble::io {
 /// does not finish within `timeLimit` seconds (it is killed) gives an InputError for `name`
 /// that says so. When `cancel` is set while it waits, the child is killed and
 /// MeshImportCancelled thrown.
+/// The child's answer on the pipe, and back: 'M', the vertex and triangle counts, the
+/// vertices (3 doubles each) and the triangles (3 int32 each); or 'E' and a message.
+/// meshFromAnswer throws InputError for `name` with the message, or when the answer is
+/// not one (cut short, counts that do not match its length). Apart for the fuzzer of the
+/// parent's side (tests/fuzz/fuzz_meshdata.cpp).
+std::string encodeMeshAnswer(const TriangleMesh& mesh);
+TriangleMesh meshFromAnswer(const std::string& name, const std::string& answer);
+
 TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
                              const std::function<TriangleMesh()>& read,
                              const std::atomic<bool>* cancel = nullptr);
