@@ -5,6 +5,7 @@
 #include <tumble/mass.h>
 #include <tumble/model.h>
 
+#include "compile_joints.h"
 #include "collision/bvh.h"
 #include "mesh/mesh_body.h"
 
@@ -321,6 +322,7 @@ void validate(const SceneDesc& scene) {
                              "'" + scene.bodies[i].name + "' is already the name of another body");
         }
     }
+    validateJoints(scene);
 }
 
 Model compile(const SceneDesc& scene) {
@@ -401,6 +403,7 @@ Model compile(const SceneDesc& scene) {
     std::sort(m.forceSwitchTimes.begin(), m.forceSwitchTimes.end());
     m.forceSwitchTimes.erase(std::unique(m.forceSwitchTimes.begin(), m.forceSwitchTimes.end()),
                              m.forceSwitchTimes.end());
+    if (!scene.joints.empty()) compileJoints(scene, initialState(m, scene), m);
     return m;
 }
 

@@ -21,13 +21,16 @@ double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
     return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
 }
 
-// Moves body i by the positional impulse J at offset r (its inverse mass and inertia).
+}  // namespace
+
 void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J) {
     s.x += b.invMass * J;
     const Vec3 turn = b.invI * r.cross(J);
     const double angle = turn.norm();
     if (angle > 0.0) s.q = (Quat(Eigen::AngleAxisd(angle, turn / angle)) * s.q).normalized();
 }
+
+namespace {
 
 bool correctPositions(State& state, ContactSolverScratch& s, int passes, double slopFactor) {
     bool moved = false;

@@ -23,6 +23,10 @@ struct EnergyBalance {
     double excess() const { return out() - in(); }
 };
 
+/// Moves a body by the positional impulse J at the offset r from its centre of mass, with
+/// the inverse mass and world inverse inertia of b (the position passes, joint projection).
+void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J);
+
 /// What friction took this step (exact per row; see the definition).
 double frictionLost(const ContactSolverScratch& s);
 /// Gravity's potential energy of the dynamic bodies `which` as they stand in `state`.

@@ -2,6 +2,7 @@
 
 #include "contact_energy.h"
 #include "contact_rows.h"
+#include "joints.h"
 #include "pair_key.h"
 #include "shock_propagation.h"
 
@@ -192,6 +193,9 @@ bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     const int nb = static_cast<int>(s.blocks.size());
     bool changed = false;
     for (int b = 0; b < nb; ++b) changed |= updateBlock(s, pass % 2 ? nb - 1 - b : b, quietSpeed);
+    // The joints in the same pass, on the same bodies (joints.h).
+    const int nj = static_cast<int>(s.jointRows.size());
+    for (int j = 0; j < nj; ++j) changed |= updateJoint(s, pass % 2 ? nj - 1 - j : j, quietSpeed);
     return changed;
 }
 
@@ -254,6 +258,7 @@ void redoPoses(const Model& model, State& state, const State& before, double sli
     slidingFriction(sliding, s);
     for (int i : s.involved) {
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
+        if (!model.jointed.empty() && model.jointed[i]) continue;  // placed by the joints' projection
         BodyState& b = state.bodies[i];
         b.x = before.bodies[i].x + h * s.bodies[i].v - 0.5 * h * s.slide[i];
         const Vec3 turn = h * s.bodies[i].w;
@@ -283,42 +288,56 @@ double potentialOf(const Model& model, const State& state, const std::vector<int
 void solveContacts(const Model& model, State& state, const State& before,
                    const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
-    if (contacts.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
+    if (contacts.empty() && model.joints.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
         s.points.clear();
         s.geometry.clear();
         s.blocks.clear();
+        s.jointRows.clear();
         remember(model, state, cfg.h, s);
         state.contacts.swap(s.nextMemory);
         return;
     }
     bodiesOf(contacts, s.seen, s.involved);
+    addJointBodies(model, state, s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
+    // The jointed bodies' free step put them off their joints: placed back now, with the
+    // velocity that move implies; the velocity rows below then act at the joints' new
+    // places (RATTLE's two halves), and these bodies keep these poses (redoPoses).
+    if (!model.joints.empty()) projectJoints(model, state, s, cfg.h, &before);
     prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
     for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStart(state, cfg.h, s);
+    prepareJoints(model, state, cfg.h, s);  // and their warm start
     s.quietSince.assign(s.blocks.size(), -1);
     s.tick = 0;
     s.changedAt.resize(s.bodies.size());
     for (int i : s.involved) s.changedAt[i] = 0;
     bool converged = false;
     for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k, cfg.quietSpeed);
-    if (!s.blocks.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed);
+    // (Not with joints yet: the shock pass holds bodies still that a joint may have to move.)
+    if (!s.blocks.empty() && s.jointRows.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed);
     remember(model, state, cfg.h, s);
     state.contacts.swap(s.nextMemory);
-    if (s.points.empty()) return;
+    rememberJoints(model, s, cfg.h, state);
+    if (s.points.empty() && s.jointRows.empty()) return;
 
-    // The bodies of the solved points: the solver may have moved them, and the position
-    // passes may.
+    // The bodies of the solved points and joints: the solver may have moved them, and the
+    // position passes may.
     s.moving.clear();
     for (const Point& p : s.points)
         for (int i : {p.a, p.b})
             if (s.bodies[i].invMass > 0.0) s.moving.push_back(i);
+    for (const ContactSolverScratch::JointRow& r : s.jointRows)
+        for (int i : {r.a, r.b})
+            if (i >= 0 && s.bodies[i].invMass > 0.0) s.moving.push_back(i);
     uniqueBodies(s.moving, s.seen);
     const double frictionLoss = frictionLost(s);
     EnergyBalance e = energyBalance(model, state, before, s);
-    const bool limited = passive(model, contacts);
+    // The energy limit is the contacts' (they must never add energy); with joints in the
+    // same solve, scaling the velocities would break the joints, so it is left out there.
+    const bool limited = passive(model, contacts) && s.jointRows.empty();
     if (limited && e.excess() > 0.0) limitEnergy(e, s);
     ledger.lostInFriction += frictionLoss;
     ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss;
@@ -332,6 +351,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     const double potential = potentialOf(model, state, s.involved);
     redoPoses(model, state, before, 0.01 * cfg.restingSpeed, s);
     correctOverlap(model, state, s, cfg, e, limited);
+    if (!s.jointRows.empty()) projectJoints(model, state, s, 0.0);
     ledger.positionCorrection += potentialOf(model, state, s.involved) - potential;
     for (int i : s.involved) {
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;

@@ -72,9 +72,22 @@ struct ContactSolverScratch {
         Eigen::Vector2d lambdaT = Eigen::Vector2d::Zero();
         double lambdaTwist = 0.0;
     };
+    /// A joint's rows in this solve (joints.cpp): a ball's three, through the 3 × 3 inverse
+    /// of its effective mass; a distance's or rope's one, along the anchors' line.
+    struct JointRow {
+        int joint = 0, a = 0, b = 0;  // b: a body index (the world's row has an immovable body)
+        Vec3 rA, rB;                  // world arms from the centres of mass to the anchors
+        Mat3 Kinv = Mat3::Zero();     // ball
+        Vec3 n, armA, armB, spinA, spinB;  // distance and rope: as a contact point's normal row
+        double k = 0.0, target = 0.0;
+        bool ball = false;            // three rows (else one along n)
+        bool pullsOnly = false;       // rope
+        Vec3 lambda = Vec3::Zero();   // accumulated impulse (x alone for a single row)
+    };
     std::vector<Point> points;
     std::vector<PointGeometry> geometry;  // per point
     std::vector<Block> blocks;
+    std::vector<JointRow> jointRows;
     std::vector<SubsetInverses> subsets;  // per block: K's sub-inverses (pushingImpulses)
     std::vector<SubsetInverses> frozenSubsets;  // per frozen block (shockPass)
     std::vector<SolverBody> bodies;

@@ -97,6 +97,11 @@ namespace {
 
 static_assert(sizeof(Pose) == 12 * sizeof(double), "a pose is compared as its bytes");
 
+// Whether a joint joins bodies a < b (they do not collide).
+bool joined(const Model& model, int a, int b) {
+    return !model.jointPairs.empty() && std::binary_search(model.jointPairs.begin(), model.jointPairs.end(), pairKey(a, b));
+}
+
 // The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
 bool samePose(const Pose& x, const Pose& y) { return std::memcmp(&x, &y, sizeof(Pose)) == 0; }
 
@@ -157,6 +162,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
             reused.fetch_add(1, std::memory_order_relaxed);
             return;
         }
+        if (joined(model, a, b)) return;  // a joint's bodies do not collide
         const Shape& A = model.bodies[a].collider;
         const Shape& B = model.bodies[b].collider;
         const size_t first = out.size();
@@ -242,6 +248,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         return (b1.x - b0.x).norm() + b0.q.angularDistance(b1.q) * (sizes[i] + body.centerOfMass.norm());
     };
     overPairs(s, s.impacts, s.chunkImpacts, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
+        if (joined(model, a, b)) return;
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
         int found = -1;  // the pair's first manifold at the end (end-of-step mode), if any

@@ -50,7 +50,9 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
         const BodyState& bs = state.bodies[i];
         const Vec3 v = b.invMass * bs.P;  // derive()'s
         const Vec3 omega = angularVelocity(b, bs);
-        const bool resting = v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
+        // A jointed body does not sleep yet (issue 20: joints are not island edges here).
+        const bool jointed = !model.jointed.empty() && model.jointed[i];
+        const bool resting = !jointed && v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
                              omega.squaredNorm() < kSleepSpin * kSleepSpin && !forceActs(model, i, state.time);
         state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
         restedLongEnough = restedLongEnough || state.restTime[i] >= kTimeToSleep;

@@ -99,7 +99,7 @@ World::World(Model model, State state)
         if (std::isfinite(scratch_->sizes.back())) largest = std::max(largest, scratch_->sizes.back());
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
-    scratch_->contacts = needsContacts(model_);
+    scratch_->contacts = needsContacts(model_) || !model_.joints.empty();  // joints are solved with the contacts
     if (scratch_->contacts) {
         // The contact stages' per-body arrays, at loading rather than in the first step.
         sizeContactSolver(model_, scratch_->solver);
@@ -292,7 +292,8 @@ void World::step(double h) {
     s.impacts.clear();
     s.parkedCount = 0;
     s.parked.clear();
-    bool mayPark = true;
+    // Joints are not island edges yet (issue 20): with joints, every island is cut together.
+    bool mayPark = model_.joints.empty();
     for (int cut = 0;; ++cut) {
         copyMotion(state_, s.before);
         const double t0 = state_.time;

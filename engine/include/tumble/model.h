@@ -60,10 +60,25 @@ struct BodyModel {
     }
 };
 
+/// A joint as the solver uses it: body indices (-1: the world) and each anchor from its
+/// body's centre of mass, in the body's axes (a world point for the world).
+struct JointModel {
+    std::string name;
+    JointType type = JointType::Ball;
+    int a = -1, b = -1;
+    Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
+    double length = 0.0;  ///< distance and rope
+};
+
 struct Model {
     Settings settings;
     const IntegratorInfo* integrator = nullptr;
     std::vector<BodyModel> bodies;
+    std::vector<JointModel> joints;
+    std::vector<std::uint8_t> jointed;  ///< per body: 1 when a joint holds it (empty: no joints)
+    /// The pairs of bodies a joint joins, as sorted pair keys (pair_key.h): they do not
+    /// collide with each other (a chain's links overlap at their joints).
+    std::vector<std::uint64_t> jointPairs;
     std::vector<ForceTerm> forces;   ///< grouped by body, in scene order
     std::vector<int> dynamicBodies;  ///< indices; the only bodies forces act on
     std::vector<int> kinematicBodies;

@@ -109,9 +109,29 @@ struct Settings {
     bool operator==(const Settings&) const = default;
 };
 
+/// A joint between two bodies, or a body and the world (issue 20; the design is in
+/// docs/architecture.md "Joints"). Built so far: ball (the anchors held together),
+/// distance (a rigid rod between the anchors) and rope (the anchors at most `length` apart:
+/// it only pulls). Not yet in the scene file.
+enum class JointType { Ball, Distance, Rope };
+
+struct JointDesc {
+    std::string name;
+    JointType type = JointType::Ball;
+    std::string bodyA;             ///< a body's name
+    std::string bodyB;             ///< another body's name; empty: the world
+    Vec3 anchorA = Vec3::Zero();   ///< in bodyA's frame (the frame `position` and `orientation` place)
+    Vec3 anchorB = Vec3::Zero();   ///< in bodyB's frame; a world point when bodyB is the world
+    /// Distance and rope: the length (m); negative: the anchors' distance in the scene.
+    double length = -1.0;
+
+    bool operator==(const JointDesc&) const = default;
+};
+
 struct SceneDesc {
     Settings settings;
     std::vector<BodyDesc> bodies;
+    std::vector<JointDesc> joints;
 
     bool operator==(const SceneDesc&) const = default;
 };

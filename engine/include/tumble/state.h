@@ -46,6 +46,9 @@ struct State {
     /// step", where what touches already is resting contact.
     std::vector<std::uint64_t> touching;
     bool touchingKnown = false;
+    /// Per joint (Model::joints): its impulse in the last step, the next step's warm start
+    /// (a ball's three components; distance and rope use x). Empty: none yet.
+    std::vector<Vec3> jointImpulses;
 
     bool isAsleep(int body) const { return !asleep.empty() && asleep[body] != 0; }
 };

@@ -43,7 +43,9 @@ SceneDesc readSceneFile(const std::filesystem::path& path);
 /// The scene as normalised JSON text: every setting and every body field written out,
 /// unit quaternions and plane normals, numbers that read back exactly. A mesh body's
 /// file is written as it is given (a path relative to the scene's folder stays relative);
-/// its loaded triangles (meshData) are never written.
+/// its loaded triangles (meshData) are never written. A scene with joints throws
+/// std::invalid_argument: the file cannot hold them yet (issue 20), and they must not be
+/// dropped silently.
 std::string sceneToJson(const SceneDesc& scene);
 
 /// Writes sceneToJson atomically (a temporary file beside it, then a rename).

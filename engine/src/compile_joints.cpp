@@ -1,0 +1,81 @@
+// The joints of a scene: checked (named bodies, finite anchors, a length a rope can have)
+// and resolved to body indices and anchors from each centre of mass (compile.cpp calls it
+// last, when the bodies' mass properties are known).
+#include "compile_joints.h"
+
+#include "pair_key.h"
+
+#include <tumble/errors.h>
+
+#include <algorithm>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace tumble {
+
+namespace {
+
+std::string at(size_t i) { return "joints[" + std::to_string(i) + "]"; }
+
+}  // namespace
+
+void validateJoints(const SceneDesc& scene) {
+    std::map<std::string, const BodyDesc*> bodies;
+    for (const BodyDesc& b : scene.bodies) bodies[b.name] = &b;
+    std::set<std::string> names;
+    for (size_t i = 0; i < scene.joints.size(); ++i) {
+        const JointDesc& j = scene.joints[i];
+        const std::string p = at(i);
+        if (j.name.empty()) throw SceneError(p + ".name", "must not be empty");
+        if (!names.insert(j.name).second)
+            throw SceneError(p + ".name", "'" + j.name + "' is already the name of another joint");
+        const auto a = bodies.find(j.bodyA);
+        if (a == bodies.end()) throw SceneError(p + ".bodyA", "no body is named '" + j.bodyA + "'");
+        const BodyDesc* b = nullptr;
+        if (!j.bodyB.empty()) {
+            const auto it = bodies.find(j.bodyB);
+            if (it == bodies.end()) throw SceneError(p + ".bodyB", "no body is named '" + j.bodyB + "'");
+            if (j.bodyB == j.bodyA) throw SceneError(p + ".bodyB", "a joint needs two different bodies");
+            b = it->second;
+        }
+        if (a->second->motion != Motion::Dynamic && (!b || b->motion != Motion::Dynamic))
+            throw SceneError(p, "joins nothing that moves: one of its bodies must be dynamic");
+        if (!j.anchorA.allFinite()) throw SceneError(p + ".anchorA", "must be finite numbers");
+        if (!j.anchorB.allFinite()) throw SceneError(p + ".anchorB", "must be finite numbers");
+        if (!std::isfinite(j.length)) throw SceneError(p + ".length", "must be a finite number");
+    }
+}
+
+void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
+    if (scene.joints.empty()) return;
+    std::map<std::string, int> index;
+    for (size_t i = 0; i < scene.bodies.size(); ++i) index[scene.bodies[i].name] = static_cast<int>(i);
+    m.jointed.assign(m.bodies.size(), 0);
+    for (size_t i = 0; i < scene.joints.size(); ++i) {
+        const JointDesc& d = scene.joints[i];
+        JointModel j;
+        j.name = d.name;
+        j.type = d.type;
+        j.a = index.at(d.bodyA);
+        j.b = d.bodyB.empty() ? -1 : index.at(d.bodyB);
+        j.anchorA = d.anchorA - m.bodies[j.a].centerOfMass;
+        j.anchorB = j.b < 0 ? d.anchorB : Vec3(d.anchorB - m.bodies[j.b].centerOfMass);
+        // The anchors in the world at the start, for a length taken from the scene.
+        const Vec3 pa = start.bodies[j.a].x + start.bodies[j.a].q * j.anchorA;
+        const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(start.bodies[j.b].x + start.bodies[j.b].q * j.anchorB);
+        j.length = d.length >= 0.0 ? d.length : (pa - pb).norm();
+        if (j.type == JointType::Rope && !(j.length > 0.0))
+            throw SceneError(at(i) + ".length", "a rope must be longer than 0");
+        m.jointed[j.a] = 1;
+        if (j.b >= 0) {
+            m.jointed[j.b] = 1;
+            m.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
+        }
+        m.joints.push_back(j);
+    }
+    std::sort(m.jointPairs.begin(), m.jointPairs.end());
+}
+
+}  // namespace tumble

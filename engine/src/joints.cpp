@@ -1,0 +1,238 @@
+#include "joints.h"
+
+#include "contact_energy.h"
+#include "joint_math.h"
+#include "joint_projection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble {
+
+using JointRow = ContactSolverScratch::JointRow;
+using namespace joint;
+
+namespace {
+
+constexpr int kNewtonSteps = 12;  // per group (joint_projection.cpp)
+constexpr int kRattlePasses = 6;
+constexpr int kProjectionPasses = 100;
+
+// The effective mass matrix of a point held on two bodies (velocity change of the relative
+// point velocity per unit impulse): Σ m⁻¹ 1 - [r]× I⁻¹ [r]×.
+Mat3 pointMass(const SolverBody& A, const Vec3& rA, const SolverBody* B, const Vec3& rB) {
+    Mat3 K = moveFor(A, rA, rA);
+    if (B) K += moveFor(*B, rB, rB);
+    return K;
+}
+
+// A distance row's effective mass along n, and its arms and spins.
+void lineRow(const SolverBody& A, const SolverBody* B, JointRow& r) {
+    r.armA = r.rA.cross(r.n);
+    r.armB = r.rB.cross(r.n);
+    r.spinA = A.invI * r.armA;
+    r.spinB = B ? Vec3(B->invI * r.armB) : Vec3::Zero();
+    const double inv = A.invMass + (B ? B->invMass : 0.0) + r.armA.dot(r.spinA) + r.armB.dot(r.spinB);
+    r.k = inv > 0.0 ? 1.0 / inv : 0.0;
+}
+
+void applyLine(SolverBody& A, SolverBody* B, const JointRow& r, double d) {
+    A.v += (A.invMass * d) * r.n;
+    A.w += d * r.spinA;
+    A.touched = true;
+    if (!B) return;
+    B->v -= (B->invMass * d) * r.n;
+    B->w -= d * r.spinB;
+    B->touched = true;
+}
+
+SolverBody* other(ContactSolverScratch& s, const JointRow& r) { return r.b >= 0 ? &s.bodies[r.b] : nullptr; }
+
+}  // namespace
+
+void addJointBodies(const Model& model, const State& state, std::vector<int>& involved,
+                    std::vector<std::uint8_t>& seen) {
+    const std::size_t before = involved.size();
+    for (const JointModel& j : model.joints) {
+        if (!active(model, state, j)) continue;
+        involved.push_back(j.a);
+        if (j.b >= 0) involved.push_back(j.b);
+    }
+    if (involved.size() != before) uniqueBodies(involved, seen);
+}
+
+void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s) {
+    s.jointRows.clear();
+    const bool remembered = state.jointImpulses.size() == model.joints.size();
+    for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
+        const JointModel& j = model.joints[k];
+        if (!active(model, state, j)) continue;
+        JointRow r;
+        r.joint = k;
+        r.a = j.a;
+        r.b = j.b;
+        SolverBody& A = s.bodies[j.a];
+        SolverBody* B = j.b >= 0 ? &s.bodies[j.b] : nullptr;
+        r.rA = state.bodies[j.a].q * j.anchorA;
+        const Vec3 pA = state.bodies[j.a].x + r.rA;
+        r.rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
+        const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + r.rB) : j.anchorB;
+        if (j.type == JointType::Ball) {
+            const Mat3 K = pointMass(A, r.rA, B, r.rB);
+            if (!(K.determinant() > 0.0)) continue;  // nothing here can move
+            r.Kinv = K.inverse();
+            r.ball = true;
+        } else {
+            const Vec3 d = pA - pB;
+            const double length = d.norm();
+            if (!(length > kDegenerate)) continue;  // no line yet: held next step, projected now
+            r.n = d / length;
+            lineRow(A, B, r);
+            if (!(r.k > 0.0)) continue;
+            r.pullsOnly = j.type == JointType::Rope;
+            // A rope lets its slack close within the step, no more (a contact's speculative
+            // target); a rod keeps its length (the drift is projected away afterwards).
+            r.target = r.pullsOnly ? std::max(0.0, (j.length - length) / h) : 0.0;
+        }
+        // The warm start: the last step's force over this step.
+        if (remembered) {
+            r.lambda = h * state.jointImpulses[k];
+            if (j.type != JointType::Ball) r.lambda.y() = r.lambda.z() = 0.0;
+            if (r.pullsOnly) r.lambda.x() = std::min(r.lambda.x(), 0.0);
+            if (j.type == JointType::Ball) {
+                applyImpulse(A, r.rA, r.lambda);
+                if (B) applyImpulse(*B, r.rB, -r.lambda);
+            } else if (r.lambda.x() != 0.0) {
+                applyLine(A, B, r, r.lambda.x());
+            }
+        }
+        s.jointRows.push_back(r);
+    }
+}
+
+bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
+    JointRow& r = s.jointRows[k];
+    SolverBody& A = s.bodies[r.a];
+    SolverBody* B = other(s, r);
+    const Vec3 vB = B ? pointVelocity(*B, r.rB) : Vec3::Zero();
+    double change = 0.0;
+    if (!r.ball) {  // one row along the line
+        const double vn = r.n.dot(A.v - (B ? B->v : Vec3::Zero())) + r.armA.dot(A.w) - (B ? r.armB.dot(B->w) : 0.0);
+        const double old = r.lambda.x();
+        double next = old - r.k * (vn - r.target);
+        if (r.pullsOnly) next = std::min(next, 0.0);
+        const double d = next - old;
+        r.lambda.x() = next;
+        if (d != 0.0) applyLine(A, B, r, d);
+        change = std::abs(d) / r.k;  // the speed it changed
+    } else {
+        const Vec3 dv = pointVelocity(A, r.rA) - vB;
+        const Vec3 d = -(r.Kinv * dv);
+        r.lambda += d;
+        applyImpulse(A, r.rA, d);
+        if (B) applyImpulse(*B, r.rB, -d);
+        change = dv.lpNorm<Eigen::Infinity>();
+    }
+    if (!(change > quietSpeed)) return false;
+    const long tick = ++s.tick;  // the contact blocks of these bodies look again
+    if (A.invMass > 0.0) s.changedAt[r.a] = tick;
+    if (B && B->invMass > 0.0) s.changedAt[r.b] = tick;
+    return true;
+}
+
+void rememberJoints(const Model& model, const ContactSolverScratch& s, double h, State& state) {
+    if (model.joints.empty()) return;
+    state.jointImpulses.assign(model.joints.size(), Vec3::Zero());
+    for (const JointRow& r : s.jointRows) state.jointImpulses[r.joint] = r.lambda / h;
+}
+
+namespace {
+
+bool turnedFar(const Vec3& then, const Vec3& now) {
+    return then.cross(now).norm() > 0.2 * then.norm() * now.norm() || then.dot(now) < 0.0;
+}
+
+// One Gauss-Seidel pass of Newton steps over the active joints; returns the largest error
+// it found. With `from` (the step's start) the impulses act along the joints' directions
+// there and, with h > 0, also change the solver bodies' velocities (RATTLE); without, along
+// the directions now, positions only (a plain nonlinear Gauss-Seidel projection).
+double projectionPass(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from) {
+    const SolverBody still;  // the world, and bodies that cannot move
+    double worst = 0.0;
+    for (const JointModel& j : model.joints) {
+        if (!active(model, state, j)) continue;
+        const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+        const SolverBody& A = moveA ? s.bodies[j.a] : still;
+        const SolverBody& B = moveB ? s.bodies[j.b] : still;
+        BodyState& a = state.bodies[j.a];
+        const Vec3 rA = a.q * j.anchorA;
+        const Vec3 rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
+        const Vec3 pA = a.x + rA;
+        const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + rB) : j.anchorB;
+        const State& at = from ? *from : state;
+        const Vec3 arA = at.bodies[j.a].q * j.anchorA;  // the arms the impulse acts at
+        const Vec3 arB = j.b >= 0 ? Vec3(at.bodies[j.b].q * j.anchorB) : Vec3::Zero();
+        // A body that turned far in the step (a whipping chain's end at 1/30 s): the start's
+        // arms no longer tell how the anchor moves, and the Newton steps along them can run
+        // away; such a joint is left to the passes along the directions now.
+        if (from && (turnedFar(arA, rA) || turnedFar(arB, rB))) {
+            worst = std::max(worst, (pA - pB).norm());
+            continue;
+        }
+        Vec3 J = Vec3::Zero();
+        if (j.type == JointType::Ball) {
+            const Vec3 C = pA - pB;
+            worst = std::max(worst, C.norm());
+            if (C.norm() <= kHeld) continue;
+            J = -((moveFor(A, rA, arA) + moveFor(B, rB, arB)).inverse() * C);
+        } else {
+            const Vec3 d = pA - pB;
+            const double length = d.norm();
+            const Vec3 d0 = at.bodies[j.a].x + arA - (j.b >= 0 ? Vec3(at.bodies[j.b].x + arB) : j.anchorB);
+            if (!(length > kDegenerate) || !(d0.norm() > kDegenerate)) continue;
+            double C = length - j.length;
+            if (j.type == JointType::Rope) C = std::max(C, 0.0);
+            worst = std::max(worst, std::abs(C));
+            if (std::abs(C) <= kHeld) continue;
+            const Vec3 n0 = d0 / d0.norm();
+            // A Newton step on the length, the impulse along that line.
+            const double slope = (d / length).dot((moveFor(A, rA, arA) + moveFor(B, rB, arB)) * n0);
+            if (!(slope > 0.0)) continue;
+            J = (-C / slope) * n0;
+        }
+        if (!J.allFinite()) continue;
+        if (moveA) nudge(A, a, arA, J);
+        if (moveB) nudge(B, state.bodies[j.b], arB, -J);
+        if (from && h > 0.0) {  // the move was made by the impulse J / h over the step
+            if (moveA) applyImpulse(s.bodies[j.a], arA, J / h);
+            if (moveB) applyImpulse(s.bodies[j.b], arB, -J / h);
+        }
+    }
+    return worst;
+}
+
+}  // namespace
+
+void projectJoints(const Model& model, State& state, ContactSolverScratch& s, double h, const State* start) {
+    // First RATTLE's projection, a few passes (a lone joint converges in two or three);
+    // then whatever a long chain has left, along the directions now, which Gauss-Seidel
+    // converges on safely (the first kind, iterated long, ran away on a whipping chain).
+    // Each group of joints is solved together first (Newton over all its rows); the
+    // Gauss-Seidel passes then take ropes, groups too large and what is left.
+    double worst = HUGE_VAL;
+    if (start) {
+        projectGroups(model, state, s, h, start, kNewtonSteps);
+        for (int pass = 0; pass < kRattlePasses && worst > kHeld; ++pass)
+            worst = projectionPass(model, state, s, h, start);
+    }
+    projectGroups(model, state, s, 0.0, nullptr, kNewtonSteps);
+    worst = HUGE_VAL;
+    for (int pass = 0; pass < kProjectionPasses && worst > kHeld; ++pass)
+        worst = projectionPass(model, state, s, 0.0, nullptr);
+    if (start && h > 0.0)
+        for (const JointModel& j : model.joints)
+            for (int i : {j.a, j.b})
+                if (movable(model, state, i)) s.bodies[i].x = state.bodies[i].x;
+}
+
+}  // namespace tumble
