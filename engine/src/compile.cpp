@@ -46,6 +46,17 @@ void requirePositive(double v, const std::string& path) {
     if (!(v > 0.0)) throw SceneError(path, "must be greater than 0");
 }
 
+// The largest size a shape may have, in metres: a thousand kilometres. The engine's
+// tolerances are fractions of the bodies' sizes, and beyond it its arithmetic loses what a
+// scene of everyday bodies needs (a box of 4e93 m made three steps take seconds and its
+// energies overflow: the scene fuzzer).
+constexpr double kLargestSize = 1e6;
+
+void requireLength(double v, const std::string& path) {
+    requirePositive(v, path);
+    if (v > kLargestSize) throw SceneError(path, "must be at most 1e6 m");
+}
+
 void requireNonNegative(double v, const std::string& path) {
     requireFinite(v, path);
     if (v < 0.0) throw SceneError(path, "must be 0 or greater");
@@ -83,16 +94,16 @@ void validateSettings(const Settings& s) {
 void validateShape(const BodyDesc& b, const std::string& path) {
     const ShapeDesc& s = b.shape;
     switch (s.type) {
-        case ShapeType::Sphere: requirePositive(s.radius, path + ".radius"); break;
+        case ShapeType::Sphere: requireLength(s.radius, path + ".radius"); break;
         case ShapeType::Box:
             for (int k = 0; k < 3; ++k) {
-                requirePositive(s.halfExtents[k], path + ".half_extents[" + std::to_string(k) + "]");
+                requireLength(s.halfExtents[k], path + ".half_extents[" + std::to_string(k) + "]");
             }
             break;
         case ShapeType::Capsule:
         case ShapeType::Cylinder:
-            requirePositive(s.radius, path + ".radius");
-            requirePositive(s.halfHeight, path + ".half_height");
+            requireLength(s.radius, path + ".radius");
+            requireLength(s.halfHeight, path + ".half_height");
             break;
         case ShapeType::Plane:
             requireFinite(s.normal, path + ".normal");

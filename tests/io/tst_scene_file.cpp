@@ -364,6 +364,13 @@ private slots:
             R"("mass": 1, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 1e999]],)", "bodies[1].inertia[2][2]",
             "drop.json: bodies[1].inertia[2][2]: must be a finite number");
 
+        // Sizes beyond what the engine's arithmetic holds (the scene fuzzer's box of
+        // 4.4e93 m took seconds a step and overflowed its energies).
+        row("a box of 1e7 m", R"("half_extents": [0.5, 0.25, 0.5])", R"("half_extents": [0.5, 1e7, 0.5])",
+            "bodies[2].shape.half_extents[1]", "drop.json: bodies[2].shape.half_extents[1]: must be at most 1e6 m");
+        row("a ball of 2e6 m", R"("radius": 0.5})", R"("radius": 2e6})", "bodies[1].shape.radius",
+            "drop.json: bodies[1].shape.radius: must be at most 1e6 m");
+
         // Mass.
         row("zero mass", R"("mass": 1,)", R"("mass": 0,)", "bodies[1].mass",
             "drop.json: bodies[1].mass: must be greater than 0");
@@ -487,11 +494,11 @@ private slots:
         row("unknown force type", R"("type": "spring")", R"("type": "magnet")", "bodies[1].forces[0].type",
             "drop.json: bodies[1].forces[0].type: 'magnet' is not one of force, torque, spring");
         // Each number is in range but the mass or inertia computed from them is not.
-        row("mass overflows", R"("radius": 0.5)", R"("radius": 1e160)", "bodies[1].mass",
+        row("mass overflows", R"("radius": 0.5}, "mass": 1,)", R"("radius": 1e6}, "mass": 1e305,)", "bodies[1].mass",
             "drop.json: bodies[1].mass: with this shape gives an inertia tensor that is not finite and "
             "positive definite (largest entry inf kg m^2)");
-        row("volume overflows", R"("half_extents": [0.5, 0.25, 0.5])",
-            R"("half_extents": [1e200, 1e200, 1e200])", "bodies[2].density",
+        row("volume overflows", R"("half_extents": [0.5, 0.25, 0.5]}, "density": 1000)",
+            R"("half_extents": [1e6, 1e6, 1e6]}, "density": 1e300)", "bodies[2].density",
             "drop.json: bodies[2].density: with this shape gives a mass of inf kg, which is not a usable "
             "finite positive number");
         row("volume underflows", R"("half_extents": [0.5, 0.25, 0.5])",
