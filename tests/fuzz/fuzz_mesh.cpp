@@ -5,6 +5,8 @@
 // compiled as a dynamic body both ways a scene can ask (convex hull, and the triangles as
 // they are), which either works or gives a SceneError; anything else (a crash, a sanitizer
 // report, another exception, a non-finite mass property) is a bug.
+#include "fuzz_compile.h"
+
 #include <tumble/errors.h>
 #include <tumble/io/mesh_import.h>
 #include <tumble/model.h>
@@ -21,38 +23,15 @@
 
 namespace {
 
+using tumble::fuzz::bug;
+
 // The formats docs/scene-format.md names; the seed corpus has one file or more of each.
 constexpr const char* kExtensions[] = {".obj", ".stl", ".ply", ".off", ".glb"};
 constexpr std::size_t kExtensionCount = sizeof kExtensions / sizeof kExtensions[0];
 
-[[noreturn]] void bug(const char* what, const std::string& detail) {
-    std::fprintf(stderr, "fuzz_mesh: %s: %s\n", what, detail.c_str());
-    std::abort();
-}
-
 std::string tempFolder() {
     const char* dir = std::getenv("TMPDIR");
     return std::string(dir && *dir ? dir : "/tmp");
-}
-
-void compileBody(const std::shared_ptr<const tumble::TriangleMesh>& mesh, tumble::MeshCollision collision) {
-    tumble::SceneDesc scene;
-    tumble::BodyDesc body;
-    body.name = "fuzzed";
-    body.shape.type = tumble::ShapeType::Mesh;
-    body.shape.file = "fuzz";
-    body.shape.collision = collision;
-    body.shape.meshData = mesh;
-    body.density = 1000.0;
-    scene.bodies.push_back(body);
-    try {
-        const tumble::Model model = tumble::compile(scene);
-        const auto& b = model.bodies.at(0);
-        if (!(b.mass > 0.0) || !std::isfinite(b.mass))
-            bug("a compiled mesh body with a bad mass", std::to_string(b.mass));
-        if (!b.inertia.allFinite()) bug("a compiled mesh body with a non-finite inertia", "");
-    } catch (const tumble::SceneError&) {
-    }
 }
 
 void keep(const std::uint8_t* data, std::size_t size) {
@@ -76,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     {
         std::ofstream out(path, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
-        if (!out) bug("cannot write the temporary file", path);
+        if (!out) bug("fuzz_mesh", "cannot write the temporary file", path);
     }
     std::shared_ptr<const tumble::TriangleMesh> mesh;
     try {
@@ -85,14 +64,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         mesh = std::make_shared<const tumble::TriangleMesh>(
             tumble::io::importMesh(path, tumble::Vec3(1, 1, 1), options));
     } catch (const tumble::io::InputError& e) {
-        if (e.file() != path) bug("an InputError that does not name the file", e.what());
+        if (e.file() != path) bug("fuzz_mesh", "an InputError that does not name the file", e.what());
         // assimp reads in a child process (engine/io/src/mesh_child.cpp): a crash of assimp's
         // own there, or a sanitizer report with assimp on the stack, is a message, as the user
         // gets it; a sanitizer report in Tumble's code in the child ends it with status 1,
         // which is a bug. (The start of the message: assimp's
         // own messages come after "cannot be read as a mesh: " and may quote the file.)
         if (e.message().starts_with("the mesh reader stopped without an answer"))
-            bug("the mesh reader failed", e.what());
+            bug("fuzz_mesh", "the mesh reader failed", e.what());
         // assimp's own fault (a crash, a sanitizer report inside it, a loop stopped at the
         // time limit): handled, as above, and the input kept for the regressions when the
         // run says where (run_fuzz.sh: WORKDIR/reader-faults/), since the parent must go on
@@ -101,7 +80,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     std::remove(path.c_str());
     if (!mesh) return 0;
-    compileBody(mesh, tumble::MeshCollision::ConvexHull);
-    compileBody(mesh, tumble::MeshCollision::Triangles);
+    tumble::fuzz::compileBody("fuzz_mesh", mesh, tumble::MeshCollision::ConvexHull);
+    tumble::fuzz::compileBody("fuzz_mesh", mesh, tumble::MeshCollision::Triangles);
     return 0;
 }

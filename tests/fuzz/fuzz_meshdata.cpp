@@ -11,6 +11,8 @@
 // Seeds: with TUMBLE_MAKE_SEEDS=DIR and TUMBLE_SEED_MESHES=FILE:FILE:... in the
 // environment, the program reads those mesh files (assimp, in its child) and writes their
 // answers into DIR, then exits (tests/fuzz/run_fuzz.sh).
+#include "fuzz_compile.h"
+
 #include <tumble/errors.h>
 #include <tumble/io/mesh_import.h>
 #include <tumble/model.h>
@@ -28,30 +30,7 @@
 
 namespace {
 
-[[noreturn]] void bug(const char* what, const std::string& detail) {
-    std::fprintf(stderr, "fuzz_meshdata: %s: %s\n", what, detail.c_str());
-    std::abort();
-}
-
-void compileBody(const std::shared_ptr<const tumble::TriangleMesh>& mesh, tumble::MeshCollision collision) {
-    tumble::SceneDesc scene;
-    tumble::BodyDesc body;
-    body.name = "fuzzed";
-    body.shape.type = tumble::ShapeType::Mesh;
-    body.shape.file = "fuzz";
-    body.shape.collision = collision;
-    body.shape.meshData = mesh;
-    body.density = 1000.0;
-    scene.bodies.push_back(body);
-    try {
-        const tumble::Model model = tumble::compile(scene);
-        const auto& b = model.bodies.at(0);
-        if (!(b.mass > 0.0) || !std::isfinite(b.mass))
-            bug("a compiled mesh body with a bad mass", std::to_string(b.mass));
-        if (!b.inertia.allFinite()) bug("a compiled mesh body with a non-finite inertia", "");
-    } catch (const tumble::SceneError&) {
-    }
-}
+using tumble::fuzz::bug;
 
 void makeSeeds(const char* dir, const char* files) {
     std::stringstream list(files);
@@ -94,10 +73,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         mesh = std::make_shared<const tumble::TriangleMesh>(tumble::io::meshFromAnswer(name, answer));
     } catch (const tumble::io::InputError& e) {
-        if (e.file() != name) bug("an InputError that does not name the file", e.what());
+        if (e.file() != name) bug("fuzz_meshdata", "an InputError that does not name the file", e.what());
         return 0;
     }
-    compileBody(mesh, tumble::MeshCollision::ConvexHull);
-    compileBody(mesh, tumble::MeshCollision::Triangles);
+    tumble::fuzz::compileBody("fuzz_meshdata", mesh, tumble::MeshCollision::ConvexHull);
+    tumble::fuzz::compileBody("fuzz_meshdata", mesh, tumble::MeshCollision::Triangles);
     return 0;
 }
