@@ -452,6 +452,45 @@ private slots:
     }
 #endif
 
+    // assimp reads in a program of its own, not in a fork of the caller (a fork taken on
+    // the editor's import thread inherited a lock another thread held, and the sanitized
+    // editor's import waited for ever): importMesh finds the build tree's reader and
+    // starts it; TUMBLE_MESH_READER names another, and what that program does is what the
+    // user hears.
+    void theReaderIsAProgramOfItsOwn() {
+        const QString reader = QString::fromStdString(tumble::io::meshReaderProgram());
+        QVERIFY2(reader.endsWith("/tumble-mesh-reader"), qPrintable(reader));
+        QTemporaryDir dir;
+        const fs::path good = fs::path(dir.path().toStdString()) / "tri.obj";
+        writeText(good, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        const TriangleMesh m = tumble::io::importMesh(good, Vec3(2, 3, 4));
+        QCOMPARE(m.triangles.size(), size_t(1));
+        QVERIFY(m.vertices.size() == 3 && m.vertices[1] == Vec3(2, 0, 0) && m.vertices[2] == Vec3(0, 3, 0));
+
+        const auto messageWith = [&](const char* program) {
+            qputenv("TUMBLE_MESH_READER", program);
+            QString what;
+            try {
+                tumble::io::importMesh(good);
+            } catch (const tumble::io::InputError& e) {
+                what = QString::fromStdString(e.message());
+            }
+            qunsetenv("TUMBLE_MESH_READER");
+            return what;
+        };
+        QCOMPARE(messageWith("/bin/false"), QString("the mesh reader stopped without an answer (exit status 1)"));
+        QCOMPARE(messageWith("/no/such/reader"),
+                 QString("the mesh reader program /no/such/reader cannot be started (No such file or "
+                         "directory)"));
+
+        // Run by hand without its arguments or its answer's descriptor: a usage line, status 2.
+        QProcess byHand;
+        byHand.start(reader, {good.c_str()});
+        QVERIFY(byHand.waitForFinished(30000));
+        QCOMPARE(byHand.exitCode(), 2);
+        QVERIFY(byHand.readAllStandardError().startsWith("usage: tumble-mesh-reader FILE SX SY SZ"));
+    }
+
     // A mesh `file` that names a FIFO is refused at once (opening it for reading would wait
     // for a writer for ever: `tumble --headless` on such a scene hung).
     void aFifoIsNotAMeshFile() {

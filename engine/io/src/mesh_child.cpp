@@ -171,11 +171,19 @@ TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
         // the child exits with status 1 instead (kReaderFault when it was inside assimp),
         // which the parent tells apart.
         ::signal(SIGABRT, SIG_DFL);
-        watchForReaderFaults();
-        runChild(fds[1], read);
+        answerInThisProcess(fds[1], read);
     }
     ::close(fds[1]);
+    return awaitMeshAnswer(name, timeLimit, pid, fds[0], cancel);
+}
 
+[[noreturn]] void answerInThisProcess(int fd, const std::function<TriangleMesh()>& read) {
+    watchForReaderFaults();
+    runChild(fd, read);
+}
+
+TriangleMesh awaitMeshAnswer(const std::string& name, double timeLimit, pid_t pid, int fd,
+                             const std::atomic<bool>* cancel) {
     // Read the whole answer, waiting at most timeLimit in all.
     using Clock = std::chrono::steady_clock;
     const auto deadline = Clock::now() + std::chrono::duration<double>(timeLimit);
@@ -196,16 +204,16 @@ TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
             timedOut = true;
             break;
         }
-        pollfd p{fds[0], POLLIN, 0};
+        pollfd p{fd, POLLIN, 0};
         const int ready = ::poll(&p, 1, static_cast<int>(std::min(left, slice)));
         if (ready < 0 && errno == EINTR) continue;
         if (ready <= 0) continue;
-        const ssize_t n = ::read(fds[0], buffer.data(), buffer.size());
+        const ssize_t n = ::read(fd, buffer.data(), buffer.size());
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break;  // the child closed its end: the answer is complete
         data.append(buffer.data(), static_cast<std::size_t>(n));
     }
-    ::close(fds[0]);
+    ::close(fd);
     if (timedOut || cancelled) ::kill(pid, SIGKILL);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {

@@ -6,6 +6,8 @@
 
 #include <tumble/mass.h>
 
+#include <sys/types.h>
+
 #include <atomic>
 #include <functional>
 #include <string>
@@ -28,5 +30,28 @@ TriangleMesh meshFromAnswer(const std::string& name, const std::string& answer);
 TriangleMesh readMeshInChild(const std::string& name, double timeLimit,
                              const std::function<TriangleMesh()>& read,
                              const std::atomic<bool>* cancel = nullptr);
+
+/// The same with the reader program (tumble-mesh-reader, mesh_reader.cpp) in place of a
+/// fork: what importMesh uses when it finds the program. A fork copies one thread of a
+/// process whose other threads may hold locks (the editor reads on a worker thread while the
+/// GUI and Qt3D threads run; under AddressSanitizer its allocator's lock was one, and the
+/// child waited on it for ever); a new program starts with none.
+/// Throws InputError for `name` when the program cannot be started.
+TriangleMesh readMeshWithProgram(const std::string& program, const std::string& name, const Vec3& scale,
+                                 double timeLimit, const std::atomic<bool>* cancel = nullptr);
+
+/// The parent's side: reads the answer of the child `pid` from `fd` (and closes it), at most
+/// `timeLimit` seconds, reaps the child, and returns the mesh or throws as above.
+TriangleMesh awaitMeshAnswer(const std::string& name, double timeLimit, pid_t pid, int fd,
+                             const std::atomic<bool>* cancel);
+
+/// The child's side: runs `read` and writes its answer to `fd`, then ends the process
+/// (status 0 when the answer was written). Under AddressSanitizer a report with assimp on
+/// the stack ends it with status 3, which the parent reports as the reader's fault.
+[[noreturn]] void answerInThisProcess(int fd, const std::function<TriangleMesh()>& read);
+
+/// assimp's reading and Tumble's checks of what it read (mesh_import.cpp); throws
+/// InputError for `name`.
+TriangleMesh readWithAssimp(const std::string& name, const Vec3& scale);
 
 }  // namespace tumble::io

@@ -19,9 +19,6 @@
 
 namespace tumble::io {
 
-namespace {
-
-// assimp's reading and Tumble's checks of what it read; throws InputError for `name`.
 TriangleMesh readWithAssimp(const std::string& name, const Vec3& scale) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
@@ -83,8 +80,6 @@ TriangleMesh readWithAssimp(const std::string& name, const Vec3& scale) {
     return mesh;
 }
 
-}  // namespace
-
 TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale,
                         const MeshImportOptions& options) {
     const std::string name = file.string();
@@ -101,8 +96,11 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale,
     if (options.refuseKnownHangs) {
         if (const auto hang = meshFileAssimpWouldHangOn(file)) throw InputError(name, "", *hang);
     }
-    const auto read = [&] { return readWithAssimp(name, scale); };
-    return options.timeLimit > 0 ? readMeshInChild(name, options.timeLimit, read, options.cancel) : read();
+    if (options.timeLimit <= 0) return readWithAssimp(name, scale);
+    const std::string program = meshReaderProgram();
+    if (!program.empty()) return readMeshWithProgram(program, name, scale, options.timeLimit, options.cancel);
+    return readMeshInChild(name, options.timeLimit, [&] { return readWithAssimp(name, scale); },
+                           options.cancel);
 }
 
 void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, const std::string& sceneName,

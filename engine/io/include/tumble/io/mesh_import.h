@@ -41,8 +41,21 @@ public:
 /// cannot read it (its own message is given), or it holds no triangles.
 /// assimp reads in a child process (engine/io/src/mesh_child.h): a file it crashes on or
 /// never finishes gives an InputError saying so, never a crash or a hang of the caller.
+/// The child is the reader program, meshReaderProgram(), when there is one; a fork of the
+/// caller otherwise (safe only where no other thread runs).
 TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale = Vec3(1, 1, 1),
                         const MeshImportOptions& options = {});
+
+/// The reader program importMesh starts for each file, or "" when there is none: the
+/// environment's TUMBLE_MESH_READER when set (taken as it is), else tumble-mesh-reader
+/// beside the running program, else the one in the build tree it was built in.
+std::string meshReaderProgram();
+
+/// The reader program's main (app/mesh_reader_main.cpp):
+/// `tumble-mesh-reader FILE SX SY SZ` reads FILE with assimp, scaled, and writes the answer
+/// to file descriptor 3 (engine/io/src/mesh_child.h); status 0 when it was written, 2 for
+/// wrong arguments.
+int meshReaderMain(int argc, char** argv);
 
 /// Fills shape.meshData of every mesh body of `scene` by reading its file relative to
 /// `baseDir` (absolute paths are taken as they are) with the body's scale; bodies with the
