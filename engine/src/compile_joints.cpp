@@ -32,19 +32,21 @@ void validateJoints(const SceneDesc& scene) {
         if (!names.insert(j.name).second)
             throw SceneError(p + ".name", "'" + j.name + "' is already the name of another joint");
         const auto a = bodies.find(j.bodyA);
-        if (a == bodies.end()) throw SceneError(p + ".bodyA", "no body is named '" + j.bodyA + "'");
+        if (a == bodies.end()) throw SceneError(p + ".body_a", "no body is named '" + j.bodyA + "'");
         const BodyDesc* b = nullptr;
         if (!j.bodyB.empty()) {
             const auto it = bodies.find(j.bodyB);
-            if (it == bodies.end()) throw SceneError(p + ".bodyB", "no body is named '" + j.bodyB + "'");
-            if (j.bodyB == j.bodyA) throw SceneError(p + ".bodyB", "a joint needs two different bodies");
+            if (it == bodies.end()) throw SceneError(p + ".body_b", "no body is named '" + j.bodyB + "'");
+            if (j.bodyB == j.bodyA) throw SceneError(p + ".body_b", "a joint needs two different bodies");
             b = it->second;
         }
         if (a->second->motion != Motion::Dynamic && (!b || b->motion != Motion::Dynamic))
             throw SceneError(p, "joins nothing that moves: one of its bodies must be dynamic");
-        if (!j.anchorA.allFinite()) throw SceneError(p + ".anchorA", "must be finite numbers");
-        if (!j.anchorB.allFinite()) throw SceneError(p + ".anchorB", "must be finite numbers");
+        if (!j.anchorA.allFinite()) throw SceneError(p + ".anchor_a", "must be finite numbers");
+        if (!j.anchorB.allFinite()) throw SceneError(p + ".anchor_b", "must be finite numbers");
         if (!std::isfinite(j.length)) throw SceneError(p + ".length", "must be a finite number");
+        if (j.type == JointType::Ball && j.length >= 0.0)
+            throw SceneError(p + ".length", "a ball joint has no length (its anchors stay together)");
     }
 }
 

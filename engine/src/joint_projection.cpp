@@ -32,7 +32,7 @@ struct Rows {
 
 // The group's rows at the bodies' present poses; the largest error, and in `sum` the sum
 // of the squared errors (what a Newton step must lower: its direction descends on it).
-double measure(const Model& model, const State& state, const State& at, std::vector<Rows>& rows,
+double measure(const Model& /*model*/, const State& state, const State& at, std::vector<Rows>& rows,
                double* sum = nullptr) {
     double worst = 0.0;
     if (sum) *sum = 0.0;

@@ -40,6 +40,15 @@ const char* toString(Frame f) { return f == Frame::World ? "world" : "body"; }
 
 const char* toString(ImpactTiming t) { return t == ImpactTiming::Exact ? "exact" : "end-of-step"; }
 
+const char* toString(JointType t) {
+    switch (t) {
+    case JointType::Ball: return "ball";
+    case JointType::Distance: return "distance";
+    case JointType::Rope: return "rope";
+    }
+    return "?";
+}
+
 bool ShapeDesc::operator==(const ShapeDesc& o) const {
     return type == o.type && radius == o.radius && halfHeight == o.halfHeight &&
            halfExtents == o.halfExtents && normal == o.normal && distance == o.distance &&

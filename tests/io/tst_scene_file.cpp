@@ -31,6 +31,10 @@ const char* const kBase = R"({
      "linear_damping": 0.1, "angular_damping": 0.2,
      "forces": [{"type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1}]},
     {"name": "crate", "shape": {"type": "box", "half_extents": [0.5, 0.25, 0.5]}, "density": 1000}
+  ],
+  "joints": [
+    {"name": "string", "type": "rope", "body_a": "ball", "anchor_a": [0, 0.5, 0], "anchor_b": [0, 3.5, 0], "length": 1.5},
+    {"name": "hitch", "type": "ball", "body_a": "crate", "anchor_a": [0.5, 0, 0], "body_b": "ball", "anchor_b": [0, -0.5, 0]}
   ]
 }
 )";
@@ -163,6 +167,31 @@ SceneDesc everyField() {
     post.shape.halfExtents = Vec3(0.1, 1, 0.1);
     post.position = Vec3(0, 1, 5);
     s.bodies.push_back(post);
+
+    JointDesc rope;  // to the world, with its length
+    rope.name = "string";
+    rope.type = JointType::Rope;
+    rope.bodyA = ball.name;
+    rope.anchorA = Vec3(0, 0.3, 0);
+    rope.anchorB = Vec3(0.1, 4, -0.3);
+    rope.length = 1.75;
+    s.joints.push_back(rope);
+    JointDesc rod;  // between two bodies, its length from the scene
+    rod.name = "rod";
+    rod.type = JointType::Distance;
+    rod.bodyA = "crate";
+    rod.anchorA = Vec3(0.5, 0, 0);
+    rod.bodyB = "can";
+    rod.anchorB = Vec3(0, 0.2, 0);
+    s.joints.push_back(rod);
+    JointDesc hinge;
+    hinge.name = "pin";
+    hinge.type = JointType::Ball;
+    hinge.bodyA = "crate";
+    hinge.anchorA = Vec3(-0.5, 0.25, 0);
+    hinge.bodyB = "post";
+    hinge.anchorB = Vec3(0, 1, 0);
+    s.joints.push_back(hinge);
     return s;
 }
 
@@ -505,6 +534,34 @@ private slots:
             R"("half_extents": [1e-120, 1e-120, 1e-120])", "bodies[2].density",
             "drop.json: bodies[2].density: with this shape gives a mass of 0 kg, which is not a usable "
             "finite positive number");
+        // Joints (docs/scene-format.md "Joints").
+        row("joints not an array", "", R"({"format": "tumble-scene", "version": 1, "bodies": [], "joints": {}})",
+            "joints", "drop.json: joints: must be an array");
+        row("joint without a type", R"("type": "rope", )", "", "joints[0].type",
+            "drop.json: joints[0].type: is missing");
+        row("unknown joint type", R"("type": "rope")", R"("type": "glue")", "joints[0].type",
+            "drop.json: joints[0].type: 'glue' is not one of ball, distance, rope");
+        row("unknown joint key", R"("name": "hitch", )", R"("name": "hitch", "axis": [0, 1, 0], )",
+            "joints[1].axis", "drop.json: joints[1].axis: unknown key");
+        row("joint's body missing", R"("body_a": "crate")", R"("body_a": "cart")", "joints[1].body_a",
+            "drop.json: joints[1].body_a: no body is named 'cart'");
+        row("joint's other body missing", R"("body_b": "ball")", R"("body_b": "bal")", "joints[1].body_b",
+            "drop.json: joints[1].body_b: no body is named 'bal'");
+        row("joint's body_b empty", R"("body_b": "ball")", R"("body_b": "")", "joints[1].body_b",
+            "drop.json: joints[1].body_b: must name a body (leave it out to join body_a to the world)");
+        row("joint to itself", R"("body_b": "ball")", R"("body_b": "crate")", "joints[1].body_b",
+            "drop.json: joints[1].body_b: a joint needs two different bodies");
+        row("joint to the ground only", R"("body_a": "ball")", R"("body_a": "ground")", "joints[0]",
+            "drop.json: joints[0]: joins nothing that moves: one of its bodies must be dynamic");
+        row("joint names twice", R"("name": "hitch")", R"("name": "string")", "joints[1].name",
+            "drop.json: joints[1].name: 'string' is already the name of another joint");
+        row("negative length", R"("length": 1.5)", R"("length": -1)", "joints[0].length",
+            "drop.json: joints[0].length: must be at least 0 (leave it out for the anchors' distance at the "
+            "start)");
+        row("ball joint with a length", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "length": 1)",
+            "joints[1].length", "drop.json: joints[1].length: a ball joint has no length (its anchors stay together)");
+        row("anchor not a vector", R"("anchor_a": [0.5, 0, 0])", R"("anchor_a": [0.5, 0])", "joints[1].anchor_a",
+            "drop.json: joints[1].anchor_a: must be an array of 3 numbers");
         row("unknown frame",
             R"("type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1)",
             R"("type": "torque", "vector": [0, 1, 0], "frame": "local")", "bodies[1].forces[0].frame",
@@ -536,6 +593,10 @@ private slots:
     void baseIsValid() {
         const SceneDesc scene = io::parseScene(kBase, "drop.json");
         QCOMPARE(scene.bodies.size(), size_t(3));
+        QCOMPARE(scene.joints.size(), size_t(2));
+        QCOMPARE(scene.joints[0].bodyB, std::string());  // absent: the world
+        QCOMPARE(scene.joints[0].length, 1.5);
+        QCOMPARE(scene.joints[1].length, -1.0);  // absent: from the scene
         QCOMPARE(scene.settings.integrator, std::string("rk4"));
         QCOMPARE(scene.bodies[1].forces.size(), size_t(1));
         // Absent sleeping and solver_iterations take their documented defaults.

@@ -110,10 +110,11 @@ struct Settings {
 };
 
 /// A joint between two bodies, or a body and the world (issue 20; the design is in
-/// docs/architecture.md "Joints"). Built so far: ball (the anchors held together),
-/// distance (a rigid rod between the anchors) and rope (the anchors at most `length` apart:
-/// it only pulls). Not yet in the scene file.
+/// docs/architecture.md "Joints", the file's `joints` in docs/scene-format.md). Built so
+/// far: ball (the anchors held together), distance (a rigid rod between the anchors) and
+/// rope (the anchors at most `length` apart: it only pulls).
 enum class JointType { Ball, Distance, Rope };
+const char* toString(JointType t);
 
 struct JointDesc {
     std::string name;

@@ -276,6 +276,30 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     return b;
 }
 
+// A joint of the top-level `joints` (docs/scene-format.md "Joints"). The bodies it names
+// and what its type allows are checked with the rest of the scene (validate).
+JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    r.onlyKeys(j, p, {"name", "type", "body_a", "anchor_a", "body_b", "anchor_b", "length"});
+    JointDesc d;
+    d.name = r.string(r.require(j, p, "name"), p + ".name");
+    d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
+                       {JointType::Ball, JointType::Distance, JointType::Rope});
+    d.bodyA = r.string(r.require(j, p, "body_a"), p + ".body_a");
+    r.optional(j, p, "anchor_a", [&](const json& v, const std::string& f) { d.anchorA = r.vector<3>(v, f); });
+    r.optional(j, p, "body_b", [&](const json& v, const std::string& f) {
+        d.bodyB = r.string(v, f);
+        if (d.bodyB.empty()) r.fail(f, "must name a body (leave it out to join body_a to the world)");
+    });
+    r.optional(j, p, "anchor_b", [&](const json& v, const std::string& f) { d.anchorB = r.vector<3>(v, f); });
+    r.optional(j, p, "length", [&](const json& v, const std::string& f) {
+        d.length = r.number(v, f);
+        if (!(d.length >= 0.0))
+            r.fail(f, "must be at least 0 (leave it out for the anchors' distance at the start)");
+    });
+    return d;
+}
+
 // What the reader keeps track of while the JSON is parsed: the path being read and the
 // keys of each open object.
 struct Level {
@@ -373,7 +397,7 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName,
     const Reader r(fileName);
     const json j = parseJson(text, r);
     r.object(j, "(top level)");
-    r.onlyKeys(j, "", {"format", "version", "settings", "bodies"});
+    r.onlyKeys(j, "", {"format", "version", "settings", "bodies", "joints"});
     if (r.string(r.require(j, "", "format"), "format") != "tumble-scene") {
         r.fail("format", "must be \"tumble-scene\"");
     }
@@ -390,6 +414,11 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName,
     for (size_t i = 0; i < bodies.size(); ++i) {
         scene.bodies.push_back(readBody(r, bodies[i], "bodies[" + std::to_string(i) + "]"));
     }
+    r.optional(j, "", "joints", [&](const json& v, const std::string& f) {
+        if (!v.is_array()) r.fail(f, "must be an array");
+        for (size_t i = 0; i < v.size(); ++i)
+            scene.joints.push_back(readJoint(r, v[i], f + "[" + std::to_string(i) + "]"));
+    });
     try {
         validate(scene);
     } catch (const SceneError& e) {

@@ -94,13 +94,21 @@ ojson bodyJson(const BodyDesc& b) {
     return j;
 }
 
+ojson jointJson(const JointDesc& d) {
+    ojson j;
+    j["name"] = d.name;
+    j["type"] = toString(d.type);
+    j["body_a"] = d.bodyA;
+    j["anchor_a"] = vec(d.anchorA);
+    if (!d.bodyB.empty()) j["body_b"] = d.bodyB;  // absent: the world
+    j["anchor_b"] = vec(d.anchorB);
+    if (d.length >= 0.0) j["length"] = d.length;  // absent: the anchors' distance at the start
+    return j;
+}
+
 }  // namespace
 
 std::string sceneToJson(const SceneDesc& scene) {
-    // Joints are in the engine but not yet in the file (issue 20): refused, never dropped.
-    if (!scene.joints.empty())
-        throw std::invalid_argument("sceneToJson: the scene has " + std::to_string(scene.joints.size()) +
-                                    " joint(s), which the scene file cannot hold yet");
     ojson j;
     j["format"] = "tumble-scene";
     j["version"] = kSceneVersion;
@@ -118,6 +126,11 @@ std::string sceneToJson(const SceneDesc& scene) {
     if (scene.settings.impacts != ImpactTiming::Exact) s["impacts"] = toString(scene.settings.impacts);
     j["bodies"] = ojson::array();
     for (const BodyDesc& b : scene.bodies) j["bodies"].push_back(bodyJson(b));
+    // Only when there are joints: files of scenes without them stay as they were.
+    if (!scene.joints.empty()) {
+        j["joints"] = ojson::array();
+        for (const JointDesc& d : scene.joints) j["joints"].push_back(jointJson(d));
+    }
     return j.dump(2) + "\n";
 }
 
