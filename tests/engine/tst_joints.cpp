@@ -1,8 +1,9 @@
-// Joints (issue 20, first part: ball, distance and rope, in the engine; not yet in the scene
-// file or the editor). Checked against closed forms: a pendulum's period (the complete
+// Joints (issue 20, first part: ball, distance and rope, in the engine and the scene file;
+// not yet in the editor). Checked against closed forms: a pendulum's period (the complete
 // elliptic integral), the joint held to 1e-9 m by the projection, the energy of a
 // pendulum, a rod's spinning dumbbell keeping its angular momentum, a rope that lets a body
-// fall freely until it is taut and never pushes; and the scene's validation.
+// fall freely until it is taut and never pushes; the sample Newton's cradle on strings;
+// and the scene's validation.
 #include "scene_builders.h"
 
 #include <tumble/errors.h>
@@ -250,6 +251,47 @@ private slots:
         World up(s);
         up.step(h);
         QVERIFY(std::abs(up.state().bodies[0].P.y() - (2.0 - g * h)) < 1e-9);
+    }
+
+    // The sample Newton's cradle on strings (resources/scenes/newtons-cradle-strings.json):
+    // five touching balls of 1 kg, each hung by two distance joints in a V from points 1 m
+    // above it, the first let go at 30 degrees. Each swings as a simple pendulum of L = 1 m
+    // about the line through its anchors, T = 4 sqrt(L/g) K(sin 15 deg) = 2.0410 s; e = 1, so
+    // the impact passes through the three resting balls and the last rises to 30 degrees at
+    // T/2, the first back to 30 degrees at T, the middle three still.
+    void newtonsCradleOnStrings() {
+        SceneDesc scene = io::readSceneFile(std::string(TUMBLE_SCENES_DIR) + "/newtons-cradle-strings.json");
+        QCOMPARE(scene.joints.size(), size_t(10));
+        World w(scene);
+        const double T = 4.0 * std::sqrt(1.0 / g) * ellipticK(std::sin(std::numbers::pi / 12.0));
+        const double h = scene.settings.dt;
+        auto angle = [&](int ball) {  // degrees from the vertical, towards +x
+            const Vec3& x = w.state().bodies[ball].x;
+            const double x0 = -0.4 + 0.2 * (ball - 1);
+            return std::atan2(x.x() - x0, 2.0 - x.y()) * 180.0 / std::numbers::pi;
+        };
+        double peak5 = 0.0, peak5At = 0.0, back1 = 0.0, back1At = 0.0, middle = 0.0, gap = 0.0;
+        const double e0 = energy(w);
+        double drift = 0.0;
+        while (w.state().time < 1.25 * T) {
+            w.step(h);
+            const double t = w.state().time;
+            if (angle(5) > peak5) peak5 = angle(5), peak5At = t;
+            if (t > 0.75 * T && -angle(1) > back1) back1 = -angle(1), back1At = t;
+            for (int k : {2, 3, 4}) middle = std::max(middle, std::abs(angle(k)));
+            for (int k = 0; k < 10; ++k) gap = std::max(gap, anchorGap(w, k) - std::sqrt(1.25));
+            drift = std::max(drift, std::abs(energy(w) - e0));
+        }
+        qInfo("last ball up to %.4f deg at %.4f s (T/2 = %.4f); first back to %.4f deg at %.4f s (T = %.4f); "
+              "middle balls within %.1e deg; strings' length held to %.1e m; energy within %.1e J",
+              peak5, peak5At, T / 2, back1, back1At, T, middle, gap, drift);
+        QVERIFY2(std::abs(peak5 - 30.0) < 0.05, qPrintable(QString::number(peak5)));
+        QVERIFY2(std::abs(peak5At - T / 2) < 2 * h, qPrintable(QString::number(peak5At)));
+        QVERIFY2(std::abs(back1 - 30.0) < 0.05, qPrintable(QString::number(back1)));
+        QVERIFY2(std::abs(back1At - T) < 2 * h, qPrintable(QString::number(back1At)));
+        QVERIFY2(middle < 0.05, qPrintable(QString::number(middle)));
+        QVERIFY2(gap < 1e-9, qPrintable(QString::number(gap)));
+        QVERIFY2(drift < 3e-4, qPrintable(QString::number(drift)));
     }
 
     // A bad joint is refused with the field named.

@@ -67,6 +67,17 @@ void InsertBodyCommand::redo() {
         doc_->applyInsert(index_, body_);
 }
 
+SetJointsCommand::SetJointsCommand(Document* doc, std::vector<JointDesc> before, std::vector<JointDesc> after,
+                                   const QString& text)
+    : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)) {}
+
+void SetJointsCommand::undo() {
+    doc_->applyJoints(before_);
+}
+void SetJointsCommand::redo() {
+    doc_->applyJoints(after_);
+}
+
 ReplaceSceneCommand::ReplaceSceneCommand(Document* doc, SceneDesc before, SceneDesc after,
                                          const QString& text)
     : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)) {}

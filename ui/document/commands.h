@@ -61,6 +61,19 @@ private:
     bool remove_;
 };
 
+/// Replaces the scene's joints (a body renamed or removed takes its joints along).
+class SetJointsCommand : public QUndoCommand {
+public:
+    SetJointsCommand(Document* doc, std::vector<JointDesc> before, std::vector<JointDesc> after,
+                     const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* doc_;
+    std::vector<JointDesc> before_, after_;
+};
+
 /// Replaces the whole scene (revert, recovery).
 class ReplaceSceneCommand : public QUndoCommand {
 public:

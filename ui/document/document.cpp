@@ -237,8 +237,20 @@ void Document::replaceScene(const SceneDesc& scene, const QString& text, bool un
 
 void Document::setBody(int index, const BodyDesc& body, const QString& text, int mergeId) {
     if (index < 0 || index >= bodyCount() || body == scene_.bodies[static_cast<size_t>(index)]) return;
+    const std::string& old = scene_.bodies[static_cast<size_t>(index)].name;
+    std::vector<JointDesc> joints = scene_.joints;
+    for (JointDesc& j : joints) {
+        if (j.bodyA == old) j.bodyA = body.name;
+        if (j.bodyB == old) j.bodyB = body.name;
+    }
+    const bool renamesJoints = joints != scene_.joints;
+    if (renamesJoints) undo_->beginMacro(text);
     undo_->push(
         new SetBodyCommand(this, index, scene_.bodies[static_cast<size_t>(index)], body, text, mergeId));
+    if (renamesJoints) {
+        undo_->push(new SetJointsCommand(this, scene_.joints, joints, text));
+        undo_->endMacro();
+    }
 }
 
 void Document::setSettings(const Settings& settings, const QString& text, int mergeId) {
@@ -272,6 +284,15 @@ void Document::removeBodies(QList<int> indices) {
     if (indices.isEmpty()) return;
     undo_->beginMacro(indices.size() == 1 ? tr("Delete %1").arg(QString::fromStdString(body(indices[0]).name))
                                           : tr("Delete %n bodies", nullptr, int(indices.size())));
+    // Their joints first (undone last: the bodies are back when the joints are).
+    std::vector<JointDesc> joints;
+    for (const JointDesc& j : scene_.joints) {
+        const bool named = std::any_of(indices.begin(), indices.end(), [&](int i) {
+            return body(i).name == j.bodyA || (!j.bodyB.empty() && body(i).name == j.bodyB);
+        });
+        if (!named) joints.push_back(j);
+    }
+    if (joints != scene_.joints) undo_->push(new SetJointsCommand(this, scene_.joints, joints, QString()));
     // From the last, so the earlier indices stay valid.
     for (auto it = indices.rbegin(); it != indices.rend(); ++it)
         undo_->push(new InsertBodyCommand(this, *it, body(*it), true, QString()));
@@ -330,6 +351,11 @@ void Document::applyRemove(int index) {
         if (s > index) --s;
     emit bodyRemoved(index);
     if (selection_.size() != before) emit selectionChanged();
+}
+
+void Document::applyJoints(const std::vector<JointDesc>& joints) {
+    scene_.joints = joints;
+    emit jointsChanged();
 }
 
 void Document::applyScene(const SceneDesc& scene) {

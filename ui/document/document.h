@@ -63,12 +63,14 @@ public:
     // ---- Edits (each an undo command).
 
     /// Replaces body `index`. Consecutive calls with the same nonzero `mergeId` on the same
-    /// body merge into one undo step (a drag, a scrub).
+    /// body merge into one undo step (a drag, a scrub). A new name is carried into the
+    /// joints that name the body (the same undo step).
     void setBody(int index, const BodyDesc& body, const QString& text, int mergeId = 0);
     void setSettings(const Settings& settings, const QString& text, int mergeId = 0);
     /// Inserts `body` at `index` (-1: at the end) with a name made unique; returns its index.
     int addBody(const BodyDesc& body, int index = -1);
-    /// Removes the bodies (one undo step), and from the selection.
+    /// Removes the bodies (one undo step), and from the selection, and the joints that name
+    /// any of them.
     void removeBodies(QList<int> indices);
     /// Copies of the bodies, named uniquely, placed after the last one; selects the copies.
     void duplicateBodies(QList<int> indices);
@@ -89,12 +91,15 @@ public:
     void applyInsert(int index, const BodyDesc& body);
     void applyRemove(int index);
     void applyScene(const SceneDesc& scene);
+    void applyJoints(const std::vector<JointDesc>& joints);
 
 signals:
     void bodyChanged(int index);
     void bodyInserted(int index);
     void bodyRemoved(int index);
     void settingsChanged();
+    /// The joints changed (a body they name was renamed or removed).
+    void jointsChanged();
     /// Everything may have changed (open, new, revert, recovery).
     void sceneReset();
     void selectionChanged();

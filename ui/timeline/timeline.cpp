@@ -76,6 +76,7 @@ Timeline::Timeline(Document* document, QObject* parent) : QObject(parent), doc_(
     connect(doc_, &Document::bodyInserted, this, &Timeline::markStale);
     connect(doc_, &Document::bodyRemoved, this, &Timeline::markStale);
     connect(doc_, &Document::settingsChanged, this, &Timeline::markStale);
+    connect(doc_, &Document::jointsChanged, this, &Timeline::markStale);
     connect(doc_, &Document::sceneReset, this, [this] {
         // A different scene: the old frames say nothing about it.
         seek(0);
