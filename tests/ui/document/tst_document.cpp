@@ -6,6 +6,7 @@
 #include <tumble/io/atomic_file.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/mass.h>
+#include <tumble/world.h>
 
 #include <QDir>
 #include <QFile>
@@ -192,6 +193,45 @@ private slots:
         QVERIFY(doc.isModified());
         doc.undoStack()->redo();
         QVERIFY(!doc.isModified());
+    }
+
+    // Joints name their bodies: a rename is carried into them and a deleted body takes its
+    // joints along, each in the same undo step as the edit, so the scene stays one that
+    // runs (a joint naming a missing body is refused by the engine). The sample on strings
+    // opens with its ten joints and saves them back.
+    void jointsFollowTheirBodies() {
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(":/scenes/newtons-cradle-strings.json", &error), qPrintable(error));
+        QCOMPARE(doc.scene().joints.size(), size_t(10));
+        QSignalSpy jointsChanged(&doc, &Document::jointsChanged);
+
+        BodyDesc renamed = doc.body(1);
+        QCOMPARE(renamed.name, std::string("ball-1"));
+        renamed.name = "striker";
+        doc.setBody(1, renamed, "Rename");
+        QCOMPARE(doc.scene().joints[0].bodyA, std::string("striker"));
+        QCOMPARE(doc.scene().joints[1].bodyA, std::string("striker"));
+        QCOMPARE(doc.scene().joints[2].bodyA, std::string("ball-2"));
+        QCOMPARE(jointsChanged.count(), 1);
+        doc.undoStack()->undo();  // one step: the body and its joints
+        QCOMPARE(doc.body(1).name, std::string("ball-1"));
+        QCOMPARE(doc.scene().joints[0].bodyA, std::string("ball-1"));
+
+        const SceneDesc before = doc.scene();
+        doc.removeBodies({2, 4});  // ball-2 and ball-4
+        QCOMPARE(doc.scene().joints.size(), size_t(6));
+        for (const JointDesc& j : doc.scene().joints)
+            QVERIFY(j.bodyA != "ball-2" && j.bodyA != "ball-4");
+        (void)World(doc.scene());  // still a scene the engine takes
+        doc.undoStack()->undo();
+        QCOMPARE(doc.scene(), before);
+
+        QTemporaryDir dir;
+        QVERIFY2(doc.saveAs(dir.filePath("cradle.json"), &error), qPrintable(error));
+        Document again;
+        QVERIFY2(again.open(dir.filePath("cradle.json"), &error), qPrintable(error));
+        QCOMPARE(again.scene().joints, doc.scene().joints);
     }
 
     void aBadFileLeavesTheSceneUntouched() {
