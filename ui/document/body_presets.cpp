@@ -7,9 +7,6 @@
 
 namespace tumble::ui {
 
-namespace {
-
-// Radius of a sphere about the body origin that holds the whole shape.
 double boundingRadius(const ShapeDesc& s) {
     switch (s.type) {
         case ShapeType::Sphere: return s.radius;
@@ -26,8 +23,6 @@ double boundingRadius(const ShapeDesc& s) {
     }
     return 1.0;
 }
-
-}  // namespace
 
 double halfHeightAboveOrigin(const BodyDesc& body) {
     const ShapeDesc& s = body.shape;

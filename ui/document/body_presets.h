@@ -19,6 +19,10 @@ double pileTop(const SceneDesc& scene);
 /// 0.5 m over `top`. Planes are returned as they are.
 BodyDesc placedAbove(BodyDesc body, double top);
 
+/// The radius of a sphere about the body's origin that holds its whole shape (0 for a plane,
+/// 1 for a mesh not loaded).
+double boundingRadius(const ShapeDesc& shape);
+
 /// Half the height of a body's bounding box along the world y axis, about its position
 /// (a bound: the box of a rotated shape is taken from its bounding sphere). 0 for planes.
 double halfHeightAboveOrigin(const BodyDesc& body);

@@ -115,6 +115,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     d_->scene = std::make_unique<ViewportScene>(d_->root);
     d_->gizmo = std::make_unique<ViewportGizmo>(d_->root);
     d_->overlays = std::make_unique<ViewportOverlays>(d_->root);
+    d_->overlayOn[size_t(Overlay::Joints)] = true;  // joints are part of the scene as built
 
     // Two passes: the scene, then the overlay layer (the handles) with no depth test and
     // back faces culled, so no body hides them. (The RHI renderer ignores depth-range
@@ -187,7 +188,9 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     connect(document, &Document::bodyChanged, this, [this](int i) {
         d_->scene->update(i, d_->doc->body(i));
         updateHandles();
+        refreshJoints();
     });
+    connect(document, &Document::jointsChanged, this, [this] { refreshJoints(); });
     connect(document, &Document::selectionChanged, this, [this] {
         d_->scene->setSelection(d_->shownSelection());
         updateHandles();
@@ -195,6 +198,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
 
     d_->scene->rebuild(document->scene());
     d_->scene->setSelection(d_->shownSelection());
+    refreshJoints();
     syncCamera();
 }
 

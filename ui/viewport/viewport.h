@@ -31,9 +31,11 @@ public:
     enum class TransformMode { Move, Rotate };
     Q_ENUM(TransformMode)
     /// What can be drawn over a recorded frame (each a toggle, all off at first).
-    enum class Overlay { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Sleeping };
+    /// Joints is on at first and drawn while editing too (from the document); the others
+    /// are off at first and drawn over recorded frames only.
+    enum class Overlay { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Sleeping, Joints };
     Q_ENUM(Overlay)
-    static constexpr int kOverlayCount = 7;
+    static constexpr int kOverlayCount = 8;
 
     explicit Viewport(Document* document, QWidget* parent = nullptr);
     ~Viewport() override;
@@ -167,6 +169,7 @@ private:
     /// Draws the playhead's frame or the document's poses, and the overlays that are on.
     void refreshPlayback();
     void refreshOverlays();
+    void refreshJoints();
 
     struct Impl;
     std::unique_ptr<Impl> d_;

@@ -2,6 +2,8 @@
 
 #include "viewport/viewport_overlay.h"
 
+#include "document/body_presets.h"
+
 #include "detect.h"
 #include "forces.h"
 
@@ -32,6 +34,7 @@ constexpr Rgb kVelocity{0.3f, 0.9f, 0.35f};
 constexpr Rgb kAngular{0.75f, 0.45f, 1.0f};
 constexpr Rgb kForce{1.0f, 0.4f, 0.75f};
 constexpr Rgb kCentre{1.0f, 1.0f, 1.0f};
+constexpr Rgb kJoint{1.0f, 0.75f, 0.2f};
 
 void vertex(std::vector<float>& out, const Vec3& p, Rgb c) {
     out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z()), c.r, c.g, c.b});
@@ -160,6 +163,52 @@ Lines centresOfMass(const Model& model, const State& state) {
         if (!std::isfinite(r) || r <= 0) r = 0.1;
         cross(lines.xyzrgb, state.bodies[size_t(i)].x, 0.3 * r, kCentre);
         ++lines.items;
+    }
+    return lines;
+}
+
+namespace {
+
+// A joint's line and its anchors' crosses.
+void jointLines(Lines& lines, const Vec3& a, const Vec3& b, double size) {
+    if (!a.allFinite() || !b.allFinite()) return;
+    if (!std::isfinite(size) || size <= 0) size = 0.1;
+    segment(lines.xyzrgb, a, b, kJoint);
+    cross(lines.xyzrgb, a, 0.25 * size, kJoint);
+    cross(lines.xyzrgb, b, 0.25 * size, kJoint);
+    ++lines.items;
+}
+
+}  // namespace
+
+Lines joints(const Model& model, const State& state) {
+    Lines lines;
+    if (state.bodies.size() != model.bodies.size()) return lines;
+    const int n = int(model.bodies.size());
+    for (const JointModel& j : model.joints) {
+        if (j.a < 0 || j.a >= n || j.b >= n) continue;
+        const BodyState& a = state.bodies[size_t(j.a)];
+        const Vec3 pa = a.x + a.q * j.anchorA;
+        const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(state.bodies[size_t(j.b)].x + state.bodies[size_t(j.b)].q * j.anchorB);
+        jointLines(lines, pa, pb, radiusOf(model.bodies[size_t(j.a)]));
+    }
+    return lines;
+}
+
+Lines joints(const SceneDesc& scene) {
+    Lines lines;
+    auto find = [&](const std::string& name) -> const BodyDesc* {
+        for (const BodyDesc& b : scene.bodies)
+            if (b.name == name) return &b;
+        return nullptr;
+    };
+    for (const JointDesc& j : scene.joints) {
+        const BodyDesc* a = find(j.bodyA);
+        const BodyDesc* b = j.bodyB.empty() ? nullptr : find(j.bodyB);
+        if (!a || (!j.bodyB.empty() && !b)) continue;  // names the engine would refuse
+        const Vec3 pa = a->position + a->orientation * j.anchorA;
+        const Vec3 pb = b ? Vec3(b->position + b->orientation * j.anchorB) : j.anchorB;
+        jointLines(lines, pa, pb, boundingRadius(a->shape));
     }
     return lines;
 }

@@ -60,6 +60,11 @@ Lines angularVelocities(const Model& model, const State& state);
 Lines forces(const Model& model, const State& state);
 /// A cross at the centre of mass of each dynamic body. items: markers.
 Lines centresOfMass(const Model& model, const State& state);
+/// Each joint (amber): a line from its anchor on body_a to its anchor on body_b (or its
+/// world point), and a cross at each anchor of 0.25 × body_a's bounding radius. From a
+/// recorded frame, or (`scene`) from the bodies as placed in the document. items: joints.
+Lines joints(const Model& model, const State& state);
+Lines joints(const SceneDesc& scene);
 /// One polyline per track of two points or more. items: polylines.
 Lines trails(const std::vector<std::vector<Vec3>>& tracks);
 
@@ -70,7 +75,7 @@ std::vector<Vec3> thinned(const std::vector<Vec3>& points, int cap);
 
 class ViewportOverlays {
 public:
-    enum Kind { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, KindCount };
+    enum Kind { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Joints, KindCount };
 
     /// Under `root`; the caller puts entity() in its overlay layer.
     explicit ViewportOverlays(Qt3DCore::QEntity* root);

@@ -129,6 +129,22 @@ void Viewport::refreshOverlays() {
     // Sleeping bodies tinted.
     const bool tint = on(Overlay::Sleeping);
     for (int i = 0; i < d_->scene->count(); ++i) d_->scene->setAsleep(i, tint && state->isAsleep(i));
+    refreshJoints();
+}
+
+void Viewport::refreshJoints() {
+    ViewportOverlays& o = *d_->overlays;
+    using K = ViewportOverlays::Kind;
+    if (!d_->overlayOn[size_t(Overlay::Joints)] || !d_->doc || d_->doc->scene().joints.empty()) {
+        o.clear(K::Joints);
+        return;
+    }
+    // A recorded frame where one is drawn; the document's bodies while editing (frame 0).
+    const State* state = d_->frameState();
+    if (state && d_->shownFrame > 0)
+        o.set(K::Joints, overlays::joints(*d_->timeline->model(), *state));
+    else
+        o.set(K::Joints, overlays::joints(d_->doc->scene()));
 }
 
 bool Viewport::overlay(Overlay which) const {
@@ -156,6 +172,7 @@ int Viewport::overlayItemCount(Overlay which) const {
         case Overlay::Forces: return d_->overlays->count(K::Forces);
         case Overlay::CentresOfMass: return d_->overlays->count(K::CentresOfMass);
         case Overlay::Sleeping: return d_->scene->asleepCount();
+        case Overlay::Joints: return d_->overlays->count(K::Joints);
     }
     return 0;
 }
@@ -176,6 +193,7 @@ QString Viewport::overlayText(Overlay which) {
         case Overlay::Forces: return tr("Applied Forces");
         case Overlay::CentresOfMass: return tr("Centres of Mass");
         case Overlay::Sleeping: return tr("Sleeping Bodies");
+        case Overlay::Joints: return tr("Joints");
     }
     return {};
 }

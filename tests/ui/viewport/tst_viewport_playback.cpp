@@ -196,15 +196,15 @@ private slots:
         f.timeline->seek(10);
         for (int i = 0; i < Viewport::kOverlayCount; ++i) {
             const auto o = O(i);
-            QVERIFY(!f.view->overlay(o));
-            QCOMPARE(f.view->overlayItemCount(o), 0);
+            QCOMPARE(f.view->overlay(o), o == O::Joints);  // joints on at first, the rest off
+            QCOMPARE(f.view->overlayItemCount(o), 0);      // (this scene has none)
             QVERIFY(!Viewport::overlayText(o).isEmpty());
             f.view->setOverlay(o, true);
             QVERIFY(f.view->overlay(o));
         }
-        QCOMPARE(changed.count(), Viewport::kOverlayCount);
+        QCOMPARE(changed.count(), Viewport::kOverlayCount - 1);
         f.view->setOverlay(O::Trails, true);  // no change, no signal
-        QCOMPARE(changed.count(), Viewport::kOverlayCount);
+        QCOMPARE(changed.count(), Viewport::kOverlayCount - 1);
         // The ball falls, not yet at the ground (t = 1/6 s): one velocity arrow, no spin,
         // gravity only (no force arrow), one centre of mass, no contact, awake.
         QCOMPARE(f.view->overlayItemCount(O::Velocities), 1);
@@ -223,8 +223,41 @@ private slots:
         f.timeline->seek(10);
         for (int i = 0; i < Viewport::kOverlayCount; ++i) QCOMPARE(f.view->overlayItemCount(O(i)), 0);
         QVERIFY(f.view->trailPoints(1).isEmpty());
-        QCOMPARE(changed.count(), 2 * Viewport::kOverlayCount);
+        QCOMPARE(changed.count(), 2 * Viewport::kOverlayCount - 1);
         QCOMPARE(changed.last().at(1).toBool(), false);
+    }
+
+    // The cradle on strings: each of its ten joints drawn as a line from the ball's centre
+    // to its point on the frame, while editing (from the document) and at a recorded frame
+    // (from that frame's state: the first ball's strings follow it as it swings), and again
+    // after an edit moves a ball; off, nothing.
+    void jointsAreDrawnWhereTheirAnchorsAre() {
+        Fixture f(":/scenes/newtons-cradle-strings.json");
+        QVERIFY(f.ok);
+        QCOMPARE(f.view->overlayItemCount(O::Joints), 10);
+        // The lines themselves (what the overlay draws): the first from ball-1's centre.
+        auto firstLine = [](const overlays::Lines& lines) {
+            const auto& v = lines.xyzrgb;
+            return std::pair{Vec3(v[0], v[1], v[2]), Vec3(v[6], v[7], v[8])};
+        };
+        const auto [a0, b0] = firstLine(overlays::joints(f.doc.scene()));
+        QVERIFY((a0 - Vec3(-0.9, 1.1339745962155614, 0)).norm() < 1e-6);
+        QVERIFY((b0 - Vec3(-0.4, 2, 0.5)).norm() < 1e-6);
+        f.timeline->seek(15);  // a quarter of a second: ball-1 on its way down
+        QCOMPARE(f.view->overlayItemCount(O::Joints), 10);
+        const State s = f.frame(15);
+        const auto [a1, b1] = firstLine(overlays::joints(f.model(), s));
+        QVERIFY((a1 - s.bodies[1].x).norm() < 1e-6);  // the ball's centre (its centre of mass)
+        QVERIFY((b1 - Vec3(-0.4, 2, 0.5)).norm() < 1e-6);
+        QVERIFY((a1 - a0).norm() > 0.05);
+        // Editing: the lines follow the document's bodies.
+        f.timeline->seek(0);
+        BodyDesc moved = f.doc.body(5);
+        moved.position.z() = 0.2;
+        f.doc.setBody(5, moved, "Move");
+        QCOMPARE(f.view->overlayItemCount(O::Joints), 10);
+        f.view->setOverlay(O::Joints, false);
+        QCOMPARE(f.view->overlayItemCount(O::Joints), 0);
     }
 
     void trailsHaveAPointPerFrameUpToThePlayhead() {
