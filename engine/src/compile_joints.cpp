@@ -1,4 +1,5 @@
-// The joints of a scene: checked (named bodies, finite anchors, a length a rope can have)
+// The joints of a scene: checked (named bodies, finite anchors, a length a rope can have,
+// axes where the type has one)
 // and resolved to body indices and anchors from each centre of mass (compile.cpp calls it
 // last, when the bodies' mass properties are known).
 #include "compile_joints.h"
@@ -45,8 +46,21 @@ void validateJoints(const SceneDesc& scene) {
         if (!j.anchorA.allFinite()) throw SceneError(p + ".anchor_a", "must be finite numbers");
         if (!j.anchorB.allFinite()) throw SceneError(p + ".anchor_b", "must be finite numbers");
         if (!std::isfinite(j.length)) throw SceneError(p + ".length", "must be a finite number");
-        if (j.type == JointType::Ball && j.length >= 0.0)
-            throw SceneError(p + ".length", "a ball joint has no length (its anchors stay together)");
+        const bool line = j.type == JointType::Distance || j.type == JointType::Rope;
+        if (!line && j.length >= 0.0)
+            throw SceneError(p + ".length", std::string("a ") + toString(j.type) +
+                                                " joint has no length (only distance and rope joints have one)");
+        const bool axial = j.type == JointType::Hinge || j.type == JointType::Slider;
+        if (axial && !j.axisA)
+            throw SceneError(p + ".axis_a", std::string("is missing (a ") + toString(j.type) + " joint needs its axis)");
+        if (!axial && (j.axisA || j.axisB))
+            throw SceneError(p + (j.axisA ? ".axis_a" : ".axis_b"),
+                             std::string("a ") + toString(j.type) + " joint has no axis (only hinge and slider joints have one)");
+        for (const auto& [axis, field] : {std::pair{&j.axisA, ".axis_a"}, std::pair{&j.axisB, ".axis_b"}}) {
+            if (!*axis) continue;
+            if (!(*axis)->allFinite()) throw SceneError(p + field, "must be finite numbers");
+            if (!((*axis)->norm() > 1e-9)) throw SceneError(p + field, "must not be the zero vector");
+        }
     }
 }
 
@@ -68,6 +82,14 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
         const Vec3 pa = start.bodies[j.a].x + start.bodies[j.a].q * j.anchorA;
         const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(start.bodies[j.b].x + start.bodies[j.b].q * j.anchorB);
         j.length = d.length >= 0.0 ? d.length : (pa - pb).norm();
+        // Axes and the relative orientation as the scene places the bodies.
+        const Quat qa = start.bodies[j.a].q;
+        const Quat qb = j.b < 0 ? Quat::Identity() : start.bodies[j.b].q;
+        if (d.axisA) {
+            j.axisA = d.axisA->normalized();
+            j.axisB = d.axisB ? d.axisB->normalized() : Vec3(qb.conjugate() * (qa * j.axisA));
+        }
+        j.relative = (qb.conjugate() * qa).normalized();
         if (j.type == JointType::Rope && !(j.length > 0.0))
             throw SceneError(at(i) + ".length", "a rope must be longer than 0");
         m.jointed[j.a] = 1;

@@ -83,7 +83,21 @@ struct ContactSolverScratch {
         bool ball = false;            // three rows (else one along n)
         bool pullsOnly = false;       // rope
         Vec3 lambda = Vec3::Zero();   // accumulated impulse (x alone for a single row)
+        int general = -1;             // hinge, slider, fixed: its entry in generalRows
     };
+    /// A hinge's, slider's or fixed joint's rows (joint_general.h): up to six, solved
+    /// together through the inverse of their effective mass.
+    struct GeneralRow {
+        int m = 0;  // rows
+        // Per row (a column): the impulse's effect on A's and B's (v, ω) per unit, i.e. the
+        // rows of the Jacobian; and M⁻¹ times them.
+        Eigen::Matrix<double, 6, 6> JA = Eigen::Matrix<double, 6, 6>::Zero(), JB = Eigen::Matrix<double, 6, 6>::Zero();
+        Eigen::Matrix<double, 6, 6> Kinv = Eigen::Matrix<double, 6, 6>::Zero();
+        Eigen::Matrix<double, 6, 1> lambda = Eigen::Matrix<double, 6, 1>::Zero();
+        Mat3 lin = Mat3::Zero(), ang = Mat3::Zero();  // the rows' directions (columns)
+        int nl = 0, na = 0;
+    };
+    std::vector<GeneralRow> generalRows;
     std::vector<Point> points;
     std::vector<PointGeometry> geometry;  // per point
     std::vector<Block> blocks;

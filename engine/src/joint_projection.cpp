@@ -1,6 +1,7 @@
 #include "joint_projection.h"
 
 #include "contact_energy.h"
+#include "joint_general.h"
 #include "joint_math.h"
 
 #include <Eigen/LU>
@@ -73,7 +74,9 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
     std::vector<int> members;
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
-        if (!active(model, state, j) || j.type == JointType::Rope) continue;
+        // Ropes (one-sided) and the joints that hold orientation (joint_general.h) are left
+        // to the Gauss-Seidel passes.
+        if (!active(model, state, j) || j.type == JointType::Rope || isGeneral(j.type)) continue;
         members.push_back(k);
         if (movable(model, state, j.a) && movable(model, state, j.b)) parent[root(parent, j.a)] = root(parent, j.b);
     }

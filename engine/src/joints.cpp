@@ -1,8 +1,12 @@
 #include "joints.h"
 
 #include "contact_energy.h"
+#include "joint_general.h"
 #include "joint_math.h"
 #include "joint_projection.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +52,29 @@ void applyLine(SolverBody& A, SolverBody* B, const JointRow& r, double d) {
 
 SolverBody* other(ContactSolverScratch& s, const JointRow& r) { return r.b >= 0 ? &s.bodies[r.b] : nullptr; }
 
+const SolverBody kStill;  // the world: nothing moves it
+
+// A hinge's, slider's or fixed joint's rows at the bodies' poses now, warm-started; false
+// when nothing here can move.
+bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bool remembered, SolverBody& A,
+                    SolverBody* B, ContactSolverScratch& s, JointRow& r) {
+    ContactSolverScratch::GeneralRow g;
+    generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g);
+    const Matrix6 K = generalMass(g, g, A, B ? *B : kStill);
+    const Eigen::LDLT<Matrix6> ldlt(K);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0)) return false;
+    g.Kinv = ldlt.solve(Matrix6::Identity());
+    if (!g.Kinv.allFinite()) return false;
+    if (remembered && state.jointTorques.size() == state.jointImpulses.size()) {
+        g.lambda.head(g.nl) = g.lin.leftCols(g.nl).transpose() * (h * state.jointImpulses[k]);
+        g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (h * state.jointTorques[k]);
+        applyGeneral(g, A, B, g.lambda);
+    }
+    r.general = static_cast<int>(s.generalRows.size());
+    s.generalRows.push_back(g);
+    return true;
+}
+
 }  // namespace
 
 void addJointBodies(const Model& model, const State& state, std::vector<int>& involved,
@@ -63,6 +90,7 @@ void addJointBodies(const Model& model, const State& state, std::vector<int>& in
 
 void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s) {
     s.jointRows.clear();
+    s.generalRows.clear();
     const bool remembered = state.jointImpulses.size() == model.joints.size();
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
@@ -77,6 +105,10 @@ void prepareJoints(const Model& model, const State& state, double h, ContactSolv
         const Vec3 pA = state.bodies[j.a].x + r.rA;
         r.rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
         const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + r.rB) : j.anchorB;
+        if (isGeneral(j.type)) {
+            if (prepareGeneral(j, k, state, h, remembered, A, B, s, r)) s.jointRows.push_back(r);
+            continue;
+        }
         if (j.type == JointType::Ball) {
             const Mat3 K = pointMass(A, r.rA, B, r.rB);
             if (!(K.determinant() > 0.0)) continue;  // nothing here can move
@@ -116,7 +148,14 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
     SolverBody* B = other(s, r);
     const Vec3 vB = B ? pointVelocity(*B, r.rB) : Vec3::Zero();
     double change = 0.0;
-    if (!r.ball) {  // one row along the line
+    if (r.general >= 0) {  // hinge, slider, fixed: all rows at once
+        ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
+        const Vector6 v = generalVelocity(g, A, B ? *B : kStill);
+        const Vector6 d = -(g.Kinv * v);
+        g.lambda += d;
+        applyGeneral(g, A, B, d);
+        change = v.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
+    } else if (!r.ball) {  // one row along the line
         const double vn = r.n.dot(A.v - (B ? B->v : Vec3::Zero())) + r.armA.dot(A.w) - (B ? r.armB.dot(B->w) : 0.0);
         const double old = r.lambda.x();
         double next = old - r.k * (vn - r.target);
@@ -143,13 +182,55 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
 void rememberJoints(const Model& model, const ContactSolverScratch& s, double h, State& state) {
     if (model.joints.empty()) return;
     state.jointImpulses.assign(model.joints.size(), Vec3::Zero());
-    for (const JointRow& r : s.jointRows) state.jointImpulses[r.joint] = r.lambda / h;
+    state.jointTorques.assign(model.joints.size(), Vec3::Zero());
+    for (const JointRow& r : s.jointRows) {
+        if (r.general < 0) {
+            state.jointImpulses[r.joint] = r.lambda / h;
+            continue;
+        }
+        const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
+        state.jointImpulses[r.joint] = g.lin.leftCols(g.nl) * g.lambda.head(g.nl) / h;
+        state.jointTorques[r.joint] = g.ang.leftCols(g.na) * g.lambda.segment(g.nl, g.na) / h;
+    }
 }
 
 namespace {
 
 bool turnedFar(const Vec3& then, const Vec3& now) {
     return then.cross(now).norm() > 0.2 * then.norm() * now.norm() || then.dot(now) < 0.0;
+}
+
+bool turnedFar(const Quat& then, const Quat& now) { return std::abs(then.dot(now)) < std::cos(0.1); }
+
+// A Newton step on a hinge's, slider's or fixed joint's rows (as projectionPass's for the
+// others); returns the error it found.
+double projectGeneral(State& state, ContactSolverScratch& s, double h, const State* from,
+                      const State& at, const JointModel& j, bool moveA, bool moveB, const SolverBody& A,
+                      const SolverBody& B) {
+    BodyState& a = state.bodies[j.a];
+    BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
+    ContactSolverScratch::GeneralRow now, then;
+    Vector6 C;
+    generalRows(j, a, b, now, &C);
+    const double error = C.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
+    if (error <= kHeld) return error;
+    // (As for the others: a body that turned far since the start is left to the passes
+    // along the directions now.)
+    if (from && (turnedFar(at.bodies[j.a].q, a.q) || (b && turnedFar(at.bodies[j.b].q, b->q)))) return error;
+    generalRows(j, at.bodies[j.a], b ? &at.bodies[j.b] : nullptr, then);
+    const Matrix6 K = generalMass(now, then, A, B);
+    const Vector6 lambda = -K.fullPivLu().solve(C);
+    if (!lambda.allFinite()) return error;
+    nudgeGeneral(then, A, a, moveA, B, b, moveB, lambda);
+    if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
+        ContactSolverScratch::GeneralRow onA = then, onB = then;
+        if (moveA) applyGeneral(onA, s.bodies[j.a], nullptr, lambda / h);
+        if (moveB) {
+            onB.JA = then.JB;  // B's rows as if it were the first body
+            applyGeneral(onB, s.bodies[j.b], nullptr, lambda / h);
+        }
+    }
+    return error;
 }
 
 // One Gauss-Seidel pass of Newton steps over the active joints; returns the largest error
@@ -170,6 +251,10 @@ double projectionPass(const Model& model, State& state, ContactSolverScratch& s,
         const Vec3 pA = a.x + rA;
         const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + rB) : j.anchorB;
         const State& at = from ? *from : state;
+        if (isGeneral(j.type)) {
+            worst = std::max(worst, projectGeneral(state, s, h, from, at, j, moveA, moveB, A, B));
+            continue;
+        }
         const Vec3 arA = at.bodies[j.a].q * j.anchorA;  // the arms the impulse acts at
         const Vec3 arB = j.b >= 0 ? Vec3(at.bodies[j.b].q * j.anchorB) : Vec3::Zero();
         // A body that turned far in the step (a whipping chain's end at 1/30 s): the start's

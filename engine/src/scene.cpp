@@ -45,6 +45,9 @@ const char* toString(JointType t) {
     case JointType::Ball: return "ball";
     case JointType::Distance: return "distance";
     case JointType::Rope: return "rope";
+    case JointType::Hinge: return "hinge";
+    case JointType::Slider: return "slider";
+    case JointType::Fixed: return "fixed";
     }
     return "?";
 }

@@ -192,6 +192,28 @@ SceneDesc everyField() {
     hinge.bodyB = "post";
     hinge.anchorB = Vec3(0, 1, 0);
     s.joints.push_back(hinge);
+    JointDesc door;  // a hinge with both axes given
+    door.name = "door";
+    door.type = JointType::Hinge;
+    door.bodyA = "can";
+    door.anchorA = Vec3(0, 0.2, 0);
+    door.axisA = Vec3(0, 1, 0);
+    door.bodyB = "post";
+    door.anchorB = Vec3(0.1, 0.5, 0);
+    door.axisB = Vec3(0, 2, 0);
+    s.joints.push_back(door);
+    JointDesc rail;  // a slider to the world, its world axis from the start
+    rail.name = "rail";
+    rail.type = JointType::Slider;
+    rail.bodyA = "bunny";
+    rail.axisA = Vec3(1, 0, 0);
+    s.joints.push_back(rail);
+    JointDesc weld;
+    weld.name = "weld";
+    weld.type = JointType::Fixed;
+    weld.bodyA = "crate";
+    weld.bodyB = "can";
+    s.joints.push_back(weld);
     return s;
 }
 
@@ -540,7 +562,7 @@ private slots:
         row("joint without a type", R"("type": "rope", )", "", "joints[0].type",
             "drop.json: joints[0].type: is missing");
         row("unknown joint type", R"("type": "rope")", R"("type": "glue")", "joints[0].type",
-            "drop.json: joints[0].type: 'glue' is not one of ball, distance, rope");
+            "drop.json: joints[0].type: 'glue' is not one of ball, distance, rope, hinge, slider, fixed");
         row("unknown joint key", R"("name": "hitch", )", R"("name": "hitch", "axis": [0, 1, 0], )",
             "joints[1].axis", "drop.json: joints[1].axis: unknown key");
         row("joint's body missing", R"("body_a": "crate")", R"("body_a": "cart")", "joints[1].body_a",
@@ -559,7 +581,14 @@ private slots:
             "drop.json: joints[0].length: must be at least 0 (leave it out for the anchors' distance at the "
             "start)");
         row("ball joint with a length", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "length": 1)",
-            "joints[1].length", "drop.json: joints[1].length: a ball joint has no length (its anchors stay together)");
+            "joints[1].length", "drop.json: joints[1].length: a ball joint has no length (only distance and rope joints have one)");
+        row("hinge without its axis", R"("type": "ball", "body_a": "crate")", R"("type": "hinge", "body_a": "crate")",
+            "joints[1].axis_a", "drop.json: joints[1].axis_a: is missing (a hinge joint needs its axis)");
+        row("zero axis", R"("type": "ball", "body_a": "crate")",
+            R"("type": "slider", "axis_a": [0, 0, 0], "body_a": "crate")", "joints[1].axis_a",
+            "drop.json: joints[1].axis_a: must not be the zero vector");
+        row("ball joint with an axis", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "axis_b": [0, 1, 0])",
+            "joints[1].axis_b", "drop.json: joints[1].axis_b: a ball joint has no axis (only hinge and slider joints have one)");
         row("anchor not a vector", R"("anchor_a": [0.5, 0, 0])", R"("anchor_a": [0.5, 0])", "joints[1].anchor_a",
             "drop.json: joints[1].anchor_a: must be an array of 3 numbers");
         row("unknown frame",

@@ -68,6 +68,10 @@ struct JointModel {
     int a = -1, b = -1;
     Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
     double length = 0.0;  ///< distance and rope
+    /// Hinge and slider: unit axes in A's and B's frames (B's: the world's for the world).
+    Vec3 axisA = Vec3::UnitZ(), axisB = Vec3::UnitZ();
+    /// Slider and fixed: A's orientation relative to B's (B's: the world's) to keep.
+    Quat relative = Quat::Identity();
 };
 
 struct Model {

@@ -111,9 +111,12 @@ struct Settings {
 
 /// A joint between two bodies, or a body and the world (issue 20; the design is in
 /// docs/architecture.md "Joints", the file's `joints` in docs/scene-format.md). Built so
-/// far: ball (the anchors held together), distance (a rigid rod between the anchors) and
-/// rope (the anchors at most `length` apart: it only pulls).
-enum class JointType { Ball, Distance, Rope };
+/// far: ball (the anchors held together), distance (a rigid rod between the anchors), rope
+/// (the anchors at most `length` apart: it only pulls), hinge (the anchors together and the
+/// axes in line: it turns about the axis only), slider (the two bodies keep their relative
+/// orientation and A's anchor stays on the line through B's along the axis: it slides
+/// along the axis only) and fixed (the two keep their relative pose: one rigid body).
+enum class JointType { Ball, Distance, Rope, Hinge, Slider, Fixed };
 const char* toString(JointType t);
 
 struct JointDesc {
@@ -125,6 +128,9 @@ struct JointDesc {
     Vec3 anchorB = Vec3::Zero();   ///< in bodyB's frame; a world point when bodyB is the world
     /// Distance and rope: the length (m); negative: the anchors' distance in the scene.
     double length = -1.0;
+    /// Hinge and slider: the axis in bodyA's frame (any length but zero), and in bodyB's
+    /// frame (the world's without bodyB); no axisB: axisA as it lies at the start.
+    std::optional<Vec3> axisA, axisB;
 
     bool operator==(const JointDesc&) const = default;
 };

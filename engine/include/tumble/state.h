@@ -47,8 +47,11 @@ struct State {
     std::vector<std::uint64_t> touching;
     bool touchingKnown = false;
     /// Per joint (Model::joints): its impulse in the last step, the next step's warm start
-    /// (a ball's three components; distance and rope use x). Empty: none yet.
+    /// (a ball's three components; distance and rope use x; hinge, slider and fixed: the
+    /// force on A in the world). Empty: none yet.
     std::vector<Vec3> jointImpulses;
+    /// Per joint: the torque on A in the last step (hinge, slider and fixed; else zero).
+    std::vector<Vec3> jointTorques;
 
     bool isAsleep(int body) const { return !asleep.empty() && asleep[body] != 0; }
 };

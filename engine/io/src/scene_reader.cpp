@@ -280,11 +280,12 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
 // and what its type allows are checked with the rest of the scene (validate).
 JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
-    r.onlyKeys(j, p, {"name", "type", "body_a", "anchor_a", "body_b", "anchor_b", "length"});
+    r.onlyKeys(j, p, {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length"});
     JointDesc d;
     d.name = r.string(r.require(j, p, "name"), p + ".name");
     d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
-                       {JointType::Ball, JointType::Distance, JointType::Rope});
+                       {JointType::Ball, JointType::Distance, JointType::Rope, JointType::Hinge,
+                        JointType::Slider, JointType::Fixed});
     d.bodyA = r.string(r.require(j, p, "body_a"), p + ".body_a");
     r.optional(j, p, "anchor_a", [&](const json& v, const std::string& f) { d.anchorA = r.vector<3>(v, f); });
     r.optional(j, p, "body_b", [&](const json& v, const std::string& f) {
@@ -292,6 +293,8 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         if (d.bodyB.empty()) r.fail(f, "must name a body (leave it out to join body_a to the world)");
     });
     r.optional(j, p, "anchor_b", [&](const json& v, const std::string& f) { d.anchorB = r.vector<3>(v, f); });
+    r.optional(j, p, "axis_a", [&](const json& v, const std::string& f) { d.axisA = r.vector<3>(v, f); });
+    r.optional(j, p, "axis_b", [&](const json& v, const std::string& f) { d.axisB = r.vector<3>(v, f); });
     r.optional(j, p, "length", [&](const json& v, const std::string& f) {
         d.length = r.number(v, f);
         if (!(d.length >= 0.0))

@@ -100,8 +100,10 @@ ojson jointJson(const JointDesc& d) {
     j["type"] = toString(d.type);
     j["body_a"] = d.bodyA;
     j["anchor_a"] = vec(d.anchorA);
+    if (d.axisA) j["axis_a"] = vec(*d.axisA);
     if (!d.bodyB.empty()) j["body_b"] = d.bodyB;  // absent: the world
     j["anchor_b"] = vec(d.anchorB);
+    if (d.axisB) j["axis_b"] = vec(*d.axisB);  // absent: axis_a as it lies at the start
     if (d.length >= 0.0) j["length"] = d.length;  // absent: the anchors' distance at the start
     return j;
 }

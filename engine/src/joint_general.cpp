@@ -1,0 +1,143 @@
+#include "joint_general.h"
+
+#include <cmath>
+
+namespace tumble::joint {
+
+namespace {
+
+// A unit vector square to the unit vector n, and the third of the right-handed triple.
+void across(const Vec3& n, Vec3& t1, Vec3& t2) {
+    const Vec3 other = std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : Vec3::UnitY();
+    t1 = n.cross(other).normalized();
+    t2 = n.cross(t1);
+}
+
+// The rotation vector of the unit quaternion e (the shorter way round).
+Vec3 rotationVector(Quat e) {
+    if (e.w() < 0.0) e.coeffs() = -e.coeffs();
+    const double s = e.vec().norm();
+    if (!(s > 1e-12)) return 2.0 * e.vec();
+    return (2.0 * std::atan2(s, e.w()) / s) * e.vec();
+}
+
+}  // namespace
+
+void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
+                 ContactSolverScratch::GeneralRow& rows, Vector6* error) {
+    const Quat qa = a.q, qb = b ? b->q : Quat::Identity();
+    const Vec3 rA = qa * j.anchorA;
+    const Vec3 pA = a.x + rA;
+    const Vec3 pB = b ? Vec3(b->x + qb * j.anchorB) : j.anchorB;
+    const Vec3 rB = b ? Vec3(pA - b->x) : Vec3::Zero();  // B's material point at A's anchor
+    Vec3 t1, t2;
+    Vec3 c = Vec3::Zero();  // the angular error vector
+    switch (j.type) {
+        case JointType::Hinge: {
+            const Vec3 aA = qa * j.axisA, aB = qb * j.axisB;
+            across(aA, t1, t2);
+            rows.nl = 3;
+            rows.lin = Mat3::Identity();
+            rows.na = 2;
+            rows.ang.col(0) = t1;
+            rows.ang.col(1) = t2;
+            rows.ang.col(2).setZero();
+            c = aB.cross(aA);
+            break;
+        }
+        case JointType::Slider: {
+            across(qb * j.axisB, t1, t2);
+            rows.nl = 2;
+            rows.lin.col(0) = t1;
+            rows.lin.col(1) = t2;
+            rows.lin.col(2).setZero();
+            rows.na = 3;
+            rows.ang = Mat3::Identity();
+            c = rotationVector(qa * (qb * j.relative).conjugate());
+            break;
+        }
+        default:  // fixed
+            rows.nl = 3;
+            rows.lin = Mat3::Identity();
+            rows.na = 3;
+            rows.ang = Mat3::Identity();
+            c = rotationVector(qa * (qb * j.relative).conjugate());
+            break;
+    }
+    rows.m = rows.nl + rows.na;
+    rows.JA.setZero();
+    rows.JB.setZero();
+    for (int i = 0; i < rows.nl; ++i) {
+        const Vec3 d = rows.lin.col(i);
+        rows.JA.col(i) << d, rA.cross(d);
+        rows.JB.col(i) << -d, -rB.cross(d);
+    }
+    for (int i = 0; i < rows.na; ++i) {
+        const Vec3 e = rows.ang.col(i);
+        rows.JA.col(rows.nl + i) << Vec3::Zero(), e;
+        rows.JB.col(rows.nl + i) << Vec3::Zero(), -e;
+    }
+    if (error) {
+        error->setZero();
+        const Vec3 gap = pA - pB;
+        for (int i = 0; i < rows.nl; ++i) (*error)[i] = rows.lin.col(i).dot(gap);
+        for (int i = 0; i < rows.na; ++i) (*error)[rows.nl + i] = rows.ang.col(i).dot(c);
+    }
+}
+
+Matrix6 generalMass(const ContactSolverScratch::GeneralRow& now, const ContactSolverScratch::GeneralRow& then,
+                    const SolverBody& A, const SolverBody& B) {
+    Matrix6 K = Matrix6::Identity();
+    const int m = now.m;
+    auto add = [&](const Matrix6& Jn, const Matrix6& Jt, const SolverBody& body) {
+        if (body.invMass == 0.0 && body.invI.isZero(0.0)) return;
+        Eigen::Matrix<double, 6, Eigen::Dynamic> MJ(6, m);
+        MJ.topRows<3>() = body.invMass * Jt.topLeftCorner(3, m);
+        MJ.bottomRows<3>() = body.invI * Jt.bottomLeftCorner(3, m);
+        K.topLeftCorner(m, m) += Jn.leftCols(m).transpose() * MJ;
+    };
+    K.topLeftCorner(m, m).setZero();
+    add(now.JA, then.JA, A);
+    add(now.JB, then.JB, B);
+    return K;
+}
+
+Vector6 generalVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B) {
+    Vector6 vA, vB;
+    vA << A.v, A.w;
+    vB << B.v, B.w;
+    Vector6 out = r.JA.transpose() * vA + r.JB.transpose() * vB;
+    out.tail(6 - r.m).setZero();
+    return out;
+}
+
+void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, const Vector6& lambda) {
+    const Vector6 iA = r.JA * lambda;
+    A.v += A.invMass * iA.head<3>();
+    A.w += A.invI * iA.tail<3>();
+    A.touched = true;
+    if (!B) return;
+    const Vector6 iB = r.JB * lambda;
+    B->v += B->invMass * iB.head<3>();
+    B->w += B->invI * iB.tail<3>();
+    B->touched = true;
+}
+
+namespace {
+
+void move(const SolverBody& body, BodyState& s, const Vector6& impulse) {
+    s.x += body.invMass * impulse.head<3>();
+    const Vec3 turn = body.invI * impulse.tail<3>();
+    const double angle = turn.norm();
+    if (angle > 0.0) s.q = (Quat(Eigen::AngleAxisd(angle, turn / angle)) * s.q).normalized();
+}
+
+}  // namespace
+
+void nudgeGeneral(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
+                  const SolverBody& B, BodyState* b, bool moveB, const Vector6& lambda) {
+    if (moveA) move(A, a, r.JA * lambda);
+    if (moveB && b) move(B, *b, r.JB * lambda);
+}
+
+}  // namespace tumble::joint
