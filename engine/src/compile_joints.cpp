@@ -56,6 +56,22 @@ void validateJoints(const SceneDesc& scene) {
         if (!axial && (j.axisA || j.axisB))
             throw SceneError(p + (j.axisA ? ".axis_a" : ".axis_b"),
                              std::string("a ") + toString(j.type) + " joint has no axis (only hinge and slider joints have one)");
+        if (!axial && (j.limits || j.motor))
+            throw SceneError(p + (j.limits ? ".limits" : ".motor"),
+                             std::string("a ") + toString(j.type) + " joint has none (only hinge and slider joints do)");
+        if (j.limits) {
+            const auto [lower, upper] = *j.limits;
+            if (!std::isfinite(lower) || !std::isfinite(upper)) throw SceneError(p + ".limits", "must be finite numbers");
+            if (lower > upper) throw SceneError(p + ".limits", "the lower limit is above the upper one");
+            if (j.type == JointType::Hinge && (lower < -M_PI || upper > M_PI))
+                throw SceneError(p + ".limits", "a hinge's limits must lie within [-pi, pi] rad");
+        }
+        if (j.motor) {
+            if (!std::isfinite(j.motor->speed)) throw SceneError(p + ".motor.speed", "must be a finite number");
+            if (!std::isfinite(j.motor->maxForce) || j.motor->maxForce < 0.0)
+                throw SceneError(p + (j.type == JointType::Hinge ? ".motor.max_torque" : ".motor.max_force"),
+                                 "must be a finite number, at least 0");
+        }
         for (const auto& [axis, field] : {std::pair{&j.axisA, ".axis_a"}, std::pair{&j.axisB, ".axis_b"}}) {
             if (!*axis) continue;
             if (!(*axis)->allFinite()) throw SceneError(p + field, "must be finite numbers");
@@ -90,6 +106,16 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.axisB = d.axisB ? d.axisB->normalized() : Vec3(qb.conjugate() * (qa * j.axisA));
         }
         j.relative = (qb.conjugate() * qa).normalized();
+        if (d.limits) {
+            j.limited = true;
+            j.lower = (*d.limits)[0];
+            j.upper = (*d.limits)[1];
+        }
+        if (d.motor) {
+            j.motor = true;
+            j.motorSpeed = d.motor->speed;
+            j.motorMax = d.motor->maxForce;
+        }
         if (j.type == JointType::Rope && !(j.length > 0.0))
             throw SceneError(at(i) + ".length", "a rope must be longer than 0");
         m.jointed[j.a] = 1;

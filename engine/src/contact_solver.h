@@ -96,6 +96,14 @@ struct ContactSolverScratch {
         Eigen::Matrix<double, 6, 1> lambda = Eigen::Matrix<double, 6, 1>::Zero();
         Mat3 lin = Mat3::Zero(), ang = Mat3::Zero();  // the rows' directions (columns)
         int nl = 0, na = 0;
+        // Hinge and slider: the row along the free axis (its Jacobian columns), the joint's
+        // coordinate (angle or offset), and the scalar rows of its motor and limits.
+        bool axial = false;
+        Eigen::Matrix<double, 6, 1> JAx = Eigen::Matrix<double, 6, 1>::Zero(), JBx = Eigen::Matrix<double, 6, 1>::Zero();
+        double coord = 0.0, kAxis = 0.0;
+        bool motor = false, lowerOn = false, upperOn = false;
+        double motorSpeed = 0.0, motorMax = 0.0, motorLambda = 0.0;
+        double lowerTarget = 0.0, lowerLambda = 0.0, upperTarget = 0.0, upperLambda = 0.0;
     };
     std::vector<GeneralRow> generalRows;
     std::vector<Point> points;

@@ -43,10 +43,21 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
             rows.ang.col(1) = t2;
             rows.ang.col(2).setZero();
             c = aB.cross(aA);
+            rows.axial = true;
+            rows.JAx << Vec3::Zero(), aA;
+            rows.JBx << Vec3::Zero(), -aA;
+            Quat e = qa * (qb * j.relative).conjugate();  // A turned from its place in the scene
+            if (e.w() < 0.0) e.coeffs() = -e.coeffs();
+            rows.coord = 2.0 * std::atan2(e.vec().dot(aA), e.w());
             break;
         }
         case JointType::Slider: {
-            across(qb * j.axisB, t1, t2);
+            const Vec3 aB = qb * j.axisB;
+            across(aB, t1, t2);
+            rows.axial = true;
+            rows.JAx << aB, rA.cross(aB);
+            rows.JBx << -aB, -rB.cross(aB);
+            rows.coord = aB.dot(pA - pB);
             rows.nl = 2;
             rows.lin.col(0) = t1;
             rows.lin.col(1) = t2;
@@ -111,6 +122,26 @@ Vector6 generalVelocity(const ContactSolverScratch::GeneralRow& r, const SolverB
     return out;
 }
 
+double axisMass(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B) {
+    const double inv = A.invMass * r.JAx.head<3>().squaredNorm() + r.JAx.tail<3>().dot(A.invI * r.JAx.tail<3>()) +
+                       B.invMass * r.JBx.head<3>().squaredNorm() + r.JBx.tail<3>().dot(B.invI * r.JBx.tail<3>());
+    return inv > 0.0 ? 1.0 / inv : 0.0;
+}
+
+double axisVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B) {
+    return r.JAx.head<3>().dot(A.v) + r.JAx.tail<3>().dot(A.w) + r.JBx.head<3>().dot(B.v) + r.JBx.tail<3>().dot(B.w);
+}
+
+void applyAxis(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, double lambda) {
+    A.v += (A.invMass * lambda) * r.JAx.head<3>();
+    A.w += A.invI * (lambda * r.JAx.tail<3>());
+    A.touched = true;
+    if (!B) return;
+    B->v += (B->invMass * lambda) * r.JBx.head<3>();
+    B->w += B->invI * (lambda * r.JBx.tail<3>());
+    B->touched = true;
+}
+
 void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, const Vector6& lambda) {
     const Vector6 iA = r.JA * lambda;
     A.v += A.invMass * iA.head<3>();
@@ -138,6 +169,12 @@ void nudgeGeneral(const ContactSolverScratch::GeneralRow& r, const SolverBody& A
                   const SolverBody& B, BodyState* b, bool moveB, const Vector6& lambda) {
     if (moveA) move(A, a, r.JA * lambda);
     if (moveB && b) move(B, *b, r.JB * lambda);
+}
+
+void nudgeAxis(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
+               const SolverBody& B, BodyState* b, bool moveB, double lambda) {
+    if (moveA) move(A, a, r.JAx * lambda);
+    if (moveB && b) move(B, *b, r.JBx * lambda);
 }
 
 }  // namespace tumble::joint

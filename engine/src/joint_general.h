@@ -9,6 +9,10 @@
 // its error is d · (pA - pB). An angular row along e acts on the relative turn; its error is
 // e · c, with c the rotation vector taking B's frame (times the kept relative orientation)
 // to A's (slider, fixed), or aB × aA for a hinge's axes (both move like A's turn minus B's).
+// A hinge's or slider's motor and limits are scalar rows along its free axis: the motor's
+// impulse clamped to its force times the step, a limit's one-sided with a speculative
+// target (the coordinate may reach the limit within the step, no further; past it, no
+// velocity back: the projection moves it back without adding energy).
 #pragma once
 
 #include "contact_solver.h"
@@ -47,5 +51,14 @@ void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, Solv
 /// turned by I⁻¹ J λ. A body not `movable` is left.
 void nudgeGeneral(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
                   const SolverBody& B, BodyState* b, bool moveB, const Vector6& lambda);
+
+/// Hinge and slider: the effective mass along the free axis (0: nothing can move), the
+/// coordinate's rate now, an impulse along it applied to the velocities, and the poses moved
+/// by one (as nudgeGeneral).
+double axisMass(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
+double axisVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
+void applyAxis(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, double lambda);
+void nudgeAxis(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
+               const SolverBody& B, BodyState* b, bool moveB, double lambda);
 
 }  // namespace tumble::joint

@@ -70,6 +70,17 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bo
         g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (h * state.jointTorques[k]);
         applyGeneral(g, A, B, g.lambda);
     }
+    if (g.axial && (j.motor || j.limited)) {
+        g.kAxis = axisMass(g, A, B ? *B : kStill);
+        if (g.kAxis > 0.0) {
+            g.motor = j.motor;
+            g.motorSpeed = j.motorSpeed;
+            g.motorMax = j.motorMax * h;
+            g.lowerOn = g.upperOn = j.limited;
+            g.lowerTarget = -std::max(g.coord - j.lower, 0.0) / h;  // reach the limit, no further
+            g.upperTarget = std::max(j.upper - g.coord, 0.0) / h;
+        }
+    }
     r.general = static_cast<int>(s.generalRows.size());
     s.generalRows.push_back(g);
     return true;
@@ -155,6 +166,18 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         g.lambda += d;
         applyGeneral(g, A, B, d);
         change = v.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
+        // The motor's and the limits' rows along the free axis.
+        auto row = [&](double& lambda, double target, double low, double high) {
+            const double vx = axisVelocity(g, A, B ? *B : kStill);
+            const double next = std::clamp(lambda - g.kAxis * (vx - target), low, high);
+            if (next == lambda) return;
+            applyAxis(g, A, B, next - lambda);
+            change = std::max(change, std::abs(next - lambda) / g.kAxis);
+            lambda = next;
+        };
+        if (g.motor) row(g.motorLambda, g.motorSpeed, -g.motorMax, g.motorMax);
+        if (g.lowerOn) row(g.lowerLambda, g.lowerTarget, 0.0, HUGE_VAL);
+        if (g.upperOn) row(g.upperLambda, g.upperTarget, -HUGE_VAL, 0.0);
     } else if (!r.ball) {  // one row along the line
         const double vn = r.n.dot(A.v - (B ? B->v : Vec3::Zero())) + r.armA.dot(A.w) - (B ? r.armB.dot(B->w) : 0.0);
         const double old = r.lambda.x();
@@ -202,6 +225,21 @@ bool turnedFar(const Vec3& then, const Vec3& now) {
 
 bool turnedFar(const Quat& then, const Quat& now) { return std::abs(then.dot(now)) < std::cos(0.1); }
 
+// A hinge or slider past one of its limits is moved back to it along its axis (positions
+// only: the limit's velocity row has stopped the approach).
+// Returns how far past it was.
+double projectLimit(const JointModel& j, BodyState& a, BodyState* b, bool moveA, bool moveB, const SolverBody& A,
+                    const SolverBody& B) {
+    if (!j.limited) return 0.0;
+    ContactSolverScratch::GeneralRow g;
+    generalRows(j, a, b, g);
+    const double past = g.coord < j.lower ? g.coord - j.lower : g.coord > j.upper ? g.coord - j.upper : 0.0;
+    if (std::abs(past) <= kHeld) return 0.0;
+    const double k = axisMass(g, A, B);
+    if (k > 0.0) nudgeAxis(g, A, a, moveA, B, b, moveB, -past * k);
+    return std::abs(past);
+}
+
 // A Newton step on a hinge's, slider's or fixed joint's rows (as projectionPass's for the
 // others); returns the error it found.
 double projectGeneral(State& state, ContactSolverScratch& s, double h, const State* from,
@@ -213,7 +251,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     Vector6 C;
     generalRows(j, a, b, now, &C);
     const double error = C.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
-    if (error <= kHeld) return error;
+    if (error <= kHeld) return std::max(error, projectLimit(j, a, b, moveA, moveB, A, B));
     // (As for the others: a body that turned far since the start is left to the passes
     // along the directions now.)
     if (from && (turnedFar(at.bodies[j.a].q, a.q) || (b && turnedFar(at.bodies[j.b].q, b->q)))) return error;
@@ -222,6 +260,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     const Vector6 lambda = -K.fullPivLu().solve(C);
     if (!lambda.allFinite()) return error;
     nudgeGeneral(then, A, a, moveA, B, b, moveB, lambda);
+    const double past = projectLimit(j, a, b, moveA, moveB, A, B);
     if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
         ContactSolverScratch::GeneralRow onA = then, onB = then;
         if (moveA) applyGeneral(onA, s.bodies[j.a], nullptr, lambda / h);
@@ -230,7 +269,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
             applyGeneral(onB, s.bodies[j.b], nullptr, lambda / h);
         }
     }
-    return error;
+    return std::max(error, past);
 }
 
 // One Gauss-Seidel pass of Newton steps over the active joints; returns the largest error

@@ -432,6 +432,99 @@ private slots:
         QVERIFY2(worstOff < 1e-9 && worstTurn < 1e-9, qPrintable(QString::number(worstOff)));
     }
 
+    // A hinge's motor: a wheel (a cylinder of 2 kg, r 0.5 m, turning about its axis y: I =
+    // m r² / 2 = 0.25 kg m²) at rest, driven towards 3 rad/s with at most 0.5 N m in empty
+    // space: it spins up at α = τ / I = 2 rad/s² until t = 1.5 s and turns at 3 rad/s after.
+    void hingeMotorReachesItsSpeed() {
+        BodyDesc wheel;
+        wheel.name = "wheel";
+        wheel.shape.type = ShapeType::Cylinder;
+        wheel.shape.radius = 0.5;
+        wheel.shape.halfHeight = 0.1;
+        wheel.mass = 2.0;
+        SceneDesc scene = sceneOf({wheel}, Vec3::Zero());
+        scene.settings.sleeping = false;
+        JointDesc axle = joint("axle", JointType::Hinge, "wheel", Vec3::Zero(), "", Vec3::Zero());
+        axle.axisA = Vec3::UnitY();
+        axle.motor = JointDesc::Motor{3.0, 0.5};
+        scene.joints.push_back(axle);
+        World w(scene);
+        const double h = 1.0 / 240.0;
+        double worstEarly = 0.0, worstLate = 0.0;
+        while (w.state().time < 3.0 - 1e-9) {
+            w.step(h);
+            const double t = w.state().time;
+            const double spin = derive(w.model().bodies[0], w.state().bodies[0]).omega.y();
+            if (t < 1.5 - 1e-9) worstEarly = std::max(worstEarly, std::abs(spin - 2.0 * t));
+            if (t > 1.5 + h) worstLate = std::max(worstLate, std::abs(spin - 3.0));
+        }
+        qInfo("spin-up off 2 t by at most %.1e rad/s; then off 3 rad/s by %.1e", worstEarly, worstLate);
+        QVERIFY2(worstEarly < 1e-9, qPrintable(QString::number(worstEarly)));
+        QVERIFY2(worstLate < 1e-9, qPrintable(QString::number(worstLate)));
+    }
+
+    // A hinge's limits stop a door: a slab turning about the vertical at 1 rad/s from the
+    // middle of its range [-0.5, 0.5] rad reaches the stop at t = 0.5 s and stays there (the
+    // stop is inelastic), never past it by more than the projection's 1e-9.
+    void hingeLimitStopsADoor() {
+        BodyDesc door = boxBody("door", Vec3(0.4, 1.0, 0.02), 10.0);
+        door.angularVelocity = Vec3(0, 1, 0);
+        SceneDesc scene = sceneOf({door}, Vec3::Zero());
+        scene.settings.sleeping = false;
+        JointDesc hinge = joint("hinge", JointType::Hinge, "door", Vec3::Zero(), "", Vec3::Zero());
+        hinge.axisA = Vec3::UnitY();
+        hinge.limits = std::array<double, 2>{-0.5, 0.5};
+        scene.joints.push_back(hinge);
+        World w(scene);
+        const double h = 1.0 / 240.0;
+        double worstPast = 0.0, early = 0.0, restSpin = 0.0;
+        while (w.state().time < 2.0 - 1e-9) {
+            w.step(h);
+            const double t = w.state().time;
+            const Quat& q = w.state().bodies[0].q;
+            const double angle = 2.0 * std::atan2(q.y(), q.w());
+            worstPast = std::max(worstPast, angle - 0.5);
+            if (t < 0.5 - 1e-9) early = std::max(early, std::abs(angle - t));
+            if (t > 0.5 + 2 * h) restSpin = std::max(restSpin, derive(w.model().bodies[0], w.state().bodies[0]).omega.norm());
+        }
+        const Quat& q = w.state().bodies[0].q;
+        const double final = 2.0 * std::atan2(q.y(), q.w());
+        qInfo("free turn off t by %.1e rad; past the stop by %.1e rad; at rest to %.1e rad/s at %.12f rad", early,
+              worstPast, restSpin, final);
+        QVERIFY2(early < 1e-9, qPrintable(QString::number(early)));
+        QVERIFY2(worstPast < 1e-9, qPrintable(QString::number(worstPast)));
+        QVERIFY2(restSpin < 1e-9, qPrintable(QString::number(restSpin)));
+        QVERIFY2(std::abs(final - 0.5) < 1e-9, qPrintable(QString::number(final)));
+    }
+
+    // A slider's limit: a block on a vertical rail falls freely (s = -g t² / 2) until its
+    // offset reaches the lower limit of -1 m at t = sqrt(2 / g), and rests there.
+    void sliderLimitStopsAFall() {
+        BodyDesc block = boxBody("block", Vec3(0.1, 0.1, 0.1), 1.0);
+        block.position = Vec3(0, 3, 0);
+        SceneDesc scene = sceneOf({block});
+        scene.settings.sleeping = false;
+        JointDesc rail = joint("rail", JointType::Slider, "block", Vec3::Zero(), "", Vec3(0, 3, 0));
+        rail.axisA = Vec3::UnitY();
+        rail.limits = std::array<double, 2>{-1.0, 1.0};
+        scene.joints.push_back(rail);
+        World w(scene);
+        const double h = 1.0 / 240.0, hit = std::sqrt(2.0 / g);
+        double early = 0.0, past = 0.0;
+        while (w.state().time < 1.5 - 1e-9) {
+            w.step(h);
+            const double t = w.state().time, y = w.state().bodies[0].x.y() - 3.0;
+            if (t < hit - h) early = std::max(early, std::abs(y + 0.5 * g * t * t));
+            past = std::max(past, -1.0 - y);
+        }
+        const double y = w.state().bodies[0].x.y() - 3.0;
+        const double v = w.state().bodies[0].P.norm();
+        qInfo("free fall off by %.1e m; past the limit by %.1e m; rests at %.12f m, momentum %.1e", early, past, y, v);
+        QVERIFY2(early < 1e-9, qPrintable(QString::number(early)));
+        QVERIFY2(past < 1e-9, qPrintable(QString::number(past)));
+        QVERIFY2(std::abs(y + 1.0) < 1e-9 && v < 1e-9, qPrintable(QString::number(y)));
+    }
+
     // A bad joint is refused with the field named.
     void badJointsAreRefused() {
         BodyDesc a = sphereBody("a", 0.1, 1.0), ground = boxBody("ground", Vec3(1, 0.1, 1), 1.0);

@@ -201,12 +201,16 @@ SceneDesc everyField() {
     door.bodyB = "post";
     door.anchorB = Vec3(0.1, 0.5, 0);
     door.axisB = Vec3(0, 2, 0);
+    door.limits = std::array<double, 2>{-1.25, 0.5};
+    door.motor = JointDesc::Motor{0.75, 12.5};
     s.joints.push_back(door);
     JointDesc rail;  // a slider to the world, its world axis from the start
     rail.name = "rail";
     rail.type = JointType::Slider;
     rail.bodyA = "bunny";
     rail.axisA = Vec3(1, 0, 0);
+    rail.limits = std::array<double, 2>{-0.5, 2};
+    rail.motor = JointDesc::Motor{-0.25, 40};
     s.joints.push_back(rail);
     JointDesc weld;
     weld.name = "weld";
@@ -591,6 +595,23 @@ private slots:
             "joints[1].axis_b", "drop.json: joints[1].axis_b: a ball joint has no axis (only hinge and slider joints have one)");
         row("anchor not a vector", R"("anchor_a": [0.5, 0, 0])", R"("anchor_a": [0.5, 0])", "joints[1].anchor_a",
             "drop.json: joints[1].anchor_a: must be an array of 3 numbers");
+        row("inverted limits", R"("type": "ball", "body_a": "crate")",
+            R"("type": "hinge", "axis_a": [0, 1, 0], "limits": [1, -1], "body_a": "crate")", "joints[1].limits",
+            "drop.json: joints[1].limits: the lower limit is above the upper one");
+        row("hinge limits past pi", R"("type": "ball", "body_a": "crate")",
+            R"("type": "hinge", "axis_a": [0, 1, 0], "limits": [-4, 1], "body_a": "crate")", "joints[1].limits",
+            "drop.json: joints[1].limits: a hinge's limits must lie within [-pi, pi] rad");
+        row("limits on a ball joint", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "limits": [0, 1])",
+            "joints[1].limits", "drop.json: joints[1].limits: a ball joint has none (only hinge and slider joints do)");
+        row("negative motor torque", R"("type": "ball", "body_a": "crate")",
+            R"("type": "hinge", "axis_a": [0, 1, 0], "motor": {"speed": 1, "max_torque": -2}, "body_a": "crate")",
+            "joints[1].motor.max_torque", "drop.json: joints[1].motor.max_torque: must be a finite number, at least 0");
+        row("slider motor with a torque", R"("type": "ball", "body_a": "crate")",
+            R"("type": "slider", "axis_a": [0, 1, 0], "motor": {"speed": 1, "max_torque": 2}, "body_a": "crate")",
+            "joints[1].motor.max_torque", "drop.json: joints[1].motor.max_torque: a slider's motor gives a force: max_force");
+        row("motor without its speed", R"("type": "ball", "body_a": "crate")",
+            R"("type": "hinge", "axis_a": [0, 1, 0], "motor": {"max_torque": 2}, "body_a": "crate")",
+            "joints[1].motor.speed", "drop.json: joints[1].motor.speed: is missing");
         row("unknown frame",
             R"("type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1)",
             R"("type": "torque", "vector": [0, 1, 0], "frame": "local")", "bodies[1].forces[0].frame",

@@ -70,8 +70,14 @@ struct JointModel {
     double length = 0.0;  ///< distance and rope
     /// Hinge and slider: unit axes in A's and B's frames (B's: the world's for the world).
     Vec3 axisA = Vec3::UnitZ(), axisB = Vec3::UnitZ();
-    /// Slider and fixed: A's orientation relative to B's (B's: the world's) to keep.
+    /// Slider and fixed: A's orientation relative to B's (B's: the world's) to keep; a
+    /// hinge's angle is measured from it.
     Quat relative = Quat::Identity();
+    /// Hinge and slider (JointDesc::limits, motor).
+    bool limited = false;
+    double lower = 0.0, upper = 0.0;
+    bool motor = false;
+    double motorSpeed = 0.0, motorMax = 0.0;
 };
 
 struct Model {

@@ -4,6 +4,7 @@
 
 #include <tumble/math.h>
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -131,6 +132,19 @@ struct JointDesc {
     /// Hinge and slider: the axis in bodyA's frame (any length but zero), and in bodyB's
     /// frame (the world's without bodyB); no axisB: axisA as it lies at the start.
     std::optional<Vec3> axisA, axisB;
+    /// Hinge and slider: the range of the joint's coordinate, lower ≤ upper: the hinge's
+    /// angle about its axis (rad, within [-π, π], 0 as the scene places the bodies, positive
+    /// by the right hand about A's axis) or the slider's offset of A's anchor from B's along
+    /// the axis (m). A stop is inelastic.
+    std::optional<std::array<double, 2>> limits;
+    /// Hinge and slider: drives the coordinate's rate towards `speed` (rad/s or m/s) with
+    /// at most `maxForce` (N m for a hinge, N for a slider).
+    struct Motor {
+        double speed = 0.0;
+        double maxForce = 0.0;
+        bool operator==(const Motor&) const = default;
+    };
+    std::optional<Motor> motor;
 
     bool operator==(const JointDesc&) const = default;
 };

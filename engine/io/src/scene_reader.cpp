@@ -280,7 +280,9 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
 // and what its type allows are checked with the rest of the scene (validate).
 JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
-    r.onlyKeys(j, p, {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length"});
+    r.onlyKeys(j, p,
+               {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length", "limits",
+                "motor"});
     JointDesc d;
     d.name = r.string(r.require(j, p, "name"), p + ".name");
     d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
@@ -295,6 +297,28 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.optional(j, p, "anchor_b", [&](const json& v, const std::string& f) { d.anchorB = r.vector<3>(v, f); });
     r.optional(j, p, "axis_a", [&](const json& v, const std::string& f) { d.axisA = r.vector<3>(v, f); });
     r.optional(j, p, "axis_b", [&](const json& v, const std::string& f) { d.axisB = r.vector<3>(v, f); });
+    r.optional(j, p, "limits", [&](const json& v, const std::string& f) {
+        const Eigen::Vector2d l = r.vector<2>(v, f);
+        d.limits = std::array<double, 2>{l[0], l[1]};
+    });
+    r.optional(j, p, "motor", [&](const json& v, const std::string& f) {
+        r.object(v, f);
+        r.onlyKeys(v, f, {"speed", "max_torque", "max_force"});
+        JointDesc::Motor m;
+        m.speed = r.number(r.require(v, f, "speed"), f + ".speed");
+        // A hinge's motor turns (a torque), a slider's pushes (a force).
+        const char* key = d.type == JointType::Slider ? "max_force" : "max_torque";
+        const char* wrong = d.type == JointType::Slider ? "max_torque" : "max_force";
+        if (d.type == JointType::Hinge || d.type == JointType::Slider) {
+            if (v.contains(wrong))
+                r.fail(Reader::join(f, wrong), std::string("a ") + toString(d.type) + "'s motor gives a " +
+                                                   (d.type == JointType::Slider ? "force: max_force" : "torque: max_torque"));
+        } else if (!v.contains(key)) {
+            key = wrong;
+        }
+        m.maxForce = r.number(r.require(v, f, key), Reader::join(f, key));
+        d.motor = m;
+    });
     r.optional(j, p, "length", [&](const json& v, const std::string& f) {
         d.length = r.number(v, f);
         if (!(d.length >= 0.0))

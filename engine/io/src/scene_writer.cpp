@@ -105,6 +105,12 @@ ojson jointJson(const JointDesc& d) {
     j["anchor_b"] = vec(d.anchorB);
     if (d.axisB) j["axis_b"] = vec(*d.axisB);  // absent: axis_a as it lies at the start
     if (d.length >= 0.0) j["length"] = d.length;  // absent: the anchors' distance at the start
+    if (d.limits) j["limits"] = ojson::array({(*d.limits)[0], (*d.limits)[1]});
+    if (d.motor) {
+        ojson& m = j["motor"];
+        m["speed"] = d.motor->speed;
+        m[d.type == JointType::Slider ? "max_force" : "max_torque"] = d.motor->maxForce;
+    }
     return j;
 }
 
