@@ -1,7 +1,10 @@
 #include "impact.h"
 
+#include "joints.h"
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace tumble {
 
@@ -49,6 +52,18 @@ void collectIsland(const Model& model, const State& state, const std::vector<Man
         s.byBody[s.fill[m.bodyA]++] = static_cast<int>(k);
         s.byBody[s.fill[m.bodyB]++] = static_cast<int>(k);
     }
+    // Joints carry an impact as contacts do: a body's joint partners are in its island.
+    s.jointFirst.assign(n + 1, 0);
+    for (const JointModel& j : model.joints)
+        if (j.b >= 0) ++s.jointFirst[j.a + 1], ++s.jointFirst[j.b + 1];
+    for (size_t i = 0; i < n; ++i) s.jointFirst[i + 1] += s.jointFirst[i];
+    s.partners.resize(s.jointFirst[n]);
+    s.jointFill.assign(s.jointFirst.begin(), s.jointFirst.end() - 1);
+    for (const JointModel& j : model.joints) {
+        if (j.b < 0) continue;
+        s.partners[s.jointFill[j.a]++] = j.b;
+        s.partners[s.jointFill[j.b]++] = j.a;
+    }
     s.taken.assign(contacts.size(), 0);
     s.queue.clear();
     for (int b : seeds)
@@ -62,15 +77,28 @@ void collectIsland(const Model& model, const State& state, const std::vector<Man
             for (int b : {contacts[k].bodyA, contacts[k].bodyB})
                 if (carries(b) && !s.inIsland[b]) s.inIsland[b] = 1, s.queue.push_back(b);
         }
+        for (int j = s.jointFirst[body]; j < s.jointFirst[body + 1]; ++j) {
+            const int b = s.partners[j];
+            if (carries(b) && !s.inIsland[b]) s.inIsland[b] = 1, s.queue.push_back(b);
+        }
     }
     for (size_t k = 0; k < contacts.size(); ++k)
         if (s.taken[k]) s.manifolds.push_back(static_cast<int>(k));
 }
 
+constexpr int kJointRounds = 100;  // a manifold's rounds with the joints (below)
+
 // One manifold: the approaching touching points solved together. Returns whether any
 // point was approaching.
+// With `joints` (one sweep of the island's joint rows; whether it moved a body), the joints
+// act at once with the impact, as parts of one rigid body: the points keep the velocity
+// restitution gave them as their target, and rounds of the joints' sweep and of the impulse
+// the points still lack (never a pull) follow until both hold. (A ball hitting a dumbbell
+// along its rod meets both of its balls, as it would meet one body of their mass; later
+// manifolds still take their turn after, which is how a row of balls passes an impact on.)
 bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody>& bodies, double tol,
-                   double approachTol, double restingSpeed, EnergyLedger& ledger) {
+                   double approachTol, double restingSpeed, EnergyLedger& ledger,
+                   const std::function<bool()>* joints = nullptr) {
     SolverBody& A = bodies[m.bodyA];
     SolverBody& B = bodies[m.bodyB];
     const Vec3& n = m.normal;
@@ -111,9 +139,35 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
             K(i, j) = A.invMass + B.invMass + n.dot((A.invI * rA[j].cross(n)).cross(rA[i])) +
                       n.dot((B.invI * rB[j].cross(n)).cross(rB[i]));
     }
-    const Eigen::Vector4d lambda = pushingImpulses(K, leastNormInverse(K, k), g, k);
+    const Eigen::Matrix4d Kinv = leastNormInverse(K, k);
+    Eigen::Vector4d lambda = pushingImpulses(K, Kinv, g, k);
+    Eigen::Vector4d target = Eigen::Vector4d::Zero();  // the normal velocities restitution asks
+    for (int i = 0; i < k; ++i) target[i] = n.dot(relativeVelocity(A, rA[i], B, rB[i])) + gain[i];
     for (int i = 0; i < k; ++i)
         if (lambda[i] > 0.0) ledger.lostInContacts += applyPairImpulse(A, rA[i], B, rB[i], lambda[i] * n);
+    double before = HUGE_VAL;
+    for (int round = 0; joints && round < kJointRounds; ++round) {
+        const bool moved = (*joints)();
+        Eigen::Vector4d need = Eigen::Vector4d::Zero();
+        double worst = 0.0;
+        for (int i = 0; i < k; ++i) {
+            need[i] = target[i] - n.dot(relativeVelocity(A, rA[i], B, rB[i]));
+            if (need[i] > 0.0 || lambda[i] > 0.0) worst = std::max(worst, std::abs(need[i]));
+        }
+        if (!moved && worst <= approachTol) break;
+        // Rounds that no longer bring the points nearer their target (the joints do not let
+        // the bodies part that way: a link hitting the next but one of its chain) stop: more
+        // impulse there would only spin the bodies up.
+        if (round >= 2 && worst > 0.9 * before) break;
+        before = worst;
+        Eigen::Vector4d more = Kinv * need;
+        for (int i = 0; i < k; ++i) {
+            more[i] = std::max(more[i], -lambda[i]);  // what was pushed may be taken back, no more
+            if (more[i] == 0.0) continue;
+            lambda[i] += more[i];
+            ledger.lostInContacts += applyPairImpulse(A, rA[i], B, rB[i], more[i] * n);
+        }
+    }
 
     // Coulomb friction at each point that was pushed: stop the sliding, within μ j.
     const double mu = friction(model, m);
@@ -160,14 +214,29 @@ void approachingBodies(const Model& model, const State& before, const State& sta
 
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
-                            ImpactScratch& s, EnergyLedger& ledger) {
+                            ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints) {
     ImpactResult result;
     collectIsland(model, state, contacts, seeds, touchTolerance, s);
     if (s.manifolds.empty()) return result;
     s.involved.clear();
     for (int k : s.manifolds) s.involved.push_back(contacts[k].bodyA), s.involved.push_back(contacts[k].bodyB);
+    bool jointed = joints && !model.joints.empty();
+    if (jointed) {  // the bodies reached through joints, and the joints' other bodies
+        s.involved.insert(s.involved.end(), s.queue.begin(), s.queue.end());
+        for (const JointModel& j : model.joints)
+            if (j.b >= 0 && (s.inIsland[j.a] || s.inIsland[j.b])) s.involved.push_back(j.a), s.involved.push_back(j.b);
+    }
     uniqueBodies(s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
+    // The joints' rows work on the contact solver's scratch: its bodies are these while the
+    // impact lasts (swapped in and out, no copy).
+    if (jointed) {
+        std::swap(joints->bodies, s.bodies);
+        joints->changedAt.resize(joints->bodies.size());
+        prepareJoints(model, state, 0.0, *joints, true, &s.inIsland);
+        std::swap(joints->bodies, s.bodies);
+        if (joints->jointRows.empty()) jointed = false;
+    }
 
     // "Still approaching" relative to the fastest approach at the start.
     double scale = 0.0;
@@ -190,6 +259,25 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     s.checkedAt.assign(s.manifolds.size(), 0);
     s.approached.assign(s.manifolds.size(), 1);
     long clock = 0;
+    // One sweep of the joints' rows (their solver bodies are these, swapped in); the
+    // manifolds of the bodies they move are looked at again.
+    const std::function<bool()> sweepJoints = [&] {
+        std::swap(joints->bodies, s.bodies);
+        bool moved = false;
+        const int nj = static_cast<int>(joints->jointRows.size());
+        for (int k = 0; k < nj; ++k) {
+            if (!updateJoint(*joints, k, approachTol)) continue;
+            const auto& r = joints->jointRows[k];
+            s.changedAt[r.a] = ++clock;
+            if (r.b >= 0) s.changedAt[r.b] = clock;
+            moved = true;
+        }
+        std::swap(joints->bodies, s.bodies);
+        return moved;
+    };
+    auto touchesJoints = [&](const Manifold& m) {
+        return (!model.jointed.empty()) && (model.jointed[m.bodyA] || model.jointed[m.bodyB]);
+    };
     for (;;) {
         bool any = false;
         for (size_t i = 0; i < s.manifolds.size(); ++i) {
@@ -197,10 +285,12 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
             if (!s.approached[i] && s.checkedAt[i] > s.changedAt[m.bodyA] && s.checkedAt[i] > s.changedAt[m.bodyB])
                 continue;
             s.checkedAt[i] = ++clock;
-            s.approached[i] = solveManifold(model, m, s.bodies, touchTolerance, approachTol, restingSpeed, ledger);
+            s.approached[i] = solveManifold(model, m, s.bodies, touchTolerance, approachTol, restingSpeed, ledger,
+                                            jointed && touchesJoints(m) ? &sweepJoints : nullptr);
             if (s.approached[i]) s.changedAt[m.bodyA] = s.changedAt[m.bodyB] = clock;
             any |= s.approached[i] != 0;
         }
+        if (jointed) any |= sweepJoints();
         if (!any) break;
         if (++result.sweeps == kMaxSweeps) {
             result.limited = true;

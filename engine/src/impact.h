@@ -15,6 +15,7 @@
 // μ j, that stops the sliding if it can.
 #pragma once
 
+#include "contact_solver.h"
 #include "solver_body.h"
 
 #include <tumble/collision.h>
@@ -34,6 +35,8 @@ struct ImpactScratch {
     std::vector<int> involved;   // the bodies loaded, ascending
     // collectIsland's search: each body's touching manifolds (byBody[first[b] .. first[b+1]))
     std::vector<int> first, fill, byBody, queue;
+    // The same for joints: each body's joint partners (partners[jointFirst[b] ..]).
+    std::vector<int> jointFirst, jointFill, partners;
     std::vector<std::uint8_t> taken;
     // The sweeps' bookkeeping: when each body last got an impulse, when each manifold of the
     // island was last solved, and whether it had points approaching then.
@@ -60,8 +63,12 @@ void approachingBodies(const Model& model, const State& before, const State& sta
                        const std::vector<collision::Manifold>& contacts, double touchTolerance, double speed,
                        std::vector<int>& seeds);
 
+/// With joints, the bodies joined to the island's are in it too, and the joints' rows
+/// (impulsive: joints.h) are swept with the manifolds until nothing approaches and no joint
+/// moves, so that an impact passes through a joint as through a contact; `joints`: the
+/// contact solver's scratch, whose joint rows this uses (its bodies are swapped in).
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
-                            ImpactScratch& scratch, EnergyLedger& ledger);
+                            ImpactScratch& scratch, EnergyLedger& ledger, ContactSolverScratch* joints = nullptr);
 
 }  // namespace tumble

@@ -53,11 +53,12 @@ void applyLine(SolverBody& A, SolverBody* B, const JointRow& r, double d) {
 SolverBody* other(ContactSolverScratch& s, const JointRow& r) { return r.b >= 0 ? &s.bodies[r.b] : nullptr; }
 
 const SolverBody kStill;  // the world: nothing moves it
+constexpr double kReached = 1e-9;  // m or rad: a limit or a rope this near is taut in an impact
 
 // A hinge's, slider's or fixed joint's rows at the bodies' poses now, warm-started; false
 // when nothing here can move.
-bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bool remembered, SolverBody& A,
-                    SolverBody* B, ContactSolverScratch& s, JointRow& r) {
+bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bool remembered, bool impulsive,
+                    SolverBody& A, SolverBody* B, ContactSolverScratch& s, JointRow& r) {
     ContactSolverScratch::GeneralRow g;
     generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g);
     const Matrix6 K = generalMass(g, g, A, B ? *B : kStill);
@@ -72,13 +73,16 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bo
     }
     if (g.axial && (j.motor || j.limited)) {
         g.kAxis = axisMass(g, A, B ? *B : kStill);
-        if (g.kAxis > 0.0) {
+        if (g.kAxis > 0.0 && !impulsive) {
             g.motor = j.motor;
             g.motorSpeed = j.motorSpeed;
             g.motorMax = j.motorMax * h;
             g.lowerOn = g.upperOn = j.limited;
             g.lowerTarget = -std::max(g.coord - j.lower, 0.0) / h;  // reach the limit, no further
             g.upperTarget = std::max(j.upper - g.coord, 0.0) / h;
+        } else if (g.kAxis > 0.0 && j.limited) {  // an impact: a limit reached holds
+            g.lowerOn = g.coord - j.lower <= kReached;
+            g.upperOn = j.upper - g.coord <= kReached;
         }
     }
     r.general = static_cast<int>(s.generalRows.size());
@@ -99,13 +103,15 @@ void addJointBodies(const Model& model, const State& state, std::vector<int>& in
     if (involved.size() != before) uniqueBodies(involved, seen);
 }
 
-void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s) {
+void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s, bool impulsive,
+                   const std::vector<std::uint8_t>* only) {
     s.jointRows.clear();
     s.generalRows.clear();
-    const bool remembered = state.jointImpulses.size() == model.joints.size();
+    const bool remembered = !impulsive && state.jointImpulses.size() == model.joints.size();
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
         if (!active(model, state, j)) continue;
+        if (only && !(*only)[j.a] && (j.b < 0 || !(*only)[j.b])) continue;
         JointRow r;
         r.joint = k;
         r.a = j.a;
@@ -117,7 +123,7 @@ void prepareJoints(const Model& model, const State& state, double h, ContactSolv
         r.rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
         const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + r.rB) : j.anchorB;
         if (isGeneral(j.type)) {
-            if (prepareGeneral(j, k, state, h, remembered, A, B, s, r)) s.jointRows.push_back(r);
+            if (prepareGeneral(j, k, state, h, remembered, impulsive, A, B, s, r)) s.jointRows.push_back(r);
             continue;
         }
         if (j.type == JointType::Ball) {
@@ -134,8 +140,10 @@ void prepareJoints(const Model& model, const State& state, double h, ContactSolv
             if (!(r.k > 0.0)) continue;
             r.pullsOnly = j.type == JointType::Rope;
             // A rope lets its slack close within the step, no more (a contact's speculative
-            // target); a rod keeps its length (the drift is projected away afterwards).
-            r.target = r.pullsOnly ? std::max(0.0, (j.length - length) / h) : 0.0;
+            // target); a rod keeps its length (the drift is projected away afterwards). In
+            // an impact a slack rope does nothing and a taut one holds.
+            if (impulsive && r.pullsOnly && j.length - length > kReached) continue;
+            r.target = r.pullsOnly && !impulsive ? std::max(0.0, (j.length - length) / h) : 0.0;
         }
         // The warm start: the last step's force over this step.
         if (remembered) {

@@ -239,7 +239,7 @@ void World::impactAt(double t0) {
         }
     }
     const ImpactResult r =
-        resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, s.resting, s.impact, ledger_);
+        resolveImpacts(model_, state_, d.contacts, s.seeds, s.touchTolerance, s.resting, s.impact, ledger_, &s.solver);
     ++profile_.impactMoments;
     if (r.limited) ++profile_.impactSweepLimits;
     touchingPairs(d.contacts, s.touchTolerance, d.touching);  // at the start of the rest of the step
@@ -344,7 +344,7 @@ void World::impactsAtStart() {
     approachingBodies(model_, state_, state_, s.detect.contacts, s.touchTolerance, s.resting, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r = resolveImpacts(model_, state_, s.detect.contacts, s.seeds, s.touchTolerance,
-                                              s.resting, s.impact, ledger_);
+                                              s.resting, s.impact, ledger_, &s.solver);
         ++profile_.impactMoments;
         if (r.limited) ++profile_.impactSweepLimits;
     }
@@ -360,7 +360,7 @@ void World::finishStep(const State& before, const std::vector<collision::Manifol
     approachingBodies(model_, before, state_, contacts, s.touchTolerance, s.resting, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r =
-            resolveImpacts(model_, state_, contacts, s.seeds, s.touchTolerance, s.resting, s.impact, ledger_);
+            resolveImpacts(model_, state_, contacts, s.seeds, s.touchTolerance, s.resting, s.impact, ledger_, &s.solver);
         ++profile_.impactMoments;
         if (r.limited) ++profile_.impactSweepLimits;
     }
