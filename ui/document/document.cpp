@@ -299,6 +299,22 @@ void Document::removeBodies(QList<int> indices) {
     undo_->endMacro();
 }
 
+void Document::addJoint(const JointDesc& joint) {
+    std::vector<JointDesc> joints = scene_.joints;
+    JointDesc j = joint;
+    auto taken = [&](const std::string& name) {
+        for (const JointDesc& other : joints)
+            if (other.name == name) return true;
+        return false;
+    };
+    const std::string base = j.name.empty() ? std::string("joint") : j.name;
+    j.name = base;
+    for (int k = 2; taken(j.name); ++k) j.name = base + "-" + std::to_string(k);
+    joints.push_back(j);
+    undo_->push(new SetJointsCommand(this, scene_.joints, joints,
+                                     tr("Add %1 joint").arg(QString::fromUtf8(toString(j.type)))));
+}
+
 void Document::duplicateBodies(QList<int> indices) {
     std::sort(indices.begin(), indices.end());
     indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });

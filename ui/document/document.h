@@ -74,6 +74,8 @@ public:
     void removeBodies(QList<int> indices);
     /// Copies of the bodies, named uniquely, placed after the last one; selects the copies.
     void duplicateBodies(QList<int> indices);
+    /// Adds `joint` (one undo step) with its name made unique among the joints.
+    void addJoint(const JointDesc& joint);
     /// Groups the edits between begin and end into one undo step named `text`.
     void beginMacro(const QString& text);
     void endMacro();

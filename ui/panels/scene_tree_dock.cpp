@@ -2,6 +2,7 @@
 
 #include "document/body_presets.h"
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "panels/scene_tree_model.h"
 
 #include <QAction>
@@ -59,6 +60,27 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
         connect(a, &QAction::triggered, this, [this, type] { addBody(type); });
         addActions_.insert(type, a);
     }
+    jointMenu_ = new QMenu(tr("Add &Joint"), this);
+    const struct {
+        JointType type;
+        const char* text;
+        const char* tip;
+    } joints[] = {
+        {JointType::Ball, QT_TR_NOOP("&Ball"), QT_TR_NOOP("Hold the bodies together at a point, free to turn")},
+        {JointType::Hinge, QT_TR_NOOP("&Hinge"), QT_TR_NOOP("Let the bodies turn about a vertical axis only")},
+        {JointType::Slider, QT_TR_NOOP("&Slider"), QT_TR_NOOP("Let the bodies slide along the x axis only")},
+        {JointType::Fixed, QT_TR_NOOP("&Fixed"), QT_TR_NOOP("Weld the bodies into one")},
+        {JointType::Distance, QT_TR_NOOP("&Distance (Rod)"), QT_TR_NOOP("Keep the bodies' origins as far apart as now")},
+        {JointType::Rope, QT_TR_NOOP("&Rope"), QT_TR_NOOP("Keep the bodies' origins at most as far apart as now")},
+    };
+    for (const auto& k : joints) {
+        QAction* a = jointMenu_->addAction(tr(k.text));
+        const JointType type = k.type;
+        a->setStatusTip(tr(k.tip) + tr(" (one body selected: to the world)"));
+        connect(a, &QAction::triggered, this, [this, type] { addJoint(type); });
+        jointActions_.insert(type, a);
+    }
+
     duplicate_ = new QAction(tr("D&uplicate"), this);
     duplicate_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_D));
     duplicate_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
@@ -92,6 +114,13 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     addButton->setMenu(addMenu_);
     addButton->setPopupMode(QToolButton::InstantPopup);
     tools->addWidget(addButton);
+    auto* jointButton = new QToolButton;
+    jointButton->setObjectName(QStringLiteral("addJointButton"));
+    jointButton->setText(tr("Joint"));
+    jointButton->setToolTip(tr("Join the selected bodies (one: to the world)"));
+    jointButton->setMenu(jointMenu_);
+    jointButton->setPopupMode(QToolButton::InstantPopup);
+    tools->addWidget(jointButton);
     tools->addAction(duplicate_);
     tools->addAction(delete_);
 
@@ -203,6 +232,19 @@ void SceneTreeDock::updateActions() {
     const bool any = !doc_->selection().isEmpty();
     duplicate_->setEnabled(any);
     delete_->setEnabled(any);
+    jointMenu_->setEnabled(any && doc_->selection().size() <= 2);
+}
+
+void SceneTreeDock::addJoint(JointType type) {
+    const QList<int>& sel = doc_->selection();
+    std::string why;
+    const auto joint = presetJoint(type, doc_->scene(), std::vector<int>(sel.begin(), sel.end()), &why);
+    if (!joint) {
+        showMessage(tr("No joint added: %1.").arg(QString::fromStdString(why)));
+        return;
+    }
+    showMessage(QString());
+    doc_->addJoint(*joint);
 }
 
 void SceneTreeDock::showMessage(const QString& text) {

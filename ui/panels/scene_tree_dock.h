@@ -32,6 +32,14 @@ public:
     QAction* duplicateAction() const { return duplicate_; }
     QAction* deleteAction() const { return delete_; }
     QAction* renameAction() const { return rename_; }
+    /// Add Joint: one action per joint type, for the selected bodies (joint_presets.h);
+    /// enabled for one or two selected bodies.
+    QMenu* jointMenu() const { return jointMenu_; }
+    QAction* addJointAction(JointType type) const { return jointActions_.value(type); }
+
+    /// Adds a joint of that type for the selection (joint_presets.h), or says in the dock
+    /// why it cannot.
+    void addJoint(JointType type);
 
     /// Adds a body of that shape with the editor's defaults (body_presets.h) and selects it.
     /// A mesh emits importMeshRequested instead: the mesh comes from a file.
@@ -56,6 +64,8 @@ private:
     QLabel* message_;
     QMenu* addMenu_;
     QMap<ShapeType, QAction*> addActions_;
+    QMenu* jointMenu_;
+    QMap<JointType, QAction*> jointActions_;
     QAction* duplicate_;
     QAction* delete_;
     QAction* rename_;

@@ -157,6 +157,7 @@ void MainWindow::buildMenus() {
     edit->addAction(tree_->duplicateAction());
     edit->addAction(tree_->deleteAction());
     edit->addAction(tree_->renameAction());
+    edit->addMenu(tree_->jointMenu());
     edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
         QList<int> all;
         for (int i = 0; i < doc_->bodyCount(); ++i) all.append(i);

@@ -5,12 +5,15 @@
 #include "panels/scene_tree_dock.h"
 #include "panels/scene_tree_model.h"
 
+#include <tumble/world.h>
+
 #include <QAbstractItemModelTester>
 #include <QAction>
 #include <QItemSelectionModel>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMainWindow>
+#include <QMenu>
 #include <QSignalSpy>
 #include <QTreeView>
 #include <QUndoStack>
@@ -199,6 +202,68 @@ private slots:
         QTRY_COMPARE(doc.body(1).name, std::string("crate"));  // the delegate commits queued
         doc.undoStack()->undo();
         QCOMPARE(doc.body(1).name, std::string("box"));
+    }
+
+    // Add Joint: two selected bodies get a joint between them at the midpoint of their
+    // positions (a hinge about the vertical), one body a joint to the world at its place,
+    // each one undo step with a unique name; the joint runs (the hinged pair turns about y
+    // only); nothing selected: the menu is off; two static bodies: a message, no joint.
+    void addJointForTheSelection() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        QVERIFY(!dock.jointMenu()->isEnabled());
+        BodyDesc a = presetBody(ShapeType::Box, doc.scene()), b = a;
+        a.name = "left";
+        a.position = Vec3(-1, 2, 0);
+        b.name = "right";
+        b.position = Vec3(1, 2, 0);
+        b.orientation = Quat(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
+        doc.addBody(a);
+        doc.addBody(b);
+        doc.setSelection({1, 2});
+        QVERIFY(dock.jointMenu()->isEnabled());
+        dock.addJointAction(JointType::Hinge)->trigger();
+        QCOMPARE(doc.scene().joints.size(), size_t(1));
+        JointDesc j = doc.scene().joints[0];
+        QCOMPARE(j.name, std::string("hinge"));
+        QCOMPARE(j.bodyA, std::string("left"));
+        QCOMPARE(j.bodyB, std::string("right"));
+        // Both anchors at the midpoint (0, 2, 0), the axes along the world's y.
+        QVERIFY((a.position + a.orientation * j.anchorA - Vec3(0, 2, 0)).norm() < 1e-12);
+        QVERIFY((b.position + b.orientation * j.anchorB - Vec3(0, 2, 0)).norm() < 1e-12);
+        QVERIFY(j.axisA && (a.orientation * *j.axisA - Vec3::UnitY()).norm() < 1e-12);
+        QCOMPARE(doc.undoStack()->undoText(), QString("Add hinge joint"));
+
+        doc.setSelection({2});
+        dock.addJointAction(JointType::Hinge)->trigger();
+        QCOMPARE(doc.scene().joints.size(), size_t(2));
+        QCOMPARE(doc.scene().joints[1].name, std::string("hinge-2"));
+        QVERIFY(doc.scene().joints[1].bodyB.empty());  // to the world, at its place
+        QVERIFY((doc.scene().joints[1].anchorB - b.position).norm() < 1e-12);
+        doc.undoStack()->undo();
+        QCOMPARE(doc.scene().joints.size(), size_t(1));
+
+        // The pair on its hinge, in free fall and tumbling (a quarter of a second: before it
+        // reaches the ground), turns one against the other about the hinge's axis only (as
+        // the hinge is turned now).
+        SceneDesc run = doc.scene();
+        run.bodies[1].angularVelocity = Vec3(1, 1, 0);
+        World w(run);
+        for (int k = 0; k < 15; ++k) w.step(1.0 / 60.0);
+        const Vec3 wa = derive(w.model().bodies[1], w.state().bodies[1]).omega;
+        const Vec3 wb = derive(w.model().bodies[2], w.state().bodies[2]).omega;
+        const Vec3 axis = w.state().bodies[1].q * *j.axisA;
+        const Vec3 across = (wa - wb) - (wa - wb).dot(axis) * axis;
+        QVERIFY2(across.norm() < 1e-9 && std::abs((wa - wb).dot(axis)) > 0.1, qPrintable(QString::number(across.norm())));
+
+        doc.setSelection({});
+        QVERIFY(!dock.jointMenu()->isEnabled());
+        doc.setSelection({0});  // the static ground alone
+        dock.addJointAction(JointType::Ball)->trigger();
+        QCOMPARE(doc.scene().joints.size(), size_t(1));
+        auto* message = dock.findChild<QLabel*>("sceneTreeMessage");
+        QVERIFY(message && !message->isHidden());
+        QCOMPARE(message->text(), QString("No joint added: a joint needs a dynamic body among those selected."));
     }
 
     void aTakenOrEmptyNameIsRefused() {

@@ -1,0 +1,40 @@
+#include "document/joint_presets.h"
+
+namespace tumble::ui {
+
+std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, const std::vector<int>& selection,
+                                     std::string* why) {
+    const auto refuse = [&](const char* text) {
+        if (why) *why = text;
+        return std::nullopt;
+    };
+    const int n = static_cast<int>(scene.bodies.size());
+    if (selection.empty() || selection.size() > 2) return refuse("select one body (joined to the world) or two");
+    for (int i : selection)
+        if (i < 0 || i >= n) return refuse("select one body (joined to the world) or two");
+    int a = selection[0], b = selection.size() == 2 ? selection[1] : -1;
+    const auto dynamic = [&](int i) { return i >= 0 && scene.bodies[i].motion == Motion::Dynamic; };
+    if (!dynamic(a) && !dynamic(b)) return refuse("a joint needs a dynamic body among those selected");
+    if (!dynamic(a)) std::swap(a, b);  // body_a is one that moves
+    const BodyDesc& A = scene.bodies[a];
+    const BodyDesc* B = b >= 0 ? &scene.bodies[b] : nullptr;
+
+    JointDesc j;
+    j.name = toString(type);
+    j.type = type;
+    j.bodyA = A.name;
+    if (B) j.bodyB = B->name;
+    if (type == JointType::Distance || type == JointType::Rope) {
+        j.anchorA = Vec3::Zero();
+        j.anchorB = B ? Vec3::Zero() : Vec3(A.position + Vec3(0, 1, 0));
+        return j;
+    }
+    const Vec3 at = B ? Vec3(0.5 * (A.position + B->position)) : A.position;
+    j.anchorA = A.orientation.conjugate() * (at - A.position);
+    j.anchorB = B ? Vec3(B->orientation.conjugate() * (at - B->position)) : at;
+    if (type == JointType::Hinge) j.axisA = A.orientation.conjugate() * Vec3::UnitY();
+    if (type == JointType::Slider) j.axisA = A.orientation.conjugate() * Vec3::UnitX();
+    return j;
+}
+
+}  // namespace tumble::ui
