@@ -72,6 +72,8 @@ void validateJoints(const SceneDesc& scene) {
                 throw SceneError(p + (j.type == JointType::Hinge ? ".motor.max_torque" : ".motor.max_force"),
                                  "must be a finite number, at least 0");
         }
+        if (j.breakForce && !(std::isfinite(*j.breakForce) && *j.breakForce > 0.0))
+            throw SceneError(p + ".break_force", "must be a finite number greater than 0");
         for (const auto& [axis, field] : {std::pair{&j.axisA, ".axis_a"}, std::pair{&j.axisB, ".axis_b"}}) {
             if (!*axis) continue;
             if (!(*axis)->allFinite()) throw SceneError(p + field, "must be finite numbers");
@@ -111,6 +113,8 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.lower = (*d.limits)[0];
             j.upper = (*d.limits)[1];
         }
+        j.index = static_cast<int>(i);
+        if (d.breakForce) j.breakForce = *d.breakForce;
         if (d.motor) {
             j.motor = true;
             j.motorSpeed = d.motor->speed;

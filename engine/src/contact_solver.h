@@ -106,6 +106,9 @@ struct ContactSolverScratch {
         double lowerTarget = 0.0, lowerLambda = 0.0, upperTarget = 0.0, upperLambda = 0.0;
     };
     std::vector<GeneralRow> generalRows;
+    /// Per joint: the impulse on A the step's first projection gave the velocities (RATTLE's
+    /// half of the joint's force; the rows give the rest), for breaking.
+    std::vector<Vec3> projectedImpulse;
     std::vector<Point> points;
     std::vector<PointGeometry> geometry;  // per point
     std::vector<Block> blocks;

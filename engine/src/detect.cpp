@@ -97,9 +97,9 @@ namespace {
 
 static_assert(sizeof(Pose) == 12 * sizeof(double), "a pose is compared as its bytes");
 
-// Whether a joint joins bodies a < b (they do not collide).
-bool joined(const Model& model, int a, int b) {
-    return !model.jointPairs.empty() && std::binary_search(model.jointPairs.begin(), model.jointPairs.end(), pairKey(a, b));
+// Whether a joint that holds joins bodies a < b (they do not collide).
+bool joined(const DetectScratch& s, int a, int b) {
+    return !s.jointPairs.empty() && std::binary_search(s.jointPairs.begin(), s.jointPairs.end(), pairKey(a, b));
 }
 
 // The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
@@ -135,6 +135,17 @@ void rememberPairs(const Model& model, DetectScratch& s, double margin) {
 // pairs a step), and a few bodies that stand exactly still from one step to the next.
 // Nothing is approximated, so a run and its re-simulation from a saved state agree
 // whatever this memory held.
+void refreshJointPairs(const Model& model, const State& state, DetectScratch& s) {
+    int broken = 0;
+    for (const JointModel& j : model.joints) broken += state.jointBroken(j.index) ? 1 : 0;
+    if (broken == s.jointPairsBroken) return;
+    s.jointPairsBroken = broken;
+    s.jointPairs.clear();
+    for (const JointModel& j : model.joints)
+        if (j.b >= 0 && !state.jointBroken(j.index)) s.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
+    std::sort(s.jointPairs.begin(), s.jointPairs.end());
+}
+
 void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.contacts.clear();
     const DetectScratch::PairMemory& last = s.lastPairs;
@@ -162,7 +173,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
             reused.fetch_add(1, std::memory_order_relaxed);
             return;
         }
-        if (joined(model, a, b)) return;  // a joint's bodies do not collide
+        if (joined(s, a, b)) return;  // a joint's bodies do not collide
         const Shape& A = model.bodies[a].collider;
         const Shape& B = model.bodies[b].collider;
         const size_t first = out.size();
@@ -248,7 +259,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         return (b1.x - b0.x).norm() + b0.q.angularDistance(b1.q) * (sizes[i] + body.centerOfMass.norm());
     };
     overPairs(s, s.impacts, s.chunkImpacts, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
-        if (joined(model, a, b)) return;
+        if (joined(s, a, b)) return;
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
         int found = -1;  // the pair's first manifold at the end (end-of-step mode), if any

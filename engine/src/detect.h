@@ -18,6 +18,10 @@ namespace tumble {
 class Workers;  // workers.h: only the .cpp files that hand work to the pool include it
 
 struct DetectScratch {
+    /// The pairs of bodies a joint joins that has not broken (sorted pair keys; they do not
+    /// collide), kept by refreshJointPairs.
+    std::vector<std::uint64_t> jointPairs;
+    int jointPairsBroken = -1;  // the broken joints they were made with; -1: to be made
     std::vector<collision::Pose> start;  // body poses at the start of the step
     std::vector<collision::Pose> end;    // ... and at its end
     std::vector<collision::Aabb> swept;  // world boxes covering the whole step
@@ -71,6 +75,9 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
 
 /// Narrowphase: the manifolds of every pair at the end of the step.
 void findContacts(const Model& model, DetectScratch& s, double margin);
+
+/// s.jointPairs for `state`'s unbroken joints, made again when the number broken changed.
+void refreshJointPairs(const Model& model, const State& state, DetectScratch& s);
 
 /// The sorted keys of the pairs with a point deeper than -touchTolerance.
 void touchingPairs(const std::vector<collision::Manifold>& contacts, double touchTolerance,

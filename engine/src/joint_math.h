@@ -16,7 +16,7 @@ inline bool movable(const Model& model, const State& state, int i) {
 }
 
 inline bool active(const Model& model, const State& state, const JointModel& j) {
-    return movable(model, state, j.a) || movable(model, state, j.b);
+    return !state.jointBroken(j.index) && (movable(model, state, j.a) || movable(model, state, j.b));
 }
 
 inline Mat3 skew(const Vec3& r) {

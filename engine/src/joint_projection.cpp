@@ -169,6 +169,7 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
                     const JointModel& j = *r.joint;
                     const Vec3 J = scale * (r.D * lambda.segment(r.offset, r.count));
                     if (movable(model, state, j.a)) applyImpulse(s.bodies[j.a], r.thenA, J / h);
+                    if (j.index < static_cast<int>(s.projectedImpulse.size())) s.projectedImpulse[j.index] += J / h;
                     if (movable(model, state, j.b)) applyImpulse(s.bodies[j.b], r.thenB, -J / h);
                 }
             error = next;

@@ -215,13 +215,26 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
     state.jointImpulses.assign(model.joints.size(), Vec3::Zero());
     state.jointTorques.assign(model.joints.size(), Vec3::Zero());
     for (const JointRow& r : s.jointRows) {
+        const JointModel& j = model.joints[r.joint];
+        // What the joint carried: its rows' impulse and the projection's, over the step.
+        Vec3 impulse = s.projectedImpulse.size() == model.joints.size() ? s.projectedImpulse[r.joint] : Vec3::Zero();
         if (r.general < 0) {
             state.jointImpulses[r.joint] = r.lambda / h;
-            continue;
+            impulse += r.ball ? r.lambda : Vec3(r.lambda.x() * r.n);
+        } else {
+            const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
+            state.jointImpulses[r.joint] = g.lin.leftCols(g.nl) * g.lambda.head(g.nl) / h;
+            state.jointTorques[r.joint] = g.ang.leftCols(g.na) * g.lambda.segment(g.nl, g.na) / h;
+            impulse += g.lin.leftCols(g.nl) * g.lambda.head(g.nl);
         }
-        const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
-        state.jointImpulses[r.joint] = g.lin.leftCols(g.nl) * g.lambda.head(g.nl) / h;
-        state.jointTorques[r.joint] = g.ang.leftCols(g.na) * g.lambda.segment(g.nl, g.na) / h;
+        const double force = impulse.norm() / h;
+        // Breaking: after this step the joint acts no more (and starts no next step warm).
+        if (force > j.breakForce) {
+            if (state.jointBrokenAt.empty()) state.jointBrokenAt.assign(model.joints.size(), std::nan(""));
+            state.jointBrokenAt[r.joint] = state.time;
+            state.jointImpulses[r.joint].setZero();
+            state.jointTorques[r.joint].setZero();
+        }
     }
 }
 
@@ -270,6 +283,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     nudgeGeneral(then, A, a, moveA, B, b, moveB, lambda);
     const double past = projectLimit(j, a, b, moveA, moveB, A, B);
     if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
+        s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * lambda.head(then.nl) / h;
         ContactSolverScratch::GeneralRow onA = then, onB = then;
         if (moveA) applyGeneral(onA, s.bodies[j.a], nullptr, lambda / h);
         if (moveB) {
@@ -338,6 +352,7 @@ double projectionPass(const Model& model, State& state, ContactSolverScratch& s,
         if (from && h > 0.0) {  // the move was made by the impulse J / h over the step
             if (moveA) applyImpulse(s.bodies[j.a], arA, J / h);
             if (moveB) applyImpulse(s.bodies[j.b], arB, -J / h);
+            s.projectedImpulse[j.index] += J / h;
         }
     }
     return worst;
@@ -346,6 +361,7 @@ double projectionPass(const Model& model, State& state, ContactSolverScratch& s,
 }  // namespace
 
 void projectJoints(const Model& model, State& state, ContactSolverScratch& s, double h, const State* start) {
+    if (start && h > 0.0) s.projectedImpulse.assign(model.joints.size(), Vec3::Zero());
     // First RATTLE's projection, a few passes (a lone joint converges in two or three);
     // then whatever a long chain has left, along the directions now, which Gauss-Seidel
     // converges on safely (the first kind, iterated long, ran away on a whipping chain).

@@ -138,6 +138,7 @@ void World::setState(const State& state) {
     scratch_->detect.lastPairs.keys.clear();  // nothing is taken from before the new state
     // Static bodies may stand elsewhere in this state: their poses and boxes again.
     scratch_->detect.start.clear();
+    scratch_->detect.jointPairsBroken = -1;  // its joints may have broken, or not yet
     scratch_->detect.end.clear();
     scratch_->detect.swept.clear();
     forgetSleepUnlessSleeping();
@@ -270,6 +271,7 @@ void World::step(double h) {
         return;
     }
     if (model_.settings.sleeping) wakeTouched(model_, state_, {}, {});  // forces switching on
+    if (!model_.joints.empty()) refreshJointPairs(model_, state_, d);
     if (state_.touchingKnown) {
         d.touching = state_.touching;  // the last step's: pairs touching at the start
     } else {

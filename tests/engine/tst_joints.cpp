@@ -623,6 +623,60 @@ private slots:
         QVERIFY2(gap < 1e-9, qPrintable(QString::number(gap)));
     }
 
+    // Breaking: a 2 kg ball on a 1 m rod (distance joint) with a breaking force of 30 N,
+    // let go level with its pivot. The rod's tension at the angle φ from the vertical is
+    // m g 3 cos φ, so the rod breaks at cos φ = 30 / (3 m g), φ = 59.36°, and the ball flies
+    // free from there (its velocity then changes by g alone). Hanging at rest (19.6 N) it
+    // holds.
+    void aJointBreaksAtItsForce() {
+        const double m = 2.0, L = 1.0, limit = 30.0;
+        const Vec3 pivot(0, 3, 0);
+        BodyDesc bob = sphereBody("bob", 0.05, m);
+        bob.position = pivot + Vec3(L, 0, 0);
+        SceneDesc scene = sceneOf({bob});
+        scene.settings.sleeping = false;
+        JointDesc rod = joint("rod", JointType::Distance, "bob", Vec3::Zero(), "", pivot);
+        rod.breakForce = limit;
+        scene.joints.push_back(rod);
+        World w(scene);
+        const double h = 1.0 / 240.0;
+        double brokeAt = -1.0, angleAtBreak = 0.0, worstFree = 0.0;
+        Vec3 lastV = Vec3::Zero();
+        while (w.state().time < 1.0 - 1e-9) {
+            w.step(h);
+            const BodyState& b = w.state().bodies[0];
+            const Vec3 v = b.P / m;
+            if (brokeAt < 0.0 && w.state().jointBroken(0)) {
+                brokeAt = w.state().jointBrokenAt[0];
+                const Vec3 d = b.x - pivot;
+                angleAtBreak = std::atan2(d.x(), -d.y()) * 180.0 / std::numbers::pi;
+            } else if (brokeAt > 0.0) {
+                worstFree = std::max(worstFree, (v - lastV - Vec3(0, -g * h, 0)).norm());
+            }
+            lastV = v;
+        }
+        const double expected = std::acos(limit / (3.0 * m * g)) * 180.0 / std::numbers::pi;
+        qInfo("broke at t = %.4f s at %.3f deg from the vertical (closed form %.3f); then free to %.1e m/s a step",
+              brokeAt, angleAtBreak, expected, worstFree);
+        QVERIFY(brokeAt > 0.0);
+        // Within two steps of its swing there (the force is the step's average, and the step
+        // that carried too much is the last one the rod acts in).
+        const double perStep = std::sqrt(2.0 * g * std::cos(expected * std::numbers::pi / 180.0) / L) * h * 180.0 /
+                               std::numbers::pi;
+        QVERIFY2(std::abs(angleAtBreak - expected) < 2.0 * perStep, qPrintable(QString::number(angleAtBreak)));
+        QVERIFY2(worstFree < 1e-9, qPrintable(QString::number(worstFree)));
+
+        // Hanging still, it carries m g = 19.6 N and holds.
+        bob.position = pivot - Vec3(0, L, 0);
+        SceneDesc still = sceneOf({bob});
+        still.settings.sleeping = false;
+        still.joints.push_back(rod);
+        World hanging(still);
+        while (hanging.state().time < 2.0 - 1e-9) hanging.step(h);
+        QVERIFY(!hanging.state().jointBroken(0));
+        QVERIFY(std::abs(hanging.state().bodies[0].x.y() - 2.0) < 1e-9);
+    }
+
     // A bad joint is refused with the field named.
     void badJointsAreRefused() {
         BodyDesc a = sphereBody("a", 0.1, 1.0), ground = boxBody("ground", Vec3(1, 0.1, 1), 1.0);

@@ -217,6 +217,7 @@ SceneDesc everyField() {
     weld.type = JointType::Fixed;
     weld.bodyA = "crate";
     weld.bodyB = "can";
+    weld.breakForce = 1500;
     s.joints.push_back(weld);
     return s;
 }
@@ -612,6 +613,8 @@ private slots:
         row("motor without its speed", R"("type": "ball", "body_a": "crate")",
             R"("type": "hinge", "axis_a": [0, 1, 0], "motor": {"max_torque": 2}, "body_a": "crate")",
             "joints[1].motor.speed", "drop.json: joints[1].motor.speed: is missing");
+        row("zero break force", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "break_force": 0)",
+            "joints[1].break_force", "drop.json: joints[1].break_force: must be a finite number greater than 0");
         row("unknown frame",
             R"("type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1)",
             R"("type": "torque", "vector": [0, 1, 0], "frame": "local")", "bodies[1].forces[0].frame",

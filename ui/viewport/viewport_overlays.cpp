@@ -90,7 +90,9 @@ Lines contacts(const Model& model, const State& state) {
     State awake;
     awake.time = state.time;
     awake.bodies = state.bodies;
+    awake.jointBrokenAt = state.jointBrokenAt;
     DetectScratch s;
+    refreshJointPairs(model, awake, s);  // joined bodies do not touch
     bodyPoses(model, awake, s.end);
     s.start = s.end;
     findPairs(model, awake, tolerance, s);
@@ -186,7 +188,7 @@ Lines joints(const Model& model, const State& state) {
     if (state.bodies.size() != model.bodies.size()) return lines;
     const int n = int(model.bodies.size());
     for (const JointModel& j : model.joints) {
-        if (j.a < 0 || j.a >= n || j.b >= n) continue;
+        if (j.a < 0 || j.a >= n || j.b >= n || state.jointBroken(j.index)) continue;  // a broken one is gone
         const BodyState& a = state.bodies[size_t(j.a)];
         const Vec3 pa = a.x + a.q * j.anchorA;
         const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(state.bodies[size_t(j.b)].x + state.bodies[size_t(j.b)].q * j.anchorB);

@@ -78,6 +78,8 @@ struct JointModel {
     double lower = 0.0, upper = 0.0;
     bool motor = false;
     double motorSpeed = 0.0, motorMax = 0.0;
+    double breakForce = HUGE_VAL;  ///< N
+    int index = 0;                 ///< in Model::joints
 };
 
 struct Model {

@@ -145,6 +145,9 @@ struct JointDesc {
         bool operator==(const Motor&) const = default;
     };
     std::optional<Motor> motor;
+    /// Any joint: it breaks (for good, at the end of the step) when the force it carries
+    /// passes this (N); none: it never breaks.
+    std::optional<double> breakForce;
 
     bool operator==(const JointDesc&) const = default;
 };

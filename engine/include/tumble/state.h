@@ -52,6 +52,10 @@ struct State {
     std::vector<Vec3> jointImpulses;
     /// Per joint: the torque on A in the last step (hinge, slider and fixed; else zero).
     std::vector<Vec3> jointTorques;
+    /// Per joint: the time it broke (its force passed JointDesc::breakForce), NaN while it
+    /// holds; empty: none has broken. A broken joint acts no more and its bodies collide.
+    std::vector<double> jointBrokenAt;
+    bool jointBroken(int k) const { return !jointBrokenAt.empty() && !std::isnan(jointBrokenAt[k]); }
 
     bool isAsleep(int body) const { return !asleep.empty() && asleep[body] != 0; }
 };

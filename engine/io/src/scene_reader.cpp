@@ -282,7 +282,7 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
     r.onlyKeys(j, p,
                {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length", "limits",
-                "motor"});
+                "motor", "break_force"});
     JointDesc d;
     d.name = r.string(r.require(j, p, "name"), p + ".name");
     d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
@@ -319,6 +319,7 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         m.maxForce = r.number(r.require(v, f, key), Reader::join(f, key));
         d.motor = m;
     });
+    r.optional(j, p, "break_force", [&](const json& v, const std::string& f) { d.breakForce = r.number(v, f); });
     r.optional(j, p, "length", [&](const json& v, const std::string& f) {
         d.length = r.number(v, f);
         if (!(d.length >= 0.0))

@@ -106,6 +106,7 @@ ojson jointJson(const JointDesc& d) {
     if (d.axisB) j["axis_b"] = vec(*d.axisB);  // absent: axis_a as it lies at the start
     if (d.length >= 0.0) j["length"] = d.length;  // absent: the anchors' distance at the start
     if (d.limits) j["limits"] = ojson::array({(*d.limits)[0], (*d.limits)[1]});
+    if (d.breakForce) j["break_force"] = *d.breakForce;
     if (d.motor) {
         ojson& m = j["motor"];
         m["speed"] = d.motor->speed;
