@@ -80,6 +80,24 @@ double energy(const World& w) {
     return e;
 }
 
+// Times at which a body's centre crosses x = 0 (interpolated within the step): the
+// period from the first to the last, two crossings a period. add() after each step.
+struct Crossings {
+    double lastX, first = -1.0, last = -1.0;
+    int count = 0;
+    explicit Crossings(double x0) : lastX(x0) {}
+    void add(double t0, double h, double x) {
+        if ((lastX > 0.0) != (x > 0.0)) {
+            const double t = t0 + h * lastX / (lastX - x);
+            if (first < 0.0) first = t;
+            last = t;
+            ++count;
+        }
+        lastX = x;
+    }
+    double period() const { return 2.0 * (last - first) / (count - 1); }
+};
+
 }  // namespace
 
 class TestJoints : public QObject {
@@ -102,23 +120,16 @@ private slots:
         const double Ip = m * L * L + 0.4 * m * r * r;
         const double expected = 4.0 * std::sqrt(Ip / (m * g * L)) * ellipticK(std::sin(theta0 / 2.0));
         const double h = 1.0 / 240.0;
-        double lastX = w.state().bodies[0].x.x(), first = -1.0, last = -1.0, worstGap = 0.0;
-        int crossings = 0;
+        Crossings crossings(w.state().bodies[0].x.x());
+        double worstGap = 0.0;
         while (w.state().time < 20.0) {
             const double t0 = w.state().time;
             w.step(h);
-            const double x = w.state().bodies[0].x.x();
             worstGap = std::max(worstGap, anchorGap(w, 0));
-            if ((lastX > 0.0) != (x > 0.0)) {
-                const double t = t0 + h * lastX / (lastX - x);
-                if (first < 0.0) first = t;
-                last = t;
-                ++crossings;
-            }
-            lastX = x;
+            crossings.add(t0, h, w.state().bodies[0].x.x());
         }
-        QVERIFY(crossings >= 10);
-        const double period = 2.0 * (last - first) / (crossings - 1);
+        QVERIFY(crossings.count >= 10);
+        const double period = crossings.period();
         const double error = std::abs(period - expected) / expected;
         qInfo("theta0 %.2f: period %.9f s, expected %.9f, relative error %.2e; joint gap at most %.1e m", theta0,
               period, expected, error, worstGap);
@@ -322,9 +333,8 @@ private slots:
         const double expected = 4.0 * std::sqrt(Ip / (m * g * d)) * ellipticK(std::sin(theta0 / 2.0));
         const double h = 1.0 / 240.0;
         w.step(h);
-        double lastX = w.state().bodies[0].x.x(), first = -1.0, last = -1.0, worstGap = 0.0, worstTilt = 0.0,
-               worstZ = 0.0;
-        int crossings = 0;
+        Crossings crossings(w.state().bodies[0].x.x());
+        double worstGap = 0.0, worstTilt = 0.0, worstZ = 0.0;
         while (w.state().time < 20.0) {
             const double t0 = w.state().time;
             w.step(h);
@@ -332,17 +342,10 @@ private slots:
             worstGap = std::max(worstGap, anchorGap(w, 0));
             worstTilt = std::max(worstTilt, (b.q * Vec3::UnitZ() - Vec3::UnitZ()).norm());
             worstZ = std::max(worstZ, std::abs(b.x.z()));
-            const double x = b.x.x();
-            if ((lastX > 0.0) != (x > 0.0)) {
-                const double t = t0 + h * lastX / (lastX - x);
-                if (first < 0.0) first = t;
-                last = t;
-                ++crossings;
-            }
-            lastX = x;
+            crossings.add(t0, h, b.x.x());
         }
-        QVERIFY(crossings >= 10);
-        const double period = 2.0 * (last - first) / (crossings - 1);
+        QVERIFY(crossings.count >= 10);
+        const double period = crossings.period();
         const double error = std::abs(period - expected) / expected;
         qInfo("theta0 %.2f: period %.9f s, expected %.9f, relative error %.2e; anchor held to %.1e m, axis to "
               "%.1e, out of plane %.1e m",
