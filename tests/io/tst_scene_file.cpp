@@ -3,6 +3,8 @@
 #include <tumble/io/scene_file.h>
 #include <tumble/world.h>
 
+#include "every_field.h"
+
 #include <QtTest>
 
 #include <cmath>
@@ -14,6 +16,7 @@
 
 using namespace tumble;
 using tumble::io::InputError;
+using tumble::test::everyField;
 
 namespace fs = std::filesystem;
 
@@ -48,178 +51,6 @@ std::string readBytes(const fs::path& path) {
 
 QStringList filesIn(const QString& dir) {
     return QDir(dir).entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
-}
-
-Mat3 mat(double a, double b, double c, double d, double e, double f, double g, double h, double i) {
-    Mat3 m;
-    m << a, b, c, d, e, f, g, h, i;
-    return m;
-}
-
-// A scene that sets every field of the format to something other than its default.
-SceneDesc everyField() {
-    SceneDesc s;
-    s.settings.gravity = Vec3(0.5, -3.7, 1.25);
-    s.settings.dt = 0.002;
-    s.settings.duration = 2.5;
-    s.settings.integrator = "symplectic-euler";
-    s.settings.frameRate = 50;
-    s.settings.sleeping = false;
-    s.settings.solverIterations = 7;
-    s.settings.impacts = ImpactTiming::EndOfStep;
-
-    BodyDesc ground;
-    ground.name = "ground";
-    ground.motion = Motion::Static;
-    ground.shape.type = ShapeType::Plane;
-    ground.shape.normal = Vec3(1, 2, 2) / 3.0;
-    ground.shape.distance = -0.25;
-    ground.restitution = 0.9;
-    ground.friction = 0.8;
-    s.bodies.push_back(ground);
-
-    BodyDesc ball;
-    ball.name = "ball, \"the\" first";
-    ball.shape.type = ShapeType::Sphere;
-    ball.shape.radius = 0.3;
-    ball.mass = 2.5;
-    ball.position = Vec3(0.1, 2, -0.3);
-    ball.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
-    ball.velocity = Vec3(1, 2, 3);
-    ball.angularVelocity = Vec3(-0.5, 0.25, 4);
-    ball.restitution = 0.25;
-    ball.friction = 1.5;
-    ball.linearDamping = 0.1;
-    ball.angularDamping = 0.05;
-    ForceDesc push;
-    push.type = ForceType::Force;
-    push.vector = Vec3(1, 0, -2);
-    push.point = Vec3(0, 0.3, 0);
-    push.frame = Frame::Body;
-    push.start = 0.5;
-    push.end = 1.5;
-    ball.forces.push_back(push);
-    ForceDesc thrust;  // at the centre of mass, world frame, always
-    thrust.type = ForceType::Force;
-    thrust.vector = Vec3(0, 3, 0);
-    ball.forces.push_back(thrust);
-    ForceDesc twist;
-    twist.type = ForceType::Torque;
-    twist.vector = Vec3(0, 0, 0.125);
-    twist.frame = Frame::World;
-    twist.start = 1.0;
-    ball.forces.push_back(twist);
-    ForceDesc spring;
-    spring.type = ForceType::Spring;
-    spring.anchor = Vec3(0, 4, 0);
-    spring.point = Vec3(0.1, 0.2, 0);
-    spring.stiffness = 40;
-    spring.restLength = 1.25;
-    spring.damping = 0.75;
-    spring.end = 2.0;
-    ball.forces.push_back(spring);
-    s.bodies.push_back(ball);
-
-    BodyDesc crate;
-    crate.name = "crate";
-    crate.shape.type = ShapeType::Box;
-    crate.shape.halfExtents = Vec3(0.5, 0.25, 0.125);
-    crate.density = 750;
-    crate.inertia = mat(2, 0.1, 0, 0.1, 3, -0.2, 0, -0.2, 4);
-    crate.centerOfMass = Vec3(0.01, -0.02, 0.03);
-    crate.position = Vec3(3, 1, 0);
-    s.bodies.push_back(crate);
-
-    BodyDesc pill;
-    pill.name = "pill";
-    pill.motion = Motion::Kinematic;
-    pill.shape.type = ShapeType::Capsule;
-    pill.shape.radius = 0.2;
-    pill.shape.halfHeight = 0.6;
-    pill.position = Vec3(-2, 1, 0);
-    pill.orientation = Quat(0.5, -0.5, 0.5, 0.5);
-    pill.velocity = Vec3(0.5, 0, 0);
-    pill.angularVelocity = Vec3(0, 1, 0);
-    s.bodies.push_back(pill);
-
-    BodyDesc can;
-    can.name = "can";
-    can.shape.type = ShapeType::Cylinder;
-    can.shape.radius = 0.1;
-    can.shape.halfHeight = 0.2;
-    can.mass = 0.33;
-    can.inertia = mat(0.01, 0, 0, 0, 0.002, 0, 0, 0, 0.01);
-    s.bodies.push_back(can);
-
-    BodyDesc bunny;
-    bunny.name = "bunny";
-    bunny.shape.type = ShapeType::Mesh;
-    bunny.shape.file = "meshes/bunny.obj";
-    bunny.shape.scale = Vec3(1, 2, 0.5);
-    bunny.shape.collision = MeshCollision::Triangles;
-    bunny.density = 500;
-    s.bodies.push_back(bunny);
-
-    BodyDesc post;
-    post.name = "post";
-    post.motion = Motion::Static;
-    post.shape.type = ShapeType::Box;
-    post.shape.halfExtents = Vec3(0.1, 1, 0.1);
-    post.position = Vec3(0, 1, 5);
-    s.bodies.push_back(post);
-
-    JointDesc rope;  // to the world, with its length
-    rope.name = "string";
-    rope.type = JointType::Rope;
-    rope.bodyA = ball.name;
-    rope.anchorA = Vec3(0, 0.3, 0);
-    rope.anchorB = Vec3(0.1, 4, -0.3);
-    rope.length = 1.75;
-    s.joints.push_back(rope);
-    JointDesc rod;  // between two bodies, its length from the scene
-    rod.name = "rod";
-    rod.type = JointType::Distance;
-    rod.bodyA = "crate";
-    rod.anchorA = Vec3(0.5, 0, 0);
-    rod.bodyB = "can";
-    rod.anchorB = Vec3(0, 0.2, 0);
-    s.joints.push_back(rod);
-    JointDesc hinge;
-    hinge.name = "pin";
-    hinge.type = JointType::Ball;
-    hinge.bodyA = "crate";
-    hinge.anchorA = Vec3(-0.5, 0.25, 0);
-    hinge.bodyB = "post";
-    hinge.anchorB = Vec3(0, 1, 0);
-    s.joints.push_back(hinge);
-    JointDesc door;  // a hinge with both axes given
-    door.name = "door";
-    door.type = JointType::Hinge;
-    door.bodyA = "can";
-    door.anchorA = Vec3(0, 0.2, 0);
-    door.axisA = Vec3(0, 1, 0);
-    door.bodyB = "post";
-    door.anchorB = Vec3(0.1, 0.5, 0);
-    door.axisB = Vec3(0, 2, 0);
-    door.limits = std::array<double, 2>{-1.25, 0.5};
-    door.motor = JointDesc::Motor{0.75, 12.5};
-    s.joints.push_back(door);
-    JointDesc rail;  // a slider to the world, its world axis from the start
-    rail.name = "rail";
-    rail.type = JointType::Slider;
-    rail.bodyA = "bunny";
-    rail.axisA = Vec3(1, 0, 0);
-    rail.limits = std::array<double, 2>{-0.5, 2};
-    rail.motor = JointDesc::Motor{-0.25, 40};
-    s.joints.push_back(rail);
-    JointDesc weld;
-    weld.name = "weld";
-    weld.type = JointType::Fixed;
-    weld.bodyA = "crate";
-    weld.bodyB = "can";
-    weld.breakForce = 1500;
-    s.joints.push_back(weld);
-    return s;
 }
 
 }  // namespace
