@@ -11,6 +11,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 
@@ -122,6 +123,24 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
         }
         if (j.type == JointType::Rope && !(j.length > 0.0))
             throw SceneError(at(i) + ".length", "a rope must be longer than 0");
+        // A joint that does not hold in the scene as written is pulled together in the
+        // first step, which gives its bodies the speed of that move: said, not refused
+        // (the editor's joints start where the user put them; a file may be off by a typo).
+        const double size = std::max(collision::boundingRadius(m.bodies[j.a].collider), 1e-3);
+        const Vec3 gap = pa - pb;
+        double off = 0.0;
+        if (j.type == JointType::Ball || j.type == JointType::Hinge || j.type == JointType::Fixed)
+            off = gap.norm();
+        else if (j.type == JointType::Slider)
+            off = (gap - gap.dot(qb * j.axisB) * (qb * j.axisB)).norm();
+        else if (j.type == JointType::Distance)
+            off = std::abs(gap.norm() - j.length);
+        if (off > 1e-4 * size) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", off);
+            m.notes.push_back(at(i) + " (" + d.name + "): does not hold in the scene as written (off by " + text +
+                              " m); the first step pulls it together, giving its bodies that move's speed");
+        }
         m.jointed[j.a] = 1;
         if (j.b >= 0) {
             m.jointed[j.b] = 1;

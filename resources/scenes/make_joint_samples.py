@@ -16,7 +16,7 @@ def rot(q, v):
     R = np.array([[1-2*(y*y+z*z), 2*(x*y-w*z), 2*(x*z+w*y)],[2*(x*y+w*z), 1-2*(x*x+z*z), 2*(y*z-w*x)],[2*(x*z-w*y), 2*(y*z+w*x), 1-2*(x*x+y*y)]])
     return R @ np.array(v, float)
 
-def r(v, n=6): return [round(float(c), n) + 0.0 for c in v]
+def r(v, n=12): return [round(float(c), n) + 0.0 for c in v]
 
 # Ragdoll: A-pose, y up, feet at y = 0.
 parts = [

@@ -703,6 +703,16 @@ private slots:
         QVERIFY(refused(joint("j", JointType::Ball, "a", Vec3(NAN, 0, 0), "", Vec3::Zero()), "joints[0].anchor_a"));
         QVERIFY(refused(joint("j", JointType::Rope, "a", Vec3::Zero(), "", Vec3::Zero(), 0.0), "joints[0].length"));
         QVERIFY(refused(joint("j", JointType::Ball, "a", Vec3::Zero(), "", Vec3::Zero(), 1.0), "joints[0].length"));
+        // A joint that does not hold in the scene as written runs, with a note naming it.
+        SceneDesc off = sceneOf({a, ground});
+        off.joints.push_back(joint("pin", JointType::Ball, "a", Vec3::Zero(), "", Vec3(0.1, 0, 0)));
+        const World offWorld(off);
+        QCOMPARE(offWorld.model().notes.size(), size_t(1));
+        QCOMPARE(QString::fromStdString(offWorld.model().notes[0]),
+                 QString("joints[0] (pin): does not hold in the scene as written (off by 0.1 m); the first step pulls "
+                         "it together, giving its bodies that move's speed"));
+        off.joints[0].anchorB = a.position;
+        QVERIFY(World(off).model().notes.empty());
         // A scene without joints is what it was.
         World plain(sceneOf({a, ground}));
         QVERIFY(plain.model().joints.empty() && plain.model().jointed.empty());
