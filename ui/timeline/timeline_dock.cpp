@@ -232,6 +232,13 @@ void TimelineDock::updateStatus() {
     if (timeline_->keyframeInterval() > 1)
         text += tr(" · keyframes every %1 frames").arg(timeline_->keyframeInterval());
     if (timeline_->isStale()) text += tr(" · stale: the scene was edited");
+    // What the engine noted of the scene it ran (a mesh that is not closed, a joint that does
+    // not hold as placed): counted here, each in the tooltip.
+    QStringList notes;
+    if (const auto model = timeline_->model())
+        for (const std::string& n : model->notes) notes << QString::fromStdString(n);
+    if (!notes.isEmpty()) text += tr(" · %n note(s): hover to read", nullptr, int(notes.size()));
+    status_->setToolTip(notes.join('\n'));
     status_->setText(text);
     status_->setStyleSheet(s == Timeline::Status::Failed ? QStringLiteral("color: #b00020") : QString());
     cancel_->setEnabled(s == Timeline::Status::Running);

@@ -94,6 +94,29 @@ private slots:
         QVERIFY(!dock.statusText().contains("stale"));
     }
 
+    // The engine's notes on the scene (here a joint that does not hold as placed) are counted
+    // in the status and read in its tooltip.
+    void notesOfTheRunAreShown() {
+        Document doc;
+        QString error;
+        QVERIFY(doc.open(":/scenes/projectile.json", &error));
+        JointDesc pin;
+        pin.name = "pin";
+        pin.bodyA = doc.body(1).name;
+        pin.anchorB = doc.body(1).position + Vec3(0.5, 0, 0);
+        doc.addJoint(pin);
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        t.setAutoSimulate(false);
+        t.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        QVERIFY2(dock.statusText().contains("1 note(s): hover to read"), qPrintable(dock.statusText()));
+        auto* status = dock.findChild<QLabel*>("status");
+        QVERIFY(status);
+        QCOMPARE(status->toolTip(), QString("joints[0] (pin): does not hold in the scene as written (off by 0.5 m); "
+                                            "the first step pulls it together, giving its bodies that move's speed"));
+    }
+
     // In the editor: the window's keys drive the playhead wherever the focus is, and
     // Cancel during a long run keeps the scene and its undo history.
     void windowKeysAndCancel() {
