@@ -50,9 +50,7 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
         const BodyState& bs = state.bodies[i];
         const Vec3 v = b.invMass * bs.P;  // derive()'s
         const Vec3 omega = angularVelocity(b, bs);
-        // A jointed body does not sleep yet (issue 20: joints are not island edges here).
-        const bool jointed = !model.jointed.empty() && model.jointed[i];
-        const bool resting = !jointed && v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
+        const bool resting = v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
                              omega.squaredNorm() < kSleepSpin * kSleepSpin && !forceActs(model, i, state.time);
         state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
         restedLongEnough = restedLongEnough || state.restTime[i] >= kTimeToSleep;
@@ -73,6 +71,17 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
                 if (model.bodies[k].motion == Motion::Kinematic && !model.bodies[k].standsStill())
                     s.blocked[a == k ? b : a] = 1;
         }
+    }
+    // Joints are island edges too: a jointed assembly sleeps and wakes as one. A running
+    // motor keeps its bodies awake.
+    for (const JointModel& j : model.joints) {
+        if (state.jointBroken(j.index)) continue;
+        if (j.motor && j.motorMax > 0.0) {
+            s.blocked[j.a] = 1;
+            if (j.b >= 0) s.blocked[j.b] = 1;
+        }
+        if (j.b >= 0 && dynamicBody(model, j.a) && dynamicBody(model, j.b))
+            s.parent[islandRoot(s.parent, j.a)] = islandRoot(s.parent, j.b);
     }
     s.islandRest.assign(n, 1e300);
     for (int i : model.dynamicBodies) {
@@ -119,13 +128,22 @@ bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& 
     auto index = [&] {
         const size_t n = model.bodies.size();
         first.assign(n + 1, 0);
+        // (A joint's bodies are partners too: an assembly wakes as one.)
+        auto joined = [&](const JointModel& j) { return j.b >= 0 && !state.jointBroken(j.index); };
         for (const ContactMemory& c : state.contacts) ++first[c.bodyA + 1], ++first[c.bodyB + 1];
+        for (const JointModel& j : model.joints)
+            if (joined(j)) ++first[j.a + 1], ++first[j.b + 1];
         for (size_t i = 0; i < n; ++i) first[i + 1] += first[i];
         partners.resize(first[n]);
         std::vector<int> fill(first.begin(), first.end() - 1);
         for (const ContactMemory& c : state.contacts) {
             partners[fill[c.bodyA]++] = c.bodyB;
             partners[fill[c.bodyB]++] = c.bodyA;
+        }
+        for (const JointModel& j : model.joints) {
+            if (!joined(j)) continue;
+            partners[fill[j.a]++] = j.b;
+            partners[fill[j.b]++] = j.a;
         }
     };
     while (!stack.empty()) {

@@ -50,7 +50,10 @@ lift = np.array([0, 1.0, 0])
 bodies = [{"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}, "friction": 0.8}]
 for name, shape, mass, c in parts:
     p = rot(q, c) + lift
-    bodies.append({"name": name, "shape": shape, "mass": mass, "position": r(p), "orientation": r(q, 12), "friction": 0.8, "restitution": 0.1})
+    bodies.append({"name": name, "shape": shape, "mass": mass, "position": r(p), "orientation": r(q, 12), "friction": 0.8, "restitution": 0.1,
+                   # a little damping of turns, as a body's joints have: else the head can
+                   # spin for ever about the line from its neck to its point on the ground
+                   "angular_damping": 1.0})
 # keep the lowest point above the ground: measured by the spheres' centres is enough for a rough lift
 joints = []
 for name, kind, a, b, P, axis, limits in joints_spec:

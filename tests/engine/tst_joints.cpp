@@ -680,6 +680,38 @@ private slots:
         QVERIFY(std::abs(hanging.state().bodies[0].x.y() - 2.0) < 1e-9);
     }
 
+    // Sleeping: a chain of three balls on rods hanging still from the world falls asleep as
+    // one island (joints are its edges), and a push on the top ball at t = 1.5 s wakes all
+    // three at once; the bottom one moves on the next steps.
+    void aJointedAssemblySleepsAndWakesAsOne() {
+        std::vector<BodyDesc> balls;
+        for (int k = 0; k < 3; ++k) {
+            BodyDesc b = sphereBody("ball-" + std::to_string(k), 0.05, 1.0);
+            b.position = Vec3(0, 2.0 - 0.5 * k, 0);
+            balls.push_back(b);
+        }
+        ForceDesc push;
+        push.vector = Vec3(5, 0, 0);
+        push.start = 1.5;
+        push.end = 1.6;
+        balls[0].forces.push_back(push);
+        SceneDesc scene = sceneOf(balls);
+        scene.settings.sleeping = true;
+        scene.joints.push_back(joint("hook", JointType::Distance, "ball-0", Vec3::Zero(), "", Vec3(0, 2.5, 0)));
+        scene.joints.push_back(joint("rod-1", JointType::Distance, "ball-1", Vec3::Zero(), "ball-0", Vec3::Zero()));
+        scene.joints.push_back(joint("rod-2", JointType::Distance, "ball-2", Vec3::Zero(), "ball-1", Vec3::Zero()));
+        World w(scene);
+        const double h = 1.0 / 240.0;
+        while (w.state().time < 1.45) w.step(h);
+        for (int k = 0; k < 3; ++k) QVERIFY2(w.state().isAsleep(k), qPrintable(QString::number(k)));
+        const Vec3 bottom = w.state().bodies[2].x;
+        while (w.state().time < 1.55) w.step(h);
+        for (int k = 0; k < 3; ++k) QVERIFY2(!w.state().isAsleep(k), qPrintable(QString::number(k)));
+        while (w.state().time < 1.8) w.step(h);
+        QVERIFY2((w.state().bodies[2].x - bottom).x() > 1e-3, qPrintable(QString::number((w.state().bodies[2].x - bottom).x())));
+        for (int k = 0; k < 3; ++k) QVERIFY(std::abs(anchorGap(w, k) - 0.5) < 1e-9);  // the rods keep 0.5 m
+    }
+
     // A bad joint is refused with the field named.
     void badJointsAreRefused() {
         BodyDesc a = sphereBody("a", 0.1, 1.0), ground = boxBody("ground", Vec3(1, 0.1, 1), 1.0);
