@@ -142,16 +142,15 @@ void applyAxis(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverB
     B->touched = true;
 }
 
+void applyToBody(SolverBody& body, const Vector6& impulse) {
+    body.v += body.invMass * impulse.head<3>();
+    body.w += body.invI * impulse.tail<3>();
+    body.touched = true;
+}
+
 void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, const Vector6& lambda) {
-    const Vector6 iA = r.JA * lambda;
-    A.v += A.invMass * iA.head<3>();
-    A.w += A.invI * iA.tail<3>();
-    A.touched = true;
-    if (!B) return;
-    const Vector6 iB = r.JB * lambda;
-    B->v += B->invMass * iB.head<3>();
-    B->w += B->invI * iB.tail<3>();
-    B->touched = true;
+    applyToBody(A, r.JA * lambda);
+    if (B) applyToBody(*B, r.JB * lambda);
 }
 
 namespace {

@@ -44,6 +44,9 @@ Matrix6 generalMass(const ContactSolverScratch::GeneralRow& now, const ContactSo
 /// The relative velocity along the rows (the first m entries).
 Vector6 generalVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
 
+/// Applies an impulse given as (linear, angular) to one body's velocities.
+void applyToBody(SolverBody& body, const Vector6& impulse);
+
 /// Applies the row impulses `lambda` to A (+) and B (−, through JB) velocities.
 void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, const Vector6& lambda);
 

@@ -284,12 +284,8 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     const double past = projectLimit(j, a, b, moveA, moveB, A, B);
     if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
         s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * lambda.head(then.nl) / h;
-        ContactSolverScratch::GeneralRow onA = then, onB = then;
-        if (moveA) applyGeneral(onA, s.bodies[j.a], nullptr, lambda / h);
-        if (moveB) {
-            onB.JA = then.JB;  // B's rows as if it were the first body
-            applyGeneral(onB, s.bodies[j.b], nullptr, lambda / h);
-        }
+        if (moveA) applyToBody(s.bodies[j.a], then.JA * (lambda / h));
+        if (moveB) applyToBody(s.bodies[j.b], then.JB * (lambda / h));
     }
     return std::max(error, past);
 }
