@@ -49,6 +49,7 @@ struct SpeedRow {
     double baseMB = 0;  ///< the same process before building the scene
     int movingAtEnd = 0;  ///< dynamic bodies faster than 1 cm/s after the last step
     int fellThrough = 0;  ///< dynamic bodies ending 1 m below the lowest static body
+    double jointGap = -1.0;  ///< scenes with joints: the largest joint gap over the run (m); else -1
     // Tumble only: ms per step in each stage, pairs and awake bodies per step.
     double forces = 0, integrate = 0, broadphase = 0, narrowphase = 0, toi = 0, impact = 0, solve = 0,
            sleep = 0;

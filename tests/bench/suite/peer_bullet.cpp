@@ -45,7 +45,17 @@
 //   inner radius in a step, Bullet sweeps a sphere of half that radius (setCcdMotionThreshold,
 //   setCcdSweptSphereRadius) and stops it at the first hit.
 // - Sleeping follows settings.sleeping (Bullet's deactivation, its own thresholds).
-// - Refused: springs, moving kinematic bodies.
+// - Joints (issue 20): ball (btPoint2PointConstraint), hinge (btHingeConstraint on frames
+//   whose z is the axis, referenced to A so that its angle is A's turn relative to B about
+//   A's axis, zero as placed, as Tumble's), slider (btSliderConstraint along the frames' x,
+//   without limits or motor) and fixed (btFixedConstraint holding the pose as placed), at
+//   the anchors as the scene places them at t = 0. Hinge limits: setLimit (softness 0.9,
+//   bias 0.3, relaxation 1, Bullet's defaults); motors: enableAngularMotor with the torque
+//   limit times dt as the impulse limit; breaking: setBreakingImpulseThreshold at the
+//   breaking force times dt. Joined bodies do not collide (addConstraint's flag), as in
+//   Tumble. Bullet's default constraint solver settings (ERP 0.2).
+// - Refused: springs, moving kinematic bodies, distance and rope joints, slider limits
+//   and motors.
 // - Differs: Bullet clamps the rotation per step to a quarter turn (|w| dt < pi/4 in
 //   btTransformUtil::integrateTransform), so a body spinning faster than pi/(4 dt) is slowed.
 #include "engine_adapter.h"
@@ -125,6 +135,8 @@ private:
     };
 
     void clear();
+    bool makeJoint(const JointModel& j, std::string* why);
+    btTransform frameIn(int i, const Vec3& p, const Vec3& axis, const Vec3& ref) const;
     btCollisionShape* makeShape(const BodyModel& b, const Vec3& position, const Quat& q, std::string* why);
 
     peer::PeerScene ps_;
@@ -139,13 +151,16 @@ private:
     std::vector<std::unique_ptr<btCollisionShape>> shapes_;
     std::vector<std::unique_ptr<btTriangleMesh>> meshes_;
     std::vector<std::unique_ptr<btRigidBody>> rigid_;
+    std::vector<std::unique_ptr<btTypedConstraint>> constraints_;
     std::vector<Body> bodies_;
 };
 
 void BulletAdapter::clear() {
     if (world_) {
+        for (auto& c : constraints_) world_->removeConstraint(c.get());
         for (auto& rb : rigid_) world_->removeRigidBody(rb.get());
     }
+    constraints_.clear();
     rigid_.clear();
     world_.reset();
     solver_.reset();
@@ -217,7 +232,10 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
         return false;
     }
     std::string reason;
-    if (!peer::prepare(scene, peer::PeerCaps{false, true}, &ps_, &reason)) {
+    if (!peer::prepare(scene, peer::PeerCaps{false, true,
+                                                  peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
+                                                      peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed),
+                                                  true, true, true}, &ps_, &reason)) {
         if (why) *why = reason;
         return false;
     }
@@ -314,6 +332,77 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
         rigid_.push_back(std::move(rb));
         bodies_.push_back(out);
     }
+    for (const JointModel& j : m.joints)
+        if (!makeJoint(j, &reason)) {
+            if (why) *why = "joints[" + std::to_string(j.index) + "] (" + j.name + "): " + reason;
+            clear();
+            return false;
+        }
+    return true;
+}
+
+// A frame in body i's Bullet coordinates at the world point p whose z is the world direction
+// `axis` and whose x is the world direction `ref` (square to it); the world's frame for i < 0.
+btTransform BulletAdapter::frameIn(int i, const Vec3& p, const Vec3& axis, const Vec3& ref) const {
+    Mat3 basis;
+    basis.col(0) = ref;
+    basis.col(2) = axis;
+    basis.col(1) = axis.cross(ref);
+    const btTransform world(bt(Quat(basis).normalized()), bt(p));
+    return i < 0 ? world : rigid_[i]->getCenterOfMassTransform().inverse() * world;
+}
+
+bool BulletAdapter::makeJoint(const JointModel& j, std::string* why) {
+    Vec3 pa, pb, axis;
+    peer::jointStart(ps_, j, &pa, &pb, &axis);
+    btRigidBody& A = *rigid_[j.a];
+    btRigidBody* B = j.b < 0 ? nullptr : rigid_[j.b].get();
+    auto local = [&](int i, const Vec3& p) {
+        return i < 0 ? bt(p) : rigid_[i]->getCenterOfMassTransform().inverse() * bt(p);
+    };
+    std::unique_ptr<btTypedConstraint> c;
+    switch (j.type) {
+        case JointType::Ball:
+            if (B)
+                c = std::make_unique<btPoint2PointConstraint>(A, *B, local(j.a, pa), local(j.b, pb));
+            else
+                c = std::make_unique<btPoint2PointConstraint>(A, local(j.a, pa));
+            break;
+        case JointType::Hinge: {
+            // B's frame at B's anchor, turned as A's at t = 0: the angle starts at zero.
+            const Vec3 ref = peer::anyPerpendicular(axis);
+            const btTransform fa = frameIn(j.a, pa, axis, ref), fb = frameIn(j.b, pb, axis, ref);
+            auto h = B ? std::make_unique<btHingeConstraint>(A, *B, fa, fb, true)
+                       : std::make_unique<btHingeConstraint>(A, fa, true);
+            if (j.limited) h->setLimit(j.lower, j.upper);
+            if (j.motor) h->enableAngularMotor(true, j.motorSpeed, j.motorMax * dt_);
+            c = std::move(h);
+            break;
+        }
+        case JointType::Slider: {
+            if (j.limited || j.motor) {
+                *why = "slider limits and motors are not translated to Bullet";
+                return false;
+            }
+            // btSliderConstraint slides along its frames' x.
+            const Vec3 ref = peer::anyPerpendicular(axis);
+            const btTransform fa = frameIn(j.a, pa, ref.cross(axis), axis), fb = frameIn(j.b, pb, ref.cross(axis), axis);
+            c = B ? std::make_unique<btSliderConstraint>(A, *B, fa, fb, true)
+                  : std::make_unique<btSliderConstraint>(A, fa, true);
+            break;
+        }
+        case JointType::Fixed: {
+            const btTransform fa = frameIn(j.a, pa, Vec3::UnitZ(), Vec3::UnitX());
+            const btTransform fb = frameIn(j.b, pa, Vec3::UnitZ(), Vec3::UnitX());
+            c = std::make_unique<btFixedConstraint>(A, B ? *B : btTypedConstraint::getFixedBody(), fa, fb);
+            break;
+        }
+        case JointType::Distance:
+        case JointType::Rope: *why = std::string("a ") + toString(j.type) + " joint is not translated to Bullet"; return false;
+    }
+    if (std::isfinite(j.breakForce)) c->setBreakingImpulseThreshold(j.breakForce * dt_);
+    world_->addConstraint(c.get(), true);
+    constraints_.push_back(std::move(c));
     return true;
 }
 

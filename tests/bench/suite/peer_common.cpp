@@ -28,6 +28,15 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
             return fail("bodies[" + std::to_string(f.body) + "] (" + m.bodies[f.body].name +
                         "): springs are not translated to the peers");
     }
+    for (const JointModel& j : m.joints) {
+        const std::string who = "joints[" + std::to_string(j.index) + "] (" + j.name + "): ";
+        if (!(caps.jointTypes & jointBit(j.type)))
+            return fail(who + "a " + toString(j.type) + " joint is not translated to this peer");
+        if (j.limited && !caps.jointLimits) return fail(who + "joint limits are not translated to this peer");
+        if (j.motor && !caps.jointMotors) return fail(who + "joint motors are not translated to this peer");
+        if (std::isfinite(j.breakForce) && !caps.jointBreaking)
+            return fail(who + "breaking joints are not translated to this peer");
+    }
     const int n = int(m.bodies.size());
     out->com.resize(n);
     out->q.resize(n);
@@ -63,6 +72,18 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
         }
     }
     return true;
+}
+
+void jointStart(const PeerScene& ps, const JointModel& j, Vec3* anchorA, Vec3* anchorB, Vec3* axis) {
+    *anchorA = ps.com[j.a] + ps.q[j.a] * j.anchorA;
+    *anchorB = j.b < 0 ? j.anchorB : Vec3(ps.com[j.b] + ps.q[j.b] * j.anchorB);
+    const bool axial = j.type == JointType::Hinge || j.type == JointType::Slider;
+    *axis = axial ? Vec3(ps.q[j.a] * j.axisA) : Vec3::Zero();
+}
+
+Vec3 anyPerpendicular(const Vec3& axis) {
+    const Vec3 other = std::abs(axis.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+    return axis.cross(other).normalized();
 }
 
 void appliedLoad(const Model& model, int i, double t, const Quat& q, const Vec3& v, const Vec3& w,

@@ -27,12 +27,26 @@ struct PeerScene {
 struct PeerCaps {
     bool movingKinematic = false;  ///< kinematic bodies with a velocity
     bool meshTriangles = false;    ///< MeshCollision::Triangles on a static body
+    /// The joint types this peer translates (bit 1 << JointType), and which of a joint's
+    /// options: hinge and slider limits, motors, breaking.
+    unsigned jointTypes = 0;
+    bool jointLimits = false, jointMotors = false, jointBreaking = false;
 };
+
+constexpr unsigned jointBit(JointType t) { return 1u << static_cast<unsigned>(t); }
 
 /// Compiles the scene with Tumble (so mass properties are Tumble's) and refuses, with the
 /// reason in `why`, what the peers do not translate: springs, planes on moving bodies,
-/// triangle meshes on moving bodies, and whatever `caps` leaves out.
+/// triangle meshes on moving bodies, and whatever `caps` leaves out (a joint type or a
+/// joint's option is named with the joint).
 bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::string* why);
+
+/// Joint j's anchors in the world at t = 0 (on A, and on B or the world) and its axis in
+/// the world as A carries it (hinge and slider; else zero).
+void jointStart(const PeerScene& ps, const JointModel& j, Vec3* anchorA, Vec3* anchorB, Vec3* axis);
+
+/// A unit vector square to the unit vector `axis`.
+Vec3 anyPerpendicular(const Vec3& axis);
 
 /// True for a body that never moves: static, or kinematic at zero velocity.
 bool standsStill(const BodyModel& b);

@@ -49,7 +49,13 @@
 //   Newton solver overflows it once the rows fill (the 120-box pyramid at t = 0). When a
 //   run fills the arrays MuJoCo drops contacts, so from then on body() reports NaN and one
 //   line on stderr says why, rather than measure a different simulation.
-// - Refused: springs, moving kinematic bodies, meshes collided as triangles.
+// - Joints (issue 20), kept as constraints between free bodies (each body keeps its free
+//   joint; MuJoCo's own joint tree is not built): a ball joint is an equality <connect> at
+//   A's anchor, a hinge two <connect>s on its axis a body size apart, both with MuJoCo's
+//   default soft constraint (solref 0.02 1); the joined bodies' contacts are excluded, as
+//   in Tumble.
+// - Refused: springs, moving kinematic bodies, meshes collided as triangles; slider, fixed,
+//   distance and rope joints, joint limits, motors and breaking.
 #include "engine_adapter.h"
 #include "peer_common.h"
 
@@ -278,7 +284,31 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
         geom(i, -b.centerOfMass, Quat::Identity());
         os << "</body>\n";
     }
-    os << "</worldbody>\n</mujoco>\n";
+    os << "</worldbody>\n";
+    // Joints between the free bodies: equality constraints (a hinge is two points on its axis).
+    if (!model.joints.empty()) {
+        os << "<equality>\n";
+        for (const JointModel& j : model.joints) {
+            auto connect = [&](const Vec3& anchor) {
+                os << "<connect body1=\"b" << j.a << "\"";
+                if (j.b >= 0 && !model.bodies[j.b].standsStill()) os << " body2=\"b" << j.b << "\"";
+                os << " anchor=\"" << str(anchor) << "\"/>\n";
+            };
+            if (j.type == JointType::Hinge) {
+                const double reach = std::max(0.05, 0.5 * collision::boundingRadius(model.bodies[j.a].collider));
+                connect(j.anchorA + reach * j.axisA);
+                connect(j.anchorA - reach * j.axisA);
+            } else {
+                connect(j.anchorA);
+            }
+        }
+        os << "</equality>\n<contact>\n";
+        for (const JointModel& j : model.joints)
+            if (j.b >= 0 && !model.bodies[j.b].standsStill())
+                os << "<exclude body1=\"b" << j.a << "\" body2=\"b" << j.b << "\"/>\n";
+        os << "</contact>\n";
+    }
+    os << "</mujoco>\n";
     return os.str();
 }
 
@@ -296,7 +326,9 @@ bool MujocoAdapter::load(const SceneDesc& scene, const std::string& mode, double
         return false;
     }
     std::string reason;
-    if (!peer::prepare(scene, peer::PeerCaps{false, false}, &ps_, &reason)) {
+    if (!peer::prepare(scene,
+                       peer::PeerCaps{false, false, peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge)},
+                       &ps_, &reason)) {
         if (why) *why = reason;
         return false;
     }

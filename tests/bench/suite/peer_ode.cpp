@@ -26,7 +26,15 @@
 //   (peer_common.h) and added with dBodyAddForce / dBodyAddTorque; ODE's damping is off.
 // - Kinematic bodies: dBodySetKinematic with their constant velocities.
 // - Sleeping follows settings.sleeping (ODE's auto-disable, its own thresholds).
-// - Refused: springs.
+// - Joints (issue 20): ball (dJointCreateBall), hinge (dJointCreateHinge), slider
+//   (dJointCreateSlider), fixed (dJointCreateFixed) and distance (dJointCreateDBall, at
+//   Tumble's length), at the anchors and axes as the scene places them at t = 0, with ODE's
+//   default joint ERP and CFM. Hinge and slider limits are dParamLoStop / dParamHiStop
+//   (bounce 0, as Tumble's inelastic stops) and motors dParamVel / dParamFMax: ODE's
+//   hinge angle and slider position are body 1's (Tumble's A) relative to body 2, zero
+//   where they were attached, so a slider's stops are shifted by the offset at t = 0.
+//   Joined bodies do not collide (dAreConnected), as in Tumble.
+// - Refused: springs, ropes, breaking joints.
 // - Known: dWorldStep's Dantzig LCP reports "LCP internal error, s <= 0" on a 20-box tower
 //   from the first step (with 1 to 8 points per pair, CFM 1e-10 to 1e-3, with or without
 //   the friction pyramid) and the tower falls; dWorldQuickStep keeps it standing. A step
@@ -109,6 +117,7 @@ private:
     };
 
     void clear();
+    void makeJoint(const JointModel& j);
     dGeomID makeGeom(const BodyModel& b, const Vec3& position, const Quat& q);
     static void nearCallback(void* self, dGeomID a, dGeomID b);
     void collide(dGeomID a, dGeomID b);
@@ -209,7 +218,12 @@ bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt
         return false;
     }
     std::string reason;
-    if (!peer::prepare(scene, peer::PeerCaps{true, true}, &ps_, &reason)) {
+    if (!peer::prepare(scene, peer::PeerCaps{true, true,
+                                                  peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
+                                                      peer::jointBit(JointType::Slider) |
+                                                      peer::jointBit(JointType::Fixed) |
+                                                      peer::jointBit(JointType::Distance),
+                                                  true, true, false}, &ps_, &reason)) {
         if (why) *why = reason;
         return false;
     }
@@ -286,7 +300,55 @@ bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt
         }
         bodies_.push_back(out);
     }
+    for (const JointModel& j : m.joints) makeJoint(j);
     return true;
+}
+
+void OdeAdapter::makeJoint(const JointModel& j) {
+    Vec3 pa, pb, axis;
+    peer::jointStart(ps_, j, &pa, &pb, &axis);
+    dJointID id = nullptr;
+    switch (j.type) {
+        case JointType::Ball: id = dJointCreateBall(world_, nullptr); break;
+        case JointType::Hinge: id = dJointCreateHinge(world_, nullptr); break;
+        case JointType::Slider: id = dJointCreateSlider(world_, nullptr); break;
+        case JointType::Fixed: id = dJointCreateFixed(world_, nullptr); break;
+        case JointType::Distance: id = dJointCreateDBall(world_, nullptr); break;
+        case JointType::Rope: return;  // refused by prepare
+    }
+    dJointAttach(id, bodies_[j.a].id, j.b < 0 ? nullptr : bodies_[j.b].id);
+    // Limits and motor of the one free coordinate (hinge and slider).
+    auto axial = [&](int lo, int hi, int vel, int fmax, double shift) {
+        auto set = j.type == JointType::Hinge ? dJointSetHingeParam : dJointSetSliderParam;
+        if (j.limited) {
+            set(id, lo, j.lower - shift);
+            set(id, hi, j.upper - shift);
+            set(id, dParamBounce, 0.0);
+        }
+        if (j.motor) {
+            set(id, vel, j.motorSpeed);
+            set(id, fmax, j.motorMax);
+        }
+    };
+    switch (j.type) {
+        case JointType::Ball: dJointSetBallAnchor(id, pa.x(), pa.y(), pa.z()); break;
+        case JointType::Hinge:
+            dJointSetHingeAnchor(id, pa.x(), pa.y(), pa.z());
+            dJointSetHingeAxis(id, axis.x(), axis.y(), axis.z());
+            axial(dParamLoStop, dParamHiStop, dParamVel, dParamFMax, 0.0);
+            break;
+        case JointType::Slider:
+            dJointSetSliderAxis(id, axis.x(), axis.y(), axis.z());
+            axial(dParamLoStop, dParamHiStop, dParamVel, dParamFMax, (pa - pb).dot(axis));
+            break;
+        case JointType::Fixed: dJointSetFixed(id); break;
+        case JointType::Distance:
+            dJointSetDBallAnchor1(id, pa.x(), pa.y(), pa.z());
+            dJointSetDBallAnchor2(id, pb.x(), pb.y(), pb.z());
+            dJointSetDBallDistance(id, j.length);
+            break;
+        case JointType::Rope: break;
+    }
 }
 
 void OdeAdapter::nearCallback(void* self, dGeomID a, dGeomID b) {

@@ -227,7 +227,7 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
     csv << "scene,engine,mode,bodies,steps,ms_per_step,ms_max_step,contacts_per_step,peak_mb,base_mb,forces_"
            "ms,"
            "integrate_ms,broadphase_ms,narrowphase_ms,toi_ms,impact_ms,solve_ms,sleep_ms,pairs_per_step,"
-           "awake_per_step,cuts_per_step,parked_per_step,restarts_per_step,moving_at_end,fell_through,note\n";
+           "awake_per_step,cuts_per_step,parked_per_step,restarts_per_step,moving_at_end,fell_through,joint_gap_m,note\n";
     for (const SpeedRow& r : rows)
         csv << r.scene << ',' << r.engine << ',' << r.mode << ',' << r.bodies << ',' << r.steps << ','
             << r.msPerStep << ',' << r.msMaxStep << ',' << r.contactsPerStep << ',' << r.peakMB << ','
@@ -235,21 +235,22 @@ void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows) {
             << r.narrowphase << ',' << r.toi << ',' << r.impact << ',' << r.solve << ',' << r.sleep << ','
             << r.pairsPerStep << ',' << r.awakePerStep << ',' << r.cutsPerStep << ','
            << r.parkedPerStep << ',' << r.restartsPerStep << ',' << r.movingAtEnd << ',' << r.fellThrough
-           << ",\"" << r.note << "\"\n";
+           << ',' << (r.jointGap >= 0.0 ? num(r.jointGap, "%.6g") : std::string()) << ",\"" << r.note << "\"\n";
     std::ofstream md = openOut(opt, "summary.md", true);
     md << "\n| scene | engine | mode | bodies | steps | ms/step | slowest step | contacts/step | memory (MB) "
-          "| moving at the end | fell through |\n"
-       << "|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+          "| moving at the end | fell through | largest joint gap (mm) |\n"
+       << "|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const SpeedRow& r : rows) {
         if (!r.note.empty()) {
             md << "| " << r.scene << " | " << r.engine << " | " << r.mode << " | " << r.note
-               << " | | | | | | | |\n";
+               << " | | | | | | | | |\n";
             continue;
         }
         md << "| " << r.scene << " | " << r.engine << " | " << r.mode << " | " << r.bodies << " | " << r.steps
            << " | " << num(r.msPerStep) << " | " << num(r.msMaxStep) << " | "
            << num(r.contactsPerStep, "%.0f") << " | " << num(r.peakMB - r.baseMB, "%.1f") << " | "
-           << r.movingAtEnd << " | " << r.fellThrough << " |\n";
+           << r.movingAtEnd << " | " << r.fellThrough << " | "
+           << (r.jointGap >= 0.0 ? num(1e3 * r.jointGap, "%.3g") : std::string()) << " |\n";
     }
     md << "\nTumble per stage (ms per step):\n\n| scene | mode | forces | integrate | broadphase | narrowphase | "
           "time of impact "

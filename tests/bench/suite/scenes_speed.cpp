@@ -157,6 +157,60 @@ SceneDesc staticField() {
     return s;
 }
 
+// A chain of `links` box links (0.2 m long, 0.5 kg) joined end to end by ball joints, the
+// first hung from a fixed point, laid out level: it falls and swings (joints only, no
+// contacts, no ground).
+SceneDesc hangingChain(int links) {
+    SceneDesc s;
+    s.settings.sleeping = false;
+    const double half = 0.1, top = 25.0;
+    for (int k = 0; k < links; ++k) {
+        s.bodies.push_back(box("link-" + std::to_string(k), Vec3(half, 0.025, 0.025), 0.5, Vec3(half + 2 * half * k, top, 0.0)));
+        JointDesc j;
+        j.name = "joint-" + std::to_string(k);
+        j.type = JointType::Ball;
+        j.bodyA = "link-" + std::to_string(k);
+        j.anchorA = Vec3(-half, 0.0, 0.0);
+        if (k == 0) {
+            j.anchorB = Vec3(0.0, top, 0.0);
+        } else {
+            j.bodyB = "link-" + std::to_string(k - 1);
+            j.anchorB = Vec3(half, 0.0, 0.0);
+        }
+        s.joints.push_back(j);
+    }
+    return s;
+}
+
+// The sample ragdoll (resources/scenes/ragdoll.json: 10 bodies, ball joints and limited
+// hinges) `count` times, in columns of five dropped onto each other and the ground.
+SceneDesc ragdollPile(int count) {
+    const SceneDesc one = sampleScene("ragdoll.json");
+    SceneDesc s;
+    s.settings = one.settings;
+    s.settings.sleeping = false;
+    for (const BodyDesc& b : one.bodies)
+        if (b.motion == Motion::Static) s.bodies.push_back(b);
+    for (int r = 0; r < count; ++r) {
+        const int column = r / 5, level = r % 5;
+        const Vec3 offset(1.6 * (column % 2), 1.2 * level, 1.6 * (column / 2));  // apart: one spans 1.05 m high
+        const std::string tag = "-" + std::to_string(r);
+        for (BodyDesc b : one.bodies) {
+            if (b.motion == Motion::Static) continue;
+            b.name += tag;
+            b.position += offset;
+            s.bodies.push_back(b);
+        }
+        for (JointDesc j : one.joints) {
+            j.name += tag;
+            j.bodyA += tag;
+            if (!j.bodyB.empty()) j.bodyB += tag;
+            s.joints.push_back(j);
+        }
+    }
+    return s;
+}
+
 // Body names must be unique: the builders above name by kind, this numbers them.
 SceneDesc named(SceneDesc s) {
     for (size_t i = 0; i < s.bodies.size(); ++i)
@@ -211,6 +265,14 @@ std::vector<SpeedScene> speedScenes() {
     out.push_back({"static-field",
                    "900 overlapping static boxes (3 000+ static pairs) under 10 resting boxes",
                    [] { return named(staticField()); }, 1.0 / 60.0, 120, 5});
+    out.push_back({"chain-100",
+                   "a chain of 100 box links on ball joints hung from one end, falling from level and "
+                   "swinging (joints only)",
+                   [] { return hangingChain(100); }, 1.0 / 60.0, 300, 10});
+    out.push_back({"ragdoll-pile",
+                   "20 ragdolls (10 bodies, 9 joints each: balls and limited hinges) dropped in four "
+                   "columns of five onto the ground",
+                   [] { return ragdollPile(20); }, 1.0 / 60.0, 300, 10});
     return out;
 }
 

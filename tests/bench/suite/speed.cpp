@@ -5,6 +5,8 @@
 #include "bench.h"
 #include "scenes.h"
 
+#include <tumble/model.h>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -40,6 +42,29 @@ std::string selfPath() {
     return n > 0 ? std::string(buf, n) : "tumble-bench";
 }
 
+// How far joint j is from holding in the engine's present state (m): its anchors' distance
+// (ball, hinge, fixed), that distance square to the axis (slider), or off the length
+// (distance; a rope only when longer).
+double jointGap(const JointModel& j, const EngineAdapter& engine) {
+    const BodySample a = engine.body(j.a);
+    const Vec3 pa = a.x + a.q * j.anchorA;
+    Vec3 pb = j.anchorB;
+    if (j.b >= 0) {
+        const BodySample b = engine.body(j.b);
+        pb = b.x + b.q * j.anchorB;
+    }
+    const Vec3 d = pa - pb;
+    switch (j.type) {
+        case JointType::Distance: return std::abs(d.norm() - j.length);
+        case JointType::Rope: return std::max(0.0, d.norm() - j.length);
+        case JointType::Slider: {
+            const Vec3 axis = a.q * j.axisA;
+            return (d - d.dot(axis) * axis).norm();
+        }
+        default: return d.norm();
+    }
+}
+
 }  // namespace
 
 int childMain(int argc, char** argv) {
@@ -59,8 +84,10 @@ int childMain(int argc, char** argv) {
         // below it has fallen through the ground.
         std::vector<bool> dynamic;
         double floorY = std::numeric_limits<double>::infinity();
+        Model jointed;  // the scene's joints as Tumble reads them (anchors from the centres of mass)
         {
             const SceneDesc scene = sc.build();  // freed once the engine has its own copy
+            if (!scene.joints.empty()) jointed = compile(scene);
             for (const BodyDesc& b : scene.bodies) {
                 dynamic.push_back(b.motion == Motion::Dynamic);
                 if (b.motion == Motion::Static) floorY = std::min(floorY, b.position.y());
@@ -72,7 +99,7 @@ int childMain(int argc, char** argv) {
             return 0;
         }
         const int steps = quick ? sc.quickSteps : sc.steps;
-        double total = 0, worst = 0, contacts = 0;
+        double total = 0, worst = 0, contacts = 0, gap = 0;
         try {
             for (int i = 0; i < steps; ++i) {
                 const double t0 = wallNow();
@@ -81,6 +108,8 @@ int childMain(int argc, char** argv) {
                 total += t;
                 worst = std::max(worst, t);
                 contacts += engine->contactCount();
+                // The joints' largest gap over the run (outside the timing).
+                for (const JointModel& j : jointed.joints) gap = std::max(gap, jointGap(j, *engine));
             }
         } catch (const std::exception& e) {
             std::printf("FAIL %s\n", e.what());
@@ -99,6 +128,7 @@ int childMain(int argc, char** argv) {
         std::printf("RESULT bodies=%d steps=%d ms=%.6g max=%.6g contacts=%.6g peak=%.6g base=%.6g moving=%d fell=%d",
                     engine->bodyCount(), steps, 1e3 * total / steps, 1e3 * worst, contacts / steps,
                     vmKB("VmHWM:") / 1024, base / 1024, stillMoving, fellThrough);
+        if (!jointed.joints.empty()) std::printf(" gap=%.6g", gap);
         if (auto* t = dynamic_cast<TumbleAdapter*>(engine.get())) {
             const Profile& p = t->world().profile();
             const double k = 1e3 / steps;
@@ -182,15 +212,17 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
                 row.movingAtEnd = static_cast<int>(kv["moving"]);
                 row.fellThrough = static_cast<int>(kv["fell"]);
                 row.baseMB = kv["base"];
+                if (kv.count("gap")) row.jointGap = kv["gap"];
                 row.forces = kv["forces"], row.integrate = kv["integrate"], row.broadphase = kv["broadphase"];
                 row.narrowphase = kv["narrowphase"], row.toi = kv["toi"], row.impact = kv["impact"];
                 row.solve = kv["solve"], row.sleep = kv["sleep"];
                 row.pairsPerStep = kv["pairs"], row.awakePerStep = kv["awake"];
                 row.cutsPerStep = kv["cuts"], row.parkedPerStep = kv["parked"], row.restartsPerStep = kv["restarts"];
             }
-            std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %4d moving %4d fell  %s\n",
+            const std::string gap = row.jointGap >= 0.0 ? "  joint gap " + std::to_string(1e3 * row.jointGap) + " mm" : "";
+            std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %4d moving %4d fell%s  %s\n",
                         name.c_str(), row.engine.c_str(), row.mode.c_str(), row.msPerStep, row.msMaxStep,
-                        row.contactsPerStep, row.peakMB - row.baseMB, row.movingAtEnd, row.fellThrough,
+                        row.contactsPerStep, row.peakMB - row.baseMB, row.movingAtEnd, row.fellThrough, gap.c_str(),
                         row.note.c_str());
             std::fflush(stdout);
             rows.push_back(row);
