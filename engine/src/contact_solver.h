@@ -24,6 +24,7 @@
 #include <tumble/model.h>
 #include <tumble/world.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -157,6 +158,14 @@ struct ContactSolverSettings {
     double touchTolerance = 0.0;  ///< points deeper than minus this touch
     double margin = 0.0;          ///< points deeper than minus this are solved (their gap may close)
 };
+
+/// How much a remembered impulse from a solve over `before` seconds is scaled for one over
+/// `h`: h / before (a resting contact's impulse, a joint's tension, grow with the step), at
+/// most `most`; 1 when `before` is unknown (0). solveContacts first tries the bound of 100
+/// and falls back to 1 when that start adds kinetic energy (see there).
+inline double warmScale(double h, double before, double most) {
+    return before > 0.0 ? std::min(h / before, most) : 1.0;
+}
 
 /// Sizes the scratch's per-body arrays for `model` (World's constructor: at loading, not in
 /// the first step; see sizeSolverBodies).

@@ -55,10 +55,16 @@ SolverBody* other(ContactSolverScratch& s, const JointRow& r) { return r.b >= 0 
 const SolverBody kStill;  // the world: nothing moves it
 constexpr double kReached = 1e-9;  // m or rad: a limit or a rope this near is taut in an impact
 
+// The time over which the remembered joint forces act in the warm start of a solve over h:
+// h, but at most `most` times the last solve's length (as warmScale bounds the contacts').
+double warmSpan(const State& state, double h, double most) {
+    return state.jointStep > 0.0 ? std::min(h, most * state.jointStep) : h;
+}
+
 // A hinge's, slider's or fixed joint's rows at the bodies' poses now, warm-started; false
 // when nothing here can move.
-bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bool remembered, bool impulsive,
-                    SolverBody& A, SolverBody* B, ContactSolverScratch& s, JointRow& r) {
+bool prepareGeneral(const JointModel& j, int k, const State& state, double h, double span, bool remembered,
+                    bool impulsive, SolverBody& A, SolverBody* B, ContactSolverScratch& s, JointRow& r) {
     ContactSolverScratch::GeneralRow g;
     generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g);
     const Matrix6 K = generalMass(g, g, A, B ? *B : kStill);
@@ -67,8 +73,8 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, bo
     g.Kinv = ldlt.solve(Matrix6::Identity());
     if (!g.Kinv.allFinite()) return false;
     if (remembered && state.jointTorques.size() == state.jointImpulses.size()) {
-        g.lambda.head(g.nl) = g.lin.leftCols(g.nl).transpose() * (h * state.jointImpulses[k]);
-        g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (h * state.jointTorques[k]);
+        g.lambda.head(g.nl) = g.lin.leftCols(g.nl).transpose() * (span * state.jointImpulses[k]);
+        g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (span * state.jointTorques[k]);
         applyGeneral(g, A, B, g.lambda);
     }
     if (g.axial && (j.motor || j.limited)) {
@@ -104,10 +110,11 @@ void addJointBodies(const Model& model, const State& state, std::vector<int>& in
 }
 
 void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s, bool impulsive,
-                   const std::vector<std::uint8_t>* only) {
+                   const std::vector<std::uint8_t>* only, double warmGrowth) {
     s.jointRows.clear();
     s.generalRows.clear();
     const bool remembered = !impulsive && state.jointImpulses.size() == model.joints.size();
+    const double span = warmSpan(state, h, warmGrowth);
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
         if (!active(model, state, j)) continue;
@@ -123,7 +130,7 @@ void prepareJoints(const Model& model, const State& state, double h, ContactSolv
         r.rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
         const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + r.rB) : j.anchorB;
         if (isGeneral(j.type)) {
-            if (prepareGeneral(j, k, state, h, remembered, impulsive, A, B, s, r)) s.jointRows.push_back(r);
+            if (prepareGeneral(j, k, state, h, span, remembered, impulsive, A, B, s, r)) s.jointRows.push_back(r);
             continue;
         }
         if (j.type == JointType::Ball) {
@@ -145,9 +152,9 @@ void prepareJoints(const Model& model, const State& state, double h, ContactSolv
             if (impulsive && r.pullsOnly && j.length - length > kReached) continue;
             r.target = r.pullsOnly && !impulsive ? std::max(0.0, (j.length - length) / h) : 0.0;
         }
-        // The warm start: the last step's force over this step.
+        // The warm start: the last step's force over this step (warmSpan).
         if (remembered) {
-            r.lambda = h * state.jointImpulses[k];
+            r.lambda = span * state.jointImpulses[k];
             if (j.type != JointType::Ball) r.lambda.y() = r.lambda.z() = 0.0;
             if (r.pullsOnly) r.lambda.x() = std::min(r.lambda.x(), 0.0);
             if (j.type == JointType::Ball) {
@@ -214,6 +221,7 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
     if (model.joints.empty()) return;
     state.jointImpulses.assign(model.joints.size(), Vec3::Zero());
     state.jointTorques.assign(model.joints.size(), Vec3::Zero());
+    state.jointStep = h;
     for (const JointRow& r : s.jointRows) {
         const JointModel& j = model.joints[r.joint];
         // What the joint carried: its rows' impulse and the projection's, over the step.
