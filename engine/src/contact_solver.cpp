@@ -223,9 +223,8 @@ double kinetic(const ContactSolverScratch& s, const std::vector<SolverBody>& bod
 // with the impulses as they were (no growth).
 void warmStartChecked(const Model& model, const State& state, double h, ContactSolverScratch& s) {
     constexpr double kWarmGrowth = 100.0;
-    const bool jointsGrow = !model.joints.empty() && state.jointStep > 0.0 && state.jointStep < h;
-    const bool grew = warmStart(state, h, kWarmGrowth, s) || jointsGrow;
-    prepareJoints(model, state, h, s, false, nullptr, kWarmGrowth);
+    const bool contactsGrew = warmStart(state, h, kWarmGrowth, s);
+    const bool grew = prepareJoints(model, state, h, s, false, nullptr, kWarmGrowth) || contactsGrew;
     if (!grew || !(kinetic(s, s.bodies) > 1.1 * kinetic(s, s.entry))) return;
     for (int i : s.involved) s.bodies[i] = s.entry[i];
     for (Point& p : s.points) p.lambdaN = 0.0;

@@ -11,6 +11,10 @@ int parkIslandsWithoutImpact(const Model& model, const State& state, const std::
     for (int i = 0; i < n; ++i) s.parent[i] = i;
     for (const auto& [a, b] : pairs)
         if (links(a) && links(b)) s.parent[islandRoot(s.parent, a)] = islandRoot(s.parent, b);
+    // A joint that holds joins its bodies' islands: they are cut, or parked, together.
+    for (const JointModel& j : model.joints)
+        if (j.b >= 0 && !state.jointBroken(j.index) && links(j.a) && links(j.b))
+            s.parent[islandRoot(s.parent, j.a)] = islandRoot(s.parent, j.b);
     s.impacted.assign(n, 0);
     for (const auto& e : impacts)
         for (int b : {e.bodyA, e.bodyB})

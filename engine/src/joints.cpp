@@ -55,10 +55,16 @@ SolverBody* other(ContactSolverScratch& s, const JointRow& r) { return r.b >= 0 
 const SolverBody kStill;  // the world: nothing moves it
 constexpr double kReached = 1e-9;  // m or rad: a limit or a rope this near is taut in an impact
 
-// The time over which the remembered joint forces act in the warm start of a solve over h:
-// h, but at most `most` times the last solve's length (as warmScale bounds the contacts').
-double warmSpan(const State& state, double h, double most) {
-    return state.jointStep > 0.0 ? std::min(h, most * state.jointStep) : h;
+// The length of joint k's last solve (0: unknown).
+double lastStep(const State& state, int k) {
+    return k < static_cast<int>(state.jointSteps.size()) ? state.jointSteps[k] : 0.0;
+}
+
+// The time over which joint k's remembered force acts in the warm start of a solve over h:
+// h, but at most `most` times its last solve's length (as warmScale bounds the contacts').
+double warmSpan(const State& state, int k, double h, double most) {
+    const double last = lastStep(state, k);
+    return last > 0.0 ? std::min(h, most * last) : h;
 }
 
 // A hinge's, slider's or fixed joint's rows at the bodies' poses now, warm-started; false
@@ -109,16 +115,18 @@ void addJointBodies(const Model& model, const State& state, std::vector<int>& in
     if (involved.size() != before) uniqueBodies(involved, seen);
 }
 
-void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s, bool impulsive,
+bool prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s, bool impulsive,
                    const std::vector<std::uint8_t>* only, double warmGrowth) {
     s.jointRows.clear();
     s.generalRows.clear();
     const bool remembered = !impulsive && state.jointImpulses.size() == model.joints.size();
-    const double span = warmSpan(state, h, warmGrowth);
+    bool grew = false;
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
         if (!active(model, state, j)) continue;
         if (only && !(*only)[j.a] && (j.b < 0 || !(*only)[j.b])) continue;
+        const double span = warmSpan(state, k, h, warmGrowth);
+        grew = grew || (remembered && span > lastStep(state, k) && lastStep(state, k) > 0.0);
         JointRow r;
         r.joint = k;
         r.a = j.a;
@@ -166,6 +174,7 @@ void prepareJoints(const Model& model, const State& state, double h, ContactSolv
         }
         s.jointRows.push_back(r);
     }
+    return grew;
 }
 
 bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
@@ -219,18 +228,32 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
 
 void rememberJoints(const Model& model, const ContactSolverScratch& s, double h, State& state) {
     if (model.joints.empty()) return;
-    state.jointImpulses.assign(model.joints.size(), Vec3::Zero());
-    state.jointTorques.assign(model.joints.size(), Vec3::Zero());
-    state.jointStep = h;
+    const std::size_t n = model.joints.size();
+    if (state.jointImpulses.size() != n) state.jointImpulses.assign(n, Vec3::Zero());
+    if (state.jointTorques.size() != n) state.jointTorques.assign(n, Vec3::Zero());
+    if (state.jointSteps.size() != n) state.jointSteps.assign(n, 0.0);
+    // A joint whose bodies all stand still here (asleep, or parked while World cuts the rest
+    // of the step) keeps what it had, as the contacts of sleeping pairs do; the others are
+    // written below if they have rows, else cleared.
+    auto idle = [&](int b) { return b < 0 || state.isAsleep(b) || model.bodies[b].motion != Motion::Dynamic; };
+    for (std::size_t k = 0; k < n; ++k) {
+        const JointModel& j = model.joints[k];
+        if (idle(j.a) && idle(j.b)) continue;
+        state.jointImpulses[k].setZero();
+        state.jointTorques[k].setZero();
+        state.jointSteps[k] = h;
+    }
     for (const JointRow& r : s.jointRows) {
         const JointModel& j = model.joints[r.joint];
         // What the joint carried: its rows' impulse and the projection's, over the step.
         Vec3 impulse = s.projectedImpulse.size() == model.joints.size() ? s.projectedImpulse[r.joint] : Vec3::Zero();
         if (r.general < 0) {
+            state.jointSteps[r.joint] = h;
             state.jointImpulses[r.joint] = r.lambda / h;
             impulse += r.ball ? r.lambda : Vec3(r.lambda.x() * r.n);
         } else {
             const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
+            state.jointSteps[r.joint] = h;
             state.jointImpulses[r.joint] = g.lin.leftCols(g.nl) * g.lambda.head(g.nl) / h;
             state.jointTorques[r.joint] = g.ang.leftCols(g.na) * g.lambda.segment(g.nl, g.na) / h;
             impulse += g.lin.leftCols(g.nl) * g.lambda.head(g.nl);

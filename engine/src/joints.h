@@ -21,11 +21,11 @@ void addJointBodies(const Model& model, const State& state, std::vector<int>& in
 
 /// The rows of the active joints at the bodies' loaded velocities (s.bodies), each started
 /// from its impulse of the last step scaled to this step, at most `warmGrowth` times
-/// (warmScale), and applied to the bodies.
+/// (warmScale), and applied to the bodies. Whether any warm start was scaled up.
 /// `impulsive` (a moment of impact, impact.cpp): no warm start and no motor (a finite force
 /// gives no impulse in an instant), and a rope, limit or the like only where it is taut or
 /// reached (then holding the rate at zero); `only`: the joints with a body flagged there.
-void prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s,
+bool prepareJoints(const Model& model, const State& state, double h, ContactSolverScratch& s,
                    bool impulsive = false, const std::vector<std::uint8_t>* only = nullptr,
                    double warmGrowth = 1.0);
 

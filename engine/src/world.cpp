@@ -294,8 +294,7 @@ void World::step(double h) {
     s.impacts.clear();
     s.parkedCount = 0;
     s.parked.clear();
-    // Joints are not island edges yet (issue 20): with joints, every island is cut together.
-    bool mayPark = model_.joints.empty();
+    bool mayPark = true;
     for (int cut = 0;; ++cut) {
         copyMotion(state_, s.before);
         const double t0 = state_.time;

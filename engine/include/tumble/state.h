@@ -52,10 +52,10 @@ struct State {
     std::vector<Vec3> jointImpulses;
     /// Per joint: the torque on A in the last step (hinge, slider and fixed; else zero).
     std::vector<Vec3> jointTorques;
-    /// The length (s) of the solve that jointImpulses and jointTorques come from: the warm
-    /// start turns them back into impulses over that time, scaled to the next step's length
-    /// at most as far as the contacts' (warmScale); 0: unknown (the next step's length).
-    double jointStep = 0.0;
+    /// Per joint: the length (s) of the solve its impulse and torque come from (0, or empty:
+    /// unknown). The warm start turns them back into impulses over that time, scaled to the
+    /// next step's length as the contacts' are.
+    std::vector<double> jointSteps;
     /// Per joint: the time it broke (its force passed JointDesc::breakForce), NaN while it
     /// holds; empty: none has broken. A broken joint acts no more and its bodies collide.
     std::vector<double> jointBrokenAt;
