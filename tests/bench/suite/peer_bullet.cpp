@@ -46,7 +46,7 @@
 //   setCcdSweptSphereRadius) and stops it at the first hit.
 // - Sleeping follows settings.sleeping (Bullet's deactivation, its own thresholds).
 // - Joints (issue 20): ball (btPoint2PointConstraint), hinge (btHingeConstraint on frames
-//   whose z is the axis, referenced to A so that its angle is A's turn relative to B about
+//   whose z is the axis, so that its angle is A's turn relative to B about
 //   A's axis, zero as placed, as Tumble's), slider (btSliderConstraint along the frames' x,
 //   without limits or motor) and fixed (btFixedConstraint holding the pose as placed), at
 //   the anchors as the scene places them at t = 0. Hinge limits: setLimit (softness 0.9,
@@ -372,8 +372,10 @@ bool BulletAdapter::makeJoint(const JointModel& j, std::string* why) {
             // B's frame at B's anchor, turned as A's at t = 0: the angle starts at zero.
             const Vec3 ref = peer::anyPerpendicular(axis);
             const btTransform fa = frameIn(j.a, pa, axis, ref), fb = frameIn(j.b, pb, axis, ref);
-            auto h = B ? std::make_unique<btHingeConstraint>(A, *B, fa, fb, true)
-                       : std::make_unique<btHingeConstraint>(A, fa, true);
+            // useReferenceFrameA false: Bullet's angle (and motor speed) is then A's turn
+            // relative to B, as Tumble's (tumble-peer-check's limited bar; true reversed it).
+            auto h = B ? std::make_unique<btHingeConstraint>(A, *B, fa, fb, false)
+                       : std::make_unique<btHingeConstraint>(A, fa, false);
             if (j.limited) h->setLimit(j.lower, j.upper);
             if (j.motor) h->enableAngularMotor(true, j.motorSpeed, j.motorMax * dt_);
             c = std::move(h);

@@ -16,6 +16,13 @@
 //                Bullet's modes with speculative contacts lose the bounce: not checked).
 //   rest         a cylinder, a capsule, a turned box and an off-centre convex hull resting on
 //                a plane: centre-of-mass heights within 5 mm (shape axes and offsets).
+//   joints       a ball (r 0.1 m, 1 kg) on a ball joint 1 m below a fixed point, let go at
+//                0.1 rad: the period between the first and third crossings of the vertical
+//                against 2 pi sqrt(I_p / m g L) = 2.0101 s within 1 % (anchor frames); a bar
+//                hinged at one end to the world, level, gravity turning it to negative angles:
+//                with limits [-1, 0] it stops at -1 rad, with [0, 1] it stays at 0 (within
+//                0.1 rad after 2 s: the sign and zero of the hinge angle). A peer that does not
+//                translate limits prints n/a for the second, not a failure.
 //
 // Prints a table; exits 1 when a check fails, 2 when no peer was built.
 #include "engine_adapter.h"
@@ -23,6 +30,7 @@
 #include <tumble/mass.h>
 #include <tumble/model.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -152,9 +160,57 @@ SceneDesc restScene() {
 
 struct Row {
     std::string engine, mode;
-    std::string fall, spin, bounce, rest;
+    std::string fall, spin, bounce, rest, joints;
     bool ok = true;
 };
+
+// A ball hung on a ball joint 1 m below the world point (0, 3, 0), let go at `angle` in the
+// x-y plane.
+SceneDesc ballPendulum(double angle) {
+    SceneDesc s;
+    s.settings.gravity = kG;
+    s.settings.sleeping = false;
+    BodyDesc b;
+    b.name = "bob";
+    b.shape.type = ShapeType::Sphere;
+    b.shape.radius = 0.1;
+    b.mass = 1.0;
+    b.position = Vec3(0, 3, 0) + Vec3(std::sin(angle), -std::cos(angle), 0.0);
+    s.bodies.push_back(b);
+    JointDesc j;
+    j.name = "pivot";
+    j.type = JointType::Ball;
+    j.bodyA = "bob";
+    j.anchorA = Vec3(-std::sin(angle), std::cos(angle), 0.0);
+    j.anchorB = Vec3(0, 3, 0);
+    s.joints.push_back(j);
+    return s;
+}
+
+// A 1 m bar (1 kg) level along x, hinged at its -x end to the world about z, with limits.
+SceneDesc limitedBar(double lower, double upper) {
+    SceneDesc s;
+    s.settings.gravity = kG;
+    s.settings.sleeping = false;
+    BodyDesc b;
+    b.name = "bar";
+    b.shape.type = ShapeType::Box;
+    b.shape.halfExtents = Vec3(0.5, 0.05, 0.05);
+    b.mass = 1.0;
+    b.position = Vec3(0.5, 3, 0);
+    s.bodies.push_back(b);
+    JointDesc j;
+    j.name = "hinge";
+    j.type = JointType::Hinge;
+    j.bodyA = "bar";
+    j.anchorA = Vec3(-0.5, 0, 0);
+    j.anchorB = Vec3(0, 3, 0);
+    j.axisA = Vec3(0, 0, 1);
+    j.limits = std::array<double, 2>{lower, upper};
+    s.joints.push_back(j);
+    return s;
+}
+
 
 std::string fmt(const char* f, double a, double b = 0.0) {
     char buf[96];
@@ -277,6 +333,39 @@ std::string checkRest(EngineAdapter& e, const std::string& mode, bool* ok) {
     return fmt("height %.1e m", worst) + " (" + scene.bodies[which].name + ")";
 }
 
+std::string checkJoints(EngineAdapter& e, const std::string& mode, bool* ok) {
+    std::string why;
+    if (!e.load(ballPendulum(0.1), mode, kDt, &why)) {
+        *ok = false;
+        return "refused: " + why;
+    }
+    // The times the bob crosses the vertical below the pivot (x = 0), interpolated.
+    std::vector<double> crossings;
+    double lastX = e.body(0).x.x();
+    for (int k = 0; k < 4 * 240 && crossings.size() < 3; ++k) {
+        e.step();
+        const double x = e.body(0).x.x();
+        if ((lastX > 0.0) != (x > 0.0)) crossings.push_back(e.time() - kDt * x / (x - lastX));
+        lastX = x;
+    }
+    const double want = 2.0 * M_PI * std::sqrt((0.4 * 0.01 + 1.0) / 9.81);
+    const double period = crossings.size() == 3 ? crossings[2] - crossings[0] : NAN;
+    const double err = period / want - 1.0;
+    if (!(std::abs(err) <= 0.01)) *ok = false;
+    std::string out = fmt("period %+.2f %%", 100.0 * err);
+    // The hinge's angle: the bar's direction about z after 2 s.
+    double angles[2] = {NAN, NAN};
+    const double limits[2][2] = {{-1.0, 0.0}, {0.0, 1.0}};
+    for (int c = 0; c < 2; ++c) {
+        if (!e.load(limitedBar(limits[c][0], limits[c][1]), mode, kDt, &why)) return out + ", limits n/a";
+        for (int k = 0; k < 2 * 240; ++k) e.step();
+        const Vec3 dir = e.body(0).q * Vec3::UnitX();
+        angles[c] = std::atan2(dir.y(), dir.x());
+    }
+    if (!(std::abs(angles[0] + 1.0) <= 0.1) || !(std::abs(angles[1]) <= 0.1)) *ok = false;
+    return out + fmt(", limits at %+.2f and %+.2f rad", angles[0], angles[1]);
+}
+
 }  // namespace
 
 int main() {
@@ -296,20 +385,23 @@ int main() {
         }
         ++built;
         for (const std::string& mode : e->modes()) {
-            Row row{e->name(), mode, "", "", "", "", true};
+            Row row{e->name(), mode, "", "", "", "", "", true};
             row.fall = checkFall(*e, mode, &row.ok);
             row.spin = checkSpin(*e, mode, &row.ok);
             row.bounce = checkBounce(*e, mode, &row.ok);
             row.rest = checkRest(*e, mode, &row.ok);
+            row.joints = checkJoints(*e, mode, &row.ok);
             rows.push_back(row);
         }
     }
-    std::printf("%-7s %-20s %-36s %-40s %-34s %-28s\n", "engine", "mode", "free fall (rel. error)",
-                "spin (worst drift)", "bounce e=0.5 (apex / h, want 0.25)", "rest (worst height error)");
+    std::printf("%-7s %-20s %-36s %-40s %-34s %-28s %-44s\n", "engine", "mode", "free fall (rel. error)",
+                "spin (worst drift)", "bounce e=0.5 (apex / h, want 0.25)", "rest (worst height error)",
+                "joints (period; hinge limits -1 and 0)");
     bool all = true;
     for (const Row& r : rows) {
-        std::printf("%-7s %-20s %-36s %-40s %-34s %-28s %s\n", r.engine.c_str(), r.mode.c_str(),
-                    r.fall.c_str(), r.spin.c_str(), r.bounce.c_str(), r.rest.c_str(), r.ok ? "ok" : "FAIL");
+        std::printf("%-7s %-20s %-36s %-40s %-34s %-28s %-44s %s\n", r.engine.c_str(), r.mode.c_str(),
+                    r.fall.c_str(), r.spin.c_str(), r.bounce.c_str(), r.rest.c_str(), r.joints.c_str(),
+                    r.ok ? "ok" : "FAIL");
         all = all && r.ok;
     }
     if (built == 0) return 2;
