@@ -99,7 +99,7 @@ constexpr double kMostRound = 4.0;  // a round adds at most this many times the 
 // manifolds still take their turn after, which is how a row of balls passes an impact on.)
 bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody>& bodies, double tol,
                    double approachTol, double restingSpeed, EnergyLedger& ledger,
-                   const std::function<bool()>* joints = nullptr) {
+                   const std::function<bool(int, int)>* joints = nullptr) {
     SolverBody& A = bodies[m.bodyA];
     SolverBody& B = bodies[m.bodyB];
     const Vec3& n = m.normal;
@@ -149,7 +149,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
     const double first = lambda.head(k).sum();  // the impact's own impulse
     double before = HUGE_VAL;
     for (int round = 0; joints && round < kJointRounds; ++round) {
-        const bool moved = (*joints)();
+        const bool moved = (*joints)(m.bodyA, m.bodyB);
         Eigen::Vector4d need = Eigen::Vector4d::Zero();
         double worst = 0.0;
         for (int i = 0; i < k; ++i) {
@@ -269,11 +269,21 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     long clock = 0;
     // One sweep of the joints' rows (their solver bodies are these, swapped in); the
     // manifolds of the bodies they move are looked at again.
-    const std::function<bool()> sweepJoints = [&] {
+    // A row whose bodies took no impulse since its last update is left alone (as the
+    // manifolds are): in a pile of ragdolls each manifold's rounds swept all 180 joints of
+    // the island, most of them far from the impact. `a`, `b`: the bodies the caller has just
+    // pushed (-1: none).
+    s.jointCheckedAt.assign(joints ? joints->jointRows.size() : 0, -2);  // before every body's -1: all looked at once
+    const std::function<bool(int, int)> sweepJoints = [&](int a, int b) {
+        if (a >= 0) s.changedAt[a] = s.changedAt[b] = ++clock;
         std::swap(joints->bodies, s.bodies);
         bool moved = false;
         const int nj = static_cast<int>(joints->jointRows.size());
         for (int k = 0; k < nj; ++k) {
+            const auto& row = joints->jointRows[k];
+            if (s.jointCheckedAt[k] > s.changedAt[row.a] && (row.b < 0 || s.jointCheckedAt[k] > s.changedAt[row.b]))
+                continue;
+            s.jointCheckedAt[k] = ++clock;
             if (!updateJoint(*joints, k, approachTol)) continue;
             const auto& r = joints->jointRows[k];
             s.changedAt[r.a] = ++clock;
@@ -298,7 +308,7 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
             if (s.approached[i]) s.changedAt[m.bodyA] = s.changedAt[m.bodyB] = clock;
             any |= s.approached[i] != 0;
         }
-        if (jointed) any |= sweepJoints();
+        if (jointed) any |= sweepJoints(-1, -1);
         if (!any) break;
         if (++result.sweeps == kMaxSweeps) {
             result.limited = true;

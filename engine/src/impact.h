@@ -42,6 +42,7 @@ struct ImpactScratch {
     // island was last solved, and whether it had points approaching then.
     std::vector<long> changedAt, checkedAt;
     std::vector<std::uint8_t> approached;
+    std::vector<long> jointCheckedAt;  // per joint row: when it was last updated
 };
 
 struct ImpactResult {
