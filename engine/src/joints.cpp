@@ -307,7 +307,12 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     // (As for the others: a body that turned far since the start is left to the passes
     // along the directions now.)
     if (from && (turnedFar(at.bodies[j.a].q, a.q) || (b && turnedFar(at.bodies[j.b].q, b->q)))) return error;
-    generalRows(j, at.bodies[j.a], b ? &at.bodies[j.b] : nullptr, then);
+    // The rows at the start; at the poses now themselves (the passes along the directions
+    // now) they are the ones just made.
+    if (&at == &state)
+        then = now;
+    else
+        generalRows(j, at.bodies[j.a], b ? &at.bodies[j.b] : nullptr, then);
     const Matrix6 K = generalMass(now, then, A, B);
     const Vector6 lambda = -K.fullPivLu().solve(C);
     if (!lambda.allFinite()) return error;
