@@ -1,0 +1,33 @@
+// What the joint suites measure of a World: how far a joint is from holding, and the
+// energy of the dynamic bodies (kinetic plus gravity's potential along y, g = 9.81).
+#pragma once
+
+#include <cstddef>
+
+#include <tumble/model.h>
+#include <tumble/state.h>
+#include <tumble/world.h>
+
+namespace tumble::test {
+
+inline double anchorGap(const World& w, int k) {
+    const JointModel& j = w.model().joints[k];
+    const BodyState& a = w.state().bodies[j.a];
+    const Vec3 pa = a.x + a.q * j.anchorA;
+    const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(w.state().bodies[j.b].x + w.state().bodies[j.b].q * j.anchorB);
+    return (pa - pb).norm();
+}
+
+inline double energy(const World& w) {
+    double e = 0.0;
+    for (size_t i = 0; i < w.model().bodies.size(); ++i) {
+        const BodyModel& b = w.model().bodies[i];
+        if (b.motion != Motion::Dynamic) continue;
+        const BodyState& s = w.state().bodies[i];
+        const Derived d = derive(b, s);
+        e += 0.5 * b.mass * d.v.squaredNorm() + 0.5 * d.omega.dot(s.L) + b.mass * 9.81 * s.x.y();
+    }
+    return e;
+}
+
+}  // namespace tumble::test
