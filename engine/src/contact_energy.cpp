@@ -95,6 +95,14 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
 
 }  // namespace
 
+double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,
+                     const std::vector<SolverBody>& bodies) {
+    double e = 0.0;
+    for (int i : s.involved)
+        if (bodies[i].invMass > 0.0) e += kinetic(model.bodies[i], state.bodies[i].q, bodies[i]);
+    return e;
+}
+
 double gravityPotential(const Model& model, const State& state, const std::vector<int>& which) {
     double u = 0.0;
     for (int i : which)

@@ -203,16 +203,6 @@ bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     return changed;
 }
 
-// The kinetic energy of the moving bodies of the solve in `bodies` (s.bodies, s.entry).
-double kinetic(const ContactSolverScratch& s, const std::vector<SolverBody>& bodies) {
-    double e = 0.0;
-    for (int i : s.involved) {
-        const SolverBody& b = bodies[i];
-        if (b.invMass > 0.0) e += 0.5 * b.v.squaredNorm() / b.invMass + 0.5 * b.w.dot(b.invI.inverse() * b.w);
-    }
-    return e;
-}
-
 // The warm start of the contacts and joints. Remembered impulses are scaled to this step's
 // length, up to kWarmGrowth times after a shorter solve (the last part of a step after a
 // cut, a short step to land on a frame). What such a short solve did was not all weight
@@ -225,10 +215,9 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
     constexpr double kWarmGrowth = 100.0;
     const bool contactsGrew = warmStart(state, h, kWarmGrowth, s);
     const bool grew = prepareJoints(model, state, h, s, false, nullptr, kWarmGrowth) || contactsGrew;
-    if (!grew || !(kinetic(s, s.bodies) > 1.1 * kinetic(s, s.entry))) return;
+    if (!grew || !(solvedKinetic(model, state, s, s.bodies) > 1.1 * solvedKinetic(model, state, s, s.entry))) return;
     for (int i : s.involved) s.bodies[i] = s.entry[i];
-    for (Point& p : s.points) p.lambdaN = 0.0;
-    warmStart(state, h, 1.0, s);
+    warmStart(state, h, 1.0, s);  // (sets again every remembered point's impulse)
     prepareJoints(model, state, h, s);
 }
 

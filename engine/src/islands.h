@@ -1,10 +1,9 @@
 // Which bodies a step's impacts concern (World::step). An island is a group of awake
 // dynamic bodies linked by the step's broadphase pairs, whose boxes are swept over the whole
 // step, and by the joints that hold: bodies of different islands cannot meet within the
-// step, nor pull on each other. Static, kinematic and
-// sleeping bodies do not link (they move the same whatever their partners do). Only the
-// islands with a moment of impact are cut and integrated again; the others keep their free
-// step and are "parked" meanwhile.
+// step, nor pull on each other. Static, kinematic and sleeping bodies do not link (they
+// move the same whatever their partners do). Only the islands with a moment of impact are
+// cut and integrated again; the others keep their free step and are "parked" meanwhile.
 #pragma once
 
 #include <tumble/collision.h>
