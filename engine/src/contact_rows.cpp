@@ -117,41 +117,48 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
     A.touched = B.touched = true;
 }
 
-// The normal impulses of one manifold together: the least-norm impulses that give every
-// point its target velocity, none pulling (pushingImpulses).
-double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+namespace {
+
+// normalBlock for a block of K ≥ 2 points, with K known to the compiler: the vectors and
+// K's corner are fixed-size (no loops over four padded slots, no branch per slot). The
+// least-norm impulses of the whole block are taken when none of them pulls, the common
+// case; else pushingImpulses lets the pulling points go (it starts from the same product).
+template <int K>
+double normalBlockOf(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+    using VecK = Eigen::Matrix<double, K, 1>;
     Point* q = &s.points[block.begin];
-    const int k = block.count;
-    if (k == 1) return normalPoint(s, q[0]);
     SolverBody& A = s.bodies[q[0].a];
     SolverBody& B = s.bodies[q[0].b];
-    Eigen::Vector4d lambda = Eigen::Vector4d::Zero(), rhs = Eigen::Vector4d::Zero(),
-                    vn = Eigen::Vector4d::Zero();
-    bool idle = true;  // nothing pushes and nothing approaches faster than its target
-    for (int i = 0; i < k; ++i) lambda[i] = q[i].lambdaN;
+    VecK lambda, vn, target;
     // The points share the normal: n · (vA - vB) once (normalVelocity's first term).
     const double along = q[0].n.dot(A.v - B.v);
-    for (int i = 0; i < k; ++i) {
-        // What the impulses must add to the velocity the point would have without them.
+    bool idle = true;  // nothing pushes and nothing approaches faster than its target
+    for (int i = 0; i < K; ++i) {
+        lambda[i] = q[i].lambdaN;
         vn[i] = along + q[i].armA.dot(A.w) - q[i].armB.dot(B.w);
-        rhs[i] = q[i].target - (vn[i] - block.K.row(i).dot(lambda));  // zero beyond k
-        idle = idle && lambda[i] == 0.0 && vn[i] >= q[i].target;
+        target[i] = q[i].target;
+        idle = idle && lambda[i] == 0.0 && vn[i] >= target[i];
     }
     // λ = 0 already solves this block (a side neighbour in a pile, a point still apart).
     if (idle) return 0.0;
-    const Eigen::Vector4d wanted = pushingImpulses(block.K, block.Kinv, rhs, k, &subsets);
-    // The changes summed per body: one impulse along n and one change of spin each.
-    double total = 0.0;
-    Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();
-    double changed = 0.0;
-    for (int i = 0; i < k; ++i) {
-        const double d = wanted[i] - lambda[i];
-        q[i].lambdaN = wanted[i];
-        changed = std::max(changed, std::abs(d));
-        total += d;
-        spinA += d * q[i].spinA;
-        spinB += d * q[i].spinB;
+    // What the impulses must add to the velocity the point would have without them.
+    const VecK rhs = target - (vn - block.K.template topLeftCorner<K, K>() * lambda);
+    VecK wanted = block.Kinv.template topLeftCorner<K, K>() * rhs;
+    if ((wanted.array() < 0.0).any()) {
+        Eigen::Vector4d g = Eigen::Vector4d::Zero();
+        g.template head<K>() = rhs;
+        wanted = pushingImpulses(block.K, block.Kinv, g, K, &subsets).template head<K>();
     }
+    // The changes summed per body: one impulse along n and one change of spin each.
+    const VecK d = wanted - lambda;
+    Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();
+    for (int i = 0; i < K; ++i) {
+        q[i].lambdaN = wanted[i];
+        spinA += d[i] * q[i].spinA;
+        spinB += d[i] * q[i].spinB;
+    }
+    const double total = d.sum();
+    const double changed = d.cwiseAbs().maxCoeff();
     if (total == 0.0 && spinA.isZero(0.0) && spinB.isZero(0.0)) return changed;
     const Vec3& n = q[0].n;
     A.v += (A.invMass * total) * n;
@@ -160,6 +167,19 @@ double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& b
     B.w -= spinB;
     A.touched = B.touched = true;
     return changed;
+}
+
+}  // namespace
+
+// The normal impulses of one manifold together: the least-norm impulses that give every
+// point its target velocity, none pulling (pushingImpulses).
+double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+    switch (block.count) {
+        case 1: return normalPoint(s, s.points[block.begin]);
+        case 2: return normalBlockOf<2>(s, block, subsets);
+        case 3: return normalBlockOf<3>(s, block, subsets);
+        default: return normalBlockOf<4>(s, block, subsets);
+    }
 }
 
 // Friction of one manifold: stop the sliding and the twisting at the centroid, within
@@ -181,28 +201,41 @@ Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverS
 
 double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block) {
     if (block.mu <= 0.0) return 0.0;
-    const double limit = block.mu * normalImpulse(s, block);
+    const Point* q = &s.points[block.begin];
+    double normal = 0.0;  // (normalImpulse, over the points in hand)
+    for (int i = 0; i < block.count; ++i) normal += q[i].lambdaN;
+    const double limit = block.mu * normal;
     // No normal impulse holds no friction: nothing to do when none is held.
     if (limit == 0.0 && block.lambdaT.isZero(0.0) && block.lambdaTwist == 0.0) return 0.0;
-    const Point& p = s.points[block.begin];
-    const SolverBody& A = s.bodies[p.a];
-    const SolverBody& B = s.bodies[p.b];
-    const Eigen::Vector2d vt = slipVelocity(s, block);
+    SolverBody& A = s.bodies[q[0].a];
+    SolverBody& B = s.bodies[q[0].b];
+    // slipVelocity and applyFriction, written out: the bodies are in hand.
+    const Vec3 dv = A.v - B.v;
+    const Eigen::Vector2d vt(block.t1.dot(dv) + block.armA[0].dot(A.w) - block.armB[0].dot(B.w),
+                             block.t2.dot(dv) + block.armA[1].dot(A.w) - block.armB[1].dot(B.w));
     Eigen::Vector2d l = block.lambdaT - block.tangentMass * vt;
-    if (l.norm() > limit) l *= limit / l.norm();
+    const double norm = l.norm();
+    if (norm > limit) l *= limit / norm;
     // The twist is always clamped: a one-point patch (radius 0) may hold none, whatever
     // was remembered.
-    double tw = block.lambdaTwist - block.twistMass * p.n.dot(A.w - B.w);
+    double tw = block.lambdaTwist - block.twistMass * q[0].n.dot(A.w - B.w);
     tw = std::clamp(tw, -limit * block.radius, limit * block.radius);
     const Eigen::Vector2d dT = l - block.lambdaT;
     const double dTwist = tw - block.lambdaTwist;
     block.lambdaT = l;
     block.lambdaTwist = tw;
-    applyFriction(s, block, dT, dTwist);
+    if (!dT.isZero(0.0) || dTwist != 0.0) {
+        const Vec3 J = dT[0] * block.t1 + dT[1] * block.t2;
+        A.v += A.invMass * J;
+        A.w += dT[0] * block.spinA[0] + dT[1] * block.spinA[1] + dTwist * block.twistA;
+        B.v -= B.invMass * J;
+        B.w -= dT[0] * block.spinB[0] + dT[1] * block.spinB[1] + dTwist * block.twistB;
+        A.touched = B.touched = true;
+    }
     // The twist's change as an impulse at the patch's radius (a one-point patch holds none
     // after its clamp, but may let go of a remembered one).
     const double twistChange = block.radius > 0.0 ? std::abs(dTwist) / block.radius : std::abs(dTwist) > 0.0 ? HUGE_VAL : 0.0;
-    return std::max(dT.lpNorm<Eigen::Infinity>(), twistChange);
+    return std::max(std::max(std::abs(dT[0]), std::abs(dT[1])), twistChange);
 }
 
 bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed) {
