@@ -65,6 +65,18 @@ Vec3 supportFrom(const ConvexProxy& p, const Vec3& dir, const Vec3& origin) {
         const int i = d0 >= d1 ? (d0 >= d2 ? 0 : 2) : (d1 >= d2 ? 1 : 2);
         return t[i] - origin;
     }
+    if (p.turnedCount > 0) {
+        int best = 0;
+        double bestDot = p.turned[0].dot(dir);
+        for (int i = 1; i < p.turnedCount; ++i) {
+            const double t = p.turned[i].dot(dir);
+            if (t > bestDot) {
+                bestDot = t;
+                best = i;
+            }
+        }
+        return p.turned[best] + (p.pose.p - origin);
+    }
     const Vec3 local = coreSupportLocal(p, p.pose.R.transpose() * dir);
     return p.pose.R * local + (p.pose.p - origin);
 }
@@ -295,6 +307,11 @@ ConvexProxy proxyOf(const Shape& s, const Pose& pose) {
             for (const Vec3& v : s.hull->vertices)
                 r2 = std::max(r2, (v - s.hull->interiorPoint).squaredNorm());
             p.extent = std::sqrt(r2);
+            const int n = static_cast<int>(s.hull->vertices.size());
+            if (n <= ConvexProxy::kTurned) {
+                for (int i = 0; i < n; ++i) p.turned[i] = pose.R * s.hull->vertices[i];
+                p.turnedCount = n;
+            }
             break;
         }
         case Kind::Plane:

@@ -22,6 +22,15 @@ struct ConvexProxy {
                                        ///< Cylinder: x = radius, y = half height
     const ConvexHull* hull = nullptr;  ///< Hull core, in the pose's frame (not owned)
     std::array<Vec3, 3> triangle{};    ///< Triangle core, world points
+    /// A hull of at most kTurned vertices: each vertex turned into the world (R v, not
+    /// moved by the pose's translation), made once by proxyOf. A support query is then
+    /// one dot product per vertex instead of two turns of the direction and the point
+    /// around them (GJK and EPA ask one proxy for many support points: hull-rain's rocks
+    /// were asked 8 400 times a step). The point is the same either way (of two vertices
+    /// tied along the direction, rounding may pick the other).
+    static constexpr int kTurned = 8;
+    std::array<Vec3, kTurned> turned;  // (not initialised: only the first turnedCount are set)
+    int turnedCount = 0;
 
     /// The farthest point of the core along `dir` (world); any unit or non-unit direction.
     Vec3 support(const Vec3& dir) const;
