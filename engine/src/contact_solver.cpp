@@ -170,7 +170,9 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
             p.lambdaN = scale * c->normalImpulse;
             tangent += scale * c->tangentImpulse;
             twist += scale * c->twistImpulse;
-            applyPairImpulse(s.bodies[p.a], p.rA, s.bodies[p.b], p.rB, p.lambdaN * p.n);
+            const Vec3 J = p.lambdaN * p.n;  // (applyPairImpulse without the energy it would return)
+            applyImpulse(s.bodies[p.a], p.rA, J);
+            applyImpulse(s.bodies[p.b], p.rB, -J);
         }
         block.lambdaT = Eigen::Vector2d(block.t1.dot(tangent), block.t2.dot(tangent));
         block.lambdaTwist = twist;
