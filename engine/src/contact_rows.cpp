@@ -124,7 +124,7 @@ namespace {
 // least-norm impulses of the whole block are taken when none of them pulls, the common
 // case; else pushingImpulses lets the pulling points go (it starts from the same product).
 template <int K>
-double normalBlockOf(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+double normalBlockOf(ContactSolverScratch& s, ContactSolverScratch::Block& block, std::vector<SubsetInverses>& pool) {
     using VecK = Eigen::Matrix<double, K, 1>;
     Point* q = &s.points[block.begin];
     SolverBody& A = s.bodies[q[0].a];
@@ -147,7 +147,11 @@ double normalBlockOf(ContactSolverScratch& s, const ContactSolverScratch::Block&
     if ((wanted.array() < 0.0).any()) {
         Eigen::Vector4d g = Eigen::Vector4d::Zero();
         g.template head<K>() = rhs;
-        wanted = pushingImpulses(block.K, block.Kinv, g, K, &subsets).template head<K>();
+        if (block.subsets < 0) {
+            block.subsets = static_cast<int>(pool.size());
+            pool.emplace_back();
+        }
+        wanted = pushingImpulses(block.K, block.Kinv, g, K, &pool[block.subsets]).template head<K>();
     }
     // The changes summed per body: one impulse along n and one change of spin each.
     const VecK d = wanted - lambda;
@@ -173,12 +177,12 @@ double normalBlockOf(ContactSolverScratch& s, const ContactSolverScratch::Block&
 
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
-double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets) {
+double normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block, std::vector<SubsetInverses>& pool) {
     switch (block.count) {
         case 1: return normalPoint(s, s.points[block.begin]);
-        case 2: return normalBlockOf<2>(s, block, subsets);
-        case 3: return normalBlockOf<3>(s, block, subsets);
-        default: return normalBlockOf<4>(s, block, subsets);
+        case 2: return normalBlockOf<2>(s, block, pool);
+        case 3: return normalBlockOf<3>(s, block, pool);
+        default: return normalBlockOf<4>(s, block, pool);
     }
 }
 
@@ -245,7 +249,7 @@ bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed) {
     if (quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet) return false;
     const long tick = ++s.tick;
     const double friction = frictionBlock(s, block);  // friction first, then the normals
-    const double change = std::max(friction, normalBlock(s, block, s.subsets[k]));
+    const double change = std::max(friction, normalBlock(s, block, s.subsets));
     if (!(change > quietSpeed * p.kn)) {
         s.quietSince[k] = tick;
         return false;

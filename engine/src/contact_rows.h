@@ -20,10 +20,11 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
                    double dTwist);
 /// The normal impulses of one manifold together: the least-norm impulses that give every
 /// point its target velocity, none pulling.
-/// `subsets`: the cache of K's sub-inverses for this block (reset it when K changes).
+/// `pool`: where the block keeps the cache of its K's sub-inverses (Block::subsets, taken on
+/// first need; clear the pool and the indices when K changes).
 /// Returns the largest change of any of its impulses (0: none changed; this one and
 /// frictionBlock, whose twist counts as the impulse at the patch radius).
-double normalBlock(ContactSolverScratch& s, const ContactSolverScratch::Block& block, SubsetInverses& subsets);
+double normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block, std::vector<SubsetInverses>& pool);
 /// The block's normal impulse, summed over its points.
 double normalImpulse(const ContactSolverScratch& s, const ContactSolverScratch::Block& block);
 /// How fast the bodies' surfaces slide over each other at the block's centroid, along t1 and t2.

@@ -72,6 +72,7 @@ struct ContactSolverScratch {
         double twistMass = 0.0, radius = 0.0;
         Eigen::Vector2d lambdaT = Eigen::Vector2d::Zero();
         double lambdaTwist = 0.0;
+        int subsets = -1;  ///< its entry in the pool of sub-inverses once it needs one (-1: none yet)
     };
     /// A joint's rows in this solve (joints.cpp): a ball's three, through the 3 × 3 inverse
     /// of its effective mass; a distance's or rope's one, along the anchors' line.
@@ -114,8 +115,10 @@ struct ContactSolverScratch {
     std::vector<PointGeometry> geometry;  // per point
     std::vector<Block> blocks;
     std::vector<JointRow> jointRows;
-    std::vector<SubsetInverses> subsets;  // per block: K's sub-inverses (pushingImpulses)
-    std::vector<SubsetInverses> frozenSubsets;  // per frozen block (shockPass)
+    // K's sub-inverses (pushingImpulses), for the blocks that have needed one (Block::subsets):
+    // most blocks never let a point go, and an entry for every block was 288 bytes each.
+    std::vector<SubsetInverses> subsets;
+    std::vector<SubsetInverses> frozenSubsets;  // the same for the frozen blocks (shockPass)
     std::vector<SolverBody> bodies;
     std::vector<SolverBody> start;  // velocities at the start of the step
     std::vector<Vec3> bodySpin;     // ω in body axes, kept while bodies are re-placed

@@ -107,13 +107,14 @@ void shockPass(ContactSolverScratch& s, int passes, bool converged, double quiet
             Point* q = &s.points[block.begin];
             for (int i = 0; i < block.count; ++i) preparePoint(s.bodies[q[i].a], s.bodies[q[i].b], q[i]);
             prepareBlock(s.bodies[q[0].a], s.bodies[q[0].b], block, s);
+            block.subsets = -1;  // its K is new: its sub-inverses are frozenSubsets'
             s.frozen.push_back(block);
         }
-        s.frozenSubsets.assign(s.frozen.size(), SubsetInverses{});
+        s.frozenSubsets.clear();
         for (int pass = 0; pass < passes; ++pass)
             for (size_t k = 0; k < s.frozen.size(); ++k) {
                 frictionBlock(s, s.frozen[k]);
-                normalBlock(s, s.frozen[k], s.frozenSubsets[k]);
+                normalBlock(s, s.frozen[k], s.frozenSubsets);
             }
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block& block = s.blocks[s.order[k]];
