@@ -235,15 +235,16 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
     prepareJoints(model, state, h, s);
 }
 
-void remember(const Model& model, const State& state, double h, ContactSolverScratch& s) {
+// State::contacts made the memory of this solve, in place: the pairs not solved because
+// they sleep (or stand still) keep what they had (and tell who rests on whom when
+// something wakes them), the solved points are added after them. (A second list traded
+// with this one every solve held as much again: a third of a megabyte of hull-rain's
+// peak, with its ~1 100 points of sleeping rocks.)
+void remember(const Model& model, State& state, double h, ContactSolverScratch& s) {
     auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill(); };
-    // Sized to what it will hold (makeRoom): this list and State::contacts trade places
-    // every solve, and by doubling each kept up to twice the points (a third of a megabyte
-    // of hull-rain's peak of 3.7).
-    size_t kept = s.points.size();
-    for (const ContactMemory& c : state.contacts) kept += idle(c.bodyA) && idle(c.bodyB);
-    s.nextMemory.clear();
-    makeRoom(s.nextMemory, kept);
+    std::vector<ContactMemory>& memory = state.contacts;
+    std::erase_if(memory, [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); });
+    makeRoom(memory, memory.size() + s.points.size());
     for (const auto& block : s.blocks) {
         const Vec3 tangent = (block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2) / block.count;
         for (int i = 0; i < block.count; ++i) {
@@ -258,13 +259,9 @@ void remember(const Model& model, const State& state, double h, ContactSolverScr
             c.tangentImpulse = tangent;
             c.twistImpulse = block.lambdaTwist / block.count;
             c.step = h;
-            s.nextMemory.push_back(c);
+            memory.push_back(c);
         }
     }
-    // Pairs that were not solved because they sleep keep what they had (and tell who
-    // rests on whom when something wakes them).
-    for (const ContactMemory& c : state.contacts)
-        if (idle(c.bodyA) && idle(c.bodyB)) s.nextMemory.push_back(c);
 }
 
 // What sliding friction did to each body's velocity this step: the impulses of the
@@ -336,7 +333,6 @@ void solveContacts(const Model& model, State& state, const State& before,
         s.blocks.clear();
         s.jointRows.clear();
         remember(model, state, cfg.h, s);
-        state.contacts.swap(s.nextMemory);
         return;
     }
     bodiesOf(contacts, s.seen, s.involved);
@@ -360,7 +356,6 @@ void solveContacts(const Model& model, State& state, const State& before,
     // (Not with joints yet: the shock pass holds bodies still that a joint may have to move.)
     if (!s.blocks.empty() && s.jointRows.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed);
     remember(model, state, cfg.h, s);
-    state.contacts.swap(s.nextMemory);
     rememberJoints(model, s, cfg.h, state);
     if (s.points.empty() && s.jointRows.empty()) return;
 

@@ -141,7 +141,6 @@ struct ContactSolverScratch {
         int begin, end;     // the pair's range in State::contacts
     };
     std::vector<MemoryRun> memory;  // sorted by key (a map's nodes were an allocation per pair and step)
-    std::vector<ContactMemory> nextMemory;
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
     std::vector<std::uint8_t> seen;  // bodiesOf's flags
     // The passes' skipping (iterate): per block, the update after which it was quiet (-1: it
