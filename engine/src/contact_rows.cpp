@@ -36,9 +36,9 @@ double normalPoint(ContactSolverScratch& s, Point& p) {
 
 }  // namespace
 
-void preparePoint(const SolverBody& A, const SolverBody& B, Point& p) {
-    p.armA = p.rA.cross(p.n);
-    p.armB = p.rB.cross(p.n);
+void preparePoint(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB, Point& p) {
+    p.armA = rA.cross(p.n);
+    p.armB = rB.cross(p.n);
     // A body that cannot move (invMass 0: static, kinematic, asleep, held by the shock pass)
     // has invI 0 too: its spins are zero without the product.
     p.spinA = A.invMass > 0.0 ? Vec3(A.invI * p.armA) : Vec3::Zero();
@@ -74,8 +74,12 @@ void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch
     // slip of ω g h²/4 (0.02 m/s at 1/60 s). The shift is exactly zero for other shapes.
     Vec3 shiftA = Vec3::Zero(), shiftB = Vec3::Zero();
     for (int i = 0; i < k; ++i) {
-        shiftA += g[i].roundShiftA;
-        shiftB += g[i].roundShiftB;
+        if (!g[i].roundA && !g[i].roundB) continue;
+        // The surface point less the midpoint, as prepare found them (rA less half the
+        // depth along n, less rA; the same for B the other way).
+        const Vec3 rA = g[i].position - A.x, rB = g[i].position - B.x;
+        if (g[i].roundA) shiftA += Vec3(rA - 0.5 * g[i].depth * n) - rA;
+        if (g[i].roundB) shiftB += Vec3(rB + 0.5 * g[i].depth * n) - rB;
     }
     block.rA += shiftA / k;
     block.rB += shiftB / k;

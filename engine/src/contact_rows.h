@@ -10,7 +10,8 @@ namespace tumble {
 
 /// The point's effective mass along n and the angular parts of its row (Point::armA ...),
 /// for the bodies as they stand.
-void preparePoint(const SolverBody& A, const SolverBody& B, ContactSolverScratch::Point& p);
+void preparePoint(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
+                  ContactSolverScratch::Point& p);
 /// The block's K, its least-norm inverse, the friction frame and masses at the centroid, for
 /// the bodies A and B as they stand (a body held still has zero inverse mass).
 void prepareBlock(const SolverBody& A, const SolverBody& B, ContactSolverScratch::Block& block,

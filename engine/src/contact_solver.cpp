@@ -117,20 +117,20 @@ void prepare(const Model& model, const State& state, const State& before,
             p.a = m.bodyA;
             p.b = m.bodyB;
             p.n = m.normal;
-            p.rA = c.position - A.x;
-            p.rB = c.position - B.x;
-            preparePoint(A, B, p);
-            const double vn = p.n.dot(relativeVelocity(A, p.rA, B, p.rB));
-            const double vn0 = p.n.dot(relativeVelocity(s.start[m.bodyA], p.rA, s.start[m.bodyB], p.rB));
+            const Vec3 rA = c.position - A.x, rB = c.position - B.x;
+            preparePoint(A, B, rA, rB, p);
+            const double vn = p.n.dot(relativeVelocity(A, rA, B, rB));
+            const double vn0 = p.n.dot(relativeVelocity(s.start[m.bodyA], rA, s.start[m.bodyB], rB));
             // A's deepest point is half the depth below the midpoint, B's half above.
-            const Vec3 sA = p.rA - 0.5 * c.depth * p.n, sB = p.rB + 0.5 * c.depth * p.n;
+            const Vec3 sA = rA - 0.5 * c.depth * p.n, sB = rB + 0.5 * c.depth * p.n;
             g.localA = RA.transpose() * sA;
             g.localB = RB.transpose() * sB;
             g.localN = RB.transpose() * p.n;
             const double roundA = roundness(ma.collider), roundB = roundness(mb.collider);
             // A round body's friction arm reaches its surface point (see prepareBlock).
-            g.roundShiftA = roundA > 0.0 ? Vec3(sA - p.rA) : Vec3::Zero();
-            g.roundShiftB = roundB > 0.0 ? Vec3(sB - p.rB) : Vec3::Zero();
+            g.depth = c.depth;
+            g.roundA = roundA > 0.0;
+            g.roundB = roundB > 0.0;
             // The gap between those two surface points at the start of the step. The bodies
             // are placed again from there with the solved velocities (redoPoses), so the gap
             // at the end is gap0 + h vn: a gap may close within the step and no more, and an
@@ -183,8 +183,9 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
             tangent += scale * c->tangentImpulse;
             twist += scale * c->twistImpulse;
             const Vec3 J = p.lambdaN * p.n;  // (applyPairImpulse without the energy it would return)
-            applyImpulse(s.bodies[p.a], p.rA, J);
-            applyImpulse(s.bodies[p.b], p.rB, -J);
+            const Vec3& at = s.geometry[block.begin + i].position;
+            applyImpulse(s.bodies[p.a], at - s.bodies[p.a].x, J);
+            applyImpulse(s.bodies[p.b], at - s.bodies[p.b].x, -J);
         }
         block.lambdaT = Eigen::Vector2d(block.t1.dot(tangent), block.t2.dot(tangent));
         block.lambdaTwist = twist;

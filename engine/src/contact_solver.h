@@ -36,7 +36,7 @@ struct ContactSolverScratch {
     /// 1 240-box pyramid went over 13 MB twenty times a step).
     struct Point {
         int a = 0, b = 0;
-        Vec3 rA, rB, n;
+        Vec3 n;  // (the arms r are PointGeometry::position less each body's centre)
         // The angular parts of the normal row, set by preparePoint: rA × n and rB × n (a
         // body's spin changes the normal velocity by ω·(r × n)), and what a unit impulse
         // along n does to each spin, I⁻¹(r × n). The iterations need no matrix product.
@@ -48,9 +48,10 @@ struct ContactSolverScratch {
     /// The rest of point k: for the position passes, the warm start and the memory.
     struct PointGeometry {
         Vec3 localA, localB, localN;  // A's and B's surface points, n in B
-        Vec3 roundShiftA, roundShiftB;  // a round body's surface point less the midpoint (else 0)
         double slop = 0.0, size = 0.0;
+        double depth = 0.0;  // as found: the surface points are half of it either side of `position`
         std::uint32_t feature = 0;
+        bool roundA = false, roundB = false;  // a sphere's or capsule's surface (prepareBlock)
         Vec3 position;
     };
     /// One manifold. Its points are solved together along the normal (K: normal velocity

@@ -105,7 +105,11 @@ void shockPass(ContactSolverScratch& s, int passes, bool converged, double quiet
         for (size_t k = g; k < e; ++k) {
             ContactSolverScratch::Block block = s.blocks[s.order[k]];
             Point* q = &s.points[block.begin];
-            for (int i = 0; i < block.count; ++i) preparePoint(s.bodies[q[i].a], s.bodies[q[i].b], q[i]);
+            for (int i = 0; i < block.count; ++i) {
+                const SolverBody &A = s.bodies[q[i].a], &B = s.bodies[q[i].b];
+                const Vec3& at = s.geometry[block.begin + i].position;
+                preparePoint(A, B, at - A.x, at - B.x, q[i]);
+            }
             prepareBlock(s.bodies[q[0].a], s.bodies[q[0].b], block, s);
             block.subsets = -1;  // its K is new: its sub-inverses are frozenSubsets'
             s.frozen.push_back(block);
