@@ -105,12 +105,14 @@ bool joined(const DetectScratch& s, int a, int b) {
 // The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
 bool samePose(const Pose& x, const Pose& y) { return std::memcmp(&x, &y, sizeof(Pose)) == 0; }
 
-// The pairs of this narrowphase and their manifolds, for the next one; each paired body's pose.
+// The pairs of this narrowphase and their manifolds, for the next one; each paired body's
+// pose. Written over the last ones, which this narrowphase has done reading (a second
+// memory traded with it held every manifold twice).
 void rememberPairs(const Model& model, DetectScratch& s, double margin) {
-    DetectScratch::PairMemory& next = s.nextPairs;
+    DetectScratch::PairMemory& next = s.lastPairs;
     next.keys.clear();
     next.ranges.clear();
-    next.apart.assign(s.apart.begin(), s.apart.end());
+    next.apart.swap(s.apart);  // (findContacts assigns s.apart afresh)
     next.manifolds.assign(s.contacts.begin(), s.contacts.end());
     next.margin = margin;
     if (s.pairedPose.size() != model.bodies.size()) s.pairedPose.assign(model.bodies.size(), Pose{});
@@ -123,7 +125,6 @@ void rememberPairs(const Model& model, DetectScratch& s, double margin) {
         s.pairedPose[a] = s.end[a];
         s.pairedPose[b] = s.end[b];
     }
-    std::swap(s.lastPairs, s.nextPairs);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ struct DetectScratch {
         std::vector<collision::Manifold> manifolds;
         double margin = std::numeric_limits<double>::quiet_NaN();
     };
-    PairMemory lastPairs, nextPairs;
+    PairMemory lastPairs;
     std::vector<Vec3> apart;  // per broadphase pair of this narrowphase: as PairMemory::apart
     std::vector<collision::Pose> pairedPose;  // each body's pose when it was last in a pair
     long reusedPairs = 0;                     // pairs taken from lastPairs, summed
