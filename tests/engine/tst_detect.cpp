@@ -116,11 +116,17 @@ private slots:
             fresh.step(1.0 / 60);
             QCOMPARE(hashHex(hashState(kept.state())), hashHex(hashState(fresh.state())));
         }
-        qInfo("pairs shown apart without GJK: %ld kept, %ld fresh (of %ld pairs)", kept.profile().pairsApart,
-              fresh.profile().pairsApart, kept.profile().pairs);
-        // (The fresh world's come from the second look within a step, after a cut.)
+        qInfo("pairs shown apart without GJK: %ld kept, %ld fresh (of %ld pairs); taken as last found: %ld kept, %ld fresh", kept.profile().pairsApart,
+              fresh.profile().pairsApart, kept.profile().pairs, kept.profile().pairsReused, fresh.profile().pairsReused);
+        // (The fresh world's come from the second look within a step, after a cut.) Rocks
+        // that have come to rest stand still to the bit and their pairs are taken whole as
+        // last found, so the directions serve the rocks still moving: the memory spares GJK
+        // on both kinds, and the directions alone on a quarter more pairs than without it
+        // (1 792 against 1 400 when written; 3 288 against 1 702 counting both kinds).
         QVERIFY(kept.profile().pairsApart > 1000);
-        QVERIFY(kept.profile().pairsApart > fresh.profile().pairsApart + 500);
+        QVERIFY(kept.profile().pairsApart > fresh.profile().pairsApart * 5 / 4);
+        QVERIFY(kept.profile().pairsApart + kept.profile().pairsReused >
+                (fresh.profile().pairsApart + fresh.profile().pairsReused) * 3 / 2);
     }
 
     void staticBodiesNeverPair() {
