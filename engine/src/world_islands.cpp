@@ -74,7 +74,7 @@ void World::unpark(bool unwind) {
         if (!model_.settings.sleeping) state_.asleep.clear();
         s.merged.clear();
         const size_t n = d.contacts.size() + s.parkedContacts.size();
-        if (s.merged.capacity() < n) s.merged.reserve(n + n / 8);  // (not doubled by the inserter)
+        if (s.merged.capacity() < n) s.merged.reserve(n + n / 2);  // (as makeRoom in contact_solver.cpp)
         std::merge(d.contacts.begin(), d.contacts.end(), s.parkedContacts.begin(), s.parkedContacts.end(),
                    std::back_inserter(s.merged), [](const collision::Manifold& a, const collision::Manifold& b) {
                        return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
