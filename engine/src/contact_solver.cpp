@@ -3,6 +3,7 @@
 #include "contact_energy.h"
 #include "contact_rows.h"
 #include "joints.h"
+#include "make_room.h"
 #include "pair_key.h"
 #include "shock_propagation.h"
 
@@ -71,17 +72,6 @@ const ContactMemory* remembered(const State& state, ContactSolverScratch& s, con
 // segment); 0 for shapes whose contact points are points of the body.
 double roundness(const collision::Shape& shape) {
     return shape.kind == collision::Kind::Sphere || shape.kind == collision::Kind::Capsule ? shape.radius : 0.0;
-}
-
-// Room for n in v, and half as much again when it must grow: the solver's lists are kept
-// from solve to solve, and doubling left up to half of each unused (the blocks alone held
-// 360 KB of hull-rain's peak for 240 blocks of 704 bytes). Not less than half: in a scene
-// whose contacts keep growing (a heap filling up), each growth leaves the old list freed
-// behind, and with an eighth more the allocator's holes cost more resident memory than
-// the slack saved (hull-rain 4.97 MB against 4.62-4.68 at a half, 4.73 doubled).
-template <class T>
-void makeRoom(std::vector<T>& v, size_t n) {
-    if (v.capacity() < n) v.reserve(n + n / 2);
 }
 
 void prepare(const Model& model, const State& state, const State& before,

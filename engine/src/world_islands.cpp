@@ -1,5 +1,6 @@
 // World::step's parked islands (the top of world.cpp): the islands without a moment of
 // impact keep their free step while the others are cut.
+#include "make_room.h"
 #include "world_scratch.h"
 
 #include <algorithm>
@@ -73,8 +74,7 @@ void World::unpark(bool unwind) {
         state_.asleep = s.realAsleep;
         if (!model_.settings.sleeping) state_.asleep.clear();
         s.merged.clear();
-        const size_t n = d.contacts.size() + s.parkedContacts.size();
-        if (s.merged.capacity() < n) s.merged.reserve(n + n / 2);  // (as makeRoom in contact_solver.cpp)
+        makeRoom(s.merged, d.contacts.size() + s.parkedContacts.size());
         std::merge(d.contacts.begin(), d.contacts.end(), s.parkedContacts.begin(), s.parkedContacts.end(),
                    std::back_inserter(s.merged), [](const collision::Manifold& a, const collision::Manifold& b) {
                        return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
