@@ -17,6 +17,9 @@ struct Options {
     std::vector<std::string> engines{"tumble", "bullet", "ode", "mujoco"};
     std::filesystem::path out = "bench-out";
     int runs = 3;  ///< timed runs of each accuracy point (the minimum is kept)
+    /// Runs of each speed row, the fastest kept with its own figures (a single run on a
+    /// shared 2-core machine varies by up to 20 %).
+    int speedRuns = 1;
 };
 
 /// Adapters for the engines named in `opt` that were built; prints "not built" for others.

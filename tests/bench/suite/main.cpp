@@ -9,6 +9,7 @@
 //   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
 //   tumble-bench --runs N             timed runs per accuracy point, the minimum kept (3)
+//   tumble-bench --speed-runs N       runs of each speed row, the fastest kept (1)
 //   tumble-bench --list               the scenes and the engines built
 // Exit status: 0, or 1 when a run crashed, threw or left a non-finite state, or Tumble
 // failed a stress test. Timing never decides it.
@@ -99,10 +100,12 @@ int main(int argc, char** argv) {
             opt.out = argv[++i];
         } else if (a == "--runs" && more) {
             opt.runs = std::max(1, std::atoi(argv[++i]));
+        } else if (a == "--speed-runs" && more) {
+            opt.speedRuns = std::max(1, std::atoi(argv[++i]));
         } else {
             std::fprintf(stderr,
                          "usage: tumble-bench [--quick] [--scene NAME] [--engines tumble,bullet,ode,mujoco] "
-                         "[--out DIR] [--runs N] [--list]\n");
+                         "[--out DIR] [--runs N] [--speed-runs N] [--list]\n");
             return 2;
         }
     }

@@ -147,6 +147,71 @@ int childMain(int argc, char** argv) {
     return 1;
 }
 
+namespace {
+
+// One run of a speed row in a child process (a crash is reported, not suffered, and the
+// peak memory is the run's own).
+SpeedRow speedRun(const std::string& self, const std::string& name, const std::string& engineName,
+                  const std::string& mode, bool quick, bool& ok) {
+    SpeedRow row;
+    row.scene = name;
+    row.engine = engineName;
+    row.mode = mode;
+    // A bound on each run: a peer that takes minutes to build a big model is reported, not waited
+    // for.
+    const int limit = quick ? 2 : 120;
+    const std::string cmd = "timeout " + std::to_string(limit) + " '" + self + "' --child speed " + name +
+                            " " + row.engine + " " + row.mode + (quick ? " --quick" : "") + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[1024];
+    while (pipe && std::fgets(buf, sizeof buf, pipe)) out += buf;
+    const int status = pipe ? pclose(pipe) : -1;
+    std::map<std::string, double> kv;
+    const size_t at = out.find("RESULT ");
+    if (at != std::string::npos) {
+        std::istringstream in(out.substr(at + 7));
+        std::string tok;
+        while (in >> tok)
+            if (auto eq = tok.find('='); eq != std::string::npos)
+                kv[tok.substr(0, eq)] = std::atof(tok.c_str() + eq + 1);
+    }
+    if (status != 0 || kv.empty()) {
+        const size_t na = out.find("NA ");
+        if (status == 0 && na != std::string::npos) {
+            row.note = "n/a: " + out.substr(na + 3);
+        } else if (WIFEXITED(status) && WEXITSTATUS(status) == 124) {
+            row.note = "stopped after " + std::to_string(limit) + " s (the time limit of a run)";
+        } else {
+            // A peer that fails is a finding for the tables (ODE's dWorldStep runs out
+            // of memory on pyramid-1240); only Tumble failing fails the benchmark.
+            row.ok = false;
+            if (row.engine == "tumble") ok = false;
+            row.note = "failed (status " + std::to_string(status) + "): " + out.substr(0, 300);
+        }
+        while (!row.note.empty() && row.note.back() == '\n') row.note.pop_back();
+    } else {
+        row.bodies = static_cast<int>(kv["bodies"]);
+        row.steps = static_cast<int>(kv["steps"]);
+        row.msPerStep = kv["ms"];
+        row.msMaxStep = kv["max"];
+        row.contactsPerStep = kv["contacts"];
+        row.peakMB = kv["peak"];
+        row.movingAtEnd = static_cast<int>(kv["moving"]);
+        row.fellThrough = static_cast<int>(kv["fell"]);
+        row.baseMB = kv["base"];
+        if (kv.count("gap")) row.jointGap = kv["gap"];
+        row.forces = kv["forces"], row.integrate = kv["integrate"], row.broadphase = kv["broadphase"];
+        row.narrowphase = kv["narrowphase"], row.toi = kv["toi"], row.impact = kv["impact"];
+        row.solve = kv["solve"], row.sleep = kv["sleep"];
+        row.pairsPerStep = kv["pairs"], row.awakePerStep = kv["awake"];
+        row.cutsPerStep = kv["cuts"], row.parkedPerStep = kv["parked"], row.restartsPerStep = kv["restarts"];
+    }
+    return row;
+}
+
+}  // namespace
+
 bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
     bool ok = true;
     const std::string self = selfPath();
@@ -164,66 +229,24 @@ bool runSpeed(const Options& opt, std::vector<SpeedRow>& rows) {
             runs.emplace_back(engine.get(), first + kEndOfStep + kTwoThreads);
         }
         for (auto& [engine, mode] : runs) {
+            // The fastest of opt.speedRuns runs, with its own figures; a run that failed, was
+            // stopped or does not apply is not repeated.
             SpeedRow row;
-            row.scene = name;
-            row.engine = engine->name();
-            row.mode = mode;
-            // A bound on each run: a peer that takes minutes to build a big model is reported, not waited
-            // for.
-            const int limit = opt.quick ? 2 : 120;
-            const std::string cmd = "timeout " + std::to_string(limit) + " '" + self + "' --child speed " +
-                                    name + " " + row.engine + " " + row.mode + (opt.quick ? " --quick" : "") +
-                                    " 2>&1";
-            FILE* pipe = popen(cmd.c_str(), "r");
-            std::string out;
-            char buf[1024];
-            while (pipe && std::fgets(buf, sizeof buf, pipe)) out += buf;
-            const int status = pipe ? pclose(pipe) : -1;
-            std::map<std::string, double> kv;
-            const size_t at = out.find("RESULT ");
-            if (at != std::string::npos) {
-                std::istringstream in(out.substr(at + 7));
-                std::string tok;
-                while (in >> tok)
-                    if (auto eq = tok.find('='); eq != std::string::npos)
-                        kv[tok.substr(0, eq)] = std::atof(tok.c_str() + eq + 1);
+            for (int k = 0; k < opt.speedRuns; ++k) {
+                SpeedRow one = speedRun(self, name, engine->name(), mode, opt.quick, ok);
+                const bool first = k == 0;
+                const bool faster = one.note.empty() && one.msPerStep < row.msPerStep;
+                if (first || faster || !one.note.empty()) row = one;  // a failure is the finding
+                if (!row.note.empty()) break;
             }
-            if (status != 0 || kv.empty()) {
-                const size_t na = out.find("NA ");
-                if (status == 0 && na != std::string::npos) {
-                    row.note = "n/a: " + out.substr(na + 3);
-                } else if (WIFEXITED(status) && WEXITSTATUS(status) == 124) {
-                    row.note = "stopped after " + std::to_string(limit) + " s (the time limit of a run)";
-                } else {
-                    // A peer that fails is a finding for the tables (ODE's dWorldStep runs out
-                    // of memory on pyramid-1240); only Tumble failing fails the benchmark.
-                    row.ok = false;
-                    if (row.engine == "tumble") ok = false;
-                    row.note = "failed (status " + std::to_string(status) + "): " + out.substr(0, 300);
-                }
-                while (!row.note.empty() && row.note.back() == '\n') row.note.pop_back();
-            } else {
-                row.bodies = static_cast<int>(kv["bodies"]);
-                row.steps = static_cast<int>(kv["steps"]);
-                row.msPerStep = kv["ms"];
-                row.msMaxStep = kv["max"];
-                row.contactsPerStep = kv["contacts"];
-                row.peakMB = kv["peak"];
-                row.movingAtEnd = static_cast<int>(kv["moving"]);
-                row.fellThrough = static_cast<int>(kv["fell"]);
-                row.baseMB = kv["base"];
-                if (kv.count("gap")) row.jointGap = kv["gap"];
-                row.forces = kv["forces"], row.integrate = kv["integrate"], row.broadphase = kv["broadphase"];
-                row.narrowphase = kv["narrowphase"], row.toi = kv["toi"], row.impact = kv["impact"];
-                row.solve = kv["solve"], row.sleep = kv["sleep"];
-                row.pairsPerStep = kv["pairs"], row.awakePerStep = kv["awake"];
-                row.cutsPerStep = kv["cuts"], row.parkedPerStep = kv["parked"], row.restartsPerStep = kv["restarts"];
-            }
-            const std::string gap = row.jointGap >= 0.0 ? "  joint gap " + std::to_string(1e3 * row.jointGap) + " mm" : "";
-            std::printf("  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %4d moving %4d fell%s  %s\n",
-                        name.c_str(), row.engine.c_str(), row.mode.c_str(), row.msPerStep, row.msMaxStep,
-                        row.contactsPerStep, row.peakMB - row.baseMB, row.movingAtEnd, row.fellThrough, gap.c_str(),
-                        row.note.c_str());
+            const std::string gap =
+                row.jointGap >= 0.0 ? "  joint gap " + std::to_string(1e3 * row.jointGap) + " mm" : "";
+            std::printf(
+                "  %-22s %-8s %-12s %9.3f ms/step (max %.2f)  %8.1f contacts  %7.1f MB  %4d moving %4d "
+                "fell%s  %s\n",
+                name.c_str(), row.engine.c_str(), row.mode.c_str(), row.msPerStep, row.msMaxStep,
+                row.contactsPerStep, row.peakMB - row.baseMB, row.movingAtEnd, row.fellThrough, gap.c_str(),
+                row.note.c_str());
             std::fflush(stdout);
             rows.push_back(row);
         }
