@@ -188,10 +188,8 @@ void AabbTree::rebuild() {
     spare_.reserve(2 * scratch_.size() + 64);
     root_ = scratch_.empty() ? kNull : buildRange(0, static_cast<int>(scratch_.size()));
     std::swap(nodes_, spare_);
-    // The old nodes are let go: a second tree's worth of memory held between rebuilds (a
-    // 500-box pile's two trees kept 135 KB of it) against one allocation per rebuild
-    // (hull-rain rebuilds once in three steps).
-    spare_ = std::vector<Node>();
+    spare_.clear();
+    spare_.reserve(nodes_.capacity());  // the next rebuild of as many leaves allocates nothing
     free_ = kNull;
     unlinked_ = 0;
     changes_ = 0;

@@ -91,7 +91,7 @@ private:
     }
 
     std::vector<Node> nodes_;
-    std::vector<Node> spare_;   // rebuild builds here, then swaps, and lets the old nodes go
+    std::vector<Node> spare_;   // rebuild builds here, then swaps; both keep their capacity
     std::vector<int> leafOf_;   // per body: its leaf or kNull
     std::vector<int> scratch_;  // rebuild's list of leaves
     int root_ = kNull;
