@@ -1,6 +1,7 @@
 // Friction in the contact solver against closed forms: a block sliding to a stop, a box
 // on an incline, a ball sliding until it rolls, at the default step and at the steps
-// people use (issue 18). Only the public API is used.
+// people use (issue 18); and rest: a resting body stands still to the bit, a slow slide
+// goes on. Only the public API is used.
 #include "scene_builders.h"
 
 #include <QtTest>
@@ -230,6 +231,51 @@ private slots:
         QVERIFY(std::abs(v - 5 * v0 / 7) < 1e-9 * v0);
         QVERIFY(std::abs(slip) < 1e-9);
         QVERIFY(r - lowest < 1e-9);
+    }
+
+    // Rest is rest: a box set down on the ground, sleeping off, comes to stand still to the
+    // bit (the solver's last passes leave rounding, 1e-15 to 1e-10 m/s, which is set to rest
+    // below 1e-8 of the resting speed 2 g h): after it has settled, a second of steps leaves
+    // its pose exactly as it was, its momenta zero, and the narrowphase takes its pair as
+    // last found at every step.
+    void restingBoxStandsStillToTheBit() {
+        const Vec3 half(0.4, 0.2, 0.3);
+        BodyDesc box = material(boxBody("box", half, 2.0), 0.0, 0.5);
+        box.position = Vec3(0.1, half.y() + 1e-4, -0.2);  // set down from a tenth of a millimetre
+        box.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY()));
+        SceneDesc scene = sceneOf({groundPlane(0.0, 0.5), box});
+        scene.settings.sleeping = false;
+        World w(scene);
+        const double h = 1.0 / 60;
+        stepN(w, 60, h);
+        const BodyState settled = w.state().bodies[1];
+        const long reusedBefore = w.profile().pairsReused;
+        stepN(w, 60, h);
+        const BodyState& now = w.state().bodies[1];
+        QCOMPARE(now.x, settled.x);
+        QCOMPARE(now.q.coeffs(), settled.q.coeffs());
+        QCOMPARE(now.P, Vec3::Zero().eval());
+        QCOMPARE(now.L, Vec3::Zero().eval());
+        QVERIFY2(w.profile().pairsReused - reusedBefore >= 60,
+                 qPrintable(QString::number(w.profile().pairsReused - reusedBefore)));
+    }
+
+    // ... and slow motion is motion: a box sliding on frictionless ground at 1 µm/s (300
+    // times the rest threshold at 1/60 s) keeps sliding at that speed, x = x0 + v t.
+    void slowSlideIsNotStopped() {
+        const Vec3 half(0.5, 0.25, 0.5);
+        const double v0 = 1e-6;
+        BodyDesc box = material(boxBody("block", half, 1.0), 0.0, 0.0);
+        box.position = Vec3(0, half.y(), 0);
+        box.velocity = Vec3(v0, 0, 0);
+        SceneDesc scene = sceneOf({groundPlane(0.0, 0.0), box});
+        scene.settings.sleeping = false;
+        World w(scene);
+        stepN(w, 120, 1.0 / 60);
+        const double x = w.state().bodies[1].x.x(), t = w.state().time;
+        qInfo("after %.3g s: x = %.6g m (v0 t = %.6g), v = %.6g m/s", t, x, v0 * t, velocityOf(w, 1).x());
+        QVERIFY(std::abs(x - v0 * t) < 1e-3 * v0 * t);
+        QVERIFY(std::abs(velocityOf(w, 1).x() - v0) < 1e-3 * v0);
     }
 };
 
