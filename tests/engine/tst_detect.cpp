@@ -121,10 +121,12 @@ private slots:
         // (The fresh world's come from the second look within a step, after a cut.) Rocks
         // that have come to rest stand still to the bit and their pairs are taken whole as
         // last found, so the directions serve the rocks still moving: the memory spares GJK
-        // on both kinds, and the directions alone on a quarter more pairs than without it
-        // (1 792 against 1 400 when written; 3 288 against 1 702 counting both kinds).
+        // on both kinds, and the directions alone on a fifth more pairs than without it
+        // (1 761 against 1 416; 3 447 against 1 718 counting both kinds. Before the position
+        // passes left rounding alone, fewer rocks stood still: 1 792 against 1 400, 3 288
+        // against 1 702).
         QVERIFY(kept.profile().pairsApart > 1000);
-        QVERIFY(kept.profile().pairsApart > fresh.profile().pairsApart * 5 / 4);
+        QVERIFY(kept.profile().pairsApart > fresh.profile().pairsApart * 6 / 5);
         QVERIFY(kept.profile().pairsApart + kept.profile().pairsReused >
                 (fresh.profile().pairsApart + fresh.profile().pairsReused) * 3 / 2);
     }
