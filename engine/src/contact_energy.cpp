@@ -19,14 +19,13 @@ constexpr double kFreeOverlap = 10.0;   // × the slop: deeper overlap is remove
 // nudges moved rocks by 1e-14 of the slop, and kept them from standing still to the bit).
 constexpr double kSettled = 1e-3;
 
-// Kinetic energy of body i moving as b, its spin taken in the axes of its orientation q.
-double kinetic(const BodyModel& body, const Quat& q, const SolverBody& b) {
+}  // namespace
+
+double kineticOf(const BodyModel& body, const Quat& q, const SolverBody& b) {
     // Three equal moments (a ball, a cube): the same in every frame, no turn needed.
     const Vec3 w = body.sphericalInertia ? b.w : Vec3(q.conjugate() * b.w);
     return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
 }
-
-}  // namespace
 
 void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J) {
     s.x += b.invMass * J;
@@ -68,6 +67,10 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
             const double depth = n.dot(sB - sA);
             const double slop = slopFactor * g.slop;
             const double excess = depth - slop - kSettled * g.slop;
+            // Overlap beyond one slop waits on the energy budget (correctOverlap), which all
+            // islands share: its bodies are not at a fixed point of their own.
+            if (pass == 0 && s.memoryChanged && depth - (1.0 + kSettled) * g.slop > 0.0)
+                (*s.memoryChanged)[p.a] = (*s.memoryChanged)[p.b] = 1;
             worst = std::max(worst, excess);
             if (excess <= 0.0) {
                 s.settledAt[i] = nudges;
@@ -105,7 +108,7 @@ double solvedKinetic(const Model& model, const State& state, const ContactSolver
                      const std::vector<SolverBody>& bodies) {
     double e = 0.0;
     for (int i : s.involved)
-        if (bodies[i].invMass > 0.0) e += kinetic(model.bodies[i], state.bodies[i].q, bodies[i]);
+        if (bodies[i].invMass > 0.0) e += kineticOf(model.bodies[i], state.bodies[i].q, bodies[i]);
     return e;
 }
 
@@ -123,7 +126,16 @@ double gravityPotential(const Model& model, const State& state, const std::vecto
 // bodies of a contact this is exact, row by row, and the rows add up to the change of
 // kinetic energy; the normal rows take the rest (the last passes, which hold the lower
 // bodies still, included).
-double frictionLost(const ContactSolverScratch& s) {
+//
+// With still islands followed (s.memoryChanged), each block's loss is also kept with one of
+// its bodies (frictionShare), and a still body's kept losses are added for its blocks,
+// which are not solved: the same total as solving them, up to the order of the sum.
+double frictionLost(ContactSolverScratch& s) {
+    const bool keep = s.memoryChanged != nullptr;
+    auto still = [&](int i) { return s.still && (*s.still)[i]; };
+    if (keep)
+        for (int i : s.involved)
+            if (!still(i)) s.frictionShare[i] = 0.0;
     double lost = 0.0;
     for (const auto& block : s.blocks) {
         const Point& p = s.points[block.begin];
@@ -131,8 +143,13 @@ double frictionLost(const ContactSolverScratch& s) {
         const Vec3 u =
             relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
         const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;
-        lost -= 0.5 * J.dot(u) + 0.5 * block.lambdaTwist * p.n.dot(A0.w - B0.w + A.w - B.w);
+        const double l = -(0.5 * J.dot(u) + 0.5 * block.lambdaTwist * p.n.dot(A0.w - B0.w + A.w - B.w));
+        lost += l;
+        if (keep) s.frictionShare[A.invMass > 0.0 ? p.a : p.b] += l;
     }
+    if (s.still)
+        for (int i : s.involved)
+            if (still(i)) lost += s.frictionShare[i];
     return lost;
 }
 
@@ -156,9 +173,9 @@ EnergyBalance energyBalance(const Model& model, const State& state, const State&
     for (int i : s.moving) {
         const BodyModel& body = model.bodies[i];
         const Quat& q = state.bodies[i].q;
-        e.kineticIn += kinetic(body, q, s.entry[i]);
-        e.kineticStart += kinetic(body, before.bodies[i].q, s.start[i]);
-        e.kineticOut += kinetic(body, q, s.bodies[i]);
+        e.kineticIn += kineticOf(body, q, s.entry[i]);
+        e.kineticStart += kineticOf(body, before.bodies[i].q, s.start[i]);
+        e.kineticOut += kineticOf(body, q, s.bodies[i]);
         e.potentialIn -= body.mass * g.dot(state.bodies[i].x);
         e.potentialStart -= body.mass * g.dot(before.bodies[i].x);
         e.potentialRate -= body.mass * g.dot(h * s.bodies[i].v);

@@ -27,8 +27,10 @@ struct EnergyBalance {
 /// the inverse mass and world inverse inertia of b (the position passes, joint projection).
 void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J);
 
+/// Kinetic energy of a body moving as b, its spin taken in the axes of its orientation q.
+double kineticOf(const BodyModel& body, const Quat& q, const SolverBody& b);
 /// What friction took this step (exact per row; see the definition).
-double frictionLost(const ContactSolverScratch& s);
+double frictionLost(ContactSolverScratch& s);
 /// The kinetic energy of the solve's moving bodies (s.involved, inverse mass above zero)
 /// moving as `bodies` (s.bodies, or s.entry: what the solver was given).
 double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,

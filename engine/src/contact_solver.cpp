@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace tumble {
 
@@ -21,6 +22,16 @@ constexpr double kSlop = 0.005;  // overlap left alone, × the smaller body's si
 constexpr double kMatch = 0.1;   // a remembered point is the same within this × size
 constexpr int kShockPasses = 4;  // passes per level of the last sweep (shock_propagation.cpp)
 constexpr double kStillSpeed = 1e-8;  // × the resting speed: slower is the passes' rounding (stopRoundingMotion)
+
+// A body whose contacts this solve takes as last solved (still_islands.h).
+bool isStill(const ContactSolverScratch& s, int i) {
+    return s.still && (*s.still)[i];
+}
+
+template <class T>
+bool sameBits(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
 
 void indexMemory(const State& state, ContactSolverScratch& s) {
     s.memory.clear();
@@ -87,10 +98,22 @@ void prepare(const Model& model, const State& state, const State& before,
     makeRoom(s.geometry, points);
     makeRoom(s.blocks, contacts.size());
     loadSolverBodies(model, before, s.start, s.involved);
+    s.stillMoving.clear();
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
         SolverBody& B = s.bodies[m.bodyB];
         if (A.invMass == 0.0 && B.invMass == 0.0) continue;  // nothing here can move
+        if (isStill(s, m.bodyA) || isStill(s, m.bodyB)) {
+            // Taken as last solved. Its bodies are among those the solve moves, as they
+            // would be with a point to solve (s.moving: the energy balance's sums).
+            for (int i = 0; i < m.count; ++i) {
+                if (m.points[i].depth < -cfg.margin) continue;
+                for (int b : {m.bodyA, m.bodyB})
+                    if (s.bodies[b].invMass > 0.0) s.stillMoving.push_back(b);
+                break;
+            }
+            continue;
+        }
         const BodyModel& ma = model.bodies[m.bodyA];
         const BodyModel& mb = model.bodies[m.bodyB];
         const double e = std::max(ma.restitution, mb.restitution);
@@ -167,11 +190,21 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
     for (auto& block : s.blocks) {
         Vec3 tangent = Vec3::Zero();
         double twist = 0.0;
+        block.warmWhole = true;
         for (int i = 0; i < block.count; ++i) {
             Point& p = s.points[block.begin + i];
             const ContactMemory* c = remembered(state, s, p, s.geometry[block.begin + i]);
-            if (!c) continue;
+            ContactSolverScratch::PointGeometry& g = s.geometry[block.begin + i];
+            g.memory = c ? static_cast<int>(c - state.contacts.data()) : -1;
+            if (!c) {
+                block.warmWhole = false;
+                continue;
+            }
             const double scale = warmScale(h, c->step, growth);
+            block.warmWhole = block.warmWhole && scale == 1.0;
+            g.warmNormal = c->normalImpulse;
+            g.warmTangent = c->tangentImpulse;
+            g.warmTwist = c->twistImpulse;
             grew = grew || scale > 1.0;
             p.lambdaN = scale * c->normalImpulse;
             tangent += scale * c->tangentImpulse;
@@ -183,6 +216,8 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
         }
         block.lambdaT = Eigen::Vector2d(block.t1.dot(tangent), block.t2.dot(tangent));
         block.lambdaTwist = twist;
+        block.warmT = block.lambdaT;
+        block.warmTwist = twist;
         applyFriction(s, block, block.lambdaT, twist);
     }
     return grew;
@@ -212,6 +247,19 @@ bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     return changed;
 }
 
+// solvedKinetic(s.bodies) right after the warm start, each solved body's term kept and
+// each still body's taken as kept (its warm start is not made, and would give the same).
+double kineticAfterWarmStart(const Model& model, const State& state, ContactSolverScratch& s) {
+    if (!s.memoryChanged) return solvedKinetic(model, state, s, s.bodies);
+    double e = 0.0;
+    for (int i : s.involved) {
+        if (!(s.bodies[i].invMass > 0.0)) continue;
+        if (!isStill(s, i)) s.warmKinetic[i] = kineticOf(model.bodies[i], state.bodies[i].q, s.bodies[i]);
+        e += s.warmKinetic[i];
+    }
+    return e;
+}
+
 // The warm start of the contacts and joints. Remembered impulses are scaled to this step's
 // length, up to kWarmGrowth times after a shorter solve (the last part of a step after a
 // cut, a short step to land on a frame). What such a short solve did was not all weight
@@ -224,10 +272,91 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
     constexpr double kWarmGrowth = 100.0;
     const bool contactsGrew = warmStart(state, h, kWarmGrowth, s);
     const bool grew = prepareJoints(model, state, h, s, false, nullptr, kWarmGrowth) || contactsGrew;
-    if (!grew || !(solvedKinetic(model, state, s, s.bodies) > 1.1 * solvedKinetic(model, state, s, s.entry))) return;
-    for (int i : s.involved) s.bodies[i] = s.entry[i];
-    warmStart(state, h, 1.0, s);  // (sets again every remembered point's impulse)
-    prepareJoints(model, state, h, s);
+    // (Kept for every body whenever the still islands are followed, grown or not: a body
+    // still next step takes its term from here.)
+    const bool keep = s.memoryChanged != nullptr;
+    const double after = grew || keep ? kineticAfterWarmStart(model, state, s) : 0.0;
+    if (grew && after > 1.1 * solvedKinetic(model, state, s, s.entry)) {
+        for (int i : s.involved) s.bodies[i] = s.entry[i];
+        warmStart(state, h, 1.0, s);  // (sets again every remembered point's impulse)
+        prepareJoints(model, state, h, s);
+    }
+    // The still bodies end the solve at rest, as they started it (still_islands.h).
+    if (s.still)
+        for (int i : s.involved)
+            if (isStill(s, i)) s.bodies[i].v.setZero(), s.bodies[i].w.setZero();
+}
+
+// Whether a block is remembered as it was: its points all started from remembered points,
+// unscaled, its bodies end the solve at rest (stopRoundingMotion) and its impulses moved
+// by no more than the passes' quiet tolerance (`quietSpeed` times its normal mass). The
+// passes' last updates move a resting block's impulses by rounding, differently every
+// step: remembered as they came out, a pile at rest would never come to a fixed point
+// (hull-rain: the impulses of nine resting points in ten differed in their last bits from
+// step to step while their rocks stood still to the bit; still_islands.h). Friction is
+// remembered as each point's share of its block's, which the warm start adds up again:
+// made again from the sum, the shares would differ by rounding too.
+bool keepsMemory(const ContactSolverScratch& s, const ContactSolverScratch::Block& block, double quietSpeed) {
+    if (!block.warmWhole) return false;
+    const Point& p = s.points[block.begin];
+    for (int b : {p.a, p.b}) {
+        const SolverBody& body = s.bodies[b];
+        if (body.invMass > 0.0 && !(body.v.isZero(0.0) && body.w.isZero(0.0))) return false;
+    }
+    const double tol = quietSpeed * p.kn;
+    for (int i = 0; i < block.count; ++i)
+        if (!(std::abs(s.points[block.begin + i].lambdaN - s.geometry[block.begin + i].warmNormal) <= tol)) return false;
+    return (block.lambdaT - block.warmT).cwiseAbs().maxCoeff() <= tol &&
+           std::abs(block.lambdaTwist - block.warmTwist) <= tol * block.radius;
+}
+
+// The memory of the block's point i after a solve over h (`kept`: keepsMemory).
+ContactMemory memoryOf(const ContactSolverScratch& s, const ContactSolverScratch::Block& block, int i, double h,
+                       bool kept) {
+    const Point& p = s.points[block.begin + i];
+    const ContactSolverScratch::PointGeometry& g = s.geometry[block.begin + i];
+    ContactMemory c;
+    c.bodyA = p.a;
+    c.bodyB = p.b;
+    c.feature = g.feature;
+    c.position = g.position;
+    if (kept) {
+        c.normalImpulse = g.warmNormal;
+        c.tangentImpulse = g.warmTangent;
+        c.twistImpulse = g.warmTwist;
+    } else {
+        c.normalImpulse = p.lambdaN;
+        c.tangentImpulse = (block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2) / block.count;
+        c.twistImpulse = block.lambdaTwist / block.count;
+    }
+    c.step = h;
+    return c;
+}
+
+// What remember() is about to write, against what the points started from (remember).
+template <class Idle>
+void markChangedMemory(const State& state, double h, double quietSpeed, ContactSolverScratch& s, bool warmStarted,
+                       const Idle& idle) {
+    std::vector<std::uint8_t>& changed = *s.memoryChanged;
+    const std::vector<ContactMemory>& memory = state.contacts;
+    for (size_t k = 0; k < memory.size(); ++k) {
+        const ContactMemory& c = memory[k];
+        if (idle(c.bodyA) && idle(c.bodyB)) continue;  // kept as it is
+        if (!warmStarted || k >= s.used.size() || !s.used[k]) changed[c.bodyA] = changed[c.bodyB] = 1;
+    }
+    for (const auto& block : s.blocks) {
+        const bool kept = keepsMemory(s, block, quietSpeed);
+        for (int i = 0; i < block.count; ++i) {
+            const ContactMemory m = memoryOf(s, block, i, h, kept);
+            const int k = s.geometry[block.begin + i].memory;
+            const ContactMemory* c = k >= 0 ? &memory[k] : nullptr;
+            const bool same = c && c->feature == m.feature && sameBits(c->position, m.position) &&
+                              sameBits(c->normalImpulse, m.normalImpulse) &&
+                              sameBits(c->tangentImpulse, m.tangentImpulse) &&
+                              sameBits(c->twistImpulse, m.twistImpulse) && sameBits(c->step, h);
+            if (!same) changed[m.bodyA] = changed[m.bodyB] = 1;
+        }
+    }
 }
 
 // State::contacts made the memory of this solve, in place: the pairs not solved because
@@ -235,27 +364,20 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
 // something wakes them), the solved points are added after them. (A second list traded
 // with this one every solve held as much again: a third of a megabyte of hull-rain's
 // peak, with its ~1 100 points of sleeping rocks.)
-void remember(const Model& model, State& state, double h, ContactSolverScratch& s) {
-    auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill(); };
+//
+// With s.memoryChanged, the bodies of every point whose memory is not the one it started
+// from, bit for bit, and of every remembered point of a solved pair that no point took
+// (`warmStarted`: the points' sources are known), are marked there.
+void remember(const Model& model, State& state, double h, double quietSpeed, ContactSolverScratch& s,
+              bool warmStarted) {
+    auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill() || isStill(s, b); };
     std::vector<ContactMemory>& memory = state.contacts;
+    if (s.memoryChanged) markChangedMemory(state, h, quietSpeed, s, warmStarted, idle);
     std::erase_if(memory, [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); });
     makeRoom(memory, memory.size() + s.points.size());
     for (const auto& block : s.blocks) {
-        const Vec3 tangent = (block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2) / block.count;
-        for (int i = 0; i < block.count; ++i) {
-            const Point& p = s.points[block.begin + i];
-            const ContactSolverScratch::PointGeometry& g = s.geometry[block.begin + i];
-            ContactMemory c;
-            c.bodyA = p.a;
-            c.bodyB = p.b;
-            c.feature = g.feature;
-            c.position = g.position;
-            c.normalImpulse = p.lambdaN;
-            c.tangentImpulse = tangent;
-            c.twistImpulse = block.lambdaTwist / block.count;
-            c.step = h;
-            memory.push_back(c);
-        }
+        const bool kept = keepsMemory(s, block, quietSpeed);
+        for (int i = 0; i < block.count; ++i) memory.push_back(memoryOf(s, block, i, h, kept));
     }
 }
 
@@ -309,6 +431,10 @@ void redoPoses(const Model& model, State& state, const State& before, double sli
     const double h = state.time - before.time;
     slidingFriction(sliding, s);
     for (int i : s.involved) {
+        if (isStill(s, i)) {  // ends where it started, as the solve would place it (still_islands.h)
+            state.bodies[i] = before.bodies[i];
+            continue;
+        }
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
         if (!model.jointed.empty() && model.jointed[i]) continue;  // placed by the joints' projection
         BodyState& b = state.bodies[i];
@@ -345,12 +471,15 @@ void solveContacts(const Model& model, State& state, const State& before,
         s.geometry.clear();
         s.blocks.clear();
         s.jointRows.clear();
-        remember(model, state, cfg.h, s);
+        remember(model, state, cfg.h, cfg.quietSpeed, s, false);
         return;
     }
     bodiesOf(contacts, s.seen, s.involved);
     addJointBodies(model, state, s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
+    s.stillBodies = s.still ? static_cast<int>(std::count_if(s.involved.begin(), s.involved.end(),
+                                                             [&](int i) { return isStill(s, i); }))
+                            : 0;
     // The jointed bodies' free step put them off their joints: placed back now, with the
     // velocity that move implies; the velocity rows below then act at the joints' new
     // places (RATTLE's two halves), and these bodies keep these poses (redoPoses).
@@ -369,9 +498,9 @@ void solveContacts(const Model& model, State& state, const State& before,
     // (Not with joints yet: the shock pass holds bodies still that a joint may have to move.)
     if (!s.blocks.empty() && s.jointRows.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed);
     stopRoundingMotion(sizes, kStillSpeed * cfg.restingSpeed, s);
-    remember(model, state, cfg.h, s);
+    remember(model, state, cfg.h, cfg.quietSpeed, s, true);
     rememberJoints(model, s, cfg.h, state);
-    if (s.points.empty() && s.jointRows.empty()) return;
+    if (s.points.empty() && s.jointRows.empty() && s.stillMoving.empty()) return;
 
     // The bodies of the solved points and joints: the solver may have moved them, and the
     // position passes may.
@@ -382,6 +511,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     for (const ContactSolverScratch::JointRow& r : s.jointRows)
         for (int i : {r.a, r.b})
             if (i >= 0 && s.bodies[i].invMass > 0.0) s.moving.push_back(i);
+    s.moving.insert(s.moving.end(), s.stillMoving.begin(), s.stillMoving.end());
     uniqueBodies(s.moving, s.seen);
     const double frictionLoss = frictionLost(s);
     EnergyBalance e = energyBalance(model, state, before, s);
@@ -413,6 +543,8 @@ void solveContacts(const Model& model, State& state, const State& before,
 void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
     const size_t n = model.bodies.size();
     for (auto* v : {&s.bodies, &s.start, &s.entry}) sizeSolverBodies(model, *v);
+    s.warmKinetic.assign(n, 0.0);
+    s.frictionShare.assign(n, 0.0);
     s.slide.assign(n, Vec3::Zero());
     s.bodySpin.assign(n, Vec3::Zero());
     s.rotation.assign(n, Mat3::Identity());

@@ -52,6 +52,11 @@ struct ContactSolverScratch {
         double depth = 0.0;  // as found: the surface points are half of it either side of `position`
         std::uint32_t feature = 0;
         bool roundA = false, roundB = false;  // a sphere's or capsule's surface (prepareBlock)
+        int memory = -1;  // the remembered point its warm start took (index in State::contacts), or -1
+        // That point's impulses, when it was taken unscaled (remember).
+        double warmNormal = 0.0;
+        Vec3 warmTangent = Vec3::Zero();
+        double warmTwist = 0.0;
         Vec3 position;
     };
     /// One manifold. Its points are solved together along the normal (K: normal velocity
@@ -73,6 +78,11 @@ struct ContactSolverScratch {
         double twistMass = 0.0, radius = 0.0;
         Eigen::Vector2d lambdaT = Eigen::Vector2d::Zero();
         double lambdaTwist = 0.0;
+        // The friction impulses the warm start gave: a block at rest that ends with about
+        // them is remembered as it was (remember).
+        Eigen::Vector2d warmT = Eigen::Vector2d::Zero();
+        double warmTwist = 0.0;
+        bool warmWhole = false;  // every point started from a remembered point, unscaled
         int subsets = -1;  ///< its entry in the pool of sub-inverses once it needs one (-1: none yet)
     };
     /// A joint's rows in this solve (joints.cpp): a ball's three, through the 3 × 3 inverse
@@ -150,6 +160,19 @@ struct ContactSolverScratch {
     std::vector<long> changedAt;
     long tick = 0;
     std::vector<Vec3> slide;         // per body: the velocity change of sliding friction (redoPoses)
+    // Islands at their fixed point (still_islands.h): per body, 1 for the bodies whose
+    // contacts are taken as last solved (null: none); set by World around one solve.
+    const std::vector<std::uint8_t>* still = nullptr;
+    std::vector<int> stillMoving;  // the still bodies the solve would have moved (s.moving's share)
+    int stillBodies = 0;           // of the last solve's bodies, how many were still
+    // Per body, what a still body adds to the sums over all bodies, as its last solve found
+    // it: its kinetic energy after the warm start, the friction losses of its blocks.
+    std::vector<double> warmKinetic;
+    std::vector<double> frictionShare;
+    // Per body (World's StillScratch::changed): set when a remembered impulse of its
+    // contacts changed or went (remember), or one of its points overlaps by more than the
+    // slop after the solve (correctPositions); null: not kept.
+    std::vector<std::uint8_t>* memoryChanged = nullptr;
 };
 
 struct ContactSolverSettings {

@@ -11,6 +11,7 @@
 #include "integrate.h"
 #include "islands.h"
 #include "sleep.h"
+#include "still_islands.h"
 #include "stage_clock.h"
 #include "workers.h"
 
@@ -27,6 +28,7 @@ struct World::Scratch {
     ImpactScratch impact;
     ContactSolverScratch solver;
     SleepScratch sleep;
+    StillScratch still;
     EnergyGuard energy;
     // The motion at the start of the (sub-)step: time, bodies, rest times and sleep flags
     // (copyMotion). Its contact memory and touching pairs are not kept: nothing from the
@@ -41,6 +43,7 @@ struct World::Scratch {
     bool contacts = false;  // needsContacts(model): can two bodies ever touch (the model never changes)
     double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
     double margin = 0.0;   // contact points are found this far apart (contactMargin)
+    double stepStart0 = 0.0, stepLength = 0.0;  // the step being taken: its start time, its h
     std::vector<collision::Manifold> restingContacts;  // at a cut, all but the impacting pairs'
     // Parked islands (see the top of this file); parkedCount == 0: none this step.
     IslandScratch islands;

@@ -33,6 +33,7 @@ struct Profile {
     long awakeBodySteps = 0; ///< dynamic bodies integrated, summed over steps (sleeping ones are not)
     long parkedBodySteps = 0;   ///< bodies of islands without an impact kept out of the cuts, summed
     long islandRestarts = 0;    ///< steps taken again with every body cut (a cut body met a parked one)
+    long stillBodySteps = 0;    ///< bodies whose contacts were taken as last solved (at their fixed point), summed
 };
 
 /// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no
@@ -74,6 +75,12 @@ public:
     /// same bit for bit for any number. n < 1 throws std::invalid_argument.
     void setThreads(int n);
     int threads() const;
+
+    /// Islands that the last step left exactly as it found them, at rest, are not solved
+    /// again while nothing reaches them: their answer is known (still_islands.h). On by
+    /// default; off, every island is solved every step, with the same state bit for bit
+    /// (for checking that).
+    void skipStillIslands(bool on);
 
     /// The contact manifolds at the end of the last step (bodyA < bodyB).
     const std::vector<collision::Manifold>& contacts() const;

@@ -1,7 +1,9 @@
 // Tumble's adapter: the scene as it is, the mode is the integrator's name, one World::step
 // per step. A mode may carry options (adapter_tumble.h): "+end-of-step", impacts resolved at
 // the end of the step (settings.impacts), as the speed part runs the contact scenes a second
-// time; "+2-threads", the same on two threads (World::setThreads), the third time.
+// time; "+2-threads", the same on two threads (World::setThreads), the third time;
+// "+solve-all", every island solved every step (World::skipStillIslands(false)), to measure
+// what taking the still islands' answer as known saves.
 #include "adapter_tumble.h"
 
 #include <tumble/errors.h>
@@ -34,10 +36,13 @@ bool TumbleAdapter::load(const SceneDesc& scene, const std::string& mode, double
     settings.dt = dt;
     settings.integrator = parts[0];
     int threads = 1;
+    bool solveAll = false;
     for (size_t k = 1; k < parts.size(); ++k) {
         const std::string& p = parts[k];
         if ("+" + p == kEndOfStep) {
             settings.impacts = ImpactTiming::EndOfStep;
+        } else if (p == "solve-all") {
+            solveAll = true;
         } else if (p.ends_with("-threads") && std::isdigit(static_cast<unsigned char>(p[0]))) {
             threads = std::stoi(p);
         } else {
@@ -57,6 +62,7 @@ bool TumbleAdapter::load(const SceneDesc& scene, const std::string& mode, double
         State state = initialState(model, scene);
         world_.emplace(std::move(model), std::move(state));
         world_->setThreads(threads);
+        if (solveAll) world_->skipStillIslands(false);
     } catch (const std::exception& e) {
         if (why) *why = e.what();
         return false;

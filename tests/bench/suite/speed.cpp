@@ -134,11 +134,12 @@ int childMain(int argc, char** argv) {
             const double k = 1e3 / steps;
             std::printf(
                 " forces=%.6g integrate=%.6g broadphase=%.6g narrowphase=%.6g toi=%.6g impact=%.6g "
-                "solve=%.6g sleep=%.6g pairs=%.6g reused=%.6g apart=%.6g awake=%.6g cuts=%.6g parked=%.6g restarts=%.6g",
+                "solve=%.6g sleep=%.6g pairs=%.6g reused=%.6g apart=%.6g awake=%.6g cuts=%.6g parked=%.6g restarts=%.6g "
+                "still=%.6g",
                 p.forces * k, p.integrate * k, p.broadphase * k, p.narrowphase * k, p.timeOfImpact * k,
                 p.impactSolve * k, p.solve * k, p.sleep * k, double(p.pairs) / steps, double(p.pairsReused) / steps,
                 double(p.pairsApart) / steps, double(p.awakeBodySteps) / steps, double(p.impactMoments) / steps,
-                double(p.parkedBodySteps) / steps, double(p.islandRestarts) / steps);
+                double(p.parkedBodySteps) / steps, double(p.islandRestarts) / steps, double(p.stillBodySteps) / steps);
         }
         std::printf("\n");
         return 0;

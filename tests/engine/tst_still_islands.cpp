@@ -1,0 +1,216 @@
+// Islands at their fixed point (engine/src/still_islands.h): a world that takes the still
+// islands' answer as known must agree bit for bit with one that solves every island every
+// step (World::skipStillIslands(false)), in piles that come to rest, are hit again, rest
+// on a slope under friction, are pushed by a force that starts late, change step length
+// or sleep; and it must actually skip (the profile's count), or the comparison proves
+// nothing.
+#include "scene_builders.h"
+#include "test_random.h"
+
+#include <QtTest>
+
+#include <algorithm>
+#include <cstring>
+#include <tuple>
+
+using namespace tumble;
+using namespace tumble::test;
+
+namespace {
+
+// Octahedral rocks (jittered, as hulls) in a heap over the ground.
+std::vector<BodyDesc> rockHeap(int n, std::uint64_t seed) {
+    std::vector<BodyDesc> bodies{groundPlane(0.2, 0.6)};
+    Rng rng{seed};
+    for (int i = 0; i < n; ++i) {
+        BodyDesc rock;
+        rock.name = "rock" + std::to_string(i);
+        rock.shape.type = ShapeType::Mesh;
+        rock.shape.file = "rock (built by the test)";
+        auto mesh = std::make_shared<TriangleMesh>();
+        mesh->vertices = {{rng.uniform(0.2, 0.3), 0, 0}, {-rng.uniform(0.2, 0.3), 0, 0}, {0, rng.uniform(0.2, 0.3), 0},
+                          {0, -rng.uniform(0.2, 0.3), 0}, {0, 0, rng.uniform(0.2, 0.3)}, {0, 0, -rng.uniform(0.2, 0.3)}};
+        mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+        rock.shape.meshData = mesh;
+        rock.mass = rng.uniform(0.5, 2.0);
+        rock.position = Vec3(0.7 * (i % 4) - 1.0, 0.4 + 0.5 * (i / 4), 0.7 * ((i / 2) % 2) + 0.1 * (i % 3));
+        bodies.push_back(rock);
+    }
+    return bodies;
+}
+
+// The remembered contact impulses as a sorted list: the same set in any order.
+std::vector<std::tuple<int, int, std::uint32_t, double, double>> memoryOf(const State& s) {
+    std::vector<std::tuple<int, int, std::uint32_t, double, double>> out;
+    for (const ContactMemory& c : s.contacts)
+        out.emplace_back(c.bodyA, c.bodyB, c.feature, c.normalImpulse, c.tangentImpulse.norm());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+struct Run {
+    World skipping, solving;
+    explicit Run(const SceneDesc& scene) : skipping(scene), solving(scene) { solving.skipStillIslands(false); }
+    // Steps both; false (with a message) at the first step their states differ.
+    bool step(double h, int n) {
+        for (int k = 0; k < n; ++k) {
+            skipping.step(h);
+            solving.step(h);
+            if (hashState(skipping.state()) != hashState(solving.state())) {
+                qWarning("states differ after the step to t = %.6f", skipping.state().time);
+                return false;
+            }
+        }
+        return true;
+    }
+    long bodySteps() const { return skipping.profile().awakeBodySteps; }
+    long skipped() const { return skipping.profile().stillBodySteps; }
+};
+
+void compareEnds(const Run& r) {
+    QCOMPARE(r.solving.profile().stillBodySteps, 0L);
+    QVERIFY(memoryOf(r.skipping.state()) == memoryOf(r.solving.state()));
+    // The ledger books the skipped blocks' friction as last computed: the same, summed in
+    // another order.
+    const EnergyLedger &a = r.skipping.ledger(), &b = r.solving.ledger();
+    const double scale = std::abs(b.lostInContacts) + std::abs(b.lostInFriction) + 1.0;
+    QVERIFY(std::abs(a.lostInContacts - b.lostInContacts) <= 1e-12 * scale);
+    QVERIFY(std::abs(a.lostInFriction - b.lostInFriction) <= 1e-12 * scale);
+    QVERIFY(std::abs(a.positionCorrection - b.positionCorrection) <= 1e-12 * scale);
+}
+
+}  // namespace
+
+class TestStillIslands : public QObject {
+    Q_OBJECT
+
+private slots:
+    void restingHeapIsSkippedAndUnchanged_data() {
+        QTest::addColumn<double>("h");
+        QTest::addColumn<int>("rocks");
+        QTest::addColumn<int>("seed");
+        QTest::newRow("16 rocks, 1/60 s") << 1.0 / 60 << 16 << 31;
+        QTest::newRow("16 rocks, 1/30 s") << 1.0 / 30 << 16 << 31;
+        QTest::newRow("16 rocks, 1/240 s") << 1.0 / 240 << 16 << 5;
+        QTest::newRow("32 rocks, 1/60 s") << 1.0 / 60 << 32 << 99;
+    }
+    void restingHeapIsSkippedAndUnchanged() {
+        // Rocks fall in a heap and settle; a ball dropped from 20 m hits the heap at about
+        // 2 s and sets it moving again; it settles again.
+        QFETCH(double, h);
+        QFETCH(int, rocks);
+        QFETCH(int, seed);
+        std::vector<BodyDesc> bodies = rockHeap(rocks, static_cast<std::uint64_t>(seed));
+        BodyDesc ball = sphereBody("ball", 0.3, 5.0);
+        ball.position = Vec3(-0.3, 21.0, 0.4);
+        bodies.push_back(ball);
+        SceneDesc scene = sceneOf(bodies);
+        scene.settings.sleeping = false;
+        Run r(scene);
+        QVERIFY(r.step(h, static_cast<int>(std::lround(5.0 / h))));
+        compareEnds(r);
+        qInfo("%ld of %ld body-steps skipped", r.skipped(), r.bodySteps());
+        QVERIFY(r.skipped() > r.bodySteps() / 10);
+    }
+
+    void boxesOnASlopeHeldByFriction() {
+        // Boxes resting on a 20 degree ramp (μ 0.8 holds them: tan 20° = 0.36), two stacked:
+        // their friction impulses are remembered and taken as they were.
+        BodyDesc ramp = boxBody("ramp", Vec3(3, 0.2, 1), 1.0);
+        ramp.motion = Motion::Static;
+        ramp.mass.reset();
+        const Quat tilt(Eigen::AngleAxisd(20.0 * M_PI / 180, Vec3::UnitZ()));
+        ramp.orientation = tilt;
+        ramp.friction = 0.8;
+        std::vector<BodyDesc> bodies{ramp};
+        for (int i = 0; i < 3; ++i) {
+            BodyDesc b = material(boxBody("box" + std::to_string(i), Vec3(0.2, 0.2, 0.2), 1.0 + i), 0.0, 0.8);
+            const double along = -1.5 + 1.2 * i;
+            b.position = tilt * Vec3(along, 0.2 + 0.2 + 1e-4, 0);
+            b.orientation = tilt;
+            bodies.push_back(b);
+        }
+        BodyDesc top = material(boxBody("top", Vec3(0.15, 0.15, 0.15), 0.5), 0.0, 0.8);
+        top.position = tilt * Vec3(-1.5, 0.2 + 0.4 + 0.15 + 2e-4, 0);
+        top.orientation = tilt;
+        bodies.push_back(top);
+        SceneDesc scene = sceneOf(bodies);
+        scene.settings.sleeping = false;
+        Run r(scene);
+        QVERIFY(r.step(1.0 / 60, 240));
+        compareEnds(r);
+        qInfo("%ld of %ld body-steps skipped", r.skipped(), r.bodySteps());
+        QVERIFY(r.skipped() > r.bodySteps() / 4);
+        // They rest: the skipping cannot have hidden a slide.
+        for (int i = 1; i <= 4; ++i) QVERIFY(r.skipping.state().bodies[i].P.norm() == 0.0);
+    }
+
+    void aForceThatStartsLateWakesItsIsland() {
+        // A stack of three boxes at rest; at 1.5 s a sideways push starts on the top one. The
+        // pushed body is never taken as still; the ones under it are until it moves.
+        std::vector<BodyDesc> bodies{groundPlane(0.0, 0.5)};
+        for (int i = 0; i < 3; ++i) {
+            BodyDesc b = material(boxBody("box" + std::to_string(i), Vec3(0.3, 0.3, 0.3), 1.0), 0.0, 0.5);
+            b.position = Vec3(0, 0.3 + 0.6 * i, 0);
+            bodies.push_back(b);
+        }
+        ForceDesc push;
+        push.vector = Vec3(20, 0, 0);
+        push.start = 1.5;
+        bodies.back().forces.push_back(push);
+        SceneDesc scene = sceneOf(bodies);
+        scene.settings.sleeping = false;
+        Run r(scene);
+        QVERIFY(r.step(1.0 / 60, 180));
+        compareEnds(r);
+        QVERIFY(r.skipped() > 0);
+        QVERIFY(r.skipping.state().bodies[3].x.x() > 0.1);  // the push did move the top box
+    }
+
+    void anotherStepLengthSolvesAgain() {
+        // The heap at 1/60 s, then at 1/90 s, then at 1/60 s again: what was still at one
+        // step is solved again at the other, and skipped again once still at it.
+        SceneDesc scene = sceneOf(rockHeap(8, 7));
+        scene.settings.sleeping = false;
+        Run r(scene);
+        QVERIFY(r.step(1.0 / 60, 150));
+        const long before = r.skipped();
+        QVERIFY(r.step(1.0 / 90, 1));
+        QCOMPARE(r.skipped(), before);  // the first step at a new length solves everything
+        QVERIFY(r.step(1.0 / 90, 60));
+        QVERIFY(r.step(1.0 / 60, 60));
+        compareEnds(r);
+        QVERIFY(r.skipped() > before);
+    }
+
+    void withSleepingOn() {
+        // Bodies at rest before they fall asleep are skipped too; sleep comes as it would.
+        std::vector<BodyDesc> bodies = randomDropPile(5);
+        SceneDesc scene = sceneOf(bodies);
+        scene.settings.sleeping = true;
+        Run r(scene);
+        QVERIFY(r.step(1.0 / 60, 400));
+        compareEnds(r);
+        QVERIFY(r.skipping.state().asleep == r.solving.state().asleep);
+    }
+
+    void aStateSetFromOutsideSolvesEverything() {
+        // setState forgets what was found still: the next step solves every island, and a
+        // world given its own state before every step agrees with one that was not.
+        SceneDesc scene = sceneOf(rockHeap(8, 11));
+        scene.settings.sleeping = false;
+        World kept(scene), fresh(scene);
+        for (int i = 0; i < 200; ++i) {
+            kept.step(1.0 / 60);
+            const State own = fresh.state();
+            fresh.setState(own);
+            fresh.step(1.0 / 60);
+            QCOMPARE(hashHex(hashState(kept.state())), hashHex(hashState(fresh.state())));
+        }
+        QCOMPARE(fresh.profile().stillBodySteps, 0L);
+        QVERIFY(kept.profile().stillBodySteps > 0);
+    }
+};
+
+QTEST_APPLESS_MAIN(TestStillIslands)
+#include "tst_still_islands.moc"
