@@ -67,10 +67,6 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
             const double depth = n.dot(sB - sA);
             const double slop = slopFactor * g.slop;
             const double excess = depth - slop - kSettled * g.slop;
-            // Overlap beyond one slop waits on the energy budget (correctOverlap), which all
-            // islands share: its bodies are not at a fixed point of their own.
-            if (pass == 0 && s.memoryChanged && depth - (1.0 + kSettled) * g.slop > 0.0)
-                (*s.memoryChanged)[p.a] = (*s.memoryChanged)[p.b] = 1;
             worst = std::max(worst, excess);
             if (excess <= 0.0) {
                 s.settledAt[i] = nudges;
@@ -202,6 +198,35 @@ void limitEnergy(EnergyBalance& e, ContactSolverScratch& s) {
     e.potentialRate *= alpha;
 }
 
+// Overlap beyond one slop that no pass removed because the step's energy budget, which all
+// the solve's islands share, was spent: its bodies at rest are not at a fixed point of
+// their own (a budget from another island would move them), so s.memoryChanged marks them
+// (still_islands.h). Where the budget allows the pass, such a point is moved, and its
+// bodies with it.
+namespace {
+
+void markWaitingOverlap(const State& state, ContactSolverScratch& s) {
+    if (!s.memoryChanged) return;
+    auto atRest = [&](int b) {
+        const SolverBody& body = s.bodies[b];
+        return body.invMass == 0.0 || (body.v.isZero(0.0) && body.w.isZero(0.0));
+    };
+    std::vector<std::uint8_t>& changed = *s.memoryChanged;
+    for (size_t i = 0; i < s.points.size(); ++i) {
+        const Point& p = s.points[i];
+        if (!atRest(p.a) || !atRest(p.b)) continue;
+        const ContactSolverScratch::PointGeometry& g = s.geometry[i];
+        const BodyState& a = state.bodies[p.a];
+        const BodyState& b = state.bodies[p.b];
+        const Mat3& RA = s.rotation[p.a];
+        const Mat3& RB = s.rotation[p.b];
+        const double depth = (RB * g.localN).dot((b.x + RB * g.localB) - (a.x + RA * g.localA));
+        if (depth - (1.0 + kSettled) * g.slop > 0.0) changed[p.a] = changed[p.b] = 1;
+    }
+}
+
+}  // namespace
+
 // Removes overlap left by the step without touching velocities. Overlap deeper than ten
 // slops is always removed (bodies placed inside each other come apart). Between one and
 // ten slops it is removed only as far as the energy the contacts took this step allows:
@@ -215,7 +240,10 @@ void correctOverlap(const Model& model, State& state, ContactSolverScratch& s,
     }
     correctPositions(state, s, cfg.positionIterations, kFreeOverlap);
     const double budget = e.in() - e.kineticOut - gravityPotential(model, state, s.moving);
-    if (budget <= 0.0) return;
+    if (budget <= 0.0) {
+        markWaitingOverlap(state, s);
+        return;
+    }
     s.placed.clear();
     for (int i : s.moving) s.placed.push_back({state.bodies[i].x, state.bodies[i].q});
     const double u0 = gravityPotential(model, state, s.moving);

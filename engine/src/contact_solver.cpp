@@ -335,8 +335,7 @@ ContactMemory memoryOf(const ContactSolverScratch& s, const ContactSolverScratch
 
 // What remember() is about to write, against what the points started from (remember).
 template <class Idle>
-void markChangedMemory(const State& state, double h, double quietSpeed, ContactSolverScratch& s, bool warmStarted,
-                       const Idle& idle) {
+void markChangedMemory(const State& state, double h, ContactSolverScratch& s, bool warmStarted, const Idle& idle) {
     std::vector<std::uint8_t>& changed = *s.memoryChanged;
     const std::vector<ContactMemory>& memory = state.contacts;
     for (size_t k = 0; k < memory.size(); ++k) {
@@ -344,10 +343,17 @@ void markChangedMemory(const State& state, double h, double quietSpeed, ContactS
         if (idle(c.bodyA) && idle(c.bodyB)) continue;  // kept as it is
         if (!warmStarted || k >= s.used.size() || !s.used[k]) changed[c.bodyA] = changed[c.bodyB] = 1;
     }
-    for (const auto& block : s.blocks) {
-        const bool kept = keepsMemory(s, block, quietSpeed);
+    auto atRest = [&](int b) {
+        const SolverBody& body = s.bodies[b];
+        return body.invMass == 0.0 || (body.v.isZero(0.0) && body.w.isZero(0.0));
+    };
+    for (size_t b = 0; b < s.blocks.size(); ++b) {
+        const auto& block = s.blocks[b];
+        // A body that moves ends with momentum and is not still whatever its memory.
+        const Point& p = s.points[block.begin];
+        if (!atRest(p.a) || !atRest(p.b)) continue;
         for (int i = 0; i < block.count; ++i) {
-            const ContactMemory m = memoryOf(s, block, i, h, kept);
+            const ContactMemory m = memoryOf(s, block, i, h, s.kept[b]);
             const int k = s.geometry[block.begin + i].memory;
             const ContactMemory* c = k >= 0 ? &memory[k] : nullptr;
             const bool same = c && c->feature == m.feature && sameBits(c->position, m.position) &&
@@ -372,13 +378,13 @@ void remember(const Model& model, State& state, double h, double quietSpeed, Con
               bool warmStarted) {
     auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill() || isStill(s, b); };
     std::vector<ContactMemory>& memory = state.contacts;
-    if (s.memoryChanged) markChangedMemory(state, h, quietSpeed, s, warmStarted, idle);
+    s.kept.resize(s.blocks.size());
+    for (size_t b = 0; b < s.blocks.size(); ++b) s.kept[b] = keepsMemory(s, s.blocks[b], quietSpeed);
+    if (s.memoryChanged) markChangedMemory(state, h, s, warmStarted, idle);
     std::erase_if(memory, [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); });
     makeRoom(memory, memory.size() + s.points.size());
-    for (const auto& block : s.blocks) {
-        const bool kept = keepsMemory(s, block, quietSpeed);
-        for (int i = 0; i < block.count; ++i) memory.push_back(memoryOf(s, block, i, h, kept));
-    }
+    for (size_t b = 0; b < s.blocks.size(); ++b)
+        for (int i = 0; i < s.blocks[b].count; ++i) memory.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
 }
 
 // A body the contacts hold whose velocity the solve left below `still` (and whose spin

@@ -165,6 +165,7 @@ struct ContactSolverScratch {
     const std::vector<std::uint8_t>* still = nullptr;
     std::vector<int> stillMoving;  // the still bodies the solve would have moved (s.moving's share)
     int stillBodies = 0;           // of the last solve's bodies, how many were still
+    std::vector<std::uint8_t> kept;  // per block: remembered as it was (keepsMemory)
     // Per body, what a still body adds to the sums over all bodies, as its last solve found
     // it: its kinetic energy after the warm start, the friction losses of its blocks.
     std::vector<double> warmKinetic;
