@@ -32,7 +32,9 @@ void startStillStep(const Model& model, const State& state, double h, StillScrat
     if (s.still.size() != n || h != s.h) s.still.assign(n, 0);
     for (size_t i = 0; i < n; ++i) s.still[i] &= static_cast<std::uint8_t>(!s.driven[i]);
     s.h = h;
-    s.start = state.bodies;
+    s.start.resize(model.dynamicBodies.size());
+    for (size_t k = 0; k < model.dynamicBodies.size(); ++k) s.start[k] = state.bodies[model.dynamicBodies[k]];
+    s.started = true;
     s.changed.assign(n, 0);
 }
 
@@ -56,12 +58,13 @@ void closeStillIslands(const Model& model, const std::vector<collision::Manifold
 
 void endStillStep(const Model& model, const State& state, const std::vector<collision::Manifold>& contacts,
                   StillScratch& s) {
-    if (!s.enabled || s.start.size() != state.bodies.size()) return;
+    if (!s.enabled || !s.started) return;
     s.still.assign(model.bodies.size(), 0);
-    for (int i : model.dynamicBodies) {
+    for (size_t k = 0; k < model.dynamicBodies.size(); ++k) {
+        const int i = model.dynamicBodies[k];
         const BodyState& b = state.bodies[i];
         s.still[i] = !s.driven[i] && !s.changed[i] && !state.isAsleep(i) && b.P.isZero(0.0) && b.L.isZero(0.0) &&
-                     same(b, s.start[i]);
+                     same(b, s.start[k]);
     }
     closeStillIslands(model, contacts, s.still);
 }
@@ -69,6 +72,7 @@ void endStillStep(const Model& model, const State& state, const std::vector<coll
 void forgetStill(StillScratch& s) {
     s.still.clear();
     s.start.clear();
+    s.started = false;
 }
 
 }  // namespace tumble

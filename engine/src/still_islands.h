@@ -29,7 +29,8 @@ namespace tumble {
 struct StillScratch {
     bool enabled = true;
     double h = 0.0;                     // the length of the step they were found still in
-    std::vector<BodyState> start;       // each body at the start of this step
+    std::vector<BodyState> start;       // each dynamic body at the start of this step (Model::dynamicBodies' order)
+    bool started = false;               // start holds this step's
     std::vector<std::uint8_t> still;    // per body: left as it was by the last step (this step's candidates)
     std::vector<std::uint8_t> now;      // the candidates of one solve, after closeStillIslands
     std::vector<std::uint8_t> changed;  // per body: a remembered impulse of its contacts changed this step

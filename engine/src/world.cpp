@@ -385,7 +385,7 @@ void World::finishStep(const State& before, const std::vector<collision::Manifol
     // islands' answer is known (still_islands.h).
     const bool whole = before.time == s.stepStart0;
     const double h = whole ? s.stepLength : state_.time - before.time;
-    const bool skip = whole && s.still.enabled && !s.still.start.empty();
+    const bool skip = whole && s.still.enabled && s.still.started;
     if (skip) {
         s.still.now = s.still.still;
         closeStillIslands(model_, contacts, s.still.now);
