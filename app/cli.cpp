@@ -316,6 +316,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "awake_body_steps: " << p.awakeBodySteps << "\n"
             << "parked_body_steps: " << p.parkedBodySteps << "\n"
             << "island_restarts: " << p.islandRestarts << "\n"
+            << "still_body_steps: " << p.stillBodySteps << "\n"
             << "threads: " << world->threads() << "\n"
             << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }

@@ -82,6 +82,29 @@ inline void stepN(World& w, long n, double h) {
     for (long k = 0; k < n; ++k) w.step(h);
 }
 
+/// The ground (restitution 0.2, friction 0.6) and n octahedral rocks (jittered, as hulls:
+/// one vertex on each half axis 0.2-0.3 m out) in a heap over it, 4 to a row; mass 1 kg,
+/// or random in 0.5-2 kg.
+inline std::vector<BodyDesc> rockHeap(int n, std::uint64_t seed, bool randomMass) {
+    std::vector<BodyDesc> bodies{groundPlane(0.2, 0.6)};
+    Rng rng{seed};
+    for (int i = 0; i < n; ++i) {
+        BodyDesc rock;
+        rock.name = "rock" + std::to_string(i);
+        rock.shape.type = ShapeType::Mesh;
+        rock.shape.file = "rock (built by the test)";
+        auto mesh = std::make_shared<TriangleMesh>();
+        mesh->vertices = {{rng.uniform(0.2, 0.3), 0, 0}, {-rng.uniform(0.2, 0.3), 0, 0}, {0, rng.uniform(0.2, 0.3), 0},
+                          {0, -rng.uniform(0.2, 0.3), 0}, {0, 0, rng.uniform(0.2, 0.3)}, {0, 0, -rng.uniform(0.2, 0.3)}};
+        mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+        rock.shape.meshData = mesh;
+        rock.mass = randomMass ? rng.uniform(0.5, 2.0) : 1.0;
+        rock.position = Vec3(0.7 * (i % 4) - 1.0, 0.4 + 0.5 * (i / 4), 0.7 * ((i / 2) % 2) + 0.1 * (i % 3));
+        bodies.push_back(rock);
+    }
+    return bodies;
+}
+
 /// The ground (restitution 0, random friction) and 10 random boxes and spheres (restitution
 /// and friction 0..1, masses 0.5..5 kg, spinning) one above the other, 1.1 m apart: more
 /// than two half-diagonals (2 × 0.52 m), so none overlap at the start.

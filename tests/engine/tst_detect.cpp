@@ -90,22 +90,7 @@ private slots:
         // each other but apart are shown apart by the direction the last narrowphase found,
         // without GJK. That must not change the run: a world given its own state before each
         // step (no memory) agrees with it bit for bit.
-        std::vector<BodyDesc> bodies{groundPlane(0.2, 0.6)};
-        test::Rng rng{31};
-        for (int i = 0; i < 16; ++i) {
-            BodyDesc rock;
-            rock.name = "rock" + std::to_string(i);
-            rock.shape.type = ShapeType::Mesh;
-            rock.shape.file = "rock (built by the test)";
-            auto mesh = std::make_shared<TriangleMesh>();
-            mesh->vertices = {{rng.uniform(0.2, 0.3), 0, 0}, {-rng.uniform(0.2, 0.3), 0, 0}, {0, rng.uniform(0.2, 0.3), 0},
-                              {0, -rng.uniform(0.2, 0.3), 0}, {0, 0, rng.uniform(0.2, 0.3)}, {0, 0, -rng.uniform(0.2, 0.3)}};
-            mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-            rock.shape.meshData = mesh;
-            rock.mass = 1.0;
-            rock.position = Vec3(0.7 * (i % 4) - 1.0, 0.4 + 0.5 * (i / 4), 0.7 * ((i / 2) % 2) + 0.1 * (i % 3));
-            bodies.push_back(rock);
-        }
+        const std::vector<BodyDesc> bodies = rockHeap(16, 31, false);
         SceneDesc scene = sceneOf(bodies);
         scene.settings.sleeping = false;
         World kept(scene), fresh(scene);
