@@ -45,7 +45,15 @@ struct Run {
     long skipped() const { return skipping.profile().stillBodySteps; }
 };
 
+// The bodies with sleeping off: every body is stepped, and only the still islands skip.
+SceneDesc awake(std::vector<BodyDesc> bodies) {
+    SceneDesc scene = sceneOf(std::move(bodies));
+    scene.settings.sleeping = false;
+    return scene;
+}
+
 void compareEnds(const Run& r) {
+    qInfo("%ld of %ld body-steps skipped", r.skipped(), r.bodySteps());
     QCOMPARE(r.solving.profile().stillBodySteps, 0L);
     QVERIFY(memoryOf(r.skipping.state()) == memoryOf(r.solving.state()));
     // The ledger books the skipped blocks' friction as last computed: the same, summed in
@@ -82,12 +90,10 @@ private slots:
         BodyDesc ball = sphereBody("ball", 0.3, 5.0);
         ball.position = Vec3(-0.3, 21.0, 0.4);
         bodies.push_back(ball);
-        SceneDesc scene = sceneOf(bodies);
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(bodies);
         Run r(scene);
         QVERIFY(r.step(h, static_cast<int>(std::lround(5.0 / h))));
         compareEnds(r);
-        qInfo("%ld of %ld body-steps skipped", r.skipped(), r.bodySteps());
         QVERIFY(r.skipped() > r.bodySteps() / 10);
     }
 
@@ -112,12 +118,10 @@ private slots:
         top.position = tilt * Vec3(-1.5, 0.2 + 0.4 + 0.15 + 2e-4, 0);
         top.orientation = tilt;
         bodies.push_back(top);
-        SceneDesc scene = sceneOf(bodies);
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(bodies);
         Run r(scene);
         QVERIFY(r.step(1.0 / 60, 240));
         compareEnds(r);
-        qInfo("%ld of %ld body-steps skipped", r.skipped(), r.bodySteps());
         QVERIFY(r.skipped() > r.bodySteps() / 4);
         // They rest: the skipping cannot have hidden a slide.
         for (int i = 1; i <= 4; ++i) QVERIFY(r.skipping.state().bodies[i].P.norm() == 0.0);
@@ -136,8 +140,7 @@ private slots:
         push.vector = Vec3(20, 0, 0);
         push.start = 1.5;
         bodies.back().forces.push_back(push);
-        SceneDesc scene = sceneOf(bodies);
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(bodies);
         Run r(scene);
         QVERIFY(r.step(1.0 / 60, 180));
         compareEnds(r);
@@ -148,8 +151,7 @@ private slots:
     void anotherStepLengthSolvesAgain() {
         // The heap at 1/60 s, then at 1/90 s, then at 1/60 s again: what was still at one
         // step is solved again at the other, and skipped again once still at it.
-        SceneDesc scene = sceneOf(rockHeap(8, 7, true));
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(rockHeap(8, 7, true));
         Run r(scene);
         QVERIFY(r.step(1.0 / 60, 150));
         const long before = r.skipped();
@@ -178,12 +180,10 @@ private slots:
         std::vector<BodyDesc> bodies = rockHeap(12, 17, true);
         bodies[0] = meshBowl(2.0, 8, 16);
         for (size_t i = 1; i < bodies.size(); ++i) bodies[i].position += Vec3(0.3, 0.2, -0.3);
-        SceneDesc scene = sceneOf(bodies);
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(bodies);
         Run r(scene);
         QVERIFY(r.step(1.0 / 60, 300));
         compareEnds(r);
-        qInfo("%ld of %ld body-steps skipped", r.skipped(), r.bodySteps());
         QVERIFY(r.skipped() > r.bodySteps() / 10);
     }
 
@@ -206,8 +206,7 @@ private slots:
             b.position = Vec3(3, 0.3 + 0.6 * i, 0);
             bodies.push_back(b);
         }
-        SceneDesc scene = sceneOf(bodies);
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(bodies);
         Run r(scene);
         QVERIFY(r.step(1.0 / 60, 240));
         compareEnds(r);
@@ -218,8 +217,7 @@ private slots:
     void aStateSetFromOutsideSolvesEverything() {
         // setState forgets what was found still: the next step solves every island, and a
         // world given its own state before every step agrees with one that was not.
-        SceneDesc scene = sceneOf(rockHeap(8, 11, true));
-        scene.settings.sleeping = false;
+        const SceneDesc scene = awake(rockHeap(8, 11, true));
         World kept(scene), fresh(scene);
         for (int i = 0; i < 200; ++i) {
             kept.step(1.0 / 60);
