@@ -207,14 +207,10 @@ namespace {
 
 void markWaitingOverlap(const State& state, ContactSolverScratch& s) {
     if (!s.memoryChanged) return;
-    auto atRest = [&](int b) {
-        const SolverBody& body = s.bodies[b];
-        return body.invMass == 0.0 || (body.v.isZero(0.0) && body.w.isZero(0.0));
-    };
     std::vector<std::uint8_t>& changed = *s.memoryChanged;
     for (size_t i = 0; i < s.points.size(); ++i) {
         const Point& p = s.points[i];
-        if (!atRest(p.a) || !atRest(p.b)) continue;
+        if (!atRest(s.bodies[p.a]) || !atRest(s.bodies[p.b])) continue;
         const ContactSolverScratch::PointGeometry& g = s.geometry[i];
         const BodyState& a = state.bodies[p.a];
         const BodyState& b = state.bodies[p.b];

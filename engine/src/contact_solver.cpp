@@ -299,10 +299,7 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
 bool keepsMemory(const ContactSolverScratch& s, const ContactSolverScratch::Block& block, double quietSpeed) {
     if (!block.warmWhole) return false;
     const Point& p = s.points[block.begin];
-    for (int b : {p.a, p.b}) {
-        const SolverBody& body = s.bodies[b];
-        if (body.invMass > 0.0 && !(body.v.isZero(0.0) && body.w.isZero(0.0))) return false;
-    }
+    if (!atRest(s.bodies[p.a]) || !atRest(s.bodies[p.b])) return false;
     const double tol = quietSpeed * p.kn;
     for (int i = 0; i < block.count; ++i)
         if (!(std::abs(s.points[block.begin + i].lambdaN - s.geometry[block.begin + i].warmNormal) <= tol)) return false;
@@ -343,15 +340,11 @@ void markChangedMemory(const State& state, double h, ContactSolverScratch& s, bo
         if (idle(c.bodyA) && idle(c.bodyB)) continue;  // kept as it is
         if (!warmStarted || k >= s.used.size() || !s.used[k]) changed[c.bodyA] = changed[c.bodyB] = 1;
     }
-    auto atRest = [&](int b) {
-        const SolverBody& body = s.bodies[b];
-        return body.invMass == 0.0 || (body.v.isZero(0.0) && body.w.isZero(0.0));
-    };
     for (size_t b = 0; b < s.blocks.size(); ++b) {
         const auto& block = s.blocks[b];
         // A body that moves ends with momentum and is not still whatever its memory.
         const Point& p = s.points[block.begin];
-        if (!atRest(p.a) || !atRest(p.b)) continue;
+        if (!atRest(s.bodies[p.a]) || !atRest(s.bodies[p.b])) continue;
         for (int i = 0; i < block.count; ++i) {
             const ContactMemory m = memoryOf(s, block, i, h, s.kept[b]);
             const int k = s.geometry[block.begin + i].memory;

@@ -51,6 +51,9 @@ void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies
 
 inline Vec3 pointVelocity(const SolverBody& b, const Vec3& r) { return b.v + b.w.cross(r); }
 
+/// Cannot move, or ends the solve exactly at rest (stopRoundingMotion; still_islands.h).
+inline bool atRest(const SolverBody& b) { return b.invMass == 0.0 || (b.v.isZero(0.0) && b.w.isZero(0.0)); }
+
 /// Applies the impulse J at the offset r from the centre of mass (the paper's (22), (23)).
 inline void applyImpulse(SolverBody& b, const Vec3& r, const Vec3& J) {
     if (J.isZero(0.0)) return;

@@ -77,6 +77,20 @@ inline BodyDesc material(BodyDesc b, double restitution, double friction) {
 inline Vec3 velocityOf(const World& w, int i) { return w.state().bodies[i].P * w.model().bodies[i].invMass; }
 inline Vec3 omegaOf(const World& w, int i) { return derive(w.model().bodies[i], w.state().bodies[i]).omega; }
 
+/// Steps `kept` n times by h, and `fresh` the same way but given its own state before every
+/// step (World::setState: nothing carried over from the steps before but the state). The
+/// time of the first step after which their states differ, or -1 when they agree throughout.
+inline double firstDifferenceFromFresh(World& kept, World& fresh, long n, double h) {
+    for (long k = 0; k < n; ++k) {
+        kept.step(h);
+        const State own = fresh.state();
+        fresh.setState(own);
+        fresh.step(h);
+        if (hashState(kept.state()) != hashState(fresh.state())) return kept.state().time;
+    }
+    return -1.0;
+}
+
 /// Takes n steps of h.
 inline void stepN(World& w, long n, double h) {
     for (long k = 0; k < n; ++k) w.step(h);
