@@ -18,6 +18,7 @@
 // potential energy it adds is counted in the ledger.
 #pragma once
 
+#include "make_room.h"
 #include "solver_body.h"
 
 #include <tumble/collision.h>
@@ -122,9 +123,9 @@ struct ContactSolverScratch {
     /// Per joint: the impulse on A the step's first projection gave the velocities (RATTLE's
     /// half of the joint's force; the rows give the rest), for breaking.
     std::vector<Vec3> projectedImpulse;
-    std::vector<Point> points;
-    std::vector<PointGeometry> geometry;  // per point
-    std::vector<Block> blocks;
+    PageVector<Point> points;  // (make_room.h: their old room is given back when they grow)
+    PageVector<PointGeometry> geometry;  // per point
+    PageVector<Block> blocks;
     std::vector<JointRow> jointRows;
     // K's sub-inverses (pushingImpulses), for the blocks that have needed one (Block::subsets):
     // most blocks never let a point go, and an entry for every block was 288 bytes each.
@@ -135,7 +136,7 @@ struct ContactSolverScratch {
     std::vector<Vec3> bodySpin;     // ω in body axes, kept while bodies are re-placed
     std::vector<int> level;         // contacts between a body and one that cannot move (shockPass)
     std::vector<int> order;         // blocks from the bottom up
-    std::vector<Block> frozen;      // the blocks of one level with its lower bodies standing still
+    PageVector<Block> frozen;       // the blocks of one level with its lower bodies standing still
     std::vector<int> frozenBodies;  // the lower bodies held still, all levels so far
     std::vector<SolverBody> savedBodies;  // their entries before (the same order)
     std::vector<int> moving;        // the dynamic bodies the solver moved
