@@ -21,7 +21,7 @@ constexpr double kSettled = 1e-3;
 
 }  // namespace
 
-double kineticOf(const BodyModel& body, const Quat& q, const SolverBody& b) {
+double kineticOf(const BodyModel& body, const Quat& q, const BodyVelocity& b) {
     // Three equal moments (a ball, a cube): the same in every frame, no turn needed.
     const Vec3 w = body.sphericalInertia ? b.w : Vec3(q.conjugate() * b.w);
     return 0.5 * body.mass * b.v.squaredNorm() + 0.5 * w.dot(body.inertia * w);
@@ -100,12 +100,29 @@ bool correctPositions(State& state, ContactSolverScratch& s, int passes, double 
 
 }  // namespace
 
-double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,
-                     const std::vector<SolverBody>& bodies) {
+namespace {
+
+// (The inverse masses are s.bodies': no stage between the solver's entry and its end
+// changes one.)
+template <class Body>
+double solvedKineticOf(const Model& model, const State& state, const ContactSolverScratch& s,
+                       const std::vector<Body>& bodies) {
     double e = 0.0;
     for (int i : s.involved)
-        if (bodies[i].invMass > 0.0) e += kineticOf(model.bodies[i], state.bodies[i].q, bodies[i]);
+        if (s.bodies[i].invMass > 0.0) e += kineticOf(model.bodies[i], state.bodies[i].q, bodies[i]);
     return e;
+}
+
+}  // namespace
+
+double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,
+                     const std::vector<SolverBody>& bodies) {
+    return solvedKineticOf(model, state, s, bodies);
+}
+
+double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,
+                     const std::vector<BodyVelocity>& bodies) {
+    return solvedKineticOf(model, state, s, bodies);
 }
 
 double gravityPotential(const Model& model, const State& state, const std::vector<int>& which) {
@@ -135,7 +152,8 @@ double frictionLost(ContactSolverScratch& s) {
     double lost = 0.0;
     for (const auto& block : s.blocks) {
         const Point& p = s.points[block.begin];
-        const SolverBody &A0 = s.entry[p.a], &B0 = s.entry[p.b], &A = s.bodies[p.a], &B = s.bodies[p.b];
+        const BodyVelocity &A0 = s.entry[p.a], &B0 = s.entry[p.b];
+        const SolverBody &A = s.bodies[p.a], &B = s.bodies[p.b];
         const Vec3 u =
             relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
         const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;

@@ -28,13 +28,15 @@ struct EnergyBalance {
 void nudge(const SolverBody& b, BodyState& s, const Vec3& r, const Vec3& J);
 
 /// Kinetic energy of a body moving as b, its spin taken in the axes of its orientation q.
-double kineticOf(const BodyModel& body, const Quat& q, const SolverBody& b);
+double kineticOf(const BodyModel& body, const Quat& q, const BodyVelocity& b);
 /// What friction took this step (exact per row; see the definition).
 double frictionLost(ContactSolverScratch& s);
 /// The kinetic energy of the solve's moving bodies (s.involved, inverse mass above zero)
 /// moving as `bodies` (s.bodies, or s.entry: what the solver was given).
 double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,
                      const std::vector<SolverBody>& bodies);
+double solvedKinetic(const Model& model, const State& state, const ContactSolverScratch& s,
+                     const std::vector<BodyVelocity>& bodies);
 /// Gravity's potential energy of the dynamic bodies `which` as they stand in `state`.
 double gravityPotential(const Model& model, const State& state, const std::vector<int>& which);
 /// Whether the contacts may only take energy out (no moving kinematic body among them).

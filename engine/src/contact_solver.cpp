@@ -97,7 +97,7 @@ void prepare(const Model& model, const State& state, const State& before,
     makeRoom(s.points, points);
     makeRoom(s.geometry, points);
     makeRoom(s.blocks, contacts.size());
-    loadSolverBodies(model, before, s.start, s.involved);
+    loadVelocities(model, before, s.start, s.involved);
     s.stillMoving.clear();
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
@@ -277,7 +277,7 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
     const bool keep = s.memoryChanged != nullptr;
     const double after = grew || keep ? kineticAfterWarmStart(model, state, s) : 0.0;
     if (grew && after > 1.1 * solvedKinetic(model, state, s, s.entry)) {
-        for (int i : s.involved) s.bodies[i] = s.entry[i];
+        for (int i : s.involved) static_cast<BodyVelocity&>(s.bodies[i]) = s.entry[i];
         warmStart(state, h, 1.0, s);  // (sets again every remembered point's impulse)
         prepareJoints(model, state, h, s);
     }
@@ -541,7 +541,9 @@ void solveContacts(const Model& model, State& state, const State& before,
 
 void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
     const size_t n = model.bodies.size();
-    for (auto* v : {&s.bodies, &s.start, &s.entry}) sizeSolverBodies(model, *v);
+    sizeSolverBodies(model, s.bodies);
+    s.start.assign(n, BodyVelocity{});
+    s.entry.assign(n, BodyVelocity{});
     s.warmKinetic.assign(n, 0.0);
     s.frictionShare.assign(n, 0.0);
     s.slide.assign(n, Vec3::Zero());

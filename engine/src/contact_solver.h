@@ -132,7 +132,7 @@ struct ContactSolverScratch {
     std::vector<SubsetInverses> subsets;
     std::vector<SubsetInverses> frozenSubsets;  // the same for the frozen blocks (shockPass)
     std::vector<SolverBody> bodies;
-    std::vector<SolverBody> start;  // velocities at the start of the step
+    std::vector<BodyVelocity> start;  // velocities at the start of the step
     std::vector<Vec3> bodySpin;     // ω in body axes, kept while bodies are re-placed
     std::vector<int> level;         // contacts between a body and one that cannot move (shockPass)
     std::vector<int> order;         // blocks from the bottom up
@@ -141,7 +141,7 @@ struct ContactSolverScratch {
     std::vector<SolverBody> savedBodies;  // their entries before (the same order)
     std::vector<int> moving;        // the dynamic bodies the solver moved
     std::vector<int> involved;      // the bodies of the contacts, ascending (all the solve touches)
-    std::vector<SolverBody> entry;  // the velocities the solver was given
+    std::vector<BodyVelocity> entry;  // the velocities the solver was given
     std::vector<std::pair<Vec3, Quat>> placed;  // poses before the energy-limited correction
     std::vector<Mat3> rotation;     // per body: its rotation matrix in the position passes
     // The position passes' skipping (correctPositions): per body, the nudge that last moved

@@ -90,6 +90,16 @@ void loadSolverBodies(const Model& model, const State& state, std::vector<Solver
     for (int i : only) loadBody(model, state, i, out[i]);
 }
 
+void loadVelocities(const Model& model, const State& state, std::vector<BodyVelocity>& out,
+                    const std::vector<int>& only) {
+    if (out.size() != model.bodies.size()) out.assign(model.bodies.size(), BodyVelocity{});
+    SolverBody b;
+    for (int i : only) {
+        loadBody(model, state, i, b);
+        out[i] = b;
+    }
+}
+
 void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state,
                        const std::vector<int>& only) {
     for (int i : only) storeBody(model, bodies[i], i, state);

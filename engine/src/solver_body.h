@@ -15,13 +15,19 @@
 
 namespace tumble {
 
-struct SolverBody {
+/// A body's velocities alone: what the contact solver keeps of every body at the start of
+/// the step and as it was given them (ContactSolverScratch::start, entry; 56 bytes a body
+/// where a SolverBody is 160, for every body of the scene).
+struct BodyVelocity {
     Vec3 v = Vec3::Zero();
     Vec3 w = Vec3::Zero();
+    bool touched = false;  ///< an impulse was applied: write the momenta back
+};
+
+struct SolverBody : BodyVelocity {
     Vec3 x = Vec3::Zero();  ///< centre of mass, world
     double invMass = 0.0;
     Mat3 invI = Mat3::Zero();  ///< world frame
-    bool touched = false;      ///< an impulse was applied: write the momenta back
 };
 
 /// The bodies of `contacts`, ascending, each once. `seen` is scratch: one flag per body,
@@ -43,13 +49,16 @@ void sizeSolverBodies(const Model& model, std::vector<SolverBody>& out);
 SolverBody solverBody(const Model& model, const State& state, int i);
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
                       const std::vector<int>& only);
+/// The same for the velocities alone (`out` sized to the body count once, as above).
+void loadVelocities(const Model& model, const State& state, std::vector<BodyVelocity>& out,
+                    const std::vector<int>& only);
 
 /// Writes back the momenta of the bodies `only` that are dynamic, awake and took an
 /// impulse: P = M v, L = I(t) ω.
 void storeSolverBodies(const Model& model, const std::vector<SolverBody>& bodies, State& state,
                        const std::vector<int>& only);
 
-inline Vec3 pointVelocity(const SolverBody& b, const Vec3& r) { return b.v + b.w.cross(r); }
+inline Vec3 pointVelocity(const BodyVelocity& b, const Vec3& r) { return b.v + b.w.cross(r); }
 
 /// Cannot move, or ends the solve exactly at rest (stopRoundingMotion; still_islands.h).
 inline bool atRest(const SolverBody& b) { return b.invMass == 0.0 || (b.v.isZero(0.0) && b.w.isZero(0.0)); }
@@ -71,7 +80,7 @@ inline double inverseEffectiveMass(const SolverBody& a, const Vec3& rA, const So
 }
 
 /// Velocity of A's point relative to B's point at the same world place.
-inline Vec3 relativeVelocity(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB) {
+inline Vec3 relativeVelocity(const BodyVelocity& a, const Vec3& rA, const BodyVelocity& b, const Vec3& rB) {
     return pointVelocity(a, rA) - pointVelocity(b, rB);
 }
 
