@@ -60,9 +60,11 @@ body and the time). On failure no output file is written.
 
 A successful run prints key: value lines: bodies, integrator, dt, frames, steps,
 simulated_time, wall_seconds; energy_start and energy_end (kinetic + potential, J) and
-where energy went: energy_lost_contacts, energy_lost_friction (taken by impulses) and
-energy_position_correction (potential energy of placing bodies in contact), so that
-energy_end = energy_start - lost + correction when no force drives the scene; the time
+where energy went: energy_lost_contacts, energy_lost_friction (taken by impulses),
+energy_position_correction (potential energy of placing bodies in contact) and
+energy_lost_joints (taken by the joints' impulses and projections; negative when a motor
+gives energy), so that energy_end = energy_start - lost + correction when no force drives
+the scene; the time
 of each stage (forces_seconds, integrate_seconds, broadphase_seconds,
 narrowphase_seconds, toi_seconds, impact_seconds, solve_seconds, sleep_seconds); pairs,
 contact_points, impacts, impact_moments (the steps were cut there), impact_sweep_limits,
@@ -300,6 +302,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "energy_lost_contacts: " << number(world->ledger().lostInContacts) << "\n"
             << "energy_lost_friction: " << number(world->ledger().lostInFriction) << "\n"
             << "energy_position_correction: " << number(world->ledger().positionCorrection) << "\n"
+            << "energy_lost_joints: " << number(world->ledger().lostInJoints) << "\n"
             << "forces_seconds: " << p.forces << "\n"
             << "integrate_seconds: " << p.integrate << "\n"
             << "broadphase_seconds: " << p.broadphase << "\n"

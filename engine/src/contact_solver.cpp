@@ -460,6 +460,12 @@ double potentialOf(const Model& model, const State& state, const std::vector<int
     return e;
 }
 
+// The kinetic energy of the solve's bodies as s.bodies has them, and their potential
+// energy in `state` (the joints' first projection changes both).
+double solvedEnergy(const Model& model, const State& state, const ContactSolverScratch& s) {
+    return solvedKinetic(model, state, s, s.bodies) + potentialOf(model, state, s.involved);
+}
+
 }  // namespace
 
 void solveContacts(const Model& model, State& state, const State& before,
@@ -482,7 +488,11 @@ void solveContacts(const Model& model, State& state, const State& before,
     // The jointed bodies' free step put them off their joints: placed back now, with the
     // velocity that move implies; the velocity rows below then act at the joints' new
     // places (RATTLE's two halves), and these bodies keep these poses (redoPoses).
-    if (!model.joints.empty()) projectJoints(model, state, s, cfg.h, &before);
+    if (!model.joints.empty()) {
+        const double energy = solvedEnergy(model, state, s);
+        projectJoints(model, state, s, cfg.h, &before);
+        ledger.lostInJoints += energy - solvedEnergy(model, state, s);
+    }
     prepare(model, state, before, contacts, sizes, cfg, s);
     indexMemory(state, s);
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
@@ -518,8 +528,11 @@ void solveContacts(const Model& model, State& state, const State& before,
     // same solve, scaling the velocities would break the joints, so it is left out there.
     const bool limited = passive(model, contacts) && s.jointRows.empty();
     if (limited && e.excess() > 0.0) limitEnergy(e, s);
+    // The joints' rows took what their impulses took (jointWork, exact per row); the
+    // contacts the rest of what the solve took beyond friction.
     ledger.lostInFriction += frictionLoss;
-    ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss;
+    ledger.lostInJoints -= s.jointWork;
+    ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss + s.jointWork;
 
     storeSolverBodies(model, s.bodies, state, s.involved);
     // Re-placing turns bodies. Their spin is carried along in body axes (ω_body fixed), so
@@ -530,8 +543,12 @@ void solveContacts(const Model& model, State& state, const State& before,
     const double potential = potentialOf(model, state, s.involved);
     redoPoses(model, state, before, 0.01 * cfg.restingSpeed, s);
     correctOverlap(model, state, s, cfg, e, limited);
-    if (!s.jointRows.empty()) projectJoints(model, state, s, 0.0);
-    ledger.positionCorrection += potentialOf(model, state, s.involved) - potential;
+    const double corrected = potentialOf(model, state, s.involved);
+    ledger.positionCorrection += corrected - potential;
+    if (!s.jointRows.empty()) {
+        projectJoints(model, state, s, 0.0);
+        ledger.lostInJoints += corrected - potentialOf(model, state, s.involved);
+    }
     for (int i : s.involved) {
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
         BodyState& b = state.bodies[i];

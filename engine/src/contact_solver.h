@@ -120,6 +120,9 @@ struct ContactSolverScratch {
         double lowerTarget = 0.0, lowerLambda = 0.0, upperTarget = 0.0, upperLambda = 0.0;
     };
     std::vector<GeneralRow> generalRows;
+    /// The kinetic energy the joints' rows gave their bodies since prepareJoints (negative:
+    /// took), each impulse's λ·(u⁻ + u⁺)/2 with u the row's velocity before and after it.
+    double jointWork = 0.0;
     /// Per joint: the impulse on A the step's first projection gave the velocities (RATTLE's
     /// half of the joint's force; the rows give the rest), for breaking.
     std::vector<Vec3> projectedImpulse;

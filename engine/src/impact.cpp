@@ -315,6 +315,7 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
             break;
         }
     }
+    if (jointed) ledger.lostInJoints -= joints->jointWork;  // (the contacts' impulses are booked as applied)
     storeSolverBodies(model, s.bodies, state, s.involved);
     return result;
 }

@@ -52,6 +52,16 @@ void applyLine(SolverBody& A, SolverBody* B, const JointRow& r, double d) {
 
 SolverBody* other(ContactSolverScratch& s, const JointRow& r) { return r.b >= 0 ? &s.bodies[r.b] : nullptr; }
 
+// A's anchor's velocity relative to B's (B null: the world's, at rest).
+Vec3 relativeTo(const SolverBody& A, const Vec3& rA, const SolverBody* B, const Vec3& rB) {
+    return pointVelocity(A, rA) - (B ? pointVelocity(*B, rB) : Vec3::Zero());
+}
+
+// The velocity of a distance or rope row: the anchors' separating speed along r.n.
+double lineVelocity(const SolverBody& A, const SolverBody* B, const JointRow& r) {
+    return r.n.dot(A.v - (B ? B->v : Vec3::Zero())) + r.armA.dot(A.w) - (B ? r.armB.dot(B->w) : 0.0);
+}
+
 const SolverBody kStill;  // the world: nothing moves it
 constexpr double kReached = 1e-9;  // m or rad: a limit or a rope this near is taut in an impact
 
@@ -81,6 +91,8 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, do
     if (remembered && state.jointTorques.size() == state.jointImpulses.size()) {
         g.lambda.head(g.nl) = g.lin.leftCols(g.nl).transpose() * (span * state.jointImpulses[k]);
         g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (span * state.jointTorques[k]);
+        // Its work: λ·u⁻ + λᵀKλ/2 (the rows' velocity after is u⁻ + Kλ).
+        s.jointWork += g.lambda.dot(generalVelocity(g, A, B ? *B : kStill)) + 0.5 * g.lambda.dot(K * g.lambda);
         applyGeneral(g, A, B, g.lambda);
     }
     if (g.axial && (j.motor || j.limited)) {
@@ -119,6 +131,7 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
                    const std::vector<std::uint8_t>* only, double warmGrowth) {
     s.jointRows.clear();
     s.generalRows.clear();
+    s.jointWork = 0.0;
     const bool remembered = !impulsive && state.jointImpulses.size() == model.joints.size();
     bool grew = false;
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
@@ -166,9 +179,12 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
             if (j.type != JointType::Ball) r.lambda.y() = r.lambda.z() = 0.0;
             if (r.pullsOnly) r.lambda.x() = std::min(r.lambda.x(), 0.0);
             if (j.type == JointType::Ball) {
+                const Vec3 before = relativeTo(A, r.rA, B, r.rB);
                 applyImpulse(A, r.rA, r.lambda);
                 if (B) applyImpulse(*B, r.rB, -r.lambda);
+                s.jointWork += 0.5 * r.lambda.dot(before + relativeTo(A, r.rA, B, r.rB));
             } else if (r.lambda.x() != 0.0) {
+                s.jointWork += r.lambda.x() * (lineVelocity(A, B, r) + 0.5 * r.lambda.x() / r.k);
                 applyLine(A, B, r, r.lambda.x());
             }
         }
@@ -189,12 +205,14 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         const Vector6 d = -(g.Kinv * v);
         g.lambda += d;
         applyGeneral(g, A, B, d);
+        s.jointWork += 0.5 * d.dot(v);  // (the rows' velocity after is v + Kd = 0)
         change = v.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
         // The motor's and the limits' rows along the free axis.
         auto row = [&](double& lambda, double target, double low, double high) {
             const double vx = axisVelocity(g, A, B ? *B : kStill);
             const double next = std::clamp(lambda - g.kAxis * (vx - target), low, high);
             if (next == lambda) return;
+            s.jointWork += (next - lambda) * (vx + 0.5 * (next - lambda) / g.kAxis);
             applyAxis(g, A, B, next - lambda);
             change = std::max(change, std::abs(next - lambda) / g.kAxis);
             lambda = next;
@@ -203,13 +221,14 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         if (g.lowerOn) row(g.lowerLambda, g.lowerTarget, 0.0, HUGE_VAL);
         if (g.upperOn) row(g.upperLambda, g.upperTarget, -HUGE_VAL, 0.0);
     } else if (!r.ball) {  // one row along the line
-        const double vn = r.n.dot(A.v - (B ? B->v : Vec3::Zero())) + r.armA.dot(A.w) - (B ? r.armB.dot(B->w) : 0.0);
+        const double vn = lineVelocity(A, B, r);
         const double old = r.lambda.x();
         double next = old - r.k * (vn - r.target);
         if (r.pullsOnly) next = std::min(next, 0.0);
         const double d = next - old;
         r.lambda.x() = next;
         if (d != 0.0) applyLine(A, B, r, d);
+        s.jointWork += d * (vn + 0.5 * d / r.k);
         change = std::abs(d) / r.k;  // the speed it changed
     } else {
         const Vec3 dv = pointVelocity(A, r.rA) - vB;
@@ -217,6 +236,7 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         r.lambda += d;
         applyImpulse(A, r.rA, d);
         if (B) applyImpulse(*B, r.rB, -d);
+        s.jointWork += 0.5 * d.dot(dv);  // (the anchors' relative velocity after is dv + Kd = 0)
         change = dv.lpNorm<Eigen::Infinity>();
     }
     if (!(change > quietSpeed)) return false;

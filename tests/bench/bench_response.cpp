@@ -134,7 +134,7 @@ RunFigures runOnce(const SceneDesc& scene, double seconds) {
                    " of them more than 5 m from the middle";
     const EnergyLedger& l = world.ledger();
     f.ledgerResidual =
-        f.energyEnd - (f.energyStart - l.lostInContacts - l.lostInFriction + l.positionCorrection);
+        f.energyEnd - (f.energyStart - l.lostInContacts - l.lostInFriction - l.lostInJoints + l.positionCorrection);
     return f;
 }
 

@@ -122,7 +122,7 @@ private slots:
         QTest::addColumn<QString>("scene");
         for (const char* name :
              {"bouncing-ball", "head-on", "tilted-box-impact", "newtons-cradle", "sliding-block",
-              "rolling-sphere", "incline", "mass-ratio-stack", "sleeping-wake"})
+              "rolling-sphere", "incline", "mass-ratio-stack", "sleeping-wake", "chain", "newtons-cradle-strings"})
             QTest::newRow(name) << QString(TUMBLE_SCENES_DIR "/%1.json").arg(name);
     }
     void samplesBalanceTheirEnergy() {
@@ -132,11 +132,12 @@ private slots:
         const QMap<QString, QString> kv = report(r.out);
         for (const char* key :
              {"energy_start", "energy_end", "energy_lost_contacts", "energy_lost_friction",
-              "energy_position_correction", "impact_moments", "solve_seconds", "awake_body_steps",
+              "energy_position_correction", "energy_lost_joints", "impact_moments", "solve_seconds", "awake_body_steps",
               "parked_body_steps", "island_restarts", "still_body_steps"})
             QVERIFY2(kv.contains(key), key);
         const double start = kv["energy_start"].toDouble(), end = kv["energy_end"].toDouble();
-        const double lost = kv["energy_lost_contacts"].toDouble() + kv["energy_lost_friction"].toDouble();
+        const double lost = kv["energy_lost_contacts"].toDouble() + kv["energy_lost_friction"].toDouble() +
+                            kv["energy_lost_joints"].toDouble();
         const double correction = kv["energy_position_correction"].toDouble();
         QVERIFY2(lost >= 0.0, qPrintable(r.out));
         // The ledger balances to 1e-6 of the energy that moved (the integrators' own error in

@@ -43,6 +43,10 @@ struct EnergyLedger {
     double lostInContacts = 0.0;     ///< kinetic energy taken by normal impulses (restitution < 1)
     double lostInFriction = 0.0;     ///< kinetic energy taken by friction impulses
     double positionCorrection = 0.0; ///< potential energy of placing pushed bodies (contact positions, overlap removal)
+    /// Kinetic and potential energy taken by joints: their impulses (exact per row) and the
+    /// projections that put the bodies back on them. Negative when a joint gave energy: a
+    /// motor driving its bodies, a joint to a moving kinematic body.
+    double lostInJoints = 0.0;
 };
 
 class World {
