@@ -13,6 +13,13 @@
 using namespace tumble;
 using namespace tumble::test;
 
+// The rows of a test run with each impact timing.
+void impactTimings() {
+    QTest::addColumn<QString>("impacts");
+    QTest::newRow("exact") << "exact";
+    QTest::newRow("end-of-step") << "end-of-step";
+}
+
 class TestJointPiles : public QObject {
     Q_OBJECT
 private slots:
@@ -22,11 +29,7 @@ private slots:
     // start scaled that short solve's impulses up to 100 times (kinetic energy 321 J ->
     // 3.4e8 J, a torso at 7 000 rad/s); an impact's rounds with the joints pushed 60 N s
     // where the impact gave 1.5 (2.7e4 J gained); end-of-step ran away at 0.67 s.
-    void ragdollsFallingOnEachOtherGainNoEnergy_data() {
-        QTest::addColumn<QString>("impacts");
-        QTest::newRow("exact") << "exact";
-        QTest::newRow("end-of-step") << "end-of-step";
-    }
+    void ragdollsFallingOnEachOtherGainNoEnergy_data() { impactTimings(); }
     void ragdollsFallingOnEachOtherGainNoEnergy() {
         QFETCH(QString, impacts);
         const SceneDesc one = io::readSceneFile(std::string(TUMBLE_SCENES_DIR) + "/ragdoll.json");
@@ -69,11 +72,7 @@ private slots:
     // what the ledger books, the joints' share included (their impulses in the solve and in
     // the impacts, their projections). Before the joints had a line of their own, 562 of the
     // 878 J of the sample's first second went unbooked.
-    void ledgerBalancesWithJoints_data() {
-        QTest::addColumn<QString>("impacts");
-        QTest::newRow("exact") << "exact";
-        QTest::newRow("end-of-step") << "end-of-step";
-    }
+    void ledgerBalancesWithJoints_data() { impactTimings(); }
     void ledgerBalancesWithJoints() {
         QFETCH(QString, impacts);
         SceneDesc scene = io::readSceneFile(std::string(TUMBLE_SCENES_DIR) + "/ragdoll.json");
