@@ -64,8 +64,6 @@ void validateJoints(const SceneDesc& scene) {
             const auto [lower, upper] = *j.limits;
             if (!std::isfinite(lower) || !std::isfinite(upper)) throw SceneError(p + ".limits", "must be finite numbers");
             if (lower > upper) throw SceneError(p + ".limits", "the lower limit is above the upper one");
-            if (j.type == JointType::Hinge && (lower < -M_PI || upper > M_PI))
-                throw SceneError(p + ".limits", "a hinge's limits must lie within [-pi, pi] rad");
         }
         if (j.motor) {
             if (!std::isfinite(j.motor->speed)) throw SceneError(p + ".motor.speed", "must be a finite number");

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "joint_general.h"
 
 #include <cmath>
@@ -23,8 +24,33 @@ Vec3 rotationVector(Quat e) {
 
 }  // namespace
 
+double hingeAngle(const JointModel& j, const BodyState& a, const BodyState* b, double near) {
+    const Quat qb = b ? b->q : Quat::Identity();
+    Quat e = a.q * (qb * j.relative).conjugate();  // A turned from its place in the scene
+    if (e.w() < 0.0) e.coeffs() = -e.coeffs();
+    const double raw = 2.0 * std::atan2(e.vec().dot(a.q * j.axisA), e.w());
+    // Counted on past a half turn: the turn nearest to the last step's angle (raw itself,
+    // to the bit, while the two are within a half turn).
+    if (std::isnan(near) || std::abs(raw - near) <= M_PI) return raw;
+    return near + std::remainder(raw - near, 2.0 * M_PI);
+}
+
+void trackHingeAngles(const Model& model, State& state) {
+    if (std::none_of(model.joints.begin(), model.joints.end(),
+                     [](const JointModel& j) { return j.type == JointType::Hinge; }))
+        return;
+    const std::size_t n = model.joints.size();
+    const bool known = state.hingeAngles.size() == n;
+    if (!known) state.hingeAngles.assign(n, 0.0);
+    for (const JointModel& j : model.joints) {
+        if (j.type != JointType::Hinge) continue;
+        const double near = known ? state.hingeAngles[j.index] : std::numeric_limits<double>::quiet_NaN();
+        state.hingeAngles[j.index] = hingeAngle(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, near);
+    }
+}
+
 void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
-                 ContactSolverScratch::GeneralRow& rows, Vector6* error) {
+                 ContactSolverScratch::GeneralRow& rows, Vector6* error, double near) {
     const Quat qa = a.q, qb = b ? b->q : Quat::Identity();
     const Vec3 rA = qa * j.anchorA;
     const Vec3 pA = a.x + rA;
@@ -46,9 +72,7 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
             rows.axial = true;
             rows.JAx << Vec3::Zero(), aA;
             rows.JBx << Vec3::Zero(), -aA;
-            Quat e = qa * (qb * j.relative).conjugate();  // A turned from its place in the scene
-            if (e.w() < 0.0) e.coeffs() = -e.coeffs();
-            rows.coord = 2.0 * std::atan2(e.vec().dot(aA), e.w());
+            rows.coord = hingeAngle(j, a, b, near);
             break;
         }
         case JointType::Slider: {

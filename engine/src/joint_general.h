@@ -15,6 +15,8 @@
 // velocity back: the projection moves it back without adding energy).
 #pragma once
 
+#include <limits>
+
 #include "contact_solver.h"
 
 #include <tumble/model.h>
@@ -31,9 +33,25 @@ inline bool isGeneral(JointType t) {
 
 /// The rows of joint `j` with its bodies at `a` and `b` (null: the world): their
 /// directions, Jacobians (JA, JB: a column per row, v then ω) and, in `error`, the
-/// position error along them. Kinv is not set.
+/// position error along them. Kinv is not set. A hinge's coordinate is its angle within π
+/// of `near` (State::hingeAngles, hingeNear), or within [-π, π] when `near` is NaN.
 void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
-                 ContactSolverScratch::GeneralRow& rows, Vector6* error = nullptr);
+                 ContactSolverScratch::GeneralRow& rows, Vector6* error = nullptr,
+                 double near = std::numeric_limits<double>::quiet_NaN());
+
+/// A hinge's angle about its axis at these poses, within π of `near` (NaN: within [-π, π]);
+/// 0 as the scene places the bodies.
+double hingeAngle(const JointModel& j, const BodyState& a, const BodyState* b,
+                  double near = std::numeric_limits<double>::quiet_NaN());
+
+/// The angle the hinge `j` had at the end of the last step in `state` (NaN: unknown).
+inline double hingeNear(const State& state, const JointModel& j) {
+    return j.index < static_cast<int>(state.hingeAngles.size()) ? state.hingeAngles[j.index]
+                                                                 : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Sets state.hingeAngles from the poses now (World, at the end of every step).
+void trackHingeAngles(const Model& model, State& state);
 
 /// K = JAᵀ M_A⁻¹ JA' + JBᵀ M_B⁻¹ JB' over the first m rows (JA', JB': the impulse's rows,
 /// which may be taken at another pose; the same rows give the symmetric effective mass),

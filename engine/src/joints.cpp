@@ -82,7 +82,7 @@ double warmSpan(const State& state, int k, double h, double most) {
 bool prepareGeneral(const JointModel& j, int k, const State& state, double h, double span, bool remembered,
                     bool impulsive, SolverBody& A, SolverBody* B, ContactSolverScratch& s, JointRow& r) {
     ContactSolverScratch::GeneralRow g;
-    generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g);
+    generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g, nullptr, hingeNear(state, j));
     const Matrix6 K = generalMass(g, g, A, B ? *B : kStill);
     const Eigen::LDLT<Matrix6> ldlt(K);
     if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0)) return false;
@@ -301,10 +301,10 @@ bool turnedFar(const Quat& then, const Quat& now) { return std::abs(then.dot(now
 // only: the limit's velocity row has stopped the approach).
 // Returns how far past it was.
 double projectLimit(const JointModel& j, BodyState& a, BodyState* b, bool moveA, bool moveB, const SolverBody& A,
-                    const SolverBody& B) {
+                    const SolverBody& B, double near) {
     if (!j.limited) return 0.0;
     ContactSolverScratch::GeneralRow g;
-    generalRows(j, a, b, g);
+    generalRows(j, a, b, g, nullptr, near);
     const double past = g.coord < j.lower ? g.coord - j.lower : g.coord > j.upper ? g.coord - j.upper : 0.0;
     if (std::abs(past) <= kHeld) return 0.0;
     const double k = axisMass(g, A, B);
@@ -321,9 +321,10 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
     ContactSolverScratch::GeneralRow now, then;
     Vector6 C;
-    generalRows(j, a, b, now, &C);
+    const double near = hingeNear(state, j);
+    generalRows(j, a, b, now, &C, near);
     const double error = C.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
-    if (error <= kHeld) return std::max(error, projectLimit(j, a, b, moveA, moveB, A, B));
+    if (error <= kHeld) return std::max(error, projectLimit(j, a, b, moveA, moveB, A, B, near));
     // (As for the others: a body that turned far since the start is left to the passes
     // along the directions now.)
     if (from && (turnedFar(at.bodies[j.a].q, a.q) || (b && turnedFar(at.bodies[j.b].q, b->q)))) return error;
@@ -332,12 +333,12 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     if (&at == &state)
         then = now;
     else
-        generalRows(j, at.bodies[j.a], b ? &at.bodies[j.b] : nullptr, then);
+        generalRows(j, at.bodies[j.a], b ? &at.bodies[j.b] : nullptr, then, nullptr, near);
     const Matrix6 K = generalMass(now, then, A, B);
     const Vector6 lambda = -K.fullPivLu().solve(C);
     if (!lambda.allFinite()) return error;
     nudgeGeneral(then, A, a, moveA, B, b, moveB, lambda);
-    const double past = projectLimit(j, a, b, moveA, moveB, A, B);
+    const double past = projectLimit(j, a, b, moveA, moveB, A, B, near);
     if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
         s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * lambda.head(then.nl) / h;
         if (moveA) applyToBody(s.bodies[j.a], then.JA * (lambda / h));

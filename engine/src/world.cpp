@@ -16,6 +16,7 @@
 // parked body after all, the step is taken again from its start with every body cut.
 #include <tumble/world.h>
 
+#include "joint_general.h"
 #include "world_scratch.h"
 
 #include "guard.h"
@@ -345,6 +346,7 @@ void World::step(double h) {
     touchingPairs(d.contacts, s.touchTolerance, state_.touching);
     state_.touchingKnown = true;
     endStillStep(model_, state_, d.contacts, s.still);
+    joint::trackHingeAngles(model_, state_);
     for (const auto& m : d.contacts) profile_.contactPoints += m.count;
     profile_.impacts += static_cast<long>(s.impacts.size());
     guardEnergy(model_, state_, s.energy);

@@ -481,6 +481,43 @@ private slots:
         QVERIFY2(std::abs(final - 0.5) < 1e-9, qPrintable(QString::number(final)));
     }
 
+    // Limits past a half turn: the same door turning at 4 rad/s with a range of
+    // [-0.5, 3π/2] rad passes π (where the angle read from the poses alone jumps to -π)
+    // and stops at 3π/2 at t = 3π/8 s; its pose then reads -π/2, and the hinge's angle, counted
+    // on from step to step (State::hingeAngles), 3π/2. Read within [-π, π], the stop was
+    // never reached and the door turned on for ever.
+    void hingeLimitPastHalfATurn() {
+        BodyDesc door = boxBody("door", Vec3(0.4, 1.0, 0.02), 10.0);
+        door.angularVelocity = Vec3(0, 4, 0);
+        SceneDesc scene = sceneOf({door}, Vec3::Zero());
+        scene.settings.sleeping = false;
+        JointDesc hinge = joint("hinge", JointType::Hinge, "door", Vec3::Zero(), "", Vec3::Zero());
+        hinge.axisA = Vec3::UnitY();
+        const double stop = 1.5 * M_PI;
+        hinge.limits = std::array<double, 2>{-0.5, stop};
+        scene.joints.push_back(hinge);
+        World w(scene);
+        const double h = 1.0 / 240.0, reach = stop / 4.0;
+        double early = 0.0, past = 0.0, restSpin = 0.0;
+        while (w.state().time < 3.0 - 1e-9) {
+            w.step(h);
+            const double t = w.state().time, angle = w.state().hingeAngles.at(0);
+            past = std::max(past, angle - stop);
+            if (t < reach - 1e-9) early = std::max(early, std::abs(angle - 4.0 * t));
+            if (t > reach + 2 * h) restSpin = std::max(restSpin, derive(w.model().bodies[0], w.state().bodies[0]).omega.norm());
+        }
+        const Quat& q = w.state().bodies[0].q;
+        const double sign = q.w() < 0.0 ? -1.0 : 1.0;
+        const double pose = 2.0 * std::atan2(sign * q.y(), sign * q.w());  // within [-π, π]: 3π/2 reads -π/2
+        qInfo("free turn off 4 t by %.1e rad; past the stop by %.1e rad; at rest to %.1e rad/s; angle %.12f, pose %.12f",
+              early, past, restSpin, w.state().hingeAngles.at(0), pose);
+        QVERIFY2(early < 1e-9, qPrintable(QString::number(early)));
+        QVERIFY2(past < 1e-9, qPrintable(QString::number(past)));
+        QVERIFY2(restSpin < 1e-9, qPrintable(QString::number(restSpin)));
+        QVERIFY2(std::abs(w.state().hingeAngles.at(0) - stop) < 1e-9, qPrintable(QString::number(w.state().hingeAngles.at(0))));
+        QVERIFY2(std::abs(pose - (stop - 2.0 * M_PI)) < 1e-9, qPrintable(QString::number(pose)));
+    }
+
     // A slider's limit: a block on a vertical rail falls freely (s = -g t² / 2) until its
     // offset reaches the lower limit of -1 m at t = sqrt(2 / g), and rests there.
     void sliderLimitStopsAFall() {

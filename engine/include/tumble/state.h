@@ -59,6 +59,11 @@ struct State {
     /// Per joint: the time it broke (its force passed JointDesc::breakForce), NaN while it
     /// holds; empty: none has broken. A broken joint acts no more and its bodies collide.
     std::vector<double> jointBrokenAt;
+    /// Per joint: a hinge's angle at the end of the last step, counted on past ±π (rad; the
+    /// other joints' entries 0). A step takes each hinge's angle as the one within π of this,
+    /// so that limits beyond a half turn hold. Empty: unknown (an angle is then taken within
+    /// [-π, π], as the scene's poses give it).
+    std::vector<double> hingeAngles;
     bool jointBroken(int k) const { return !jointBrokenAt.empty() && !std::isnan(jointBrokenAt[k]); }
 
     bool isAsleep(int body) const { return !asleep.empty() && asleep[body] != 0; }

@@ -33,6 +33,9 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
         if (!(caps.jointTypes & jointBit(j.type)))
             return fail(who + "a " + toString(j.type) + " joint is not translated to this peer");
         if (j.limited && !caps.jointLimits) return fail(who + "joint limits are not translated to this peer");
+        // (Bullet's and ODE's hinge stops take angles within [-pi, pi] only.)
+        if (j.limited && j.type == JointType::Hinge && (j.lower < -M_PI || j.upper > M_PI))
+            return fail(who + "hinge limits past [-pi, pi] are not translated to the peers");
         if (j.motor && !caps.jointMotors) return fail(who + "joint motors are not translated to this peer");
         if (std::isfinite(j.breakForce) && !caps.jointBreaking)
             return fail(who + "breaking joints are not translated to this peer");
