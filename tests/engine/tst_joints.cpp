@@ -81,6 +81,20 @@ struct Crossings {
 
 }  // namespace
 
+// A door (a 10 kg slab 0.8 x 2 x 0.04 m) hinged to the world about the vertical through its
+// centre, turning at `spin` rad/s, its angle limited to [lower, upper]; no gravity.
+SceneDesc doorOnHinge(double spin, double lower, double upper) {
+    BodyDesc door = boxBody("door", Vec3(0.4, 1.0, 0.02), 10.0);
+    door.angularVelocity = Vec3(0, spin, 0);
+    SceneDesc scene = sceneOf({door}, Vec3::Zero());
+    scene.settings.sleeping = false;
+    JointDesc hinge = joint("hinge", JointType::Hinge, "door", Vec3::Zero(), "", Vec3::Zero());
+    hinge.axisA = Vec3::UnitY();
+    hinge.limits = std::array<double, 2>{lower, upper};
+    scene.joints.push_back(hinge);
+    return scene;
+}
+
 class TestJoints : public QObject {
     Q_OBJECT
 private slots:
@@ -451,15 +465,7 @@ private slots:
     // middle of its range [-0.5, 0.5] rad reaches the stop at t = 0.5 s and stays there (the
     // stop is inelastic), never past it by more than the projection's 1e-9.
     void hingeLimitStopsADoor() {
-        BodyDesc door = boxBody("door", Vec3(0.4, 1.0, 0.02), 10.0);
-        door.angularVelocity = Vec3(0, 1, 0);
-        SceneDesc scene = sceneOf({door}, Vec3::Zero());
-        scene.settings.sleeping = false;
-        JointDesc hinge = joint("hinge", JointType::Hinge, "door", Vec3::Zero(), "", Vec3::Zero());
-        hinge.axisA = Vec3::UnitY();
-        hinge.limits = std::array<double, 2>{-0.5, 0.5};
-        scene.joints.push_back(hinge);
-        World w(scene);
+        World w(doorOnHinge(1.0, -0.5, 0.5));
         const double h = 1.0 / 240.0;
         double worstPast = 0.0, early = 0.0, restSpin = 0.0;
         while (w.state().time < 2.0 - 1e-9) {
@@ -487,16 +493,8 @@ private slots:
     // on from step to step (State::hingeAngles), 3π/2. Read within [-π, π], the stop was
     // never reached and the door turned on for ever.
     void hingeLimitPastHalfATurn() {
-        BodyDesc door = boxBody("door", Vec3(0.4, 1.0, 0.02), 10.0);
-        door.angularVelocity = Vec3(0, 4, 0);
-        SceneDesc scene = sceneOf({door}, Vec3::Zero());
-        scene.settings.sleeping = false;
-        JointDesc hinge = joint("hinge", JointType::Hinge, "door", Vec3::Zero(), "", Vec3::Zero());
-        hinge.axisA = Vec3::UnitY();
         const double stop = 1.5 * M_PI;
-        hinge.limits = std::array<double, 2>{-0.5, stop};
-        scene.joints.push_back(hinge);
-        World w(scene);
+        World w(doorOnHinge(4.0, -0.5, stop));
         const double h = 1.0 / 240.0, reach = stop / 4.0;
         double early = 0.0, past = 0.0, restSpin = 0.0;
         while (w.state().time < 3.0 - 1e-9) {
