@@ -197,7 +197,6 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
     JointRow& r = s.jointRows[k];
     SolverBody& A = s.bodies[r.a];
     SolverBody* B = other(s, r);
-    const Vec3 vB = B ? pointVelocity(*B, r.rB) : Vec3::Zero();
     double change = 0.0;
     if (r.general >= 0) {  // hinge, slider, fixed: all rows at once
         ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
@@ -231,7 +230,7 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         s.jointWork += d * (vn + 0.5 * d / r.k);
         change = std::abs(d) / r.k;  // the speed it changed
     } else {
-        const Vec3 dv = pointVelocity(A, r.rA) - vB;
+        const Vec3 dv = relativeTo(A, r.rA, B, r.rB);
         const Vec3 d = -(r.Kinv * dv);
         r.lambda += d;
         applyImpulse(A, r.rA, d);
