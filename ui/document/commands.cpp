@@ -68,14 +68,21 @@ void InsertBodyCommand::redo() {
 }
 
 SetJointsCommand::SetJointsCommand(Document* doc, std::vector<JointDesc> before, std::vector<JointDesc> after,
-                                   const QString& text)
-    : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)) {}
+                                   const QString& text, int mergeId)
+    : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)), mergeId_(mergeId) {}
 
 void SetJointsCommand::undo() {
     doc_->applyJoints(before_);
 }
 void SetJointsCommand::redo() {
     doc_->applyJoints(after_);
+}
+
+bool SetJointsCommand::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const SetJointsCommand*>(other);
+    if (o->mergeId_ != mergeId_ || o->before_ != after_ || o->after_.size() != after_.size()) return false;
+    after_ = o->after_;
+    return true;
 }
 
 ReplaceSceneCommand::ReplaceSceneCommand(Document* doc, SceneDesc before, SceneDesc after,

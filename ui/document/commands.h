@@ -61,17 +61,23 @@ private:
     bool remove_;
 };
 
-/// Replaces the scene's joints (a body renamed or removed takes its joints along).
+/// Replaces the scene's joints (a joint edited, added or removed; a body renamed or removed
+/// takes its joints along). Merges with the next command of the same nonzero merge id.
 class SetJointsCommand : public QUndoCommand {
 public:
     SetJointsCommand(Document* doc, std::vector<JointDesc> before, std::vector<JointDesc> after,
-                     const QString& text);
+                     const QString& text, int mergeId = 0);
     void undo() override;
     void redo() override;
+    int id() const override { return mergeId_ ? kId : -1; }
+    bool mergeWith(const QUndoCommand* other) override;
+
+    static constexpr int kId = 1003;
 
 private:
     Document* doc_;
     std::vector<JointDesc> before_, after_;
+    int mergeId_;
 };
 
 /// Replaces the whole scene (revert, recovery).

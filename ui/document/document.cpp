@@ -40,6 +40,7 @@ void Document::newScene() {
     scene_ = emptyScene();
     path_.clear();
     selection_.clear();
+    selectedJoint_ = -1;
     emit sceneReset();
     emit selectionChanged();
     emit fileStateChanged();
@@ -132,6 +133,7 @@ bool Document::open(const QString& path, QString* error) {
     openWarnings_ = warnings;
     path_ = sample ? QString() : path;
     selection_.clear();
+    selectedJoint_ = -1;
     emit sceneReset();
     emit selectionChanged();
     emit fileStateChanged();
@@ -313,6 +315,22 @@ void Document::addJoint(const JointDesc& joint) {
     joints.push_back(j);
     undo_->push(new SetJointsCommand(this, scene_.joints, joints,
                                      tr("Add %1 joint").arg(QString::fromUtf8(toString(j.type)))));
+    selectJoint(jointCount() - 1);
+}
+
+void Document::setJoint(int index, const JointDesc& joint, const QString& text, int mergeId) {
+    if (index < 0 || index >= jointCount() || joint == scene_.joints[static_cast<size_t>(index)]) return;
+    std::vector<JointDesc> joints = scene_.joints;
+    joints[static_cast<size_t>(index)] = joint;
+    undo_->push(new SetJointsCommand(this, scene_.joints, joints, text, mergeId));
+}
+
+void Document::removeJoint(int index) {
+    if (index < 0 || index >= jointCount()) return;
+    std::vector<JointDesc> joints = scene_.joints;
+    const QString name = QString::fromStdString(joints[static_cast<size_t>(index)].name);
+    joints.erase(joints.begin() + index);
+    undo_->push(new SetJointsCommand(this, scene_.joints, joints, tr("Delete joint %1").arg(name)));
 }
 
 void Document::duplicateBodies(QList<int> indices) {
@@ -337,8 +355,17 @@ void Document::setSelection(QList<int> indices) {
     std::sort(indices.begin(), indices.end());
     indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
     indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
-    if (indices == selection_) return;
+    if (indices == selection_ && selectedJoint_ < 0) return;
     selection_ = indices;
+    selectedJoint_ = -1;
+    emit selectionChanged();
+}
+
+void Document::selectJoint(int index) {
+    if (index < 0 || index >= jointCount()) index = -1;
+    if (index == selectedJoint_ && (index < 0 || selection_.isEmpty())) return;
+    selectedJoint_ = index;
+    if (index >= 0) selection_.clear();
     emit selectionChanged();
 }
 
@@ -370,13 +397,20 @@ void Document::applyRemove(int index) {
 }
 
 void Document::applyJoints(const std::vector<JointDesc>& joints) {
+    const bool renumbered = joints.size() != scene_.joints.size();
     scene_.joints = joints;
     emit jointsChanged();
+    // A joint added or removed (an undo, a body's delete) may move the selected one's index.
+    if (selectedJoint_ >= 0 && renumbered) {
+        selectedJoint_ = -1;
+        emit selectionChanged();
+    }
 }
 
 void Document::applyScene(const SceneDesc& scene) {
     scene_ = scene;
     selection_.clear();
+    selectedJoint_ = -1;
     emit sceneReset();
     emit selectionChanged();
 }

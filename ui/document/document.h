@@ -74,8 +74,15 @@ public:
     void removeBodies(QList<int> indices);
     /// Copies of the bodies, named uniquely, placed after the last one; selects the copies.
     void duplicateBodies(QList<int> indices);
-    /// Adds `joint` (one undo step) with its name made unique among the joints.
+    /// Adds `joint` (one undo step) with its name made unique among the joints, and selects it.
     void addJoint(const JointDesc& joint);
+    /// Replaces joint `index` (one undo step; consecutive calls with the same nonzero
+    /// `mergeId` on the same joint merge, as setBody's do).
+    void setJoint(int index, const JointDesc& joint, const QString& text, int mergeId = 0);
+    /// Removes joint `index` (one undo step).
+    void removeJoint(int index);
+    int jointCount() const { return static_cast<int>(scene_.joints.size()); }
+    const JointDesc& joint(int index) const { return scene_.joints.at(static_cast<size_t>(index)); }
     /// Groups the edits between begin and end into one undo step named `text`.
     void beginMacro(const QString& text);
     void endMacro();
@@ -84,8 +91,13 @@ public:
     QString uniqueName(const QString& base) const;
 
     // ---- Selection (shared by the scene tree, the property panel and the viewport).
+    // A joint can be selected instead (the scene tree's joint list, the property panel's
+    // joint page): selecting bodies deselects it and selecting it deselects the bodies.
     const QList<int>& selection() const { return selection_; }
     void setSelection(QList<int> indices);
+    /// The selected joint's index, or -1.
+    int selectedJoint() const { return selectedJoint_; }
+    void selectJoint(int index);
 
     // ---- Used by the undo commands only.
     void applyBody(int index, const BodyDesc& body);
@@ -100,7 +112,7 @@ signals:
     void bodyInserted(int index);
     void bodyRemoved(int index);
     void settingsChanged();
-    /// The joints changed (a body they name was renamed or removed).
+    /// The joints changed (added, edited, removed, or a body they name was renamed or removed).
     void jointsChanged();
     /// Everything may have changed (open, new, revert, recovery).
     void sceneReset();
@@ -113,6 +125,7 @@ private:
     QString path_;
     QStringList openWarnings_;
     QList<int> selection_;
+    int selectedJoint_ = -1;
     QUndoStack* undo_ = nullptr;
 };
 

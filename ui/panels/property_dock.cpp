@@ -7,6 +7,7 @@
 // PropertySpinBox::showValue and friends), so showing a value never edits it back.
 #include "panels/property_dock_impl.h"
 
+#include "panels/joint_panel.h"
 #include "panels/live_state_box.h"
 
 namespace tumble::ui {
@@ -16,12 +17,15 @@ void PropertyDock::Impl::build() {
     scroll->setWidgetResizable(true);
     auto* outer = new QWidget;
     auto* outerLayout = new QVBoxLayout(outer);
-    empty = new QLabel(QObject::tr("Select a body to see its properties."), outer);
+    empty = new QLabel(QObject::tr("Select a body or a joint to see its properties."), outer);
     empty->setObjectName("empty");
     empty->setAlignment(Qt::AlignCenter);
     outerLayout->addWidget(empty);
     page = new QWidget(outer);
     outerLayout->addWidget(page);
+    jointPage = new JointPanel(doc, outer);
+    jointPage->setObjectName("jointPage");
+    outerLayout->addWidget(jointPage);
     outerLayout->addStretch(1);
     auto* layout = new QVBoxLayout(page);
     layout->setContentsMargins(0, 0, 0, 0);

@@ -110,6 +110,7 @@ struct PropertyDock::Impl {
     PropertyDock* q = nullptr;
     Document* doc = nullptr;
     QWidget* page = nullptr;
+    QWidget* jointPage = nullptr;
     QLabel* empty = nullptr;
     std::vector<std::function<void(const std::vector<const BodyDesc*>&)>> refreshers;
     QMap<QString, QLabel*> errors;
@@ -341,8 +342,10 @@ struct PropertyDock::Impl {
 
     void refresh() {
         const auto bodies = selected();
-        empty->setVisible(bodies.empty());
+        const bool joint = doc->selectedJoint() >= 0;  // its own page (joint_panel.h)
+        empty->setVisible(bodies.empty() && !joint);
         page->setVisible(!bodies.empty());
+        if (jointPage) jointPage->setVisible(joint);
         if (bodies.size() == 1 && doc->selection().size() == 1) shownEuler = eulerOf(*bodies[0]);
         for (const auto& r : refreshers) r(bodies);
     }

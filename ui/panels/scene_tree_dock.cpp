@@ -3,6 +3,7 @@
 #include "document/body_presets.h"
 #include "document/document.h"
 #include "document/joint_presets.h"
+#include "panels/joint_list.h"
 #include "panels/scene_tree_model.h"
 
 #include <QAction>
@@ -90,8 +91,13 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     delete_ = new QAction(tr("&Delete"), this);
     delete_->setShortcut(QKeySequence::Delete);
     delete_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
-    delete_->setStatusTip(tr("Remove the selected bodies"));
-    connect(delete_, &QAction::triggered, this, [this] { doc_->removeBodies(doc_->selection()); });
+    delete_->setStatusTip(tr("Remove the selected bodies, or the selected joint"));
+    connect(delete_, &QAction::triggered, this, [this] {
+        if (doc_->selectedJoint() >= 0)
+            doc_->removeJoint(doc_->selectedJoint());
+        else
+            doc_->removeBodies(doc_->selection());
+    });
 
     rename_ = new QAction(tr("&Rename"), this);
     rename_->setShortcut(QKeySequence(Qt::Key_F2));
@@ -136,6 +142,8 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     layout->setSpacing(2);
     layout->addWidget(tools);
     layout->addWidget(view_);
+    joints_ = new JointList(doc_);
+    layout->addWidget(joints_);
     layout->addWidget(message_);
     setWidget(body);
 
@@ -231,7 +239,7 @@ void SceneTreeDock::selectionFromView() {
 void SceneTreeDock::updateActions() {
     const bool any = !doc_->selection().isEmpty();
     duplicate_->setEnabled(any);
-    delete_->setEnabled(any);
+    delete_->setEnabled(any || doc_->selectedJoint() >= 0);
     jointMenu_->setEnabled(any && doc_->selection().size() <= 2);
 }
 

@@ -17,6 +17,7 @@ namespace tumble::ui {
 
 class Document;
 class SceneTreeModel;
+class JointList;
 
 class SceneTreeDock : public QDockWidget {
     Q_OBJECT
@@ -61,6 +62,7 @@ private:
     Document* doc_;
     SceneTreeModel* model_;
     QTreeView* view_;
+    JointList* joints_;
     QLabel* message_;
     QMenu* addMenu_;
     QMap<ShapeType, QAction*> addActions_;

@@ -194,6 +194,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     connect(document, &Document::selectionChanged, this, [this] {
         d_->scene->setSelection(d_->shownSelection());
         updateHandles();
+        refreshJoints();  // the selected joint is drawn light
     });
 
     d_->scene->rebuild(document->scene());

@@ -35,6 +35,8 @@ constexpr Rgb kAngular{0.75f, 0.45f, 1.0f};
 constexpr Rgb kForce{1.0f, 0.4f, 0.75f};
 constexpr Rgb kCentre{1.0f, 1.0f, 1.0f};
 constexpr Rgb kJoint{1.0f, 0.75f, 0.2f};
+constexpr Rgb kJointAxis{0.95f, 0.55f, 0.1f};
+constexpr Rgb kJointSelected{1.0f, 0.95f, 0.7f};
 
 void vertex(std::vector<float>& out, const Vec3& p, Rgb c) {
     out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z()), c.r, c.g, c.b});
@@ -171,19 +173,28 @@ Lines centresOfMass(const Model& model, const State& state) {
 
 namespace {
 
-// A joint's line and its anchors' crosses.
-void jointLines(Lines& lines, const Vec3& a, const Vec3& b, double size) {
+// A joint's line and its anchors' crosses; a hinge's or slider's axis (world, unit) as a
+// line through anchor A, a body's size each way. The selected joint is drawn light, with
+// crosses twice as large.
+void jointLines(Lines& lines, const Vec3& a, const Vec3& b, double size, const Vec3* axis, bool selected) {
     if (!a.allFinite() || !b.allFinite()) return;
     if (!std::isfinite(size) || size <= 0) size = 0.1;
-    segment(lines.xyzrgb, a, b, kJoint);
-    cross(lines.xyzrgb, a, 0.25 * size, kJoint);
-    cross(lines.xyzrgb, b, 0.25 * size, kJoint);
+    const Rgb c = selected ? kJointSelected : kJoint;
+    const double mark = (selected ? 0.5 : 0.25) * size;
+    segment(lines.xyzrgb, a, b, c);
+    cross(lines.xyzrgb, a, mark, c);
+    cross(lines.xyzrgb, b, mark, c);
+    if (axis && axis->allFinite()) segment(lines.xyzrgb, a - size * *axis, a + size * *axis, selected ? kJointSelected : kJointAxis);
     ++lines.items;
+}
+
+bool hasAxis(JointType t) {
+    return t == JointType::Hinge || t == JointType::Slider;
 }
 
 }  // namespace
 
-Lines joints(const Model& model, const State& state) {
+Lines joints(const Model& model, const State& state, int selected) {
     Lines lines;
     if (state.bodies.size() != model.bodies.size()) return lines;
     const int n = int(model.bodies.size());
@@ -192,25 +203,30 @@ Lines joints(const Model& model, const State& state) {
         const BodyState& a = state.bodies[size_t(j.a)];
         const Vec3 pa = a.x + a.q * j.anchorA;
         const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(state.bodies[size_t(j.b)].x + state.bodies[size_t(j.b)].q * j.anchorB);
-        jointLines(lines, pa, pb, radiusOf(model.bodies[size_t(j.a)]));
+        const Vec3 axis = a.q * j.axisA;
+        jointLines(lines, pa, pb, radiusOf(model.bodies[size_t(j.a)]), hasAxis(j.type) ? &axis : nullptr,
+                   j.index == selected);
     }
     return lines;
 }
 
-Lines joints(const SceneDesc& scene) {
+Lines joints(const SceneDesc& scene, int selected) {
     Lines lines;
     auto find = [&](const std::string& name) -> const BodyDesc* {
         for (const BodyDesc& b : scene.bodies)
             if (b.name == name) return &b;
         return nullptr;
     };
-    for (const JointDesc& j : scene.joints) {
+    for (size_t k = 0; k < scene.joints.size(); ++k) {
+        const JointDesc& j = scene.joints[k];
         const BodyDesc* a = find(j.bodyA);
         const BodyDesc* b = j.bodyB.empty() ? nullptr : find(j.bodyB);
         if (!a || (!j.bodyB.empty() && !b)) continue;  // names the engine would refuse
         const Vec3 pa = a->position + a->orientation * j.anchorA;
         const Vec3 pb = b ? Vec3(b->position + b->orientation * j.anchorB) : j.anchorB;
-        jointLines(lines, pa, pb, boundingRadius(a->shape));
+        const bool axial = hasAxis(j.type) && j.axisA && j.axisA->norm() > 0.0;
+        const Vec3 axis = axial ? Vec3(a->orientation * j.axisA->normalized()) : Vec3::Zero();
+        jointLines(lines, pa, pb, boundingRadius(a->shape), axial ? &axis : nullptr, int(k) == selected);
     }
     return lines;
 }

@@ -63,8 +63,10 @@ Lines centresOfMass(const Model& model, const State& state);
 /// Each joint (amber): a line from its anchor on body_a to its anchor on body_b (or its
 /// world point), and a cross at each anchor of 0.25 × body_a's bounding radius. From a
 /// recorded frame, or (`scene`) from the bodies as placed in the document. items: joints.
-Lines joints(const Model& model, const State& state);
-Lines joints(const SceneDesc& scene);
+/// A hinge's or slider's axis is a line through anchor A; joint `selected` (an index in the
+/// scene's joints, -1: none) is drawn light and larger.
+Lines joints(const Model& model, const State& state, int selected = -1);
+Lines joints(const SceneDesc& scene, int selected = -1);
 /// One polyline per track of two points or more. items: polylines.
 Lines trails(const std::vector<std::vector<Vec3>>& tracks);
 

@@ -142,9 +142,9 @@ void Viewport::refreshJoints() {
     // A recorded frame where one is drawn; the document's bodies while editing (frame 0).
     const State* state = d_->frameState();
     if (state && d_->shownFrame > 0)
-        o.set(K::Joints, overlays::joints(*d_->timeline->model(), *state));
+        o.set(K::Joints, overlays::joints(*d_->timeline->model(), *state, d_->doc->selectedJoint()));
     else
-        o.set(K::Joints, overlays::joints(d_->doc->scene()));
+        o.set(K::Joints, overlays::joints(d_->doc->scene(), d_->doc->selectedJoint()));
 }
 
 bool Viewport::overlay(Overlay which) const {

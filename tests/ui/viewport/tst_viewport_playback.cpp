@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 
 using namespace tumble;
 using namespace tumble::ui;
@@ -258,6 +259,33 @@ private slots:
         QCOMPARE(f.view->overlayItemCount(O::Joints), 10);
         f.view->setOverlay(O::Joints, false);
         QCOMPARE(f.view->overlayItemCount(O::Joints), 0);
+    }
+
+    // The door's hinge: its axis drawn through anchor A along the world's y (the door's axis
+    // as it stands), and the joint selected in the document drawn in another colour.
+    void aHingeShowsItsAxisAndTheSelectedJointStandsOut() {
+        Fixture f(":/scenes/hinged-door.json");
+        QVERIFY(f.ok);
+        auto colours = [](const overlays::Lines& lines) {
+            std::set<std::array<float, 3>> out;
+            for (size_t k = 0; k + 5 < lines.xyzrgb.size(); k += 6)
+                out.insert({lines.xyzrgb[k + 3], lines.xyzrgb[k + 4], lines.xyzrgb[k + 5]});
+            return out;
+        };
+        const overlays::Lines plain = overlays::joints(f.doc.scene());
+        QCOMPARE(plain.items, 1);
+        // The last segment is the axis: vertical, through anchor A (the line's first point).
+        const auto& v = plain.xyzrgb;
+        const size_t last = v.size() - 12;
+        const Vec3 a(v[0], v[1], v[2]), p(v[last], v[last + 1], v[last + 2]), q(v[last + 6], v[last + 7], v[last + 8]);
+        QVERIFY(((p + q) / 2 - a).norm() < 1e-6);
+        QVERIFY((q - p).normalized().cross(Vec3::UnitY()).norm() < 1e-6);
+        f.doc.selectJoint(0);
+        const overlays::Lines picked = overlays::joints(f.doc.scene(), f.doc.selectedJoint());
+        QCOMPARE(picked.xyzrgb.size(), plain.xyzrgb.size());
+        QCOMPARE(colours(picked).size(), size_t(1));  // all of it in the selection's colour
+        QVERIFY(colours(picked) != colours(plain));
+        QCOMPARE(f.view->overlayItemCount(O::Joints), 1);
     }
 
     void trailsHaveAPointPerFrameUpToThePlayhead() {

@@ -1,0 +1,256 @@
+// Joints in the editor: the Scene dock lists them and selecting one selects it in the
+// document (and deselects the bodies, and back); the property panel's joint page edits
+// every field with undo (a scrub one step), refuses what the engine would refuse with a
+// message under the field, keeps an anchor where it is in the world when its body changes,
+// and clears what a new type cannot have; Delete removes the selected joint.
+#include "document/document.h"
+#include "panels/joint_list.h"
+#include "panels/joint_panel.h"
+#include "panels/property_dock.h"
+#include "panels/property_spin_box.h"
+#include "panels/scene_tree_dock.h"
+#include "panels/vector_edit.h"
+
+#include <QAction>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QLineEdit>
+#include <QTreeWidget>
+#include <QUndoStack>
+#include <QtTest>
+
+#include <numbers>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+namespace {
+
+BodyDesc box(const char* name, Vec3 position, Motion motion = Motion::Dynamic) {
+    BodyDesc b;
+    b.name = name;
+    b.shape.type = ShapeType::Box;
+    b.shape.halfExtents = Vec3(0.4, 1.0, 0.02);
+    if (motion == Motion::Dynamic) b.mass = 20.0;
+    b.motion = motion;
+    b.position = position;
+    return b;
+}
+
+// A door turned a quarter about y, hinged at its edge to a post.
+struct Fixture {
+    Document doc;
+    SceneTreeDock tree{&doc, nullptr};
+    PropertyDock dock{&doc};
+
+    Fixture() {
+        doc.addBody(box("post", Vec3(-0.45, 1.0, 0.0), Motion::Static));
+        BodyDesc door = box("door", Vec3(0.0, 1.0, 0.0));
+        door.orientation = Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY()));
+        doc.addBody(door);
+        JointDesc j;
+        j.name = "hinge";
+        j.type = JointType::Hinge;
+        j.bodyA = "door";
+        j.bodyB = "post";
+        j.anchorA = Vec3(-0.4, 0, 0);
+        j.anchorB = door.position + door.orientation * j.anchorA - Vec3(-0.45, 1.0, 0.0);
+        j.axisA = Vec3::UnitY();
+        doc.addJoint(j);
+        doc.undoStack()->clear();
+        doc.selectJoint(-1);
+    }
+    const JointDesc& joint() const { return doc.joint(0); }
+    // (The document starts with a ground plane.)
+    int indexOf(const std::string& name) const {
+        for (int i = 0; i < doc.bodyCount(); ++i)
+            if (doc.body(i).name == name) return i;
+        return -1;
+    }
+    const BodyDesc& door() const { return doc.body(indexOf("door")); }
+    JointPanel* panel() const { return dock.findChild<JointPanel*>(); }
+    template <class T>
+    T* find(const QString& name) const {
+        T* w = dock.findChild<T*>(name);
+        if (!w) qFatal("no widget %s", qPrintable(name));
+        return w;
+    }
+    PropertySpinBox* spin(const QString& name) const { return find<PropertySpinBox>(name); }
+    void choose(const QString& comboName, const QString& text) const {
+        auto* combo = find<QComboBox>(comboName);
+        const int i = combo->findText(text);
+        if (i < 0) qFatal("no item %s in %s", qPrintable(text), qPrintable(comboName));
+        combo->setCurrentIndex(i);
+        emit combo->activated(i);
+    }
+    Vec3 worldAnchorB() const {
+        const JointDesc& j = joint();
+        for (const BodyDesc& b : doc.scene().bodies)
+            if (b.name == j.bodyB) return b.position + b.orientation * j.anchorB;
+        return j.anchorB;
+    }
+};
+
+}  // namespace
+
+class TestJointPanel : public QObject {
+    Q_OBJECT
+private slots:
+    void listSelectsTheJointAndTheBodiesBack() {
+        Fixture f;
+        auto* list = f.tree.findChild<QTreeWidget*>("jointListView");
+        QVERIFY(list);
+        QCOMPARE(list->topLevelItemCount(), 1);
+        QCOMPARE(list->topLevelItem(0)->text(JointList::NameColumn), QString("hinge"));
+        QCOMPARE(list->topLevelItem(0)->text(JointList::BodiesColumn), QString("door – post"));
+        f.doc.setSelection({f.indexOf("door")});
+        list->topLevelItem(0)->setSelected(true);
+        QCOMPARE(f.doc.selectedJoint(), 0);
+        QVERIFY(f.doc.selection().isEmpty());  // the bodies are deselected
+        QVERIFY(f.panel()->isVisibleTo(&f.dock));
+        QCOMPARE(f.find<QLineEdit>("joint.name")->text(), QString("hinge"));
+        QCOMPARE(f.spin("joint.limits.lower")->isEnabled(), false);  // no limits yet
+        f.doc.setSelection({f.indexOf("door")});  // a body: the joint is deselected, its page hidden
+        QCOMPARE(f.doc.selectedJoint(), -1);
+        QVERIFY(list->selectedItems().isEmpty());
+        QVERIFY(!f.panel()->isVisibleTo(&f.dock));
+    }
+
+    void editsAreUndoableAndAScrubIsOneStep() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        f.find<QCheckBox>("joint.motor.on")->setChecked(true);
+        QVERIFY(f.joint().motor.has_value());
+        QCOMPARE(f.doc.undoStack()->count(), 1);
+        for (double v : {1.5, 2.0, 2.5}) f.spin("joint.motor.speed")->setValue(v);
+        QCOMPARE(f.joint().motor->speed, 2.5);
+        QCOMPARE(f.doc.undoStack()->count(), 2);  // the scrub merged
+        emit f.spin("joint.motor.speed")->editingFinished();
+        f.spin("joint.motor.max")->setValue(35.0);
+        QCOMPARE(f.joint().motor->maxForce, 35.0);
+        QCOMPARE(f.doc.undoStack()->count(), 3);
+        f.doc.undoStack()->undo();
+        f.doc.undoStack()->undo();
+        QCOMPARE(f.joint().motor->speed, 1.0);  // as the check box made it
+        QCOMPARE(f.spin("joint.motor.speed")->value(), 1.0);
+        f.doc.undoStack()->undo();
+        QVERIFY(!f.joint().motor);
+        QVERIFY(!f.find<QCheckBox>("joint.motor.on")->isChecked());
+    }
+
+    void hingeLimitsInDegreesAndInvertedOnesRefused() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        f.find<QCheckBox>("joint.limits.on")->setChecked(true);
+        QVERIFY(f.joint().limits.has_value());
+        f.spin("joint.limits.upper")->setValue(90.0);
+        QCOMPARE((*f.joint().limits)[1], std::numbers::pi / 2);
+        emit f.spin("joint.limits.upper")->editingFinished();
+        const JointDesc before = f.joint();
+        const int steps = f.doc.undoStack()->count();
+        f.spin("joint.limits.lower")->setValue(120.0);  // above the upper limit
+        QCOMPARE(f.joint(), before);
+        QCOMPARE(f.doc.undoStack()->count(), steps);
+        QVERIFY2(f.panel()->fieldError("limits").contains("joints[0].limits"), qPrintable(f.panel()->fieldError("limits")));
+        QVERIFY(f.panel()->fieldError("limits").contains("lower limit is above"));
+        QCOMPARE(f.spin("joint.limits.lower")->value(), -90.0);  // back to the joint's value
+        f.spin("joint.limits.lower")->setValue(-10.0);
+        QVERIFY(f.panel()->fieldError("limits").isEmpty());
+        // A body's own problem (a static body given a mass) is not the joint's: its edits go on.
+        BodyDesc post = f.doc.body(f.indexOf("post"));
+        post.mass = 5.0;
+        f.doc.setBody(f.indexOf("post"), post, "bad mass");
+        f.doc.selectJoint(0);
+        f.spin("joint.limits.lower")->setValue(-20.0);
+        QCOMPARE((*f.joint().limits)[0], -20.0 * std::numbers::pi / 180.0);
+    }
+
+    void bodyChangeKeepsTheAnchorInTheWorld() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        const Vec3 world = f.worldAnchorB();
+        f.choose("joint.body_b", "(world)");
+        QVERIFY(f.joint().bodyB.empty());
+        QVERIFY((f.joint().anchorB - world).norm() < 1e-12);
+        QVERIFY((f.worldAnchorB() - world).norm() < 1e-12);
+        QCOMPARE(f.find<QComboBox>("joint.body_b")->currentText(), QString("(world)"));
+        f.doc.undoStack()->undo();
+        QCOMPARE(f.joint().bodyB, std::string("post"));
+        // Body A to the post: nothing that moves would be joined (static to the world).
+        f.choose("joint.body_b", "(world)");
+        const JointDesc before = f.joint();
+        f.choose("joint.body_a", "post");
+        QCOMPARE(f.joint(), before);
+        QVERIFY(f.panel()->fieldError("body_a").contains("must be dynamic"));
+        QCOMPARE(f.find<QComboBox>("joint.body_a")->currentText(), QString("door"));
+    }
+
+    void typeChangeClearsWhatTheTypeCannotHave() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        f.find<QCheckBox>("joint.limits.on")->setChecked(true);
+        f.find<QCheckBox>("joint.motor.on")->setChecked(true);
+        f.choose("joint.type", "ball");
+        QCOMPARE(f.joint().type, JointType::Ball);
+        QVERIFY(!f.joint().axisA && !f.joint().limits && !f.joint().motor);
+        QVERIFY(!f.find<VectorEdit>("joint.axis_a")->isVisibleTo(&f.dock));
+        f.choose("joint.type", "slider");  // a slider needs an axis: A's x as it lies
+        QVERIFY(f.joint().axisA.has_value());
+        QVERIFY((*f.joint().axisA - f.door().orientation.conjugate() * Vec3::UnitX()).norm() < 1e-12);
+        f.choose("joint.type", "rope");
+        QCOMPARE(f.joint().length, -1.0);
+        QVERIFY(f.find<QCheckBox>("joint.length.as_placed")->isChecked());
+        f.find<QCheckBox>("joint.length.as_placed")->setChecked(false);  // the distance now
+        const Vec3 a = f.door().position + f.door().orientation * f.joint().anchorA;
+        QVERIFY(std::abs(f.joint().length - (a - f.worldAnchorB()).norm()) < 1e-12);
+        f.doc.undoStack()->undo();
+        f.doc.undoStack()->undo();
+        f.doc.undoStack()->undo();
+        f.doc.undoStack()->undo();
+        QCOMPARE(f.joint().type, JointType::Hinge);
+        QVERIFY(f.joint().limits && f.joint().motor);
+    }
+
+    void renameRefusesATakenName() {
+        Fixture f;
+        JointDesc second = f.joint();
+        second.name = "stop";
+        f.doc.addJoint(second);
+        f.doc.selectJoint(0);
+        auto* name = f.find<QLineEdit>("joint.name");
+        name->setText("stop");
+        emit name->editingFinished();
+        QCOMPARE(f.joint().name, std::string("hinge"));
+        QVERIFY(f.panel()->fieldError("name").contains("already the name"));
+        QCOMPARE(name->text(), QString("hinge"));
+        name->setText("door hinge");
+        emit name->editingFinished();
+        QCOMPARE(f.joint().name, std::string("door hinge"));
+        auto* list = f.tree.findChild<QTreeWidget*>("jointListView");
+        QCOMPARE(list->topLevelItem(0)->text(JointList::NameColumn), QString("door hinge"));
+    }
+
+    void deleteRemovesTheSelectedJoint() {
+        Fixture f;
+        JointDesc second = f.joint();
+        second.name = "stop";
+        f.doc.addJoint(second);
+        QCOMPARE(f.doc.selectedJoint(), 1);  // an added joint is selected
+        f.doc.selectJoint(0);
+        QAction* del = nullptr;
+        for (QAction* a : f.tree.actions())
+            if (a->shortcut() == QKeySequence(QKeySequence::Delete)) del = a;
+        QVERIFY(del && del->isEnabled());
+        del->trigger();
+        QCOMPARE(f.doc.jointCount(), 1);
+        QCOMPARE(f.joint().name, std::string("stop"));
+        QCOMPARE(f.doc.selectedJoint(), -1);
+        QCOMPARE(f.doc.bodyCount(), 3);  // the bodies stay (and the ground)
+        f.doc.undoStack()->undo();
+        QCOMPARE(f.doc.jointCount(), 2);
+        QCOMPARE(f.joint().name, std::string("hinge"));
+    }
+};
+
+QTEST_MAIN(TestJointPanel)
+#include "tst_joint_panel.moc"

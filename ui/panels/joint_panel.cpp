@@ -1,0 +1,452 @@
+#include "panels/joint_panel.h"
+
+#include "document/document.h"
+#include "panels/property_spin_box.h"
+#include "panels/vector_edit.h"
+
+#include <tumble/errors.h>
+
+#include "compile_joints.h"  // the engine's own validation of joints (engine/src)
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QSignalBlocker>
+#include <QVBoxLayout>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+namespace tumble::ui {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+bool axial(JointType t) {
+    return t == JointType::Hinge || t == JointType::Slider;
+}
+bool line(JointType t) {
+    return t == JointType::Distance || t == JointType::Rope;
+}
+
+// Where a body's frame is (the world's when `name` is empty or names no body).
+struct Frame {
+    Vec3 p = Vec3::Zero();
+    Quat q = Quat::Identity();
+};
+Frame frameOf(const SceneDesc& scene, const std::string& name) {
+    for (const BodyDesc& b : scene.bodies)
+        if (!name.empty() && b.name == name) return {b.position, b.orientation.normalized()};
+    return {};
+}
+
+// The message the engine's validation of the joints gives the scene, or none (the joints
+// alone: a body's problem, which would stop the whole validation first, is the body's).
+std::optional<std::string> problemOf(const SceneDesc& scene) {
+    try {
+        validateJoints(scene);
+    } catch (const SceneError& e) {
+        return std::string(e.what());
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
+    auto* outer = new QVBoxLayout(this);
+    outer->setContentsMargins(0, 0, 0, 0);
+    auto* box = new QWidget;
+    form_ = new QFormLayout(box);
+    form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+    outer->addWidget(box);
+
+    auto addRow = [this](const QString& label, const QString& key, QWidget* editor) {
+        QWidget* row = withError(editor, key);
+        form_->addRow(label, row);
+        rows_.insert(key, row);
+        return row;
+    };
+    auto spin = [this](const QString& key, const QString& suffix, double min, double step) {
+        auto* s = new PropertySpinBox;
+        s->setObjectName(key);
+        s->setSuffix(suffix);
+        s->setMinimum(min);
+        s->setSingleStep(step);
+        connect(s, &PropertySpinBox::editingFinished, this, [this] { ++generation_; });
+        return s;
+    };
+    auto vector = [this](const QString& key, const QString& suffix) {
+        auto* v = new VectorEdit(key, suffix);
+        v->setSingleStep(0.1);
+        connect(v, &VectorEdit::editingFinished, this, [this] { ++generation_; });
+        return v;
+    };
+    // A check box and the spin boxes it enables, as one field.
+    auto optional = [](QCheckBox* check, std::initializer_list<QWidget*> fields) {
+        auto* w = new QWidget;
+        auto* layout = new QHBoxLayout(w);
+        layout->setContentsMargins(0, 0, 0, 0);
+        layout->addWidget(check);
+        for (QWidget* f : fields) layout->addWidget(f, 1);
+        return w;
+    };
+
+    name_ = new QLineEdit;
+    name_->setObjectName("joint.name");
+    addRow(tr("Name"), "name", name_);
+    connect(name_, &QLineEdit::editingFinished, this, [this] {
+        const std::string text = name_->text().trimmed().toStdString();
+        apply("name", tr("Rename joint"), [&](JointDesc& j) { j.name = text; }, false);
+    });
+
+    type_ = new QComboBox;
+    type_->setObjectName("joint.type");
+    for (JointType t : {JointType::Ball, JointType::Hinge, JointType::Slider, JointType::Fixed, JointType::Distance,
+                        JointType::Rope})
+        type_->addItem(QString::fromLatin1(toString(t)), int(t));
+    addRow(tr("Type"), "type", type_);
+    connect(type_, &QComboBox::activated, this, [this](int i) {
+        const auto t = JointType(type_->itemData(i).toInt());
+        apply(
+            "type", tr("Set joint type"),
+            [&](JointDesc& j) {
+                j.type = t;
+                if (axial(t) && !j.axisA) {
+                    const Frame a = frameOf(doc_->scene(), j.bodyA);
+                    j.axisA = a.q.conjugate() * (t == JointType::Hinge ? Vec3::UnitY() : Vec3::UnitX());
+                }
+                if (!axial(t)) {
+                    j.axisA.reset();
+                    j.axisB.reset();
+                    j.limits.reset();
+                    j.motor.reset();
+                }
+                if (!line(t)) j.length = -1.0;
+            },
+            false);
+    });
+
+    // The bodies: a change keeps the anchor (and the axis) where it is in the world.
+    bodyA_ = new QComboBox;
+    bodyA_->setObjectName("joint.body_a");
+    addRow(tr("Body A"), "body_a", bodyA_);
+    bodyB_ = new QComboBox;
+    bodyB_->setObjectName("joint.body_b");
+    addRow(tr("Body B"), "body_b", bodyB_);
+    auto rebind = [this](bool first, const std::string& name) {
+        return [this, first, name](JointDesc& j) {
+            const SceneDesc& scene = doc_->scene();
+            std::string& body = first ? j.bodyA : j.bodyB;
+            Vec3& anchor = first ? j.anchorA : j.anchorB;
+            std::optional<Vec3>& axis = first ? j.axisA : j.axisB;
+            const Frame from = frameOf(scene, body), to = frameOf(scene, name);
+            anchor = to.q.conjugate() * (from.p + from.q * anchor - to.p);
+            if (axis) axis = to.q.conjugate() * (from.q * *axis);
+            body = name;
+        };
+    };
+    connect(bodyA_, &QComboBox::activated, this, [this, rebind](int i) {
+        apply("body_a", tr("Set joint body"), rebind(true, bodyA_->itemData(i).toString().toStdString()), false);
+    });
+    connect(bodyB_, &QComboBox::activated, this, [this, rebind](int i) {
+        apply("body_b", tr("Set joint body"), rebind(false, bodyB_->itemData(i).toString().toStdString()), false);
+    });
+
+    anchorA_ = vector("joint.anchor_a", " m");
+    anchorA_->setToolTip(tr("In body A's frame"));
+    addRow(tr("Anchor A"), "anchor_a", anchorA_);
+    connect(anchorA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
+        apply("anchor_a", tr("Move joint anchor"), [&](JointDesc& j) { j.anchorA[k] = v; });
+    });
+    anchorB_ = vector("joint.anchor_b", " m");
+    addRow(tr("Anchor B"), "anchor_b", anchorB_);
+    connect(anchorB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
+        apply("anchor_b", tr("Move joint anchor"), [&](JointDesc& j) { j.anchorB[k] = v; });
+    });
+
+    axisA_ = vector("joint.axis_a", QString());
+    axisA_->setToolTip(tr("In body A's frame, any length but zero"));
+    addRow(tr("Axis"), "axis_a", axisA_);
+    connect(axisA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
+        apply("axis_a", tr("Turn joint axis"), [&](JointDesc& j) {
+            if (j.axisA) (*j.axisA)[k] = v;
+        });
+    });
+    hasAxisB_ = new QCheckBox(tr("own"));
+    hasAxisB_->setObjectName("joint.axis_b.on");
+    hasAxisB_->setToolTip(tr("Give body B an axis of its own (else the axis as it lies at the start)"));
+    axisB_ = vector("joint.axis_b", QString());
+    addRow(tr("Axis on B"), "axis_b", optional(hasAxisB_, {axisB_}));
+    connect(hasAxisB_, &QCheckBox::toggled, this, [this](bool on) {
+        apply(
+            "axis_b", on ? tr("Give joint an axis on B") : tr("Take joint's axis on B away"),
+            [&](JointDesc& j) {
+                if (!on || !j.axisA) {
+                    j.axisB.reset();
+                    return;
+                }
+                const SceneDesc& scene = doc_->scene();
+                const Frame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
+                j.axisB = b.q.conjugate() * (a.q * *j.axisA);
+            },
+            false);
+    });
+    connect(axisB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
+        apply("axis_b", tr("Turn joint axis"), [&](JointDesc& j) {
+            if (j.axisB) (*j.axisB)[k] = v;
+        });
+    });
+
+    asPlaced_ = new QCheckBox(tr("as placed"));
+    asPlaced_->setObjectName("joint.length.as_placed");
+    asPlaced_->setToolTip(tr("The anchors' distance in the scene"));
+    length_ = spin("joint.length", " m", 0.0, 0.05);
+    addRow(tr("Length"), "length", optional(asPlaced_, {length_}));
+    connect(asPlaced_, &QCheckBox::toggled, this, [this](bool on) {
+        apply(
+            "length", tr("Set joint length"),
+            [&](JointDesc& j) {
+                if (on) {
+                    j.length = -1.0;
+                    return;
+                }
+                const SceneDesc& scene = doc_->scene();
+                const Frame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
+                j.length = ((a.p + a.q * j.anchorA) - (b.p + b.q * j.anchorB)).norm();
+            },
+            false);
+    });
+    connect(length_, &PropertySpinBox::valueChanged, this, [this](double v) {
+        apply("length", tr("Set joint length"), [&](JointDesc& j) { j.length = v; });
+    });
+
+    hasLimits_ = new QCheckBox;
+    hasLimits_->setObjectName("joint.limits.on");
+    lower_ = spin("joint.limits.lower", QString(), -1e12, 5.0);
+    upper_ = spin("joint.limits.upper", QString(), -1e12, 5.0);
+    lower_->setToolTip(tr("Lower limit"));
+    upper_->setToolTip(tr("Upper limit"));
+    addRow(tr("Limits"), "limits", optional(hasLimits_, {lower_, upper_}));
+    // A hinge's angles are shown in degrees (as orientations are), kept in radians.
+    auto unit = [this](const JointDesc& j) { return j.type == JointType::Hinge ? kDegree : 1.0; };
+    connect(hasLimits_, &QCheckBox::toggled, this, [this](bool on) {
+        apply(
+            "limits", on ? tr("Limit joint") : tr("Free joint's limits"),
+            [&](JointDesc& j) {
+                if (on)
+                    j.limits = j.type == JointType::Hinge ? std::array<double, 2>{-std::numbers::pi / 2, std::numbers::pi / 2}
+                                                           : std::array<double, 2>{-0.5, 0.5};
+                else
+                    j.limits.reset();
+            },
+            false);
+    });
+    for (int k = 0; k < 2; ++k) {
+        connect(k ? upper_ : lower_, &PropertySpinBox::valueChanged, this, [this, k, unit](double v) {
+            apply("limits", tr("Set joint limits"), [&](JointDesc& j) {
+                if (j.limits) (*j.limits)[static_cast<size_t>(k)] = v * unit(j);
+            });
+        });
+    }
+
+    hasMotor_ = new QCheckBox;
+    hasMotor_->setObjectName("joint.motor.on");
+    motorSpeed_ = spin("joint.motor.speed", QString(), -1e12, 0.1);
+    motorSpeed_->setToolTip(tr("Target rate"));
+    motorMax_ = spin("joint.motor.max", QString(), 0.0, 1.0);
+    motorMax_->setToolTip(tr("At most this torque (hinge) or force (slider)"));
+    addRow(tr("Motor"), "motor", optional(hasMotor_, {motorSpeed_, motorMax_}));
+    connect(hasMotor_, &QCheckBox::toggled, this, [this](bool on) {
+        apply(
+            "motor", on ? tr("Add joint motor") : tr("Remove joint motor"),
+            [&](JointDesc& j) {
+                if (on)
+                    j.motor = JointDesc::Motor{1.0, 10.0};
+                else
+                    j.motor.reset();
+            },
+            false);
+    });
+    connect(motorSpeed_, &PropertySpinBox::valueChanged, this, [this](double v) {
+        apply("motor", tr("Set motor speed"), [&](JointDesc& j) {
+            if (j.motor) j.motor->speed = v;
+        });
+    });
+    connect(motorMax_, &PropertySpinBox::valueChanged, this, [this](double v) {
+        apply("motor", tr("Set motor strength"), [&](JointDesc& j) {
+            if (j.motor) j.motor->maxForce = v;
+        });
+    });
+
+    breaks_ = new QCheckBox;
+    breaks_->setObjectName("joint.break_force.on");
+    breaks_->setToolTip(tr("The joint breaks for good when the force it carries passes this"));
+    breakForce_ = spin("joint.break_force", " N", 0.0, 10.0);
+    addRow(tr("Breaks at"), "break_force", optional(breaks_, {breakForce_}));
+    connect(breaks_, &QCheckBox::toggled, this, [this](bool on) {
+        apply(
+            "break_force", on ? tr("Let joint break") : tr("Make joint unbreakable"),
+            [&](JointDesc& j) {
+                if (on)
+                    j.breakForce = 1000.0;
+                else
+                    j.breakForce.reset();
+            },
+            false);
+    });
+    connect(breakForce_, &PropertySpinBox::valueChanged, this, [this](double v) {
+        apply("break_force", tr("Set joint breaking force"), [&](JointDesc& j) {
+            if (j.breakForce) j.breakForce = v;
+        });
+    });
+
+    connect(doc_, &Document::jointsChanged, this, &JointPanel::refresh);
+    connect(doc_, &Document::bodyChanged, this, &JointPanel::refresh);
+    connect(doc_, &Document::bodyInserted, this, &JointPanel::refresh);
+    connect(doc_, &Document::bodyRemoved, this, &JointPanel::refresh);
+    connect(doc_, &Document::selectionChanged, this, [this] {
+        ++generation_;
+        clearErrors();
+        refresh();
+    });
+    refresh();
+}
+
+int JointPanel::jointIndex() const {
+    return doc_->selectedJoint();
+}
+
+QWidget* JointPanel::withError(QWidget* editor, const QString& key) {
+    auto* box = new QWidget;
+    auto* layout = new QVBoxLayout(box);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->setSpacing(1);
+    layout->addWidget(editor);
+    auto* error = new QLabel(box);
+    error->setObjectName("joint." + key + ".error");
+    error->setStyleSheet("color: #c62828;");
+    error->setWordWrap(true);
+    error->hide();
+    layout->addWidget(error);
+    errors_.insert(key, error);
+    return box;
+}
+
+void JointPanel::clearErrors() {
+    for (QLabel* l : errors_) l->hide();
+}
+
+QString JointPanel::fieldError(const QString& field) const {
+    QLabel* label = errors_.value(field);
+    return label && !label->isHidden() ? label->text() : QString();
+}
+
+void JointPanel::apply(const QString& key, const QString& text, const Edit& edit, bool merge) {
+    const int i = jointIndex();
+    if (i < 0) return;
+    JointDesc j = doc_->joint(i);
+    edit(j);
+    if (j == doc_->joint(i)) {
+        refresh();
+        return;
+    }
+    // Refused only for a problem this edit brings (another joint may have one already).
+    SceneDesc scene = doc_->scene();
+    scene.joints[static_cast<size_t>(i)] = j;
+    const auto problem = problemOf(scene);
+    if (problem && problem != problemOf(doc_->scene())) {
+        clearErrors();
+        QLabel* error = errors_.value(key);
+        error->setText(QString::fromStdString(*problem));
+        error->show();
+        refresh();
+        return;
+    }
+    clearErrors();
+    const int mergeId = merge ? static_cast<int>(qHash(key) % 100000u) + 1 + generation_ * 100003 : 0;
+    doc_->setJoint(i, j, text, mergeId);
+}
+
+void JointPanel::refresh() {
+    const int i = jointIndex();
+    if (i < 0) return;
+    const JointDesc& j = doc_->joint(i);
+    const SceneDesc& scene = doc_->scene();
+    {
+        const QSignalBlocker b(name_);
+        name_->setText(QString::fromStdString(j.name));
+    }
+    {
+        const QSignalBlocker b(type_);
+        type_->setCurrentIndex(type_->findData(int(j.type)));
+    }
+    for (QComboBox* combo : {bodyA_, bodyB_}) {
+        const QSignalBlocker b(combo);
+        combo->clear();
+        if (combo == bodyB_) combo->addItem(tr("(world)"), QString());
+        for (const BodyDesc& body : scene.bodies)
+            combo->addItem(QString::fromStdString(body.name), QString::fromStdString(body.name));
+        combo->setCurrentIndex(combo->findData(QString::fromStdString(combo == bodyA_ ? j.bodyA : j.bodyB)));
+    }
+    anchorA_->showValue(j.anchorA);
+    anchorB_->showValue(j.anchorB);
+    anchorB_->setToolTip(j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
+    const bool ax = axial(j.type);
+    form_->setRowVisible(rows_["axis_a"], ax);
+    form_->setRowVisible(rows_["axis_b"], ax);
+    form_->setRowVisible(rows_["limits"], ax);
+    form_->setRowVisible(rows_["motor"], ax);
+    form_->setRowVisible(rows_["length"], line(j.type));
+    if (j.axisA) axisA_->showValue(*j.axisA);
+    {
+        const QSignalBlocker b(hasAxisB_);
+        hasAxisB_->setChecked(j.axisB.has_value());
+    }
+    axisB_->setEnabled(j.axisB.has_value());
+    if (j.axisB) axisB_->showValue(*j.axisB);
+    {
+        const QSignalBlocker b(asPlaced_);
+        asPlaced_->setChecked(j.length < 0.0);
+    }
+    length_->setEnabled(j.length >= 0.0);
+    if (j.length >= 0.0) length_->showValue(j.length);
+    const bool hinge = j.type == JointType::Hinge;
+    const double unit = hinge ? kDegree : 1.0;
+    for (PropertySpinBox* s : {lower_, upper_}) s->setSuffix(hinge ? QStringLiteral("°") : QStringLiteral(" m"));
+    {
+        const QSignalBlocker b(hasLimits_);
+        hasLimits_->setChecked(j.limits.has_value());
+    }
+    lower_->setEnabled(j.limits.has_value());
+    upper_->setEnabled(j.limits.has_value());
+    if (j.limits) {
+        lower_->showValue((*j.limits)[0] / unit);
+        upper_->showValue((*j.limits)[1] / unit);
+    }
+    motorSpeed_->setSuffix(hinge ? QStringLiteral(" rad/s") : QStringLiteral(" m/s"));
+    motorMax_->setSuffix(hinge ? QStringLiteral(" N m") : QStringLiteral(" N"));
+    {
+        const QSignalBlocker b(hasMotor_);
+        hasMotor_->setChecked(j.motor.has_value());
+    }
+    motorSpeed_->setEnabled(j.motor.has_value());
+    motorMax_->setEnabled(j.motor.has_value());
+    if (j.motor) {
+        motorSpeed_->showValue(j.motor->speed);
+        motorMax_->showValue(j.motor->maxForce);
+    }
+    {
+        const QSignalBlocker b(breaks_);
+        breaks_->setChecked(j.breakForce.has_value());
+    }
+    breakForce_->setEnabled(j.breakForce.has_value());
+    if (j.breakForce) breakForce_->showValue(*j.breakForce);
+}
+
+}  // namespace tumble::ui

@@ -1,0 +1,74 @@
+// The property panel's page for a selected joint: its name, type, the bodies it joins,
+// anchors and axes in each body's frame, and the optional length, limits, motor and
+// breaking force, each with its unit. Every edit is checked with the engine's own
+// validation before it reaches the document (a refused value is explained under its field
+// and the field shows the joint as it is); each is one undo step, a scrub of one field is
+// one. Changing a joint's body keeps its anchor (and axis) where they are in the world.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <QMap>
+#include <QWidget>
+
+#include <functional>
+
+class QCheckBox;
+class QComboBox;
+class QFormLayout;
+class QLabel;
+class QLineEdit;
+
+namespace tumble::ui {
+
+class Document;
+class PropertySpinBox;
+class VectorEdit;
+
+class JointPanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit JointPanel(Document* doc, QWidget* parent = nullptr);
+
+    /// Shows the document's selected joint (nothing when none is selected).
+    void refresh();
+    /// The message under a field (its key, e.g. "limits", "axis_a"), or empty.
+    QString fieldError(const QString& field) const;
+
+private:
+    using Edit = std::function<void(JointDesc&)>;
+    /// Applies `edit` to a copy of the selected joint; validates the scene with it; hands it
+    /// to the document (merging with the last edit of the same field while it is scrubbed).
+    void apply(const QString& key, const QString& text, const Edit& edit, bool merge = true);
+    QWidget* withError(QWidget* editor, const QString& key);
+    void clearErrors();
+    int jointIndex() const;
+
+    Document* doc_;
+    QFormLayout* form_ = nullptr;
+    QMap<QString, QLabel*> errors_;
+    QMap<QString, QWidget*> rows_;
+    int generation_ = 1;
+
+    QLineEdit* name_ = nullptr;
+    QComboBox* type_ = nullptr;
+    QComboBox* bodyA_ = nullptr;
+    QComboBox* bodyB_ = nullptr;
+    VectorEdit* anchorA_ = nullptr;
+    VectorEdit* anchorB_ = nullptr;
+    VectorEdit* axisA_ = nullptr;
+    QCheckBox* hasAxisB_ = nullptr;
+    VectorEdit* axisB_ = nullptr;
+    QCheckBox* asPlaced_ = nullptr;
+    PropertySpinBox* length_ = nullptr;
+    QCheckBox* hasLimits_ = nullptr;
+    PropertySpinBox* lower_ = nullptr;
+    PropertySpinBox* upper_ = nullptr;
+    QCheckBox* hasMotor_ = nullptr;
+    PropertySpinBox* motorSpeed_ = nullptr;
+    PropertySpinBox* motorMax_ = nullptr;
+    QCheckBox* breaks_ = nullptr;
+    PropertySpinBox* breakForce_ = nullptr;
+};
+
+}  // namespace tumble::ui
