@@ -50,6 +50,9 @@ Options for --headless:
                       a folder ending in / gets a PNG per frame, FILE.mp4 a video (its
                       frames in FILE-frames/; needs ffmpeg): both drawn by the editor's
                       viewport, so they need a display (xvfb-run -a tumble --headless ...)
+  --joint-forces      with a .csv or .json --out: each joint's reaction too (the force
+                      on body A at its anchor and the couple on A, world, over the last
+                      step before each frame; a CSV gets them in FILE-joints.csv beside it)
   --image-size WxH    pixels of the images and video (default 1280x720)
   --save-scene FILE   writes the scene as run (options applied), normalised
   --quiet             prints nothing but errors
@@ -83,6 +86,7 @@ struct Options {
     int imageWidth = 1280, imageHeight = 720;
     int threads = 1;
     bool quiet = false;
+    bool jointForces = false;
 };
 
 ImageRenderer& imageRenderer() {
@@ -130,6 +134,7 @@ Options parse(const std::vector<std::string>& args) {
         };
         if (a == "--headless") continue;
         if (a == "--quiet") o.quiet = true;
+        else if (a == "--joint-forces") o.jointForces = true;
         else if (a == "--duration") o.duration = parseNumber(a, next());
         else if (a == "--dt") o.dt = parseNumber(a, next());
         else if (a == "--frame-rate") o.frameRate = parseNumber(a, next());
@@ -212,6 +217,13 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kInvalid;
     }
 
+    if (o.jointForces && (o.out.empty() || images || (format != io::TrajectoryFormat::Csv &&
+                                                        format != io::TrajectoryFormat::Json))) {
+        err << "tumble: --joint-forces: needs --out FILE.csv or FILE.json (the joints' reactions are "
+               "written with the trajectory)\n";
+        return kInvalid;
+    }
+
     std::unique_ptr<World> world;
     try {
         world = std::make_unique<World>(scene);
@@ -229,7 +241,9 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     std::unique_ptr<io::TrajectoryWriter> trajectory;
     try {
         if (!o.out.empty() && !images) {
-            trajectory = io::makeTrajectoryWriter(format, o.out);
+            io::ExportOptions options;
+            options.jointForces = o.jointForces;
+            trajectory = io::makeTrajectoryWriter(format, o.out, options);
             trajectory->begin(world->model(), scene, frameCount(world->model().settings),
                               world->model().settings.frameRate);
         }

@@ -126,6 +126,9 @@ struct ContactSolverScratch {
     /// Per joint: the impulse on A the step's first projection gave the velocities (RATTLE's
     /// half of the joint's force; the rows give the rest), for breaking.
     std::vector<Vec3> projectedImpulse;
+    /// Per joint: the couple on A the same projection gave (hinge, slider, fixed), for the
+    /// joint's reaction (State::jointCouples).
+    std::vector<Vec3> projectedCouple;
     PageVector<Point> points;  // (make_room.h: their old room is given back when they grow)
     PageVector<PointGeometry> geometry;  // per point
     PageVector<Block> blocks;

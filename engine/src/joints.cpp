@@ -251,6 +251,8 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
     if (state.jointImpulses.size() != n) state.jointImpulses.assign(n, Vec3::Zero());
     if (state.jointTorques.size() != n) state.jointTorques.assign(n, Vec3::Zero());
     if (state.jointSteps.size() != n) state.jointSteps.assign(n, 0.0);
+    if (state.jointForces.size() != n) state.jointForces.assign(n, Vec3::Zero());
+    if (state.jointCouples.size() != n) state.jointCouples.assign(n, Vec3::Zero());
     // A joint whose bodies all stand still here (asleep, or parked while World cuts the rest
     // of the step) keeps what it had, as the contacts of sleeping pairs do; the others are
     // written below if they have rows, else cleared.
@@ -260,12 +262,15 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
         if (idle(j.a) && idle(j.b)) continue;
         state.jointImpulses[k].setZero();
         state.jointTorques[k].setZero();
+        state.jointForces[k].setZero();
+        state.jointCouples[k].setZero();
         state.jointSteps[k] = h;
     }
     for (const JointRow& r : s.jointRows) {
         const JointModel& j = model.joints[r.joint];
         // What the joint carried: its rows' impulse and the projection's, over the step.
         Vec3 impulse = s.projectedImpulse.size() == model.joints.size() ? s.projectedImpulse[r.joint] : Vec3::Zero();
+        Vec3 reported = Vec3::Zero();  // the force beyond what breaking counts
         if (r.general < 0) {
             state.jointSteps[r.joint] = h;
             state.jointImpulses[r.joint] = r.lambda / h;
@@ -276,7 +281,18 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
             state.jointImpulses[r.joint] = g.lin.leftCols(g.nl) * g.lambda.head(g.nl) / h;
             state.jointTorques[r.joint] = g.ang.leftCols(g.na) * g.lambda.segment(g.nl, g.na) / h;
             impulse += g.lin.leftCols(g.nl) * g.lambda.head(g.nl);
+            const Vec3 projected =
+                s.projectedCouple.size() == model.joints.size() ? s.projectedCouple[r.joint] : Vec3::Zero();
+            state.jointCouples[r.joint] = state.jointTorques[r.joint] + projected / h;
+            // A motor's and the limits' push along the free axis: a couple about a hinge's
+            // axis, a force along a slider's (reported; breaking is the constraint's alone).
+            if (g.axial) {
+                const double axial = (g.motorLambda + g.lowerLambda + g.upperLambda) / h;
+                state.jointCouples[r.joint] += axial * g.JAx.tail<3>();
+                reported += axial * g.JAx.head<3>();
+            }
         }
+        state.jointForces[r.joint] = impulse / h + reported;
         const double force = impulse.norm() / h;
         // Breaking: after this step the joint acts no more (and starts no next step warm).
         if (force > j.breakForce) {
@@ -340,6 +356,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     const double past = projectLimit(j, a, b, moveA, moveB, A, B, near);
     if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
         s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * lambda.head(then.nl) / h;
+        s.projectedCouple[j.index] += then.ang.leftCols(then.na) * lambda.segment(then.nl, then.na) / h;
         if (moveA) applyToBody(s.bodies[j.a], then.JA * (lambda / h));
         if (moveB) applyToBody(s.bodies[j.b], then.JB * (lambda / h));
     }
@@ -413,7 +430,10 @@ double projectionPass(const Model& model, State& state, ContactSolverScratch& s,
 }  // namespace
 
 void projectJoints(const Model& model, State& state, ContactSolverScratch& s, double h, const State* start) {
-    if (start && h > 0.0) s.projectedImpulse.assign(model.joints.size(), Vec3::Zero());
+    if (start && h > 0.0) {
+        s.projectedImpulse.assign(model.joints.size(), Vec3::Zero());
+        s.projectedCouple.assign(model.joints.size(), Vec3::Zero());
+    }
     // First RATTLE's projection, a few passes (a lone joint converges in two or three);
     // then whatever a long chain has left, along the directions now, which Gauss-Seidel
     // converges on safely (the first kind, iterated long, ran away on a whipping chain).

@@ -171,6 +171,22 @@ private slots:
         QCOMPARE(entries(), QStringList({"blow.json", "box.json", "traj.csv"}));  // no temporary left
     }
 
+    // --joint-forces: the door sample's hinge in traj-joints.csv beside the trajectory, a row
+    // per frame, its weight carried (20 kg x 9.81 m/s^2) from the first step on.
+    void outJointForces() {
+        RUN(r, {"--headless", TUMBLE_SCENES_DIR "/hinged-door.json", "--duration", "0.5", "--out", "traj.csv",
+                "--joint-forces"});
+        QCOMPARE(r.code, 0);
+        const QStringList rows = lines(QString::fromUtf8(read("traj-joints.csv")));
+        QCOMPARE(rows.value(0), QString("time,joint,fx,fy,fz,tx,ty,tz,broken"));
+        QCOMPARE(rows.size(), 1 + 31);  // header, 1 joint x 31 frames
+        QCOMPARE(rows.value(1), QString("0,hinge,0,0,0,0,0,0,0"));
+        const QStringList last = rows.last().split(',');
+        QCOMPARE(last.value(1), QString("hinge"));
+        QVERIFY(std::abs(last.value(3).toDouble() - 196.2) < 1e-9);
+        QCOMPARE(lines(QString::fromUtf8(read("traj.csv"))).size(), 1 + 3 * 31);  // unchanged: ground, post, door
+    }
+
     void saveScene() {
         RUN(r, {"--headless", "box.json", "--duration", "0.3", "--save-scene", "saved.json"});
         QCOMPARE(r.code, 0);
@@ -343,6 +359,13 @@ private slots:
                                     << "tumble: more than one scene given: 'box.json' and 'blow.json'";
         QTest::newRow("out without value")
             << QStringList({"--headless", "box.json", "--out"}) << "tumble: --out: needs a value";
+        const QString jointForces =
+            "tumble: --joint-forces: needs --out FILE.csv or FILE.json (the joints' reactions are written "
+            "with the trajectory)";
+        QTest::newRow("joint forces without out") << QStringList({"--headless", "box.json", "--joint-forces"})
+                                                  << jointForces;
+        QTest::newRow("joint forces in glTF")
+            << QStringList({"--headless", "box.json", "--joint-forces", "--out", "t.glb"}) << jointForces;
     }
 
     void usageErrors() {

@@ -262,6 +262,85 @@ private slots:
                                  io::makeTrajectoryWriter(base / "no" / "t.json")->begin(model, s, 11, 20));
     }
 
+    // With the joints' reactions: the JSON names each joint and gives every frame's force,
+    // couple and broken flag equal to the state's bit for bit; the CSV gets them in
+    // run-joints.csv beside it (and a cancelled export leaves neither file); glTF refuses.
+    void jointForces() {
+        SceneDesc s = scene();
+        s.settings.integrator = "splitting";
+        JointDesc rod;  // the ball on a rod from a world point, and the box on a rope to the ball
+        rod.name = "rod";
+        rod.type = JointType::Distance;
+        rod.bodyA = s.bodies[1].name;
+        rod.anchorB = s.bodies[1].position + Vec3(0.5, 0.5, 0);
+        s.joints.push_back(rod);
+        JointDesc rope = rod;
+        rope.name = "rope";
+        rope.type = JointType::Rope;
+        rope.bodyA = "offset";
+        rope.bodyB = s.bodies[1].name;
+        rope.anchorB = Vec3::Zero();
+        s.joints.push_back(rope);
+        QTemporaryDir dir;
+        const fs::path base(dir.path().toStdString());
+        io::ExportOptions options;
+        options.jointForces = true;
+        auto json = io::makeTrajectoryWriter(base / "run.json", options);
+        const std::vector<State> frames = run(s, json.get());
+        json->finish();
+        const io::Trajectory t = io::readTrajectoryJson(base / "run.json");
+        QCOMPARE(t.joints.size(), size_t(2));
+        QCOMPARE(t.joints[0].name, std::string("rod"));
+        QCOMPARE(t.joints[0].type, std::string("distance"));
+        QCOMPARE(t.joints[0].bodyA, s.bodies[1].name);
+        QVERIFY(t.joints[0].bodyB.empty());  // the world
+        QCOMPARE(t.joints[1].bodyB, s.bodies[1].name);
+        QCOMPARE(t.frames.size(), frames.size());
+        bool pulled = false;
+        for (size_t k = 0; k < frames.size(); ++k) {
+            QCOMPARE(t.frames[k].joints.size(), size_t(2));
+            for (int j = 0; j < 2; ++j) {
+                const Vec3 f = k == 0 ? Vec3::Zero() : frames[k].jointForces[size_t(j)];
+                for (int c = 0; c < 3; ++c) QCOMPARE(bits(t.frames[k].joints[size_t(j)].force[c]), bits(f[c]));
+                QCOMPARE(t.frames[k].joints[size_t(j)].torque, Vec3(Vec3::Zero()));  // no couple: rod and rope
+                QVERIFY(!t.frames[k].joints[size_t(j)].broken);
+            }
+            pulled = pulled || (frames[k].jointForces.size() == 2 && frames[k].jointForces[0].norm() > 1.0);
+        }
+        QVERIFY(pulled);
+
+        auto csv = io::makeTrajectoryWriter(base / "run.csv", options);
+        run(s, csv.get());
+        csv->finish();
+        QCOMPARE(io::jointCsvPath(base / "run.csv"), base / "run-joints.csv");
+        std::istringstream rows(readAll(base / "run-joints.csv"));
+        std::string line;
+        std::getline(rows, line);
+        QCOMPARE(line, std::string(io::kJointCsvHeader));
+        int count = 0;
+        while (std::getline(rows, line)) {
+            const QStringList cells = QString::fromStdString(line).split(',');
+            QCOMPARE(cells.size(), 9);
+            const int k = count / 2, j = count % 2;
+            QCOMPARE(cells[1], QString(j ? "rope" : "rod"));
+            const Vec3 f = k == 0 ? Vec3::Zero() : frames[size_t(k)].jointForces[size_t(j)];
+            QCOMPARE(bits(cells[3].toDouble()), bits(f.y()));
+            QCOMPARE(cells[8], QString("0"));
+            ++count;
+        }
+        QCOMPARE(count, int(frames.size()) * 2);
+
+        QTemporaryDir cancelled;
+        {
+            World world(s);
+            auto writer = io::makeTrajectoryWriter(fs::path(cancelled.path().toStdString()) / "c.csv", options);
+            writer->begin(world.model(), s, frameCount(world.model().settings), 20);
+            writer->frame(0, world.state());
+        }
+        QCOMPARE(entries(cancelled), QStringList());
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, io::makeTrajectoryWriter(base / "t.glb", options));
+    }
+
     void readerNamesTheField_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("message");

@@ -2,6 +2,7 @@
 
 #include "export/image_exporter.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDir>
@@ -83,6 +84,9 @@ ExportDialog::ExportDialog(const QStringList& bodyNames, int frames, double fram
         item->setCheckState(Qt::Checked);
     }
     bodies_->setMaximumHeight(140);
+    jointForces_ = new QCheckBox(tr("Add each joint's force and couple on its first body"));
+    jointForces_->setObjectName("jointForces");
+    jointForces_->setToolTip(tr("CSV: in a second file, NAME-joints.csv, beside the trajectory; JSON: in each frame"));
     width_ = new QSpinBox;
     width_->setObjectName("width");
     height_ = new QSpinBox;
@@ -107,6 +111,9 @@ ExportDialog::ExportDialog(const QStringList& bodyNames, int frames, double fram
     form->addRow(tr("Sampling"), row(step_, rate_));
     bodiesRow_ = bodies_;
     form->addRow(tr("Bodies"), bodies_);
+    form->addRow(tr("Joints"), jointForces_);
+    jointsLabel_ = form->labelForField(jointForces_);
+    setHasJoints(false);
     sizeRow_ = row(width_, new QLabel(QStringLiteral("×")), height_);
     form->addRow(tr("Image size"), sizeRow_);
     form->addRow(problem_);
@@ -178,7 +185,17 @@ io::ExportOptions ExportDialog::options() const {
             all = false;
     }
     if (all) o.bodies.clear();
+    o.jointForces = jointForces_->isVisibleTo(this) && jointForces_->isEnabled() && jointForces_->isChecked();
     return o;
+}
+
+void ExportDialog::setHasJoints(bool has) {
+    jointForces_->setVisible(has);
+    if (jointsLabel_) jointsLabel_->setVisible(has);
+}
+
+void ExportDialog::setJointForces(bool on) {
+    jointForces_->setChecked(on);
 }
 
 QString ExportDialog::problem() const {
@@ -210,6 +227,7 @@ void ExportDialog::update() {
     rate_->setText(
         tr("%1 frames at %2 frames/s").arg(std::max(0, count)).arg(frameRate_ / step_->value(), 0, 'g', 4));
     bodiesRow_->setEnabled(isTrajectory(k));
+    jointForces_->setEnabled(k == Kind::Csv || k == Kind::Json);  // glTF has no place for them
     sizeRow_->setEnabled(!isTrajectory(k));
     const QString p = problem();
     problem_->setText(p);

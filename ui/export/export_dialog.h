@@ -1,7 +1,8 @@
 // File > Export: the format (trajectory CSV or JSON, glTF, glb, a PNG image sequence, an
 // MP4 video when ffmpeg is installed), where to, which frames (range and step, so a lower
-// frame rate), which bodies (trajectories) and the image size (images, video). The last
-// choices are remembered (QSettings).
+// frame rate), which bodies (trajectories), the joints' reactions (trajectories of a scene
+// with joints) and the image size (images, video). The last choices are remembered
+// (QSettings).
 #pragma once
 
 #include <tumble/io/trajectory_writer.h>
@@ -10,6 +11,7 @@
 #include <QSize>
 #include <QStringList>
 
+class QCheckBox;
 class QComboBox;
 class QLabel;
 class QLineEdit;
@@ -37,6 +39,10 @@ public:
     io::ExportOptions options() const;
     void setFrameRange(int first, int last, int step);
     void setBodiesChecked(const QList<int>& bodies);
+    /// Whether the scene has joints: then a CSV or JSON export can add their reactions
+    /// (ExportOptions::jointForces; a CSV's go in FILE-joints.csv beside it).
+    void setHasJoints(bool has);
+    void setJointForces(bool on);
     QSize imageSize() const;
     /// What is wrong with the choices, or empty (the OK button is enabled only then).
     QString problem() const;
@@ -57,6 +63,8 @@ private:
     QSpinBox* step_;
     QLabel* rate_;
     QListWidget* bodies_;
+    QCheckBox* jointForces_;
+    QWidget* jointsLabel_ = nullptr;
     QSpinBox* width_;
     QSpinBox* height_;
     QLabel* problem_;

@@ -77,6 +77,7 @@ void MainWindow::exportDialog() {
     QStringList names;
     for (const BodyDesc& b : timeline_->frames().scene.bodies) names << QString::fromStdString(b.name);
     ExportDialog dialog(names, timeline_->framesDone(), timeline_->frameRate(), sceneName(), this);
+    dialog.setHasJoints(!timeline_->frames().scene.joints.empty());
     if (dialog.exec() != QDialog::Accepted) return;
 
     auto* progress = new QProgressDialog(tr("Exporting to %1...").arg(QFileInfo(dialog.target()).fileName()),

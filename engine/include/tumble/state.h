@@ -52,6 +52,16 @@ struct State {
     std::vector<Vec3> jointImpulses;
     /// Per joint: the torque on A in the last step (hinge, slider and fixed; else zero).
     std::vector<Vec3> jointTorques;
+    /// Per joint: the force it put on body A over the last step, at A's anchor (N, world;
+    /// body B took the opposite): its rows' impulse and its position projection's, over the
+    /// step's length (the force break_force is compared with), and a slider's motor and
+    /// limits along its axis. Empty: none yet.
+    std::vector<Vec3> jointForces;
+    /// Per joint: the couple it put on body A over the last step (N m, world; B took the
+    /// opposite), its angular rows' and its projection's, and a hinge's motor and limits
+    /// about its axis (hinge, slider and fixed; zero for the others). With jointForces, the
+    /// joint's reaction. Empty: none yet.
+    std::vector<Vec3> jointCouples;
     /// Per joint: the length (s) of the solve its impulse and torque come from (0, or empty:
     /// unknown). The warm start turns them back into impulses over that time, scaled to the
     /// next step's length as the contacts' are.

@@ -4,6 +4,12 @@
 
 namespace tumble::io {
 
+std::filesystem::path jointCsvPath(const std::filesystem::path& trajectory) {
+    std::filesystem::path p = trajectory;
+    p.replace_filename(trajectory.stem().string() + "-joints" + trajectory.extension().string());
+    return p;
+}
+
 std::string csvField(const std::string& text) {
     if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
     std::string quoted = "\"";

@@ -89,6 +89,22 @@ Trajectory parseTrajectoryJson(std::string_view text, const std::string& fileNam
         t.bodies.push_back(std::move(b));
     }
 
+    const bool hasJoints = doc.contains("joints");
+    if (hasJoints) {
+        const json& joints = doc["joints"];
+        if (!joints.is_array()) r.fail("joints", "must be an array");
+        for (size_t i = 0; i < joints.size(); ++i) {
+            const std::string path = "joints[" + std::to_string(i) + "]";
+            auto text = [&](const char* key, bool nullable) -> std::string {
+                const json& v = r.member(joints[i], path, key);
+                if (nullable && v.is_null()) return {};
+                if (!v.is_string()) r.fail(path + "." + key, nullable ? "must be a string or null" : "must be a string");
+                return v.get<std::string>();
+            };
+            t.joints.push_back({text("name", false), text("type", false), text("body_a", false), text("body_b", true)});
+        }
+    }
+
     const json& frames = r.member(doc, "", "frames");
     if (!frames.is_array()) r.fail("frames", "must be an array");
     for (size_t k = 0; k < frames.size(); ++k) {
@@ -112,6 +128,23 @@ Trajectory parseTrajectoryJson(std::string_view text, const std::string& fileNam
             pose.velocity = r.vec3(r.member(poses[i], p, "velocity"), p + ".velocity");
             pose.angularVelocity = r.vec3(r.member(poses[i], p, "angular_velocity"), p + ".angular_velocity");
             f.bodies.push_back(pose);
+        }
+        if (hasJoints) {
+            const json& reactions = r.member(frames[k], path, "joints");
+            if (!reactions.is_array() || reactions.size() != t.joints.size()) {
+                r.fail(path + ".joints",
+                       "must be an array with one entry per joint (" + std::to_string(t.joints.size()) + ")");
+            }
+            for (size_t i = 0; i < reactions.size(); ++i) {
+                const std::string p = path + ".joints[" + std::to_string(i) + "]";
+                TrajectoryReaction reaction;
+                reaction.force = r.vec3(r.member(reactions[i], p, "force"), p + ".force");
+                reaction.torque = r.vec3(r.member(reactions[i], p, "torque"), p + ".torque");
+                const json& broken = r.member(reactions[i], p, "broken");
+                if (!broken.is_boolean()) r.fail(p + ".broken", "must be true or false");
+                reaction.broken = broken.get<bool>();
+                f.joints.push_back(reaction);
+            }
         }
         t.frames.push_back(std::move(f));
     }

@@ -107,14 +107,33 @@ std::string num(double v) {
     return buf;
 }
 
+// Joint k's reaction in `state` (zero before the first step).
+struct Reaction {
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    bool broken = false;
+};
+Reaction reactionOf(const State& state, int k) {
+    Reaction r;
+    const auto at = static_cast<size_t>(k);
+    if (at < state.jointForces.size()) r.force = state.jointForces[at];
+    if (at < state.jointCouples.size()) r.torque = state.jointCouples[at];
+    r.broken = state.jointBroken(k);
+    return r;
+}
+
 class CsvWriter : public TrajectoryWriter {
 public:
-    CsvWriter(fs::path file, ExportOptions options) : TrajectoryWriter(std::move(file), std::move(options)) {}
+    CsvWriter(fs::path file, ExportOptions options)
+        : TrajectoryWriter(std::move(file), options), joints_(options.jointForces) {}
 
 protected:
     void open() override {
         out_ = std::make_unique<AtomicFile>(file());
         out_->stream() << kTrajectoryCsvHeader << "\n";
+        if (joints_) {
+            jointsOut_ = std::make_unique<AtomicFile>(jointCsvPath(file()));
+            jointsOut_->stream() << kJointCsvHeader << "\n";
+        }
     }
     void writeFrame(int k, const State& state) override {
         const std::string time = num(k / frameRate());
@@ -131,18 +150,33 @@ protected:
             }
             out << '\n';
         }
+        if (!joints_) return;
+        std::ostream& rows = jointsOut_->stream();
+        for (const JointModel& j : model().joints) {
+            const Reaction r = reactionOf(state, j.index);
+            rows << time << ',' << csvField(j.name);
+            for (double v : {r.force.x(), r.force.y(), r.force.z(), r.torque.x(), r.torque.y(), r.torque.z()})
+                rows << ',' << num(v);
+            rows << ',' << (r.broken ? 1 : 0) << '\n';
+        }
     }
-    void close() override { out_->commit(); }
+    void close() override {
+        // The joints' file first: if the trajectory's commit failed after it, a stale
+        // joints file beside an old trajectory is the lesser harm than the other way round.
+        if (jointsOut_) jointsOut_->commit();
+        out_->commit();
+    }
 
 private:
-    std::unique_ptr<AtomicFile> out_;
+    bool joints_;
+    std::unique_ptr<AtomicFile> out_, jointsOut_;
 };
 
 // Streamed: the frames are written as they come, never held.
 class JsonWriter : public TrajectoryWriter {
 public:
     JsonWriter(fs::path file, ExportOptions options)
-        : TrajectoryWriter(std::move(file), std::move(options)) {}
+        : TrajectoryWriter(std::move(file), options), joints_(options.jointForces) {}
 
 protected:
     void open() override {
@@ -158,7 +192,22 @@ protected:
             out << (n ? ",\n" : "\n") << "    {\"name\": " << name << ", \"motion\": \"" << toString(b.motion)
                 << "\"}";
         }
-        out << (bodies().empty() ? "],\n" : "\n  ],\n") << "  \"frames\": [";
+        out << (bodies().empty() ? "],\n" : "\n  ],\n");
+        if (joints_) {
+            out << "  \"joints\": [";
+            const auto& joints = model().joints;
+            for (size_t n = 0; n < joints.size(); ++n) {
+                const JointModel& j = joints[n];
+                auto name = [&](const std::string& text) {
+                    return nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+                };
+                out << (n ? ",\n" : "\n") << "    {\"name\": " << name(j.name) << ", \"type\": \""
+                    << toString(j.type) << "\", \"body_a\": " << name(model().bodies[j.a].name)
+                    << ", \"body_b\": " << (j.b < 0 ? std::string("null") : name(model().bodies[j.b].name)) << "}";
+            }
+            out << (joints.empty() ? "],\n" : "\n  ],\n");
+        }
+        out << "  \"frames\": [";
     }
     void writeFrame(int k, const State& state) override {
         std::ostream& out = out_->stream();
@@ -188,7 +237,19 @@ protected:
             list({d.omega.x(), d.omega.y(), d.omega.z()});
             out << "}";
         }
-        out << (bodies().empty() ? "]}" : "\n    ]}");
+        out << (bodies().empty() ? "]" : "\n    ]");
+        if (joints_) {
+            out << ", \"joints\": [";
+            for (size_t n = 0; n < model().joints.size(); ++n) {
+                const Reaction r = reactionOf(state, model().joints[n].index);
+                out << (n ? ",\n" : "\n") << "      {\"force\": [" << num(r.force.x()) << ", " << num(r.force.y())
+                    << ", " << num(r.force.z()) << "], \"torque\": [" << num(r.torque.x()) << ", "
+                    << num(r.torque.y()) << ", " << num(r.torque.z()) << "], \"broken\": "
+                    << (r.broken ? "true" : "false") << "}";
+            }
+            out << (model().joints.empty() ? "]" : "\n    ]");
+        }
+        out << "}";
     }
     void close() override {
         out_->stream() << (framesOut_ ? "\n  ]\n}\n" : "]\n}\n");
@@ -196,6 +257,7 @@ protected:
     }
 
 private:
+    bool joints_;
     std::unique_ptr<AtomicFile> out_;
     int framesOut_ = 0;
 };
@@ -204,6 +266,9 @@ private:
 
 std::unique_ptr<TrajectoryWriter> makeTrajectoryWriter(TrajectoryFormat format, const fs::path& file,
                                                        const ExportOptions& options) {
+    const bool gltf = format == TrajectoryFormat::Gltf || format == TrajectoryFormat::Glb;
+    if (gltf && options.jointForces)
+        throw std::invalid_argument("joint forces are written with a .csv or .json trajectory, not glTF");
     switch (format) {
         case TrajectoryFormat::Csv: return std::make_unique<CsvWriter>(file, options);
         case TrajectoryFormat::Json: return std::make_unique<JsonWriter>(file, options);

@@ -6,8 +6,10 @@
 #include "window/main_window.h"
 #include "timeline/timeline.h"
 
+#include <tumble/io/trajectory_csv.h>
 #include <tumble/io/trajectory_json.h>
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QImage>
 #include <QSettings>
@@ -70,6 +72,41 @@ private slots:
             QCOMPARE(t.frames[i].bodies[0].position, x);
             QCOMPARE(t.frames[i].bodies[0].orientation.coeffs(), s.bodies[1].q.coeffs());
         }
+    }
+
+    // The door sample with its joint's reactions: the trajectory CSV as ever and the
+    // hinge's rows in door-joints.csv beside it, a row a frame. The dialog offers them
+    // for a scene with joints, for CSV and JSON only.
+    void jointForcesBesideTheTrajectory() {
+        MainWindow w;
+        QVERIFY(openAndRecord(w, ":/scenes/hinged-door.json"));
+        QTemporaryDir dir;
+        io::ExportOptions o;
+        o.jointForces = true;
+        QSignalSpy finished(&w, &MainWindow::exportFinished);
+        QString error;
+        QVERIFY2(w.startExport(int(ExportDialog::Kind::Csv), dir.filePath("door.csv"), o, QSize(), &error),
+                 qPrintable(error));
+        QVERIFY(finished.wait(30000));
+        QVERIFY2(finished.first().at(0).toBool(), qPrintable(finished.first().at(1).toString()));
+        QFile joints(dir.filePath("door-joints.csv"));
+        QVERIFY(joints.open(QIODevice::ReadOnly));
+        const QStringList rows = QString::fromUtf8(joints.readAll()).split('\n', Qt::SkipEmptyParts);
+        QCOMPARE(rows.value(0), QString(io::kJointCsvHeader));
+        QCOMPARE(rows.size(), 1 + w.timeline()->framesDone());
+        QVERIFY(rows.value(2).startsWith(QString::number(1 / 60.0, 'g', 17) + ",hinge,"));
+
+        ExportDialog d({"ground", "post", "door"}, 181, 60.0, "hinged-door.json");
+        auto* check = d.findChild<QCheckBox*>("jointForces");
+        QVERIFY(check && !check->isVisibleTo(&d));  // no joints said yet
+        d.setHasJoints(true);
+        QVERIFY(check->isVisibleTo(&d));
+        d.setJointForces(true);
+        d.setKind(ExportDialog::Kind::Json);
+        QVERIFY(d.options().jointForces);
+        d.setKind(ExportDialog::Kind::Glb);
+        QVERIFY(!check->isEnabled());
+        QVERIFY(!d.options().jointForces);
     }
 
     // Cancel as soon as it starts: finished(false) and nothing on disk.

@@ -1,6 +1,8 @@
 // The trajectory JSON of docs/export.md: format and version, frame rate, the bodies (name,
 // motion) and per frame its time and, per body, the pose of the body frame, the velocity
-// of the centre of mass and the angular velocity, numbers that read back exactly.
+// of the centre of mass and the angular velocity, numbers that read back exactly; with the
+// joints' reactions asked for, the joints (name, type, bodies) and per frame their force,
+// couple and whether they have broken.
 #pragma once
 
 #include <tumble/math.h>
@@ -28,15 +30,30 @@ struct TrajectoryPose {
     Vec3 angularVelocity = Vec3::Zero();  ///< world
 };
 
+/// A joint, when the trajectory carries the joints' reactions (ExportOptions::jointForces).
+struct TrajectoryJoint {
+    std::string name, type, bodyA;
+    std::string bodyB;  ///< empty: the world
+};
+
+/// A joint's reaction at a frame: the force on body A at its anchor (N, world) and the
+/// couple on A (N m, world) over the last step before the frame; B takes the opposite.
+struct TrajectoryReaction {
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    bool broken = false;
+};
+
 struct TrajectoryFrame {
     int frame = 0;                       ///< k of the run
     double time = 0.0;                   ///< k / frame_rate
     std::vector<TrajectoryPose> bodies;  ///< in the order of Trajectory::bodies
+    std::vector<TrajectoryReaction> joints;  ///< in the order of Trajectory::joints (or none)
 };
 
 struct Trajectory {
     double frameRate = 0.0;
     std::vector<TrajectoryBody> bodies;
+    std::vector<TrajectoryJoint> joints;  ///< empty unless the file has "joints"
     std::vector<TrajectoryFrame> frames;
 };
 

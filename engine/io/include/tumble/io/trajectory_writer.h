@@ -21,6 +21,11 @@ struct ExportOptions {
     int lastFrame = -1;       ///< the last frame written, inclusive; negative: the run's last
     int frameStep = 1;        ///< every n-th frame from firstFrame (a lower frame rate); >= 1
     std::vector<int> bodies;  ///< body indices in scene order, written in that order; empty: all
+    /// Each joint's reaction as well (CSV and JSON; the glTF export has none): the force it
+    /// put on body A at A's anchor and the couple on A over the last step before each frame
+    /// (State::jointForces, jointTorques), and whether it has broken. A CSV gets them in a
+    /// second file beside it (jointCsvPath), a JSON in each frame's "joints".
+    bool jointForces = false;
 };
 
 /// The trajectory formats, chosen by the file's extension (case ignored).
