@@ -44,6 +44,7 @@ struct Timeline::Run {
     double frameRate = 60.0;
     mutable std::mutex mutex;
     Recording recording;                   // guarded
+    std::vector<JointBreak> breaks;        // guarded
     std::shared_ptr<const Model> model;    // guarded; set once compiled
     Profile profile;                       // guarded
     std::string error;                     // guarded
@@ -164,6 +165,12 @@ FrameSummary Timeline::summary(int frame) const {
     std::lock_guard lock(run_->mutex);
     if (frame < 0 || frame >= run_->recording.framesDone()) return {};
     return run_->recording.summary(frame);
+}
+
+std::vector<Timeline::JointBreak> Timeline::jointBreaks() const {
+    if (!run_) return {};
+    std::lock_guard lock(run_->mutex);
+    return run_->breaks;
 }
 
 std::vector<FrameSummary> Timeline::summaries() const {
@@ -293,6 +300,7 @@ void Timeline::startRun() {
                 r->recording.append(world.state(), summarize(*model, world.state(), 0));
             }
             notify(false);
+            std::vector<char> broken(model->joints.size(), 0);
             for (int k = 1; k < r->frames && !r->cancel; ++k) {
                 const long steps = advanceFrame(world, k);
                 const FrameSummary summary = summarize(*model, world.state(), steps);
@@ -300,6 +308,11 @@ void Timeline::startRun() {
                     std::lock_guard lock(r->mutex);
                     r->recording.append(world.state(), summary);
                     r->profile = world.profile();
+                    for (std::size_t j = 0; j < broken.size(); ++j) {
+                        if (broken[j] || !world.state().jointBroken(static_cast<int>(j))) continue;
+                        broken[j] = 1;
+                        r->breaks.push_back({k, static_cast<int>(j), world.state().jointBrokenAt[j]});
+                    }
                 }
                 notify(false);
             }

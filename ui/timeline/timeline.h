@@ -75,6 +75,16 @@ public:
     void bodyTrack(int body, std::vector<int>* frames, std::vector<BodyState>* states,
                    int lastFrame = -1) const;
 
+    /// A joint that broke in the run: the first recorded frame at or after the moment (its
+    /// state is the first without the joint), the joint (Model::joints' index) and the time.
+    struct JointBreak {
+        int frame = 0;
+        int joint = -1;
+        double time = 0.0;
+    };
+    /// The breaks of the run so far, in frame order.
+    std::vector<JointBreak> jointBreaks() const;
+
     /// What an exporter needs of the current recording, valid and thread-safe after the
     /// timeline has moved on to another run (it keeps that run's recording alive).
     struct Frames {

@@ -78,7 +78,7 @@ TimelineDock::TimelineDock(Timeline* timeline, QWidget* parent)
     connect(cancel_, &QAction::triggered, timeline_, &Timeline::cancel);
     connect(useFrame_, &QAction::triggered, timeline_, &Timeline::useCurrentFrameAsStart);
 
-    slider_ = new QSlider(Qt::Horizontal);
+    slider_ = new ScrubSlider;
     slider_->setObjectName(QStringLiteral("scrub"));
     slider_->setMinimumWidth(200);
     slider_->setTracking(true);  // scrubbing shows each frame as the handle passes it
@@ -196,6 +196,16 @@ void TimelineDock::updateRange() {
     progress_->setRange(0, std::max(1, timeline_->frameCount()));
     progress_->setValue(timeline_->framesDone());
     progress_->setFormat(tr("%v / %m frames"));
+    // A joint that broke: a mark on the slider at the first frame without it.
+    std::vector<ScrubSlider::Mark> marks;
+    const auto model = timeline_->model();
+    for (const Timeline::JointBreak& b : timeline_->jointBreaks()) {
+        const QString name = model && b.joint < int(model->joints.size())
+                                 ? QString::fromStdString(model->joints[size_t(b.joint)].name)
+                                 : QString::number(b.joint);
+        marks.push_back({b.frame, tr("joint %1 broke at t = %2 s (frame %3)").arg(name).arg(b.time, 0, 'f', 3).arg(b.frame)});
+    }
+    slider_->setMarks(std::move(marks));
 }
 
 void TimelineDock::updatePosition() {
@@ -237,6 +247,8 @@ void TimelineDock::updateStatus() {
     QStringList notes;
     if (const auto model = timeline_->model())
         for (const std::string& n : model->notes) notes << QString::fromStdString(n);
+    if (const int broken = int(timeline_->jointBreaks().size()); broken > 0)
+        text += tr(" · %n joint(s) broke (red on the slider)", nullptr, broken);
     if (!notes.isEmpty()) text += tr(" · %n note(s): hover to read", nullptr, int(notes.size()));
     status_->setToolTip(notes.join('\n'));
     status_->setText(text);

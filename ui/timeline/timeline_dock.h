@@ -5,6 +5,8 @@
 // they work anywhere in the window.
 #pragma once
 
+#include "timeline/scrub_slider.h"
+
 #include <QDockWidget>
 
 class QAction;
@@ -38,8 +40,8 @@ public:
     QAction* cancelAction() const { return cancel_; }
     QAction* useFrameAction() const { return useFrame_; }
 
-    /// The scrub slider (its value is the playhead's frame).
-    QSlider* slider() const { return slider_; }
+    /// The scrub slider (its value is the playhead's frame; a joint's break is marked on it).
+    ScrubSlider* slider() const { return slider_; }
     /// "t = 1.250 s   frame 75 / 121".
     QString positionText() const;
     /// The progress line: frames done, simulated time, speed, stale or failed.
@@ -60,7 +62,7 @@ private:
     QAction* simulate_;
     QAction* cancel_;
     QAction* useFrame_;
-    QSlider* slider_;
+    ScrubSlider* slider_;
     QLabel* position_;
     QComboBox* speed_;
     QProgressBar* progress_;

@@ -16,6 +16,9 @@
 #include <QUndoStack>
 #include <QtTest>
 
+#include <cmath>
+#include <numbers>
+
 using namespace tumble;
 using namespace tumble::ui;
 
@@ -29,6 +32,61 @@ private slots:
     void initTestCase() {
         QStandardPaths::setTestModeEnabled(true);
         QCoreApplication::setOrganizationName("tumble-tests");
+    }
+
+    // A rod pendulum let go level, its rod breaking at 1.5 m g (at 30 degrees below the
+    // level, where the tension 3 m g sin(phi) reaches it): the slider is marked at the first
+    // frame without the rod, its text names the joint and the moment, the status counts it.
+    void aBrokenJointIsMarkedOnTheSlider() {
+        SceneDesc s = emptyScene();
+        s.settings.duration = 1.0;
+        s.settings.frameRate = 30;
+        BodyDesc bob;
+        bob.name = "bob";
+        bob.shape.type = ShapeType::Sphere;
+        bob.shape.radius = 0.05;
+        bob.mass = 1.0;
+        bob.position = Vec3(1, 2, 0);
+        s.bodies.push_back(bob);
+        JointDesc rod;
+        rod.name = "rod";
+        rod.type = JointType::Distance;
+        rod.bodyA = "bob";
+        rod.anchorB = Vec3(0, 2, 0);
+        rod.breakForce = 1.5 * 9.81;
+        s.joints.push_back(rod);
+        Document doc;
+        doc.replaceScene(s, QString(), false);
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        dock.show();
+        t.simulate();
+        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        QCoreApplication::processEvents();
+        const auto breaks = t.jointBreaks();
+        QCOMPARE(breaks.size(), size_t(1));
+        State last;
+        QVERIFY(t.frameState(t.framesDone() - 1, &last));
+        QVERIFY(last.jointBroken(0));
+        QCOMPARE(breaks[0].joint, 0);
+        QCOMPARE(breaks[0].time, last.jointBrokenAt[0]);
+        const int k = breaks[0].frame;
+        QVERIFY(k / 30.0 >= breaks[0].time - 1e-12 && (k - 1) / 30.0 < breaks[0].time);
+        State before, at;
+        QVERIFY(t.frameState(k - 1, &before) && t.frameState(k, &at));
+        QVERIFY(!before.jointBroken(0) && at.jointBroken(0));
+        const auto& marks = dock.slider()->marks();
+        QCOMPARE(marks.size(), size_t(1));
+        QCOMPARE(marks[0].frame, k);
+        QVERIFY2(marks[0].text.startsWith("joint rod broke at t = "), qPrintable(marks[0].text));
+        QCOMPARE(dock.slider()->textNear(dock.slider()->xOf(k)), marks[0].text);
+        QVERIFY(dock.slider()->textNear(dock.slider()->xOf(0)).isEmpty());
+        QVERIFY2(dock.statusText().contains("1 joint(s) broke"), qPrintable(dock.statusText()));
+        // It broke on its way down, about where the tension reached 1.5 m g: 30 degrees.
+        State broke;
+        QVERIFY(t.frameState(k - 1, &broke));
+        const double phi = std::asin((2.0 - broke.bodies[1].x.y()) / 1.0);
+        QVERIFY2(phi < std::numbers::pi / 6 && phi > std::numbers::pi / 6 - 0.2, qPrintable(QString::number(phi)));
     }
 
     void sliderScrubsAndLabelsFollow() {

@@ -1,0 +1,63 @@
+#include "timeline/scrub_slider.h"
+
+#include <QHelpEvent>
+#include <QPainter>
+#include <QStyle>
+#include <QStyleOptionSlider>
+#include <QToolTip>
+
+namespace tumble::ui {
+
+namespace {
+constexpr int kNear = 4;  // pixels either side of a mark that show its text
+}
+
+ScrubSlider::ScrubSlider(QWidget* parent) : QSlider(Qt::Horizontal, parent) {}
+
+void ScrubSlider::setMarks(std::vector<Mark> marks) {
+    marks_ = std::move(marks);
+    update();
+}
+
+int ScrubSlider::xOf(int value) const {
+    QStyleOptionSlider opt;
+    initStyleOption(&opt);
+    const QRect groove = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderGroove, this);
+    const QRect handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
+    const int span = groove.width() - handle.width();
+    return groove.x() + handle.width() / 2 +
+           QStyle::sliderPositionFromValue(minimum(), maximum(), value, std::max(0, span), opt.upsideDown);
+}
+
+QString ScrubSlider::textNear(int x) const {
+    QStringList lines;
+    for (const Mark& m : marks_)
+        if (m.frame >= minimum() && m.frame <= maximum() && std::abs(xOf(m.frame) - x) <= kNear) lines << m.text;
+    return lines.join('\n');
+}
+
+void ScrubSlider::paintEvent(QPaintEvent* event) {
+    QSlider::paintEvent(event);
+    if (marks_.empty()) return;
+    QPainter p(this);
+    p.setPen(QPen(QColor(0xd3, 0x2f, 0x2f), 2));
+    for (const Mark& m : marks_) {
+        if (m.frame < minimum() || m.frame > maximum()) continue;
+        const int x = xOf(m.frame);
+        p.drawLine(x, 0, x, height() / 3);
+    }
+}
+
+bool ScrubSlider::event(QEvent* e) {
+    if (e->type() == QEvent::ToolTip) {
+        auto* help = static_cast<QHelpEvent*>(e);
+        const QString text = textNear(help->pos().x());
+        if (!text.isEmpty()) {
+            QToolTip::showText(help->globalPos(), text, this);
+            return true;
+        }
+    }
+    return QSlider::event(e);
+}
+
+}  // namespace tumble::ui
