@@ -162,6 +162,7 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     auto cancelDrag = [this] {
         d_->dragAxis = -1;
         d_->dragStart.clear();
+        d_->dragJoint = -1;
         d_->dragCommand = nullptr;
     };
     connect(document, &Document::sceneReset, this, [this, cancelDrag] {
@@ -190,7 +191,10 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
         updateHandles();
         refreshJoints();
     });
-    connect(document, &Document::jointsChanged, this, [this] { refreshJoints(); });
+    connect(document, &Document::jointsChanged, this, [this] {
+        refreshJoints();
+        if (d_->dragAxis < 0) updateHandles();  // (a drag keeps its origin: the anchor follows the pointer)
+    });
     connect(document, &Document::selectionChanged, this, [this] {
         d_->scene->setSelection(d_->shownSelection());
         updateHandles();

@@ -54,4 +54,51 @@ BodyDesc rotated(const BodyDesc& body, const Vec3& pivot, const Vec3& axis, doub
     return b;
 }
 
+namespace {
+
+// Body `name`'s placement (the world's for an empty name or one no body has).
+void frameOf(const SceneDesc& scene, const std::string& name, Vec3& p, Quat& q) {
+    p = Vec3::Zero();
+    q = Quat::Identity();
+    for (const BodyDesc& b : scene.bodies) {
+        if (name.empty() || b.name != name) continue;
+        p = b.position;
+        q = b.orientation.normalized();
+        return;
+    }
+}
+
+}  // namespace
+
+Vec3 jointAnchor(const SceneDesc& scene, const JointDesc& j) {
+    Vec3 p;
+    Quat q;
+    frameOf(scene, j.bodyA, p, q);
+    return p + q * j.anchorA;
+}
+
+JointDesc movedAnchor(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double distance) {
+    JointDesc out = j;
+    Vec3 pa, pb;
+    Quat qa, qb;
+    frameOf(scene, j.bodyA, pa, qa);
+    frameOf(scene, j.bodyB, pb, qb);
+    const Vec3 point = pa + qa * j.anchorA + distance * axis;
+    out.anchorA = qa.conjugate() * (point - pa);
+    if (j.type != JointType::Distance && j.type != JointType::Rope) out.anchorB = qb.conjugate() * (point - pb);
+    return out;
+}
+
+JointDesc turnedAxis(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double angle) {
+    JointDesc out = j;
+    Vec3 pa, pb;
+    Quat qa, qb;
+    frameOf(scene, j.bodyA, pa, qa);
+    frameOf(scene, j.bodyB, pb, qb);
+    const Quat r(Eigen::AngleAxisd(angle, axis));
+    if (j.axisA) out.axisA = qa.conjugate() * (r * (qa * *j.axisA));
+    if (j.axisB) out.axisB = qb.conjugate() * (r * (qb * *j.axisB));
+    return out;
+}
+
 }  // namespace tumble::ui::handles

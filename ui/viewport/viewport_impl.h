@@ -140,6 +140,8 @@ struct Viewport::Impl {
     double dragStartParameter = 0.0;
     Vec3 dragStartVector = Vec3::Zero();
     std::vector<std::pair<int, BodyDesc>> dragStart;
+    int dragJoint = -1;  // a selected joint's drag: the joint, as it was
+    JointDesc dragJointStart;
     int dragMergeId = 0;
     int dragCounter = 0;
     const QUndoCommand* dragCommand = nullptr;  // the drag's undo step so far (null: none yet)
@@ -171,6 +173,15 @@ struct Viewport::Impl {
     /// Whether the selection is drawn (highlight and handles); off in an image export's view.
     bool selectionShown = true;
     QList<int> shownSelection() const { return selectionShown ? doc->selection() : QList<int>(); }
+
+    /// The selected joint when its handles apply: at frame 0, shown, and (to turn) one with
+    /// an axis; -1 otherwise.
+    int handledJoint(TransformMode m) const {
+        const int j = selectionShown ? doc->selectedJoint() : -1;
+        if (j < 0 || j >= doc->jointCount()) return -1;
+        if (m == TransformMode::Rotate && !doc->joint(j).axisA) return -1;
+        return j;
+    }
 
     /// The selected bodies a handle can move (planes cannot).
     QList<int> movableSelection() const {

@@ -22,6 +22,7 @@ void Viewport::setTransformMode(TransformMode mode) {
     if (mode == d_->mode) return;
     d_->mode = mode;
     d_->gizmo->setMode(mode == TransformMode::Move ? ViewportGizmo::Mode::Move : ViewportGizmo::Mode::Rotate);
+    updateHandles();  // (a selected joint without an axis has nothing to turn)
     emit transformModeChanged(mode);
 }
 
@@ -56,12 +57,15 @@ void Viewport::setRotationSnapDegrees(double degrees) {
 void Viewport::updateHandles() {
     if (!d_->gizmo) return;
     const QList<int> movable = d_->movableSelection();
+    const int joint = d_->handledJoint(d_->mode);
     // Edits are to the initial state: no handles while a later frame is drawn.
-    d_->handlesShown = !movable.isEmpty() && d_->shownFrame == 0;
+    d_->handlesShown = (!movable.isEmpty() || joint >= 0) && d_->shownFrame == 0;
     if (d_->handlesShown) {
+        // A joint's stand on its anchor: they move it, or turn its axis.
         Vec3 sum = Vec3::Zero();
         for (int i : movable) sum += d_->doc->body(i).position;
-        d_->handlesOrigin = sum / double(movable.size());
+        d_->handlesOrigin = joint >= 0 ? handles::jointAnchor(d_->doc->scene(), d_->doc->joint(joint))
+                                       : Vec3(sum / double(movable.size()));
         const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
         d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
         d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
@@ -124,7 +128,11 @@ bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
     d_->dragAxis = axis;
     d_->dragOrigin = origin;
     d_->dragStart.clear();
-    for (int i : d_->movableSelection()) d_->dragStart.emplace_back(i, d_->doc->body(i));
+    d_->dragJoint = d_->handledJoint(d_->mode);
+    if (d_->dragJoint >= 0)
+        d_->dragJointStart = d_->doc->joint(d_->dragJoint);
+    else
+        for (int i : d_->movableSelection()) d_->dragStart.emplace_back(i, d_->doc->body(i));
     d_->dragMergeId = kDragMergeBase + (++d_->dragCounter & 0xffffff);
     d_->dragCommand = nullptr;
     d_->gizmo->setHighlight(axis);
@@ -132,7 +140,7 @@ bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
 }
 
 void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
-    if (d_->dragAxis < 0 || d_->dragStart.empty()) return;
+    if (d_->dragAxis < 0 || (d_->dragStart.empty() && d_->dragJoint < 0)) return;
     QVector3D o, dir;
     rayAt(pos, &o, &dir);
     const Vec3 a = Vec3::Unit(d_->dragAxis);
@@ -162,7 +170,15 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
     // An edit that changes nothing pushes nothing: only a new step on top is the drag's.
     const QUndoCommand* topBefore = top();
     const int countBefore = stack->count();
-    if (d_->dragStart.size() == 1) {
+    if (d_->dragJoint >= 0) {
+        // A joint: its anchor moves, or its axis turns; consecutive edits are one step.
+        const JointDesc& before = d_->dragJointStart;
+        const JointDesc after = move ? handles::movedAnchor(doc->scene(), before, a, amount)
+                                     : handles::turnedAxis(doc->scene(), before, a, amount);
+        doc->setJoint(d_->dragJoint, after,
+                      (move ? tr("Move joint %1") : tr("Turn joint %1")).arg(QString::fromStdString(before.name)),
+                      d_->dragMergeId);
+    } else if (d_->dragStart.size() == 1) {
         // One body: consecutive edits with this drag's merge id are one undo step.
         const auto& [index, before] = d_->dragStart.front();
         doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(before.name)),
@@ -202,6 +218,7 @@ void Viewport::cancelHandleDrag() {
 void Viewport::endHandleDrag() {
     d_->dragAxis = -1;
     d_->dragStart.clear();
+    d_->dragJoint = -1;
     d_->dragCommand = nullptr;
     d_->gizmo->setHighlight(-1);
     d_->hover = -1;

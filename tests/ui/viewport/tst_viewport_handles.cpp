@@ -232,6 +232,78 @@ private slots:
         QVERIFY(std::abs(q.x()) < 1e-15 && std::abs(q.z()) < 1e-15);
     }
 
+    // A selected joint's handles stand on its anchor: a drag on x moves the joined point (both
+    // anchors, each in its own body's frame, so the joint still holds as placed) in one step;
+    // in rotate mode a ring turns a hinge's axis; a joint without an axis has no rings.
+    void aJointsHandlesMoveItsAnchorAndTurnItsAxis() {
+        Fixture f(50.0f);
+        QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
+        BodyDesc crate = f.doc.body(2);
+        crate.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3::UnitY()));
+        f.doc.setBody(2, crate, "turn");
+        JointDesc hinge;
+        hinge.name = "hinge";
+        hinge.type = JointType::Hinge;
+        hinge.bodyA = "crate";
+        hinge.bodyB = "ball";
+        hinge.anchorA = crate.orientation.conjugate() * (Vec3(1, 0.75, 0) - crate.position);
+        hinge.anchorB = Vec3(1, 0.75, 0) - Vec3(0, 1, 0);
+        hinge.axisA = crate.orientation.conjugate() * Vec3::UnitY();
+        f.doc.addJoint(hinge);
+        f.doc.undoStack()->clear();
+        QCOMPARE(f.doc.selectedJoint(), 0);
+        QVERIFY(f.view->handlesVisible());
+        QVERIFY((f.origin() - Vec3(1, 0.75, 0)).norm() < 1e-6);
+        const double L = f.size();
+        const Vec3 o = f.origin();
+        const QPoint from = projected(*f.view, o + 0.6 * L * Vec3::UnitX());
+        const QPoint to = projected(*f.view, o + (0.6 * L + 0.4) * Vec3::UnitX());
+        QCOMPARE(f.view->handleAt(from), 0);
+        const double expected = axisDistance(*f.view, from, to, o, Vec3::UnitX());
+        drag(*f.view, from, to);
+        QCOMPARE(f.doc.undoStack()->count(), 1);
+        const JointDesc& j = f.doc.joint(0);
+        const Vec3 worldA = crate.position + crate.orientation * j.anchorA;
+        const Vec3 worldB = Vec3(0, 1, 0) + j.anchorB;
+        QVERIFY((worldA - Vec3(1 + expected, 0.75, 0)).norm() < 1e-9);
+        QVERIFY((worldB - worldA).norm() < 1e-12);  // still one point
+        QVERIFY((f.origin() - worldA).norm() < 1e-5);  // the handles followed
+        QCOMPARE(*j.axisA, *hinge.axisA);  // a move does not turn
+
+        // Rotate: the z ring turns the axis about z by the dragged angle.
+        f.view->setTransformMode(Viewport::TransformMode::Rotate);
+        QVERIFY(f.view->handlesVisible());
+        const Vec3 p = f.origin();
+        auto onRing = [&](double phi) { return p + L * (std::cos(phi) * Vec3::UnitX() + std::sin(phi) * Vec3::UnitY()); };
+        const QPoint a = projected(*f.view, onRing(0.3)), b = projected(*f.view, onRing(0.8));
+        QCOMPARE(f.view->handleAt(a), 2);
+        const double angle = ringAngle(*f.view, a, b, p, Vec3::UnitZ());
+        drag(*f.view, a, b);
+        const Vec3 axis = crate.orientation * *f.doc.joint(0).axisA;
+        // (The expected angle is from the handles' origin as the viewport reports it, in floats.)
+        QVERIFY((axis - Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ())) * Vec3::UnitY()).norm() < 1e-6);
+        QVERIFY(angle > 0.3);
+        QCOMPARE(f.doc.undoStack()->count(), 2);
+        f.doc.undoStack()->undo();
+        QCOMPARE(*f.doc.joint(0).axisA, *hinge.axisA);
+
+        // A ball joint has nothing to turn: no rings; in move mode its handles are back.
+        JointDesc ball = f.doc.joint(0);
+        ball.type = JointType::Ball;
+        ball.axisA.reset();
+        f.doc.setJoint(0, ball, "ball");
+        QVERIFY(!f.view->handlesVisible());
+        f.view->setTransformMode(Viewport::TransformMode::Move);
+        QVERIFY(f.view->handlesVisible());
+        // The math: a rod's ends are apart, and only A's moves.
+        JointDesc rod = ball;
+        rod.type = JointType::Distance;
+        const JointDesc moved = handles::movedAnchor(f.doc.scene(), rod, Vec3::UnitZ(), 0.5);
+        QCOMPARE(moved.anchorB, rod.anchorB);
+        QVERIFY((handles::jointAnchor(f.doc.scene(), moved) - handles::jointAnchor(f.doc.scene(), rod) -
+                 Vec3(0, 0, 0.5)).norm() < 1e-12);
+    }
+
     void aMultiSelectionDragMovesEveryBodyInOneUndoStepButNotThePlane() {
         Fixture f;
         QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
