@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <numbers>
 #include <cmath>
 
 namespace tumble::ui {
@@ -192,6 +193,40 @@ bool hasAxis(JointType t) {
     return t == JointType::Hinge || t == JointType::Slider;
 }
 
+// A joint's limits, drawn with its colour. A hinge's: an arc about its axis (unit, world)
+// through anchor A, of radius `size`, from the lower to the upper angle, counted from
+// `zero` (the direction, perpendicular to the axis, at which the hinge's angle is 0: where
+// the scene placed body A), and a spoke at each end; a slider's: a segment along its axis
+// from B's anchor plus the lower to plus the upper offset, a tick at each end.
+void limitLines(Lines& lines, JointType type, const Vec3& anchorA, const Vec3& anchorB, const Vec3& axis,
+                const Vec3& zero, double lower, double upper, double size, Rgb c) {
+    if (!axis.allFinite() || !std::isfinite(lower) || !std::isfinite(upper) || !(size > 0)) return;
+    if (type == JointType::Slider) {
+        const Vec3 a = anchorB + lower * axis, b = anchorB + upper * axis, side = 0.15 * size * perpendicular(axis);
+        segment(lines.xyzrgb, a, b, c);
+        segment(lines.xyzrgb, a - side, a + side, c);
+        segment(lines.xyzrgb, b - side, b + side, c);
+        return;
+    }
+    const Vec3 u = zero, w = axis.cross(zero);
+    // A limit range may pass a whole turn (the hinge's angle is counted on): at most one
+    // turn is drawn, in steps of about 10 degrees.
+    const double span = std::min(upper - lower, 2.0 * std::numbers::pi);
+    const int n = std::max(2, int(std::ceil(span / 0.17)));
+    auto at = [&](double phi) { return anchorA + size * (std::cos(phi) * u + std::sin(phi) * w); };
+    segment(lines.xyzrgb, anchorA, at(lower), c);
+    segment(lines.xyzrgb, anchorA, at(lower + span), c);
+    for (int i = 0; i < n; ++i) segment(lines.xyzrgb, at(lower + span * i / n), at(lower + span * (i + 1) / n), c);
+}
+
+// The direction perpendicular to `axis` (unit) from `anchor` towards `centre` (body A's
+// centre), or any perpendicular when the centre is on the axis.
+Vec3 towards(const Vec3& anchor, const Vec3& centre, const Vec3& axis) {
+    Vec3 d = centre - anchor;
+    d -= axis * axis.dot(d);
+    return d.norm() > 1e-9 ? Vec3(d.normalized()) : perpendicular(axis);
+}
+
 }  // namespace
 
 Lines joints(const Model& model, const State& state, int selected) {
@@ -204,8 +239,16 @@ Lines joints(const Model& model, const State& state, int selected) {
         const Vec3 pa = a.x + a.q * j.anchorA;
         const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(state.bodies[size_t(j.b)].x + state.bodies[size_t(j.b)].q * j.anchorB);
         const Vec3 axis = a.q * j.axisA;
-        jointLines(lines, pa, pb, radiusOf(model.bodies[size_t(j.a)]), hasAxis(j.type) ? &axis : nullptr,
-                   j.index == selected);
+        const double size = radiusOf(model.bodies[size_t(j.a)]);
+        jointLines(lines, pa, pb, size, hasAxis(j.type) ? &axis : nullptr, j.index == selected);
+        if (j.limited && hasAxis(j.type)) {
+            // The arc stays with B: its zero is A's direction now turned back by the hinge's
+            // angle now (the last step's).
+            const double angle = size_t(j.index) < state.hingeAngles.size() ? state.hingeAngles[size_t(j.index)] : 0.0;
+            const Vec3 zero = Quat(Eigen::AngleAxisd(-angle, axis)) * towards(pa, a.x, axis);
+            limitLines(lines, j.type, pa, pb, axis, zero, j.lower, j.upper, 0.6 * size,
+                       j.index == selected ? kJointSelected : kJointAxis);
+        }
     }
     return lines;
 }
@@ -227,6 +270,10 @@ Lines joints(const SceneDesc& scene, int selected) {
         const bool axial = hasAxis(j.type) && j.axisA && j.axisA->norm() > 0.0;
         const Vec3 axis = axial ? Vec3(a->orientation * j.axisA->normalized()) : Vec3::Zero();
         jointLines(lines, pa, pb, boundingRadius(a->shape), axial ? &axis : nullptr, int(k) == selected);
+        if (axial && j.limits) {  // as placed: the hinge's angle is 0
+            limitLines(lines, j.type, pa, pb, axis, towards(pa, a->position, axis), (*j.limits)[0], (*j.limits)[1],
+                       0.6 * boundingRadius(a->shape), int(k) == selected ? kJointSelected : kJointAxis);
+        }
     }
     return lines;
 }

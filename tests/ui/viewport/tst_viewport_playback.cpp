@@ -262,7 +262,8 @@ private slots:
     }
 
     // The door's hinge: its axis drawn through anchor A along the world's y (the door's axis
-    // as it stands), and the joint selected in the document drawn in another colour.
+    // as it stands), its limits as an arc about it, and the joint selected in the document
+    // drawn in another colour.
     void aHingeShowsItsAxisAndTheSelectedJointStandsOut() {
         Fixture f(":/scenes/hinged-door.json");
         QVERIFY(f.ok);
@@ -274,12 +275,35 @@ private slots:
         };
         const overlays::Lines plain = overlays::joints(f.doc.scene());
         QCOMPARE(plain.items, 1);
-        // The last segment is the axis: vertical, through anchor A (the line's first point).
+        // Segment 7 (after the line and the anchors' crosses) is the axis: vertical, through
+        // anchor A (the line's first point); then the limits' arc [0, 1.5] rad about it: two
+        // spokes 1.5 rad apart, square to the axis.
         const auto& v = plain.xyzrgb;
-        const size_t last = v.size() - 12;
-        const Vec3 a(v[0], v[1], v[2]), p(v[last], v[last + 1], v[last + 2]), q(v[last + 6], v[last + 7], v[last + 8]);
+        auto point = [&](int segmentIndex, int end) {
+            const size_t k = size_t(segmentIndex) * 12 + size_t(end) * 6;
+            return Vec3(v[k], v[k + 1], v[k + 2]);
+        };
+        const Vec3 a = point(0, 0), p = point(7, 0), q = point(7, 1);
         QVERIFY(((p + q) / 2 - a).norm() < 1e-6);
         QVERIFY((q - p).normalized().cross(Vec3::UnitY()).norm() < 1e-6);
+        const Vec3 s0 = point(8, 1) - point(8, 0), s1 = point(9, 1) - point(9, 0);
+        QVERIFY((point(8, 0) - a).norm() < 1e-6 && (point(9, 0) - a).norm() < 1e-6);
+        QVERIFY(std::abs(s0.y()) < 1e-6 && std::abs(s1.y()) < 1e-6);
+        QVERIFY2(std::abs(std::acos(s0.normalized().dot(s1.normalized())) - 1.5) < 1e-5,
+                 qPrintable(QString::number(std::acos(s0.normalized().dot(s1.normalized())))));
+        // The door's angle now (0, as placed) is on the arc: its lower end points at the door.
+        QVERIFY(s0.normalized().dot(Vec3(1, 0, 0)) > 0.999);
+        // Played: the door has turned to its stop (1.5 rad at 2.5 s); the arc stays with the
+        // post, where it was drawn while editing.
+        f.timeline->seek(150);
+        const overlays::Lines played = overlays::joints(f.model(), f.frame(150));
+        const auto& w = played.xyzrgb;
+        auto playedSpoke = [&](int segmentIndex) {
+            const size_t k = size_t(segmentIndex) * 12;
+            return Vec3(w[k + 6] - w[k], w[k + 7] - w[k + 1], w[k + 8] - w[k + 2]);
+        };
+        QVERIFY((playedSpoke(8).normalized() - s0.normalized()).norm() < 1e-3);
+        QVERIFY((playedSpoke(9).normalized() - s1.normalized()).norm() < 1e-3);
         f.doc.selectJoint(0);
         const overlays::Lines picked = overlays::joints(f.doc.scene(), f.doc.selectedJoint());
         QCOMPARE(picked.xyzrgb.size(), plain.xyzrgb.size());
