@@ -148,7 +148,12 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
             bool lower = false;
             const int tries = from ? 1 : 6;
             for (int t = 0; t < tries && !lower; ++t, scale *= 0.5) {
-                if (t > 0) restore();
+                if (t > 0) {
+                    // Back to the poses, and to their arms: measure() set each row's arms
+                    // to the poses it measured, and the next try must push where this one did.
+                    restore();
+                    measure(model, state, at, rows);
+                }
                 for (const Rows& r : rows) {
                     const JointModel& j = *r.joint;
                     const Vec3 J = scale * (r.D * lambda.segment(r.offset, r.count));

@@ -151,13 +151,17 @@ private slots:
     // people use: it swings down, its joints open by less than 0.1 % of its length in all
     // (issue 20's bound) and it gains no energy. At 1/60 s the chain's Newton projection
     // (joint_projection.cpp) holds every joint to 1e-13 m; at 1/30 s the whipping end
-    // leaves steps where it stops early, and the chain opens by up to 0.8 %: that row is
-    // held to 1 % until the projection converges there too (an open item of issue 20).
+    // leaves steps where it stops early, and the chain opens by up to 0.25 % (0.83 % before
+    // a halved Newton step was tried from the poses' own arms: it pushed along the last
+    // try's). Cutting the steps to a largest turn closed it to 1e-13 but let the chain
+    // sample gain energy at 1/60 s (x2 with 0.2 rad, +12 % at 1/30 s with 0.5 rad): not
+    // done. That row is held to 0.5 % until the projection converges there too (an open
+    // item of issue 20).
     void chainHoldsItsLength_data() {
         QTest::addColumn<double>("h");
         QTest::addColumn<double>("bound");
         QTest::newRow("1/60 s") << 1.0 / 60.0 << 1e-3;
-        QTest::newRow("1/30 s") << 1.0 / 30.0 << 1e-2;
+        QTest::newRow("1/30 s") << 1.0 / 30.0 << 5e-3;
     }
     void chainHoldsItsLength() {
         QFETCH(double, h);
@@ -602,16 +606,16 @@ private slots:
     }
 
     // The sample chain (resources/scenes/chain.json: 20 capsule links on ball joints, let go
-    // held out level) at 1/240 and 1/30 s: it folds onto itself and its links collide with
-    // each other, and its energy never rises by more than 0.5 % (it went 137 J -> 2e15 J at
-    // 1/240 before impacts passed through joints), the joints held to 1e-9 m.
-    // Not at 1/60 yet: there the whipping end lifts the energy by 9 % for a moment (t = 2.4
-    // s), with or without the links' contacts (links of tiny spheres do it too): the joints'
-    // own velocity solve, issue 20's open chain item.
+    // held out level) at 1/240, 1/30 and 1/60 s: it folds onto itself and its links collide
+    // with each other, and its energy never rises by more than 0.5 % (it went 137 J -> 2e15 J
+    // at 1/240 before impacts passed through joints), the joints held to 1e-9 m. At 1/60 the
+    // whipping end lifted the energy by 15 % for a moment (t = 2.4 s) while a halved Newton
+    // step of the joints' projection was tried from the last try's arms; now by 0.06 %.
     void chainSampleGainsNoEnergy_data() {
         QTest::addColumn<double>("dt");
         QTest::newRow("1/240") << 1.0 / 240.0;
         QTest::newRow("1/30") << 1.0 / 30.0;
+        QTest::newRow("1/60") << 1.0 / 60.0;
     }
     void chainSampleGainsNoEnergy() {
         QFETCH(double, dt);
