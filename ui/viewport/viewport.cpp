@@ -15,6 +15,8 @@
 #include "viewport/viewport_raycast.h"
 #include "viewport/viewport_scene.h"
 
+#include <QLineF>
+
 #include <tumble/mass.h>
 
 #include <Qt3DCore/QEntity>
@@ -310,9 +312,39 @@ int Viewport::bodyAt(const QPoint& widgetPos) const {
     return hit ? hit->body : -1;
 }
 
+int Viewport::jointAt(const QPoint& widgetPos) const {
+    if (d_->shownFrame > 0 || !d_->overlayOn[size_t(Overlay::Joints)]) return -1;
+    constexpr double kAnchorPx = 8.0, kLinePx = 4.0;
+    const QPointF p(widgetPos);
+    const SceneDesc& scene = d_->doc->scene();
+    int best = -1;
+    double bestScore = 1e300;
+    for (int k = 0; k < d_->doc->jointCount(); ++k) {
+        const JointDesc& j = scene.joints[size_t(k)];
+        const Vec3 a = handles::jointAnchor(scene, j);
+        Vec3 b = j.anchorB;
+        for (const BodyDesc& body : scene.bodies)
+            if (!j.bodyB.empty() && body.name == j.bodyB) b = body.position + body.orientation.normalized() * j.anchorB;
+        const QVector3D pa = projectToWidget(toQt(a)), pb = projectToWidget(toQt(b));
+        if (!onScreen(pa) || !onScreen(pb)) continue;
+        const double anchor = std::min(QLineF(p, pa.toPointF()).length(), QLineF(p, pb.toPointF()).length());
+        const double line = distanceToSegment(p, pa.toPointF(), pb.toPointF());
+        // An anchor counts from farther than the line; the nearer joint wins.
+        const double score = anchor <= kAnchorPx ? anchor : line <= kLinePx ? kAnchorPx + line : 1e300;
+        if (score < bestScore) bestScore = score, best = k;
+    }
+    return best;
+}
+
 void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers) {
-    const int hit = bodyAt(widgetPos);
     const bool toggle = modifiers & Qt::ControlModifier;
+    if (!toggle) {
+        if (const int joint = jointAt(widgetPos); joint >= 0) {
+            d_->doc->selectJoint(joint);
+            return;
+        }
+    }
+    const int hit = bodyAt(widgetPos);
     QList<int> selection = d_->doc->selection();
     if (toggle) {
         if (hit < 0) return;

@@ -43,8 +43,12 @@ public:
     /// The body under a widget point: the nearest hit of the ray from the camera through that
     /// pixel against the bodies' exact shapes, or -1.
     int bodyAt(const QPoint& widgetPos) const;
-    /// Selects the body under the point (Ctrl: toggles it in the selection); empty space
-    /// clears the selection (Ctrl: leaves it). What a left click does.
+    /// The joint drawn under a widget point (while editing, with the Joints overlay on):
+    /// within a few pixels of one of its anchors or of the line between them; or -1.
+    int jointAt(const QPoint& widgetPos) const;
+    /// Selects the joint under the point, else the body under it (Ctrl: toggles the body in
+    /// the selection); empty space clears the selection (Ctrl: leaves it). What a left click
+    /// does.
     void clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers = Qt::NoModifier);
 
     /// Bodies drawn in the 3D scene, one per body of the document (primitives are instanced:

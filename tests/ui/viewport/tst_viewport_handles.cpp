@@ -287,6 +287,21 @@ private slots:
         f.doc.undoStack()->undo();
         QCOMPARE(*f.doc.joint(0).axisA, *hinge.axisA);
 
+        // A click on the joint's anchor selects it, one on the crate away from it the crate;
+        // with the Joints overlay off the anchor is the bodies' again.
+        f.doc.setSelection({});
+        const QPoint anchor = projected(*f.view, handles::jointAnchor(f.doc.scene(), f.doc.joint(0)));
+        QCOMPARE(f.view->jointAt(anchor), 0);
+        f.view->clickAt(anchor);
+        QCOMPARE(f.doc.selectedJoint(), 0);
+        f.view->clickAt(projected(*f.view, crate.position + Vec3(0.3, 0.3, 0)));
+        QCOMPARE(f.doc.selectedJoint(), -1);
+        QCOMPARE(f.doc.selection(), QList<int>({2}));
+        f.view->setOverlay(Viewport::Overlay::Joints, false);
+        QCOMPARE(f.view->jointAt(anchor), -1);
+        f.view->setOverlay(Viewport::Overlay::Joints, true);
+        f.doc.selectJoint(0);
+
         // A ball joint has nothing to turn: no rings; in move mode its handles are back.
         JointDesc ball = f.doc.joint(0);
         ball.type = JointType::Ball;
