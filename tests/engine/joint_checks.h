@@ -1,14 +1,32 @@
-// What the joint suites measure of a World: how far a joint is from holding, and the
-// energy of the dynamic bodies (kinetic plus gravity's potential along y, g = 9.81).
+// What the joint suites build and measure: a joint, how far a joint is from holding in a
+// World, and the energy of the dynamic bodies (kinetic plus gravity's potential along y,
+// g = 9.81).
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include <tumble/model.h>
+#include <tumble/scene.h>
 #include <tumble/state.h>
 #include <tumble/world.h>
 
 namespace tumble::test {
+
+/// A joint of `type` from body `a` (anchor in its frame) to body `b` (empty: the world;
+/// anchorB then a world point); `length` for distance and rope (negative: as placed).
+inline JointDesc joint(const std::string& name, JointType type, const std::string& a, const Vec3& anchorA,
+                       const std::string& b, const Vec3& anchorB, double length = -1.0) {
+    JointDesc j;
+    j.name = name;
+    j.type = type;
+    j.bodyA = a;
+    j.anchorA = anchorA;
+    j.bodyB = b;
+    j.anchorB = anchorB;
+    j.length = length;
+    return j;
+}
 
 inline double anchorGap(const World& w, int k) {
     const JointModel& j = w.model().joints[k];

@@ -34,19 +34,6 @@ double ellipticK(double k) {
     return std::numbers::pi / (2.0 * a);
 }
 
-JointDesc joint(const std::string& name, JointType type, const std::string& a, const Vec3& anchorA,
-                const std::string& b, const Vec3& anchorB, double length = -1.0) {
-    JointDesc j;
-    j.name = name;
-    j.type = type;
-    j.bodyA = a;
-    j.anchorA = anchorA;
-    j.bodyB = b;
-    j.anchorB = anchorB;
-    j.length = length;
-    return j;
-}
-
 // A ball of radius r and mass m on a ball joint at its top, hung from the world point
 // `pivot` at the distance L from its centre, let go at the angle theta0 from the vertical.
 SceneDesc pendulum(double L, double r, double theta0) {

@@ -10,6 +10,7 @@
 #include "panels/property_spin_box.h"
 #include "panels/scene_tree_dock.h"
 #include "panels/vector_edit.h"
+#include "panel_test_util.h"
 
 #include <QAction>
 #include <QCheckBox>
@@ -71,18 +72,10 @@ struct Fixture {
     JointPanel* panel() const { return dock.findChild<JointPanel*>(); }
     template <class T>
     T* find(const QString& name) const {
-        T* w = dock.findChild<T*>(name);
-        if (!w) qFatal("no widget %s", qPrintable(name));
-        return w;
+        return test::field<T>(dock, name);
     }
     PropertySpinBox* spin(const QString& name) const { return find<PropertySpinBox>(name); }
-    void choose(const QString& comboName, const QString& text) const {
-        auto* combo = find<QComboBox>(comboName);
-        const int i = combo->findText(text);
-        if (i < 0) qFatal("no item %s in %s", qPrintable(text), qPrintable(comboName));
-        combo->setCurrentIndex(i);
-        emit combo->activated(i);
-    }
+    void choose(const QString& comboName, const QString& text) const { test::choose(dock, comboName, text); }
     Vec3 worldAnchorB() const {
         const JointDesc& j = joint();
         for (const BodyDesc& b : doc.scene().bodies)

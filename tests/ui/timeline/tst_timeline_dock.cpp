@@ -24,6 +24,14 @@ using namespace tumble::ui;
 
 namespace {
 constexpr int kWaitMs = 60000;
+
+// Starts the run and waits for it to be done, the dock caught up.
+bool runToEnd(Timeline& t) {
+    t.simulate();
+    const bool done = QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs);
+    QCoreApplication::processEvents();
+    return done;
+}
 }
 
 class TestTimelineDock : public QObject {
@@ -60,9 +68,7 @@ private slots:
         Timeline t(&doc);
         TimelineDock dock(&t);
         dock.show();
-        t.simulate();
-        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
-        QCoreApplication::processEvents();
+        QVERIFY(runToEnd(t));
         const auto breaks = t.jointBreaks();
         QCOMPARE(breaks.size(), size_t(1));
         State last;
@@ -83,9 +89,7 @@ private slots:
         QVERIFY(dock.slider()->textNear(dock.slider()->xOf(0)).isEmpty());
         QVERIFY2(dock.statusText().contains("1 joint(s) broke"), qPrintable(dock.statusText()));
         // It broke on its way down, about where the tension reached 1.5 m g: 30 degrees.
-        State broke;
-        QVERIFY(t.frameState(k - 1, &broke));
-        const double phi = std::asin((2.0 - broke.bodies[1].x.y()) / 1.0);
+        const double phi = std::asin((2.0 - before.bodies[1].x.y()) / 1.0);
         QVERIFY2(phi < std::numbers::pi / 6 && phi > std::numbers::pi / 6 - 0.2, qPrintable(QString::number(phi)));
     }
 
@@ -96,9 +100,7 @@ private slots:
         Timeline t(&doc);
         TimelineDock dock(&t);
         dock.show();
-        t.simulate();
-        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
-        QCoreApplication::processEvents();
+        QVERIFY(runToEnd(t));
         const int last = t.frameCount() - 1;  // 2 s at 30 frames/s
         QCOMPARE(last, 60);
         QCOMPARE(dock.slider()->maximum(), last);
