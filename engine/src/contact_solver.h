@@ -129,6 +129,17 @@ struct ContactSolverScratch {
     /// Per joint: the couple on A the same projection gave (hinge, slider, fixed), for the
     /// joint's reaction (State::jointCouples).
     std::vector<Vec3> projectedCouple;
+    /// Per joint, in the joints' position passes: whether it was last found holding, with
+    /// its error then and its bodies' poses (joints.cpp projectionPass).
+    struct JointCheck {
+        struct Place {
+            Vec3 x = Vec3::Zero();
+            Quat q = Quat::Identity();
+        } a, b;
+        double error = 0.0;
+        bool held = false;
+    };
+    std::vector<JointCheck> jointChecks;
     PageVector<Point> points;  // (make_room.h: their old room is given back when they grow)
     PageVector<PointGeometry> geometry;  // per point
     PageVector<Block> blocks;

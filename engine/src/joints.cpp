@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace tumble {
 
@@ -367,61 +368,91 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
 // it found. With `from` (the step's start) the impulses act along the joints' directions
 // there and, with h > 0, also change the solver bodies' velocities (RATTLE); without, along
 // the directions now, positions only (a plain nonlinear Gauss-Seidel projection).
-double projectionPass(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from) {
+// One joint of a pass (see projectionPass); returns its error (m or rad) as it found it.
+double projectOne(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
+                  const JointModel& j) {
     const SolverBody still;  // the world, and bodies that cannot move
+    const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+    const SolverBody& A = moveA ? s.bodies[j.a] : still;
+    const SolverBody& B = moveB ? s.bodies[j.b] : still;
+    BodyState& a = state.bodies[j.a];
+    const Vec3 rA = a.q * j.anchorA;
+    const Vec3 rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
+    const Vec3 pA = a.x + rA;
+    const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + rB) : j.anchorB;
+    const State& at = from ? *from : state;
+    if (isGeneral(j.type)) return projectGeneral(state, s, h, from, at, j, moveA, moveB, A, B);
+    const Vec3 arA = at.bodies[j.a].q * j.anchorA;  // the arms the impulse acts at
+    const Vec3 arB = j.b >= 0 ? Vec3(at.bodies[j.b].q * j.anchorB) : Vec3::Zero();
+    // A body that turned far in the step (a whipping chain's end at 1/30 s): the start's
+    // arms no longer tell how the anchor moves, and the Newton steps along them can run
+    // away; such a joint is left to the passes along the directions now.
+    if (from && (turnedFar(arA, rA) || turnedFar(arB, rB))) return (pA - pB).norm();
+    Vec3 J = Vec3::Zero();
+    double error = 0.0;
+    if (j.type == JointType::Ball) {
+        const Vec3 C = pA - pB;
+        error = C.norm();
+        if (C.norm() <= kHeld) return error;
+        J = -((moveFor(A, rA, arA) + moveFor(B, rB, arB)).inverse() * C);
+    } else {
+        const Vec3 d = pA - pB;
+        const double length = d.norm();
+        const Vec3 d0 = at.bodies[j.a].x + arA - (j.b >= 0 ? Vec3(at.bodies[j.b].x + arB) : j.anchorB);
+        if (!(length > kDegenerate) || !(d0.norm() > kDegenerate)) return 0.0;
+        double C = length - j.length;
+        if (j.type == JointType::Rope) C = std::max(C, 0.0);
+        error = std::abs(C);
+        if (std::abs(C) <= kHeld) return error;
+        const Vec3 n0 = d0 / d0.norm();
+        // A Newton step on the length, the impulse along that line.
+        const double slope = (d / length).dot((moveFor(A, rA, arA) + moveFor(B, rB, arB)) * n0);
+        if (!(slope > 0.0)) return error;
+        J = (-C / slope) * n0;
+    }
+    if (!J.allFinite()) return error;
+    if (moveA) nudge(A, a, arA, J);
+    if (moveB) nudge(B, state.bodies[j.b], arB, -J);
+    if (from && h > 0.0) {  // the move was made by the impulse J / h over the step
+        if (moveA) applyImpulse(s.bodies[j.a], arA, J / h);
+        if (moveB) applyImpulse(s.bodies[j.b], arB, -J / h);
+        s.projectedImpulse[j.index] += J / h;
+    }
+    return error;
+}
+
+// Where a body stood when a joint was last found holding (its pose, to the bit).
+bool samePlace(const ContactSolverScratch::JointCheck::Place& p, const BodyState& b) {
+    return std::memcmp(p.x.data(), b.x.data(), sizeof(double) * 3) == 0 &&
+           std::memcmp(p.q.coeffs().data(), b.q.coeffs().data(), sizeof(double) * 4) == 0;
+}
+
+double projectionPass(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
+                      std::vector<ContactSolverScratch::JointCheck>* checks = nullptr) {
     double worst = 0.0;
     for (const JointModel& j : model.joints) {
         if (!active(model, state, j)) continue;
-        const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
-        const SolverBody& A = moveA ? s.bodies[j.a] : still;
-        const SolverBody& B = moveB ? s.bodies[j.b] : still;
-        BodyState& a = state.bodies[j.a];
-        const Vec3 rA = a.q * j.anchorA;
-        const Vec3 rB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
-        const Vec3 pA = a.x + rA;
-        const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + rB) : j.anchorB;
-        const State& at = from ? *from : state;
-        if (isGeneral(j.type)) {
-            worst = std::max(worst, projectGeneral(state, s, h, from, at, j, moveA, moveB, A, B));
+        // A joint found holding, its bodies not moved since (to the bit), holds as it did:
+        // it is passed over (a pile of ragdolls' passes went on for the few that converge
+        // slowly, every joint of every ragdoll measured each pass).
+        ContactSolverScratch::JointCheck* c = checks ? &(*checks)[j.index] : nullptr;
+        const BodyState& a = state.bodies[j.a];
+        const BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
+        if (c && c->held && samePlace(c->a, a) && (!b || samePlace(c->b, *b))) {
+            worst = std::max(worst, c->error);
             continue;
         }
-        const Vec3 arA = at.bodies[j.a].q * j.anchorA;  // the arms the impulse acts at
-        const Vec3 arB = j.b >= 0 ? Vec3(at.bodies[j.b].q * j.anchorB) : Vec3::Zero();
-        // A body that turned far in the step (a whipping chain's end at 1/30 s): the start's
-        // arms no longer tell how the anchor moves, and the Newton steps along them can run
-        // away; such a joint is left to the passes along the directions now.
-        if (from && (turnedFar(arA, rA) || turnedFar(arB, rB))) {
-            worst = std::max(worst, (pA - pB).norm());
-            continue;
+        ContactSolverScratch::JointCheck before;
+        if (c) {
+            before.a = {a.x, a.q};
+            if (b) before.b = {b->x, b->q};
         }
-        Vec3 J = Vec3::Zero();
-        if (j.type == JointType::Ball) {
-            const Vec3 C = pA - pB;
-            worst = std::max(worst, C.norm());
-            if (C.norm() <= kHeld) continue;
-            J = -((moveFor(A, rA, arA) + moveFor(B, rB, arB)).inverse() * C);
-        } else {
-            const Vec3 d = pA - pB;
-            const double length = d.norm();
-            const Vec3 d0 = at.bodies[j.a].x + arA - (j.b >= 0 ? Vec3(at.bodies[j.b].x + arB) : j.anchorB);
-            if (!(length > kDegenerate) || !(d0.norm() > kDegenerate)) continue;
-            double C = length - j.length;
-            if (j.type == JointType::Rope) C = std::max(C, 0.0);
-            worst = std::max(worst, std::abs(C));
-            if (std::abs(C) <= kHeld) continue;
-            const Vec3 n0 = d0 / d0.norm();
-            // A Newton step on the length, the impulse along that line.
-            const double slope = (d / length).dot((moveFor(A, rA, arA) + moveFor(B, rB, arB)) * n0);
-            if (!(slope > 0.0)) continue;
-            J = (-C / slope) * n0;
-        }
-        if (!J.allFinite()) continue;
-        if (moveA) nudge(A, a, arA, J);
-        if (moveB) nudge(B, state.bodies[j.b], arB, -J);
-        if (from && h > 0.0) {  // the move was made by the impulse J / h over the step
-            if (moveA) applyImpulse(s.bodies[j.a], arA, J / h);
-            if (moveB) applyImpulse(s.bodies[j.b], arB, -J / h);
-            s.projectedImpulse[j.index] += J / h;
+        const double error = projectOne(model, state, s, h, from, j);
+        worst = std::max(worst, error);
+        if (c) {
+            *c = before;
+            c->error = error;
+            c->held = error <= kHeld && samePlace(before.a, a) && (!b || samePlace(before.b, *b));
         }
     }
     return worst;
@@ -447,8 +478,9 @@ void projectJoints(const Model& model, State& state, ContactSolverScratch& s, do
     }
     projectGroups(model, state, s, 0.0, nullptr, kNewtonSteps);
     worst = HUGE_VAL;
+    s.jointChecks.assign(model.joints.size(), {});
     for (int pass = 0; pass < kProjectionPasses && worst > kHeld; ++pass)
-        worst = projectionPass(model, state, s, 0.0, nullptr);
+        worst = projectionPass(model, state, s, 0.0, nullptr, &s.jointChecks);
     if (start && h > 0.0)
         for (const JointModel& j : model.joints)
             for (int i : {j.a, j.b})
