@@ -364,10 +364,6 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     return std::max(error, past);
 }
 
-// One Gauss-Seidel pass of Newton steps over the active joints; returns the largest error
-// it found. With `from` (the step's start) the impulses act along the joints' directions
-// there and, with h > 0, also change the solver bodies' velocities (RATTLE); without, along
-// the directions now, positions only (a plain nonlinear Gauss-Seidel projection).
 // One joint of a pass (see projectionPass); returns its error (m or rad) as it found it.
 double projectOne(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
                   const JointModel& j) {
@@ -427,6 +423,11 @@ bool samePlace(const ContactSolverScratch::JointCheck::Place& p, const BodyState
            std::memcmp(p.q.coeffs().data(), b.q.coeffs().data(), sizeof(double) * 4) == 0;
 }
 
+// One Gauss-Seidel pass of Newton steps over the active joints; returns the largest error
+// it found. With `from` (the step's start) the impulses act along the joints' directions
+// there and, with h > 0, also change the solver bodies' velocities (RATTLE); without, along
+// the directions now, positions only (a plain nonlinear Gauss-Seidel projection). With
+// `checks` (the positions-only passes), joints found holding are remembered as held.
 double projectionPass(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
                       std::vector<ContactSolverScratch::JointCheck>* checks = nullptr) {
     double worst = 0.0;
