@@ -37,4 +37,18 @@ std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, con
     return j;
 }
 
+BodyFrame frameOf(const SceneDesc& scene, const std::string& name) {
+    for (const BodyDesc& b : scene.bodies)
+        if (!name.empty() && b.name == name) return {b.position, b.orientation.normalized()};
+    return {};
+}
+
+Vec3 worldAnchorA(const SceneDesc& scene, const JointDesc& j) {
+    return frameOf(scene, j.bodyA).toWorld(j.anchorA);
+}
+
+Vec3 worldAnchorB(const SceneDesc& scene, const JointDesc& j) {
+    return frameOf(scene, j.bodyB).toWorld(j.anchorB);
+}
+
 }  // namespace tumble::ui

@@ -1,5 +1,6 @@
 // The joints Edit > Add Joint (and the scene tree's Joint button) makes for the selected
-// bodies, placed where a user would put them first. Qt-free.
+// bodies, placed where a user would put them first; and where a joint's bodies and anchors
+// are in the scene as placed (the joint panel, the viewport's handles and picking). Qt-free.
 #pragma once
 
 #include <tumble/scene.h>
@@ -22,5 +23,18 @@ namespace tumble::ui {
 /// one. The name is the type's (the document makes it unique).
 std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, const std::vector<int>& selection,
                                      std::string* why);
+
+/// Where body `name` is placed (the world's frame for an empty name or one no body has).
+struct BodyFrame {
+    Vec3 p = Vec3::Zero();
+    Quat q = Quat::Identity();
+    Vec3 toWorld(const Vec3& local) const { return p + q * local; }
+    Vec3 toLocal(const Vec3& world) const { return q.conjugate() * (world - p); }
+};
+BodyFrame frameOf(const SceneDesc& scene, const std::string& name);
+
+/// Joint `j`'s anchors in the world, with the scene's bodies as placed.
+Vec3 worldAnchorA(const SceneDesc& scene, const JointDesc& j);
+Vec3 worldAnchorB(const SceneDesc& scene, const JointDesc& j);
 
 }  // namespace tumble::ui

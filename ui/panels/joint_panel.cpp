@@ -1,6 +1,7 @@
 #include "panels/joint_panel.h"
 
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "panels/property_spin_box.h"
 #include "panels/vector_edit.h"
 
@@ -32,17 +33,6 @@ bool axial(JointType t) {
 }
 bool line(JointType t) {
     return t == JointType::Distance || t == JointType::Rope;
-}
-
-// Where a body's frame is (the world's when `name` is empty or names no body).
-struct Frame {
-    Vec3 p = Vec3::Zero();
-    Quat q = Quat::Identity();
-};
-Frame frameOf(const SceneDesc& scene, const std::string& name) {
-    for (const BodyDesc& b : scene.bodies)
-        if (!name.empty() && b.name == name) return {b.position, b.orientation.normalized()};
-    return {};
 }
 
 // The message the engine's validation of the joints gives the scene, or none (the joints
@@ -118,7 +108,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             [&](JointDesc& j) {
                 j.type = t;
                 if (axial(t) && !j.axisA) {
-                    const Frame a = frameOf(doc_->scene(), j.bodyA);
+                    const BodyFrame a = frameOf(doc_->scene(), j.bodyA);
                     j.axisA = a.q.conjugate() * (t == JointType::Hinge ? Vec3::UnitY() : Vec3::UnitX());
                 }
                 if (!axial(t)) {
@@ -145,8 +135,8 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             std::string& body = first ? j.bodyA : j.bodyB;
             Vec3& anchor = first ? j.anchorA : j.anchorB;
             std::optional<Vec3>& axis = first ? j.axisA : j.axisB;
-            const Frame from = frameOf(scene, body), to = frameOf(scene, name);
-            anchor = to.q.conjugate() * (from.p + from.q * anchor - to.p);
+            const BodyFrame from = frameOf(scene, body), to = frameOf(scene, name);
+            anchor = to.toLocal(from.toWorld(anchor));
             if (axis) axis = to.q.conjugate() * (from.q * *axis);
             body = name;
         };
@@ -192,7 +182,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
                     return;
                 }
                 const SceneDesc& scene = doc_->scene();
-                const Frame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
+                const BodyFrame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
                 j.axisB = b.q.conjugate() * (a.q * *j.axisA);
             },
             false);
@@ -216,9 +206,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
                     j.length = -1.0;
                     return;
                 }
-                const SceneDesc& scene = doc_->scene();
-                const Frame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
-                j.length = ((a.p + a.q * j.anchorA) - (b.p + b.q * j.anchorB)).norm();
+                j.length = (worldAnchorA(doc_->scene(), j) - worldAnchorB(doc_->scene(), j)).norm();
             },
             false);
     });

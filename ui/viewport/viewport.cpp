@@ -7,6 +7,7 @@
 #include <tumble/raycast.h>
 
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "timeline/timeline.h"
 #include "viewport/viewport_camera.h"
 #include "viewport/viewport_gizmo.h"
@@ -321,11 +322,8 @@ int Viewport::jointAt(const QPoint& widgetPos) const {
     double bestScore = 1e300;
     for (int k = 0; k < d_->doc->jointCount(); ++k) {
         const JointDesc& j = scene.joints[size_t(k)];
-        const Vec3 a = handles::jointAnchor(scene, j);
-        Vec3 b = j.anchorB;
-        for (const BodyDesc& body : scene.bodies)
-            if (!j.bodyB.empty() && body.name == j.bodyB) b = body.position + body.orientation.normalized() * j.anchorB;
-        const QVector3D pa = projectToWidget(toQt(a)), pb = projectToWidget(toQt(b));
+        const QVector3D pa = projectToWidget(toQt(worldAnchorA(scene, j)));
+        const QVector3D pb = projectToWidget(toQt(worldAnchorB(scene, j)));
         if (!onScreen(pa) || !onScreen(pb)) continue;
         const double anchor = std::min(QLineF(p, pa.toPointF()).length(), QLineF(p, pb.toPointF()).length());
         const double line = distanceToSegment(p, pa.toPointF(), pb.toPointF());

@@ -1,5 +1,7 @@
 #include "viewport/viewport_handles.h"
 
+#include "document/joint_presets.h"
+
 #include <cmath>
 
 namespace tumble::ui::handles {
@@ -54,50 +56,21 @@ BodyDesc rotated(const BodyDesc& body, const Vec3& pivot, const Vec3& axis, doub
     return b;
 }
 
-namespace {
-
-// Body `name`'s placement (the world's for an empty name or one no body has).
-void frameOf(const SceneDesc& scene, const std::string& name, Vec3& p, Quat& q) {
-    p = Vec3::Zero();
-    q = Quat::Identity();
-    for (const BodyDesc& b : scene.bodies) {
-        if (name.empty() || b.name != name) continue;
-        p = b.position;
-        q = b.orientation.normalized();
-        return;
-    }
-}
-
-}  // namespace
-
-Vec3 jointAnchor(const SceneDesc& scene, const JointDesc& j) {
-    Vec3 p;
-    Quat q;
-    frameOf(scene, j.bodyA, p, q);
-    return p + q * j.anchorA;
-}
-
 JointDesc movedAnchor(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double distance) {
     JointDesc out = j;
-    Vec3 pa, pb;
-    Quat qa, qb;
-    frameOf(scene, j.bodyA, pa, qa);
-    frameOf(scene, j.bodyB, pb, qb);
-    const Vec3 point = pa + qa * j.anchorA + distance * axis;
-    out.anchorA = qa.conjugate() * (point - pa);
-    if (j.type != JointType::Distance && j.type != JointType::Rope) out.anchorB = qb.conjugate() * (point - pb);
+    const BodyFrame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
+    const Vec3 point = a.toWorld(j.anchorA) + distance * axis;
+    out.anchorA = a.toLocal(point);
+    if (j.type != JointType::Distance && j.type != JointType::Rope) out.anchorB = b.toLocal(point);
     return out;
 }
 
 JointDesc turnedAxis(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double angle) {
     JointDesc out = j;
-    Vec3 pa, pb;
-    Quat qa, qb;
-    frameOf(scene, j.bodyA, pa, qa);
-    frameOf(scene, j.bodyB, pb, qb);
+    const BodyFrame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
     const Quat r(Eigen::AngleAxisd(angle, axis));
-    if (j.axisA) out.axisA = qa.conjugate() * (r * (qa * *j.axisA));
-    if (j.axisB) out.axisB = qb.conjugate() * (r * (qb * *j.axisB));
+    if (j.axisA) out.axisA = a.q.conjugate() * (r * (a.q * *j.axisA));
+    if (j.axisB) out.axisB = b.q.conjugate() * (r * (b.q * *j.axisB));
     return out;
 }
 

@@ -32,10 +32,8 @@ BodyDesc moved(const BodyDesc& body, const Vec3& axis, double distance);
 /// its orientation turns, and its position turns about the pivot.
 BodyDesc rotated(const BodyDesc& body, const Vec3& pivot, const Vec3& axis, double angle);
 
-/// Where joint `j`'s anchor on body A is in the world, with the scene's bodies as placed
-/// (what the handles of a selected joint stand on).
-Vec3 jointAnchor(const SceneDesc& scene, const JointDesc& j);
-/// The joint with that anchor moved by `distance` along `axis` (world). Both anchors move
+/// The joint with its anchor on body A (worldAnchorA, document/joint_presets.h: where a
+/// selected joint's handles stand) moved by `distance` along `axis` (world). Both anchors move
 /// together (they describe the one point where the bodies are joined), each kept in its
 /// own body's frame; a distance or rope joint's ends are apart, and only A's moves.
 JointDesc movedAnchor(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double distance);

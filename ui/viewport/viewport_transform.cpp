@@ -3,6 +3,8 @@
 #include "viewport/viewport_handles.h"
 #include "viewport/viewport_impl.h"
 
+#include "document/joint_presets.h"
+
 #include <Qt3DExtras/Qt3DWindow>
 
 #include <QUndoStack>
@@ -64,7 +66,7 @@ void Viewport::updateHandles() {
         // A joint's stand on its anchor: they move it, or turn its axis.
         Vec3 sum = Vec3::Zero();
         for (int i : movable) sum += d_->doc->body(i).position;
-        d_->handlesOrigin = joint >= 0 ? handles::jointAnchor(d_->doc->scene(), d_->doc->joint(joint))
+        d_->handlesOrigin = joint >= 0 ? worldAnchorA(d_->doc->scene(), d_->doc->joint(joint))
                                        : Vec3(sum / double(movable.size()));
         const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
         d_->handlesSize = std::max(1e-3f, kHandleScale * distance);

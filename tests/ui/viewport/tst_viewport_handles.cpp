@@ -4,6 +4,7 @@
 // both snapped on request, each drag one undo step, Escape cancels one and leaves no step;
 // planes stay where they are; the collision shapes appear and disappear as line entities.
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "viewport/viewport.h"
 #include "viewport/viewport_handles.h"
 #include "viewport_test_util.h"
@@ -290,7 +291,7 @@ private slots:
         // A click on the joint's anchor selects it, one on the crate away from it the crate;
         // with the Joints overlay off the anchor is the bodies' again.
         f.doc.setSelection({});
-        const QPoint anchor = projected(*f.view, handles::jointAnchor(f.doc.scene(), f.doc.joint(0)));
+        const QPoint anchor = projected(*f.view, worldAnchorA(f.doc.scene(), f.doc.joint(0)));
         QCOMPARE(f.view->jointAt(anchor), 0);
         f.view->clickAt(anchor);
         QCOMPARE(f.doc.selectedJoint(), 0);
@@ -315,7 +316,7 @@ private slots:
         rod.type = JointType::Distance;
         const JointDesc moved = handles::movedAnchor(f.doc.scene(), rod, Vec3::UnitZ(), 0.5);
         QCOMPARE(moved.anchorB, rod.anchorB);
-        QVERIFY((handles::jointAnchor(f.doc.scene(), moved) - handles::jointAnchor(f.doc.scene(), rod) -
+        QVERIFY((worldAnchorA(f.doc.scene(), moved) - worldAnchorA(f.doc.scene(), rod) -
                  Vec3(0, 0, 0.5)).norm() < 1e-12);
     }
 
