@@ -141,8 +141,7 @@ private slots:
         Timeline t(&doc);
         TimelineDock dock(&t);
         t.setAutoSimulate(false);
-        t.simulate();
-        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        QVERIFY(runToEnd(t));
         BodyDesc b = doc.body(1);
         b.velocity.x() = 4.0;
         doc.setBody(1, b, "Velocity");
@@ -168,8 +167,7 @@ private slots:
         Timeline t(&doc);
         TimelineDock dock(&t);
         t.setAutoSimulate(false);
-        t.simulate();
-        QVERIFY(QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs));
+        QVERIFY(runToEnd(t));
         QVERIFY2(dock.statusText().contains("1 note(s): hover to read"), qPrintable(dock.statusText()));
         auto* status = dock.findChild<QLabel*>("status");
         QVERIFY(status);
