@@ -4,8 +4,9 @@
 // entity (its jobs, a draw call and a uniform upload each), so one entity per body made a
 // frame cost about a millisecond a body on a software renderer. Changes are gathered and
 // handed to the renderer once per pass of the event loop. Imported meshes keep an entity
-// each (their own geometry, one per TriangleMesh shared by every body that uses it, with
-// Qt3D's Phong materials), and so do collision wireframes while shown.
+// each (a renderer of their own over one vertex buffer per TriangleMesh, shared by every
+// body that uses it, with Qt3D's Phong materials), and so do collision wireframes while
+// shown.
 #include "viewport/viewport_scene.h"
 
 #include "viewport/viewport_instances.h"
@@ -72,19 +73,25 @@ Qt3DExtras::QPhongMaterial* makeMaterial(const ViewportInstances::Look& look, Qt
 }
 
 // A renderer over interleaved float vertices: `components` floats per attribute, in order.
-Qt3DRender::QGeometryRenderer* makeRenderer(const std::vector<float>& data,
-                                            const std::vector<std::pair<QString, int>>& layout,
-                                            Qt3DRender::QGeometryRenderer::PrimitiveType type,
-                                            Qt3DCore::QNode* parent) {
-    int stride = 0;
-    for (const auto& a : layout) stride += a.second;
-    const int count = static_cast<int>(data.size()) / stride;
-    auto* renderer = new Qt3DRender::QGeometryRenderer(parent);
-    auto* geometry = new Qt3DCore::QGeometry(renderer);
-    auto* buffer = new Qt3DCore::QBuffer(geometry);
+Qt3DCore::QBuffer* makeBuffer(const std::vector<float>& data, Qt3DCore::QNode* parent) {
+    auto* buffer = new Qt3DCore::QBuffer(parent);
     QByteArray bytes(static_cast<qsizetype>(data.size() * sizeof(float)), Qt::Uninitialized);
     std::memcpy(bytes.data(), data.data(), static_cast<size_t>(bytes.size()));
     buffer->setData(bytes);
+    return buffer;
+}
+
+// A renderer of `buffer` (made by makeBuffer, shared or its own) with the attributes of
+// `layout` (name, floats) interleaved in that order.
+Qt3DRender::QGeometryRenderer* rendererOf(Qt3DCore::QBuffer* buffer, int floats,
+                                          const std::vector<std::pair<QString, int>>& layout,
+                                          Qt3DRender::QGeometryRenderer::PrimitiveType type,
+                                          Qt3DCore::QNode* parent) {
+    int stride = 0;
+    for (const auto& a : layout) stride += a.second;
+    const int count = floats / stride;
+    auto* renderer = new Qt3DRender::QGeometryRenderer(parent);
+    auto* geometry = new Qt3DCore::QGeometry(renderer);
     int offset = 0;
     for (const auto& [name, n] : layout) {
         auto* attr =
@@ -97,6 +104,16 @@ Qt3DRender::QGeometryRenderer* makeRenderer(const std::vector<float>& data,
     renderer->setGeometry(geometry);
     renderer->setPrimitiveType(type);
     renderer->setVertexCount(count);
+    return renderer;
+}
+
+Qt3DRender::QGeometryRenderer* makeRenderer(const std::vector<float>& data,
+                                            const std::vector<std::pair<QString, int>>& layout,
+                                            Qt3DRender::QGeometryRenderer::PrimitiveType type,
+                                            Qt3DCore::QNode* parent) {
+    Qt3DCore::QBuffer* buffer = makeBuffer(data, nullptr);
+    auto* renderer = rendererOf(buffer, int(data.size()), layout, type, parent);
+    buffer->setParent(renderer->geometry());  // its own
     return renderer;
 }
 
@@ -115,14 +132,15 @@ struct ViewportScene::Impl {
     Qt3DExtras::QPhongMaterial* asleepMat = nullptr;
     Qt3DExtras::QPerVertexColorMaterial* wireMat = nullptr;  // collision shapes
     bool showWire = false;
-    // One wireframe per loaded mesh and collision kind, like the render meshes.
-    std::map<std::pair<const TriangleMesh*, MeshCollision>,
-             std::pair<std::shared_ptr<const TriangleMesh>, Qt3DRender::QGeometryRenderer*>>
+    // One vertex buffer per loaded mesh (the shared_ptr keeps the key alive), and one for
+    // its wireframe per collision kind.
+    struct MeshBuffer {
+        Qt3DCore::QBuffer* buffer = nullptr;
+        int floats = 0;
+    };
+    std::map<const TriangleMesh*, std::pair<std::shared_ptr<const TriangleMesh>, MeshBuffer>> meshes;
+    std::map<std::pair<const TriangleMesh*, MeshCollision>, std::pair<std::shared_ptr<const TriangleMesh>, MeshBuffer>>
         meshWires;
-    // One geometry per loaded mesh (the shared_ptr keeps the key alive).
-    std::map<const TriangleMesh*,
-             std::pair<std::shared_ptr<const TriangleMesh>, Qt3DRender::QGeometryRenderer*>>
-        meshes;
 
     struct Body {
         Qt3DCore::QEntity* entity = nullptr;  // a mesh body's entity (others are instances)
@@ -221,29 +239,36 @@ struct ViewportScene::Impl {
         instances->commit();
     }
 
-    Qt3DRender::QGeometryRenderer* meshRenderer(const std::shared_ptr<const TriangleMesh>& mesh) {
+    // A mesh body's renderer, its own, of its mesh's vertices (one buffer per mesh, shared
+    // by every body that uses it). The renderer is made under the body's own entity: one made
+    // elsewhere (under the root, shared by the bodies) drew nothing when the mesh came after
+    // the view was up (a scene opened, a mesh imported: issue 21), under Qt 6.4's RHI backend.
+    Qt3DRender::QGeometryRenderer* meshRenderer(const std::shared_ptr<const TriangleMesh>& mesh,
+                                                Qt3DCore::QNode* owner) {
         auto it = meshes.find(mesh.get());
-        if (it != meshes.end()) return it->second.second;
-        // Flat shading: three vertices per triangle, each with the face normal.
-        std::vector<float> data;
-        data.reserve(mesh->triangles.size() * 18);
-        for (const auto& tri : mesh->triangles) {
-            const Vec3& a = mesh->vertices[size_t(tri[0])];
-            const Vec3& b = mesh->vertices[size_t(tri[1])];
-            const Vec3& c = mesh->vertices[size_t(tri[2])];
-            Vec3 n = (b - a).cross(c - a);
-            if (n.norm() > 0) n.normalize();
-            for (const Vec3* p : {&a, &b, &c}) {
-                for (int i = 0; i < 3; ++i) data.push_back(float((*p)[i]));
-                for (int i = 0; i < 3; ++i) data.push_back(float(n[i]));
+        if (it == meshes.end()) {
+            // Flat shading: three vertices per triangle, each with the face normal.
+            std::vector<float> data;
+            data.reserve(mesh->triangles.size() * 18);
+            for (const auto& tri : mesh->triangles) {
+                const Vec3& a = mesh->vertices[size_t(tri[0])];
+                const Vec3& b = mesh->vertices[size_t(tri[1])];
+                const Vec3& c = mesh->vertices[size_t(tri[2])];
+                Vec3 n = (b - a).cross(c - a);
+                if (n.norm() > 0) n.normalize();
+                for (const Vec3* p : {&a, &b, &c}) {
+                    for (int i = 0; i < 3; ++i) data.push_back(float((*p)[i]));
+                    for (int i = 0; i < 3; ++i) data.push_back(float(n[i]));
+                }
             }
+            it = meshes.emplace(mesh.get(), std::make_pair(mesh, MeshBuffer{makeBuffer(data, root), int(data.size())}))
+                     .first;
         }
-        auto* r = makeRenderer(data,
-                               {{Qt3DCore::QAttribute::defaultPositionAttributeName(), 3},
-                                {Qt3DCore::QAttribute::defaultNormalAttributeName(), 3}},
-                               Qt3DRender::QGeometryRenderer::Triangles, root);
-        meshes.emplace(mesh.get(), std::make_pair(mesh, r));
-        return r;
+        const MeshBuffer& m = it->second.second;
+        return rendererOf(m.buffer, m.floats,
+                          {{Qt3DCore::QAttribute::defaultPositionAttributeName(), 3},
+                           {Qt3DCore::QAttribute::defaultNormalAttributeName(), 3}},
+                          Qt3DRender::QGeometryRenderer::Triangles, owner);
     }
 
     Body make(const BodyDesc& desc, bool selected) {
@@ -297,12 +322,20 @@ struct ViewportScene::Impl {
         if (s.type != ShapeType::Mesh) {
             return makeColouredRenderer(build(s), Qt3DRender::QGeometryRenderer::Lines, owner);
         }
+        // A mesh's wire: one buffer per mesh and collision kind, a renderer per body (as
+        // meshRenderer, and for the same reason).
         const auto key = std::make_pair(s.meshData.get(), s.collision);
         auto it = meshWires.find(key);
-        if (it != meshWires.end()) return it->second.second;
-        auto* r = makeColouredRenderer(build(s), Qt3DRender::QGeometryRenderer::Lines, root);
-        meshWires.emplace(key, std::make_pair(s.meshData, r));
-        return r;
+        if (it == meshWires.end()) {
+            const std::vector<float> data = build(s);
+            it = meshWires.emplace(key, std::make_pair(s.meshData, MeshBuffer{makeBuffer(data, root), int(data.size())}))
+                     .first;
+        }
+        const MeshBuffer& m = it->second.second;
+        return rendererOf(m.buffer, m.floats,
+                          {{Qt3DCore::QAttribute::defaultPositionAttributeName(), 3},
+                           {Qt3DCore::QAttribute::defaultColorAttributeName(), 3}},
+                          Qt3DRender::QGeometryRenderer::Lines, owner);
     }
 
     void setWire(Body& b) {
@@ -343,7 +376,7 @@ struct ViewportScene::Impl {
             b.material = materialFor(b);
             if (s.meshData) {
                 b.part = new Qt3DCore::QEntity(b.entity);
-                b.part->addComponent(meshRenderer(s.meshData));
+                b.part->addComponent(meshRenderer(s.meshData, b.part));
                 b.part->addComponent(b.material);
             }
             if (wasInstanced) changed();  // it leaves the instances
@@ -433,9 +466,9 @@ ViewportScene::~ViewportScene() = default;  // the entities belong to the root
 void ViewportScene::rebuild(const SceneDesc& scene) {
     for (auto& b : d_->bodies) Impl::drop(b);
     d_->bodies.clear();
-    for (auto& [key, value] : d_->meshes) delete value.second;
+    for (auto& [key, value] : d_->meshes) delete value.second.buffer;
     d_->meshes.clear();
-    for (auto& [key, value] : d_->meshWires) delete value.second;
+    for (auto& [key, value] : d_->meshWires) delete value.second.buffer;
     d_->meshWires.clear();
     d_->bodies.reserve(scene.bodies.size());
     for (const BodyDesc& desc : scene.bodies) d_->bodies.push_back(d_->make(desc, false));

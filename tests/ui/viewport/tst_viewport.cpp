@@ -14,6 +14,7 @@
 
 #include <QMatrix4x4>
 #include <QUndoStack>
+#include <QScreen>
 #include <QWindow>
 #include <QtTest>
 
@@ -297,6 +298,51 @@ private slots:
         }
         const int ms = qEnvironmentVariableIntValue("TUMBLE_VIEWPORT_SHOW_MS");
         if (ms > 0) QTest::qWait(ms);
+    }
+
+    // Issue 21 item 1: a mesh body that comes after the view is up (a scene opened, a mesh
+    // imported) is drawn: the pixels where its centre projects take its colour (the orange
+    // of a dynamic body, lit), where the ground's grey was before.
+    void meshesAddedOrOpenedAfterStartAreDrawn() {
+        auto slab = std::make_shared<TriangleMesh>();  // a 2 x 2 x 0.5 box facing the camera
+        for (int k = 0; k < 8; ++k) slab->vertices.push_back(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 0.25 : -0.25));
+        slab->triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                           {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+        Document doc;  // the ground alone
+        Viewport view(&doc);
+        view.resize(480, 360);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        view.setCamera(QVector3D(0, 1.5f, 0), 7.0f, 0.0f, 10.0f);
+        QTest::qWait(300);  // frames drawn before any mesh exists
+        auto orangeAt = [&](const Vec3& p) {
+            const QPoint at = projected(view, p);
+            QImage shot;
+            for (int tries = 0; tries < 40; ++tries) {  // until a frame with it is on screen
+                QTest::qWait(50);
+                shot = view.screen()->grabWindow(view.winId()).toImage();
+                const QColor c = shot.pixelColor(at);
+                if (c.red() > c.blue() + 60) return true;
+            }
+            const QColor c = shot.pixelColor(at);
+            qWarning("at (%d, %d): rgb(%d, %d, %d)", at.x(), at.y(), c.red(), c.green(), c.blue());
+            return false;
+        };
+        BodyDesc b = body("slab", ShapeType::Mesh, Vec3(0, 1.5, 0));
+        b.shape.file = "slab.obj";
+        b.shape.meshData = slab;
+        doc.addBody(b);  // as Import Mesh adds one
+        QVERIFY(orangeAt(Vec3(0, 1.5, 0)));
+        // A scene opened from a file (File > Open), its meshes loaded then.
+        QString error;
+        QVERIFY2(doc.open(QFINDTESTDATA("../../../resources/scenes/mesh-shapes.json"), &error), qPrintable(error));
+        int tetra = -1;
+        for (int i = 0; i < doc.bodyCount(); ++i)
+            if (doc.body(i).motion == Motion::Dynamic && doc.body(i).shape.type == ShapeType::Mesh) tetra = i;
+        QVERIFY(tetra >= 0);
+        const Vec3 at = doc.body(tetra).position;
+        view.setCamera(QVector3D(float(at.x()), float(at.y()), float(at.z())), 3.0f, 0.0f, 10.0f);
+        QVERIFY(orangeAt(doc.body(tetra).position));
     }
 
     void spheresAndCylindersGetCoarserAsTheyGrowInNumber() {
