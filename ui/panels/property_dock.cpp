@@ -9,6 +9,7 @@
 
 #include "panels/joint_panel.h"
 #include "panels/live_state_box.h"
+#include "panels/wheel_guard.h"
 
 namespace tumble::ui {
 
@@ -208,6 +209,7 @@ void PropertyDock::Impl::build() {
 
 PropertyDock::PropertyDock(Document* doc, QWidget* parent)
     : QDockWidget(tr("Properties"), parent), d_(std::make_unique<Impl>()) {
+    installWheelGuard();  // the wheel scrolls the panel, not the field under it
     setObjectName("PropertyDock");
     d_->q = this;
     d_->doc = doc;

@@ -15,6 +15,9 @@
 #include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
+#include <QScrollArea>
+#include <QScrollBar>
+#include <QWheelEvent>
 #include <QUndoStack>
 #include <QtTest>
 
@@ -81,6 +84,58 @@ bool showsMixed(const PropertySpinBox* spin) {
 class TestPropertyDock : public QObject {
     Q_OBJECT
 private slots:
+    // Issue 21 item 2: the wheel over a field that was not clicked into scrolls the panel
+    // and leaves the value (and the undo stack) alone; Ctrl+wheel changes the field, and so
+    // does the wheel once the field is being edited.
+    void theWheelScrollsThePanelNotTheField() {
+        Fixture f;
+        f.doc.setSelection({f.crateIndex});
+        f.dock.resize(340, 260);  // short: the panel scrolls
+        f.dock.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&f.dock));
+        auto* area = f.dock.findChild<QScrollArea*>();
+        QVERIFY(area);
+        QScrollBar* bar = area->verticalScrollBar();
+        QVERIFY(bar->maximum() > 0);
+        PropertySpinBox* friction = f.spin("friction");
+        area->ensureWidgetVisible(friction);
+        QApplication::processEvents();
+        auto wheel = [&](QWidget* over, int delta, Qt::KeyboardModifiers mods) {
+            const QPoint local = over->rect().center();
+            QWheelEvent e(local, over->mapToGlobal(local), QPoint(), QPoint(0, delta), Qt::NoButton, mods,
+                          Qt::NoScrollPhase, false);
+            QApplication::sendEvent(over, &e);
+        };
+        // (Sent to the field: Qt passes the wheel from its line edit to it, as it does for a
+        // user's; an event sent to the line edit in a test is not passed on.)
+        QWidget* text = friction;
+        const double value = friction->value();
+        const int steps = f.steps(), at = bar->value();
+        const int delta = at > 0 ? 120 : -120;  // towards where the panel can go
+        wheel(text, delta, Qt::NoModifier);
+        QCOMPARE(friction->value(), value);
+        QCOMPARE(f.crateBody().friction, value);
+        QCOMPARE(f.steps(), steps);
+        QVERIFY2(bar->value() != at, "the panel did not scroll");
+        // A combo box too.
+        auto* kind = f.find<QComboBox>("mass.kind");
+        const int index = kind->currentIndex();
+        wheel(kind, -delta, Qt::NoModifier);
+        QCOMPARE(kind->currentIndex(), index);
+        // Ctrl+wheel changes the field under the pointer: one step of friction.
+        area->ensureWidgetVisible(friction);
+        wheel(friction, 120, Qt::ControlModifier);
+        QVERIFY(f.crateBody().friction > value);
+        QCOMPARE(f.steps(), steps + 1);
+        // A field clicked into takes the wheel.
+        QApplication::setActiveWindow(&f.dock);
+        friction->setFocus();
+        QTRY_VERIFY(friction->hasFocus());
+        const double now = f.crateBody().friction;
+        wheel(text, 120, Qt::NoModifier);
+        QVERIFY(f.crateBody().friction > now);
+    }
+
     void showsTheSelectedBody() {
         Fixture f;
         QCOMPARE(f.find<QLineEdit>("name")->text(), QString("ball"));

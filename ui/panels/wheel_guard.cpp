@@ -1,0 +1,58 @@
+#include "panels/wheel_guard.h"
+
+#include <QAbstractScrollArea>
+#include <QAbstractSlider>
+#include <QAbstractSpinBox>
+#include <QApplication>
+#include <QComboBox>
+#include <QScrollBar>
+#include <QWheelEvent>
+
+namespace tumble::ui {
+
+namespace {
+
+class WheelGuard : public QObject {
+public:
+    using QObject::QObject;
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override {
+        if (event->type() != QEvent::Wheel || !watched->isWidgetType()) return false;
+        auto* w = static_cast<QWidget*>(watched);
+        // The field itself, or a part of it (a spin box's line edit).
+        QWidget* field = w;
+        while (field && !isField(field)) field = field->parentWidget();
+        if (!field || field->hasFocus() || field->isAncestorOf(QApplication::focusWidget())) return false;
+        auto* wheel = static_cast<QWheelEvent*>(event);
+        if (wheel->modifiers() & Qt::ControlModifier) return false;
+        // The scroll area that holds the field (not one inside it, such as a combo's list).
+        QWidget* up = field->parentWidget();
+        while (up && !qobject_cast<QAbstractScrollArea*>(up)) up = up->parentWidget();
+        auto* area = qobject_cast<QAbstractScrollArea*>(up);
+        if (!area) return false;
+        QScrollBar* bar = wheel->angleDelta().y() != 0 ? area->verticalScrollBar() : area->horizontalScrollBar();
+        QWheelEvent forwarded(bar->mapFromGlobal(wheel->globalPosition()), wheel->globalPosition(),
+                              wheel->pixelDelta(), wheel->angleDelta(), wheel->buttons(), wheel->modifiers(),
+                              wheel->phase(), wheel->inverted(), wheel->source());
+        QApplication::sendEvent(bar, &forwarded);
+        return true;  // the field's value stays
+    }
+
+private:
+    static bool isField(const QWidget* w) {
+        return qobject_cast<const QAbstractSpinBox*>(w) || qobject_cast<const QComboBox*>(w) ||
+               (qobject_cast<const QAbstractSlider*>(w) && !qobject_cast<const QScrollBar*>(w));
+    }
+};
+
+}  // namespace
+
+void installWheelGuard() {
+    static WheelGuard* guard = nullptr;
+    if (guard || !qApp) return;
+    guard = new WheelGuard(qApp);
+    qApp->installEventFilter(guard);
+}
+
+}  // namespace tumble::ui
