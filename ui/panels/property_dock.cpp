@@ -9,7 +9,7 @@
 
 #include "panels/joint_panel.h"
 #include "panels/live_state_box.h"
-#include "panels/wheel_guard.h"
+#include "panels/field_guard.h"
 
 namespace tumble::ui {
 
@@ -41,6 +41,7 @@ void PropertyDock::Impl::build() {
     QWidget* nameRow = withError(name, "name");
     form->addRow(QObject::tr("Name"), nameRow);
     QObject::connect(name, &QLineEdit::editingFinished, q, [this] {
+        name->setModified(false);  // the typing is given: Ctrl+Z now undoes the document's edits
         if (doc->selection().size() != 1) return;
         const std::string text = name->text().trimmed().toStdString();
         if (text == doc->body(doc->selection()[0]).name) return;
@@ -209,7 +210,7 @@ void PropertyDock::Impl::build() {
 
 PropertyDock::PropertyDock(Document* doc, QWidget* parent)
     : QDockWidget(tr("Properties"), parent), d_(std::make_unique<Impl>()) {
-    installWheelGuard();  // the wheel scrolls the panel, not the field under it
+    installFieldGuard();  // the wheel scrolls the panel, not the field under it
     setObjectName("PropertyDock");
     d_->q = this;
     d_->doc = doc;

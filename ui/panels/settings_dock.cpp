@@ -1,7 +1,7 @@
 #include "panels/settings_dock.h"
 
 #include "document/document.h"
-#include "panels/wheel_guard.h"
+#include "panels/field_guard.h"
 
 #include <tumble/errors.h>
 #include <tumble/integrators.h>
@@ -65,7 +65,7 @@ QDoubleSpinBox* newSpin(const QString& name, double min, double max, int decimal
 
 SettingsDock::SettingsDock(Document* doc, QWidget* parent)
     : QDockWidget(tr("Scene Settings"), parent), doc_(doc) {
-    installWheelGuard();  // the wheel scrolls the panel, not the field under it
+    installFieldGuard();  // the wheel scrolls the panel, not the field under it
     setObjectName(QStringLiteral("settingsDock"));
 
     auto* form = new QFormLayout;

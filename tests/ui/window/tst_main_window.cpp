@@ -12,12 +12,14 @@
 
 #include <QAbstractButton>
 #include <QAbstractItemView>
+#include <QAbstractSpinBox>
 #include <QAction>
 #include <QApplication>
 #include <QDockWidget>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFile>
+#include <QLineEdit>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QProgressDialog>
@@ -86,6 +88,56 @@ private slots:
     void initTestCase() {
         QStandardPaths::setTestModeEnabled(true);
         QApplication::setQuitOnLastWindowClosed(false);  // the close tests close windows
+    }
+
+    // Issue 21 item 4: Ctrl+Z and Ctrl+Shift+Z in a focused number field undo and redo the
+    // document's edits, as Edit > Undo does; a name being typed keeps its own undo until it
+    // is given (Enter), then the keys undo the document's rename.
+    void undoKeysWorkInAFocusedField() {
+        MainWindow w;
+        QString error;
+        QVERIFY2(w.openScene(MainWindow::defaultScenePath(), &error), qPrintable(error));
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        QApplication::setActiveWindow(&w);
+        Document& doc = *w.document();
+        int box = -1;
+        for (int i = 0; i < doc.bodyCount(); ++i)
+            if (doc.body(i).motion == Motion::Dynamic) box = i;
+        QVERIFY(box >= 0);
+        doc.setSelection({box});
+        auto* friction = w.findChild<QDockWidget*>("PropertyDock")->findChild<QAbstractSpinBox*>("friction");
+        QVERIFY(friction);
+        const double before = doc.body(box).friction;
+        friction->setFocus();
+        QTRY_VERIFY(friction->hasFocus());
+        friction->selectAll();
+        QTest::keyClicks(friction, "0.75");
+        QTest::keyClick(friction, Qt::Key_Return);
+        QCOMPARE(doc.body(box).friction, 0.75);
+        QVERIFY(friction->hasFocus());
+        QTest::keyClick(friction, Qt::Key_Z, Qt::ControlModifier);
+        QCOMPARE(doc.body(box).friction, before);
+        QTest::keyClick(friction, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+        QCOMPARE(doc.body(box).friction, 0.75);
+
+        auto* name = w.findChild<QDockWidget*>("PropertyDock")->findChild<QLineEdit*>("name");
+        QVERIFY(name);
+        const std::string oldName = doc.body(box).name;
+        name->setFocus();
+        QTRY_VERIFY(name->hasFocus());
+        name->selectAll();
+        QTest::keyClicks(name, "crate");
+        QTest::keyClick(name, Qt::Key_Z, Qt::ControlModifier);  // the typing, not the document
+        QCOMPARE(doc.body(box).name, oldName);
+        QCOMPARE(doc.body(box).friction, 0.75);
+        QCOMPARE(name->text(), QString::fromStdString(oldName));
+        name->selectAll();
+        QTest::keyClicks(name, "crate");
+        QTest::keyClick(name, Qt::Key_Return);
+        QCOMPARE(doc.body(box).name, std::string("crate"));
+        QTest::keyClick(name, Qt::Key_Z, Qt::ControlModifier);  // the rename
+        QCOMPARE(doc.body(box).name, oldName);
     }
 
     void opensTheDefaultSample() {

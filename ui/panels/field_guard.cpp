@@ -1,10 +1,12 @@
-#include "panels/wheel_guard.h"
+#include "panels/field_guard.h"
 
 #include <QAbstractScrollArea>
 #include <QAbstractSlider>
 #include <QAbstractSpinBox>
 #include <QApplication>
 #include <QComboBox>
+#include <QKeyEvent>
+#include <QLineEdit>
 #include <QScrollBar>
 #include <QWheelEvent>
 
@@ -18,6 +20,8 @@ public:
 
 protected:
     bool eventFilter(QObject* watched, QEvent* event) override {
+        if (event->type() == QEvent::ShortcutOverride && watched->isWidgetType())
+            return passUndoKeys(static_cast<QWidget*>(watched), static_cast<QKeyEvent*>(event));
         if (event->type() != QEvent::Wheel || !watched->isWidgetType()) return false;
         auto* w = static_cast<QWidget*>(watched);
         // The field itself, or a part of it (a spin box's line edit).
@@ -40,6 +44,16 @@ protected:
     }
 
 private:
+    // Filtered without being accepted, the override leaves the keys to the window's
+    // shortcuts (Edit > Undo, Edit > Redo).
+    static bool passUndoKeys(QWidget* w, QKeyEvent* key) {
+        if (!key->matches(QKeySequence::Undo) && !key->matches(QKeySequence::Redo)) return false;
+        for (QWidget* up = w; up; up = up->parentWidget())
+            if (qobject_cast<QAbstractSpinBox*>(up)) return true;  // a number field
+        auto* text = qobject_cast<QLineEdit*>(w);
+        return text && !text->isReadOnly() && !text->isModified();  // typing not yet given: its own undo
+    }
+
     static bool isField(const QWidget* w) {
         return qobject_cast<const QAbstractSpinBox*>(w) || qobject_cast<const QComboBox*>(w) ||
                (qobject_cast<const QAbstractSlider*>(w) && !qobject_cast<const QScrollBar*>(w));
@@ -48,7 +62,7 @@ private:
 
 }  // namespace
 
-void installWheelGuard() {
+void installFieldGuard() {
     static WheelGuard* guard = nullptr;
     if (guard || !qApp) return;
     guard = new WheelGuard(qApp);
