@@ -248,6 +248,19 @@ void ExportDialog::browse() {
     if (!path.isEmpty()) target_->setText(path);
 }
 
+// Where an export goes when the dialog opens: the last export's folder while it is still
+// there; else beside the scene's file (a saved scene: `scene` is then its path; a sample's
+// is inside the program); else Documents when the home has one, else the home itself (a
+// fresh machine has no ~/Documents, and the first export was refused for it).
+QString ExportDialog::startFolder(const QString& remembered, const QString& scene) {
+    if (!remembered.isEmpty() && QFileInfo(remembered).isDir()) return remembered;
+    const QFileInfo file(scene);
+    if (!scene.startsWith(QLatin1Char(':')) && file.isAbsolute() && QFileInfo(file.absolutePath()).isWritable())
+        return file.absolutePath();
+    const QString documents = QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation);
+    return QFileInfo(documents).isDir() ? documents : QDir::homePath();
+}
+
 void ExportDialog::restore(const QString& sceneName) {
     QSettings s;
     s.beginGroup(QStringLiteral("export"));
@@ -255,8 +268,7 @@ void ExportDialog::restore(const QString& sceneName) {
     step_->setValue(s.value("step", 1).toInt());
     width_->setValue(s.value("width", 1280).toInt());
     height_->setValue(s.value("height", 720).toInt());
-    const QString dir =
-        s.value("folder", QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation)).toString();
+    const QString dir = startFolder(s.value("folder").toString(), sceneName);
     const QString base = QFileInfo(sceneName).completeBaseName().isEmpty()
                              ? QStringLiteral("untitled")
                              : QFileInfo(sceneName).completeBaseName();

@@ -27,7 +27,8 @@ public:
     enum class Kind { Csv, Json, Gltf, Glb, Images, Video };
     Q_ENUM(Kind)
 
-    /// `bodyNames` in scene order; `frames` and `frameRate` of the recording.
+    /// `bodyNames` in scene order; `frames` and `frameRate` of the recording; `sceneName`
+    /// the scene's name, or its file's path (the export then starts beside it).
     ExportDialog(const QStringList& bodyNames, int frames, double frameRate, const QString& sceneName,
                  QWidget* parent = nullptr);
 
@@ -48,6 +49,10 @@ public:
     QString problem() const;
 
     void accept() override;  // remembers the choices
+
+    /// The folder the target starts in (see the definition): `remembered` the last
+    /// export's, `scene` the scene's name or its file's path.
+    static QString startFolder(const QString& remembered, const QString& scene);
 
 private:
     void browse();

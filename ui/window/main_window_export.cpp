@@ -76,7 +76,9 @@ void MainWindow::exportDialog() {
     }
     QStringList names;
     for (const BodyDesc& b : timeline_->frames().scene.bodies) names << QString::fromStdString(b.name);
-    ExportDialog dialog(names, timeline_->framesDone(), timeline_->frameRate(), sceneName(), this);
+    // (The file's path when the scene has one: the export then starts beside it.)
+    const QString scene = doc_->filePath().isEmpty() ? sceneName() : doc_->filePath();
+    ExportDialog dialog(names, timeline_->framesDone(), timeline_->frameRate(), scene, this);
     dialog.setHasJoints(!timeline_->frames().scene.joints.empty());
     if (dialog.exec() != QDialog::Accepted) return;
 

@@ -11,6 +11,8 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDir>
+#include <QFileInfo>
 #include <QImage>
 #include <QSettings>
 #include <QSignalSpy>
@@ -162,6 +164,36 @@ private slots:
         QVERIFY(
             !w.startExport(int(ExportDialog::Kind::Csv), "/nonexistent-folder/x.csv", {}, QSize(), &error));
         QVERIFY2(error.contains("/nonexistent-folder/x.csv"), qPrintable(error));
+    }
+
+    // Issue 21 item 5: on a fresh machine (no ~/Documents, nothing remembered) the dialog
+    // starts in a folder that exists and the first export writes its file; a saved scene's
+    // export starts beside its file.
+    void theFirstExportFromAFreshHomeWritesItsFile() {
+        QTemporaryDir home;
+        const QByteArray oldHome = qgetenv("HOME");
+        qputenv("HOME", home.path().toLocal8Bit());
+        QSettings().remove("export/folder");
+        MainWindow w;
+        QVERIFY(openAndRecord(w, ":/scenes/projectile.json"));
+        ExportDialog d({"ground", "ball"}, w.timeline()->framesDone(), 60.0, "projectile.json");
+        d.setKind(ExportDialog::Kind::Csv);
+        QVERIFY2(d.problem().isEmpty(), qPrintable(d.problem()));
+        QCOMPARE(QFileInfo(d.target()).absolutePath(), QFileInfo(home.path()).absoluteFilePath());
+        QString error;
+        QVERIFY2(w.startExport(int(ExportDialog::Kind::Csv), d.target(), d.options(), QSize(), &error),
+                 qPrintable(error));
+        QTRY_VERIFY_WITH_TIMEOUT(QFileInfo(d.target()).size() > 0, 10000);
+        // Documents, once there is one.
+        QVERIFY(QDir(home.path()).mkdir("Documents"));
+        QCOMPARE(ExportDialog::startFolder({}, "projectile.json"), QDir(home.path()).filePath("Documents"));
+        // Beside a saved scene; the last export's folder first while it is there.
+        QTemporaryDir work;
+        const QString saved = QDir(work.path()).filePath("mine.json");
+        QCOMPARE(ExportDialog::startFolder({}, saved), QFileInfo(saved).absolutePath());
+        QCOMPARE(ExportDialog::startFolder(home.path(), saved), home.path());
+        QCOMPARE(ExportDialog::startFolder(home.path() + "/gone", saved), QFileInfo(saved).absolutePath());
+        qputenv("HOME", oldHome);
     }
 
     void theDialogChecksAndRemembers() {
