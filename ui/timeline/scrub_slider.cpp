@@ -1,6 +1,7 @@
 #include "timeline/scrub_slider.h"
 
 #include <QHelpEvent>
+#include <QMouseEvent>
 #include <QPainter>
 #include <QStyle>
 #include <QStyleOptionSlider>
@@ -27,6 +28,29 @@ int ScrubSlider::xOf(int value) const {
     const int span = groove.width() - handle.width();
     return groove.x() + handle.width() / 2 +
            QStyle::sliderPositionFromValue(minimum(), maximum(), value, std::max(0, span), opt.upsideDown);
+}
+
+int ScrubSlider::valueAt(int x) const {
+    QStyleOptionSlider opt;
+    initStyleOption(&opt);
+    const QRect groove = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderGroove, this);
+    const QRect handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
+    const int span = groove.width() - handle.width();
+    return QStyle::sliderValueFromPosition(minimum(), maximum(), x - groove.x() - handle.width() / 2,
+                                           std::max(0, span), opt.upsideDown);
+}
+
+void ScrubSlider::mousePressEvent(QMouseEvent* event) {
+    // A click on the track jumps to the frame under the pointer (QSlider steps a page
+    // towards it, ten frames), and the handle, now under the pointer, drags from there.
+    if (event->button() == Qt::LeftButton) {
+        QStyleOptionSlider opt;
+        initStyleOption(&opt);
+        const QRect handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
+        const QPoint at = event->position().toPoint();
+        if (!handle.contains(at)) setValue(valueAt(at.x()));
+    }
+    QSlider::mousePressEvent(event);
 }
 
 QString ScrubSlider::textNear(int x) const {

@@ -1,5 +1,6 @@
 // The timeline's scrub slider, with marks on it: a short red line above the groove at each
-// marked frame (a joint that broke), its text shown when the pointer rests near it.
+// marked frame (a joint that broke), its text shown when the pointer rests near it. A click
+// on the track jumps to the frame there.
 #pragma once
 
 #include <QSlider>
@@ -23,11 +24,14 @@ public:
     /// The x (widget pixels) at which frame `value` is drawn: where the handle's centre is
     /// when the slider is at it.
     int xOf(int value) const;
+    /// The frame drawn at x (the inverse of xOf, to the nearest frame).
+    int valueAt(int x) const;
     /// The marks' texts within a few pixels of x, one per line (empty: none there).
     QString textNear(int x) const;
 
 protected:
     void paintEvent(QPaintEvent* event) override;
+    void mousePressEvent(QMouseEvent* event) override;
     bool event(QEvent* event) override;
 
 private:

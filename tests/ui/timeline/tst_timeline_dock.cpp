@@ -4,11 +4,13 @@
 #include "document/document.h"
 #include "window/main_window.h"
 #include "timeline/timeline.h"
+#include "timeline/scrub_slider.h"
 #include "timeline/timeline_dock.h"
 #include "viewport/viewport.h"
 
 #include <QAction>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QProgressBar>
 #include <QSettings>
 #include <QSlider>
@@ -132,6 +134,37 @@ private slots:
         dock.playAction()->trigger();
         QVERIFY(!t.isPlaying());
         QCOMPARE(dock.playAction()->text(), QString("Play"));
+    }
+
+    // Issue 21 item 9: a click on the track jumps to the frame under the pointer (not ten
+    // frames towards it), and a drag from there scrubs on.
+    void aClickOnTheTrackJumpsThere() {
+        Document doc;
+        QString error;
+        QVERIFY(doc.open(":/scenes/projectile.json", &error));
+        Timeline t(&doc);
+        TimelineDock dock(&t);
+        dock.resize(900, 120);
+        dock.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dock));
+        QVERIFY(runToEnd(t));
+        ScrubSlider* slider = dock.slider();
+        t.seek(0);
+        QCOMPARE(slider->value(), 0);
+        const int y = slider->height() / 2;
+        QTest::mouseClick(slider, Qt::LeftButton, Qt::NoModifier, QPoint(slider->xOf(45), y));
+        QCOMPARE(t.currentFrame(), 45);
+        QCOMPARE(slider->valueAt(slider->xOf(45)), 45);
+        QTest::mouseClick(slider, Qt::LeftButton, Qt::NoModifier, QPoint(slider->xOf(12), y));
+        QCOMPARE(t.currentFrame(), 12);
+        // Press on the track, drag: the handle follows from the frame pressed.
+        QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, QPoint(slider->xOf(30), y));
+        QCOMPARE(t.currentFrame(), 30);
+        QMouseEvent move(QEvent::MouseMove, QPointF(slider->xOf(50), y), slider->mapToGlobal(QPointF(slider->xOf(50), y)),
+                         Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(slider, &move);
+        QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, QPoint(slider->xOf(50), y));
+        QCOMPARE(t.currentFrame(), 50);
     }
 
     void editMarksStaleInTheStatus() {
