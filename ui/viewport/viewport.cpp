@@ -342,7 +342,10 @@ void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers)
             return;
         }
     }
-    const int hit = bodyAt(widgetPos);
+    int hit = bodyAt(widgetPos);
+    // The ground (a plane) is the floor of the view, not a thing on it: a click there is a
+    // click on empty space, which clears the selection (the Scene list selects the ground).
+    if (hit >= 0 && d_->doc->body(hit).shape.type == ShapeType::Plane) hit = -1;
     QList<int> selection = d_->doc->selection();
     if (toggle) {
         if (hit < 0) return;

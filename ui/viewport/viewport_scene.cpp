@@ -123,7 +123,8 @@ struct ViewportScene::Impl {
     Qt3DCore::QEntity* root = nullptr;
     // The primitive bodies, drawn by instancing.
     std::unique_ptr<ViewportInstances> instances;
-    ViewportInstances::Look dynamicLook, staticLook, kinematicLook, selectedLook, groundLook, asleepLook;
+    ViewportInstances::Look dynamicLook, staticLook, kinematicLook, selectedLook, groundLook, selectedGroundLook,
+        asleepLook;
     // Mesh bodies: shared materials, the same colours as the looks.
     Qt3DExtras::QPhongMaterial* dynamicMat = nullptr;
     Qt3DExtras::QPhongMaterial* staticMat = nullptr;
@@ -173,8 +174,8 @@ struct ViewportScene::Impl {
     }
 
     const ViewportInstances::Look& lookFor(const Body& b) const {
+        if (b.plane) return b.selected ? selectedGroundLook : groundLook;
         if (b.selected) return selectedLook;
-        if (b.plane) return groundLook;
         if (b.asleep) return asleepLook;
         switch (b.motion) {
             case Motion::Static: return staticLook;
@@ -449,6 +450,9 @@ ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl
     d.selectedLook = look(QColor(255, 214, 60), specular, QColor(110, 90, 20));
     // The colour the ground had as a Phong-lit QPlaneMesh, (79, 81, 91) on screen.
     d.groundLook = look(QColor(42, 43, 48), QColor(0, 0, 0), QColor(35, 36, 40));
+    // A selected ground is tinted, not lit up: the whole floor in the selection's yellow
+    // drowned the bodies on it.
+    d.selectedGroundLook = look(QColor(58, 54, 34), QColor(0, 0, 0), QColor(48, 44, 26));
     d.dynamicMat = makeMaterial(d.dynamicLook, root);
     d.staticMat = makeMaterial(d.staticLook, root);
     d.kinematicMat = makeMaterial(d.kinematicLook, root);

@@ -127,6 +127,28 @@ private slots:
         QVERIFY(f.doc.selection().isEmpty());
     }
 
+    // Issue 21 item 7: a click on the ground (the floor around the bodies) is a click on
+    // empty space: it clears the selection and does not select the ground; the ground
+    // selected from the Scene list is tinted, not lit up in the selection's yellow.
+    void aClickOnTheGroundClearsTheSelection() {
+        Fixture f;
+        QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
+        f.doc.setSelection({1});
+        const QPoint floor = projected(*f.view, Vec3(-2, 0, 2));  // on the ground, before the bodies
+        QCOMPARE(f.view->bodyAt(floor), 0);                       // the ray meets the ground there
+        QTest::mouseClick(f.view->renderWindow(), Qt::LeftButton, Qt::NoModifier, floor);
+        QVERIFY(f.doc.selection().isEmpty());
+        QTest::mouseClick(f.view->renderWindow(), Qt::LeftButton, Qt::ControlModifier, floor);
+        QVERIFY(f.doc.selection().isEmpty());
+        f.doc.setSelection({0});  // as the Scene list does
+        QColor c;
+        for (int tries = 0; tries < 20; ++tries) {
+            QTest::qWait(50);
+            c = f.view->screen()->grabWindow(f.view->winId()).toImage().pixelColor(floor);
+        }
+        QVERIFY2(c.red() < 120 && c.green() < 120, qPrintable(QString("rgb(%1, %2, %3)").arg(c.red()).arg(c.green()).arg(c.blue())));
+    }
+
     void aDragOrbitsInsteadOfSelecting() {
         Fixture f;
         QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
