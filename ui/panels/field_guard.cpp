@@ -5,6 +5,7 @@
 #include <QAbstractSpinBox>
 #include <QApplication>
 #include <QComboBox>
+#include <QFocusEvent>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QScrollBar>
@@ -60,7 +61,32 @@ private:
     }
 };
 
+class LeaveWatch : public QObject {
+public:
+    LeaveWatch(QObject* parent, std::function<void()> left) : QObject(parent), left_(std::move(left)) {}
+
+protected:
+    bool eventFilter(QObject*, QEvent* event) override {
+        if (event->type() == QEvent::FocusOut) {
+            const Qt::FocusReason why = static_cast<QFocusEvent*>(event)->reason();
+            if (why != Qt::PopupFocusReason && why != Qt::ActiveWindowFocusReason) left_();
+        }
+        return false;
+    }
+
+private:
+    std::function<void()> left_;
+};
+
 }  // namespace
+
+void whenFieldLeft(QWidget* editor, std::function<void()> left) {
+    auto* watch = new LeaveWatch(editor, std::move(left));
+    QList<QWidget*> fields = editor->findChildren<QWidget*>();
+    fields.prepend(editor);
+    for (QWidget* w : fields)
+        if (w->focusPolicy() != Qt::NoFocus) w->installEventFilter(watch);
+}
 
 void installFieldGuard() {
     static WheelGuard* guard = nullptr;

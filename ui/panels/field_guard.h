@@ -11,10 +11,20 @@
 //   not yet given to the document, and passes the keys on after that.
 #pragma once
 
+#include <functional>
+
+class QWidget;
+
 namespace tumble::ui {
 
 /// Installs the guard on the application, once (later calls do nothing). Every dock with
 /// fields calls it; the wheel part acts on fields inside a scroll area only.
 void installFieldGuard();
+
+/// Calls `left` whenever the keyboard focus leaves `editor` or a field inside it for
+/// another widget (not for a popup of its own or the window losing the focus). The panels
+/// hide a refused value's message then: the field shows its last good value again, and a
+/// red message under a valid value read as if that value were wrong.
+void whenFieldLeft(QWidget* editor, std::function<void()> left);
 
 }  // namespace tumble::ui

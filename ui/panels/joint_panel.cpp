@@ -2,6 +2,7 @@
 
 #include "document/document.h"
 #include "document/joint_presets.h"
+#include "panels/field_guard.h"
 #include "panels/property_spin_box.h"
 #include "panels/vector_edit.h"
 
@@ -66,7 +67,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         auto* s = new PropertySpinBox;
         s->setObjectName(key);
         s->setSuffix(suffix);
-        s->setMinimum(min);
+        s->setSoftMinimum(min);
         s->setSingleStep(step);
         connect(s, &PropertySpinBox::editingFinished, this, [this] { ++generation_; });
         return s;
@@ -323,6 +324,7 @@ QWidget* JointPanel::withError(QWidget* editor, const QString& key) {
     error->hide();
     layout->addWidget(error);
     errors_.insert(key, error);
+    whenFieldLeft(editor, [error] { error->hide(); });
     return box;
 }
 

@@ -101,7 +101,7 @@ void PropertyDock::Impl::build() {
         form, QObject::tr("Half extents"), "shape.half_extents", " m", QObject::tr("Set half extents"),
         [box](const BodyDesc& b) { return box(b) ? std::optional(b.shape.halfExtents) : std::nullopt; },
         [](BodyDesc& b, int k, double v) { b.shape.halfExtents[k] = v; })
-        ->setRange(0.0, 1e12);
+        ->setSoftMinimum(0.0);
     const auto plane = has({ShapeType::Plane});
     addVector(
         form, QObject::tr("Normal"), "shape.normal", QString(), QObject::tr("Set plane normal"),
@@ -138,7 +138,7 @@ void PropertyDock::Impl::build() {
                 b.shape.meshData = std::move(m);
             }
         })
-        ->setRange(0.0, 1e12);
+        ->setSoftMinimum(0.0);
     addChoice<MeshCollision>(
         form, QObject::tr("Collision"), "shape.collision", QObject::tr("Set mesh collision"),
         {{QObject::tr("Convex hull"), MeshCollision::ConvexHull},

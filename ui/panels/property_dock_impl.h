@@ -5,6 +5,7 @@
 #include "panels/property_dock.h"
 
 #include "document/document.h"
+#include "panels/field_guard.h"
 #include "panels/forces_edit.h"
 #include "panels/inertia_edit.h"
 #include "panels/property_euler.h"
@@ -362,6 +363,7 @@ struct PropertyDock::Impl {
         QLabel* error = errorLabel(box, key);
         layout->addWidget(error);
         errors.insert(key, error);
+        whenFieldLeft(editor, [this, key] { showError(key, QString()); });
         return box;
     }
 
@@ -372,7 +374,7 @@ struct PropertyDock::Impl {
         auto* spin = new PropertySpinBox;
         spin->setObjectName(key);
         spin->setSuffix(suffix);
-        spin->setMinimum(min);
+        spin->setSoftMinimum(min);
         spin->setSingleStep(step);
         QWidget* row = withError(spin, key);
         form->addRow(label, row);

@@ -20,7 +20,7 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
     massKind->addItem(QObject::tr("Density"), 1);
     mass = new PropertySpinBox;
     mass->setObjectName("mass");
-    mass->setMinimum(0.0);
+    mass->setSoftMinimum(0.0);
     mass->setSingleStep(0.1);
     h->addWidget(massKind);
     h->addWidget(mass, 1);

@@ -45,6 +45,26 @@ void PropertySpinBox::showMixed(double base) {
     lineEdit()->setText(prefix() + mixedText() + suffix());
 }
 
+void PropertySpinBox::setSoftMinimum(double min) {
+    softMinimum_ = min;
+}
+
+void PropertySpinBox::stepBy(int steps) {
+    // A step down from at or above the soft minimum stops on it.
+    const double to = value() + steps * singleStep();
+    if (steps < 0 && value() >= softMinimum_ && to < softMinimum_) {
+        setValue(softMinimum_);
+        return;
+    }
+    QDoubleSpinBox::stepBy(steps);
+}
+
+QAbstractSpinBox::StepEnabled PropertySpinBox::stepEnabled() const {
+    StepEnabled e = QDoubleSpinBox::stepEnabled();
+    if (!mixed_ && value() <= softMinimum_) e &= ~StepDownEnabled;
+    return e;
+}
+
 QString PropertySpinBox::mixedText() {
     return QStringLiteral("—");
 }

@@ -1,9 +1,14 @@
 // A double spin box for the property panels: shows numbers with up to 10 significant
 // digits (no fixed decimals that would round a stored value), accepts any finite number
-// the locale reads, and can show "—" when the selected bodies disagree ("mixed").
+// the locale reads, and can show "—" when the selected bodies disagree ("mixed"). A lower
+// bound is soft (setSoftMinimum): the arrows and the wheel stop there, but a number typed
+// below it is taken and given to the panel, which refuses it with the engine's message (a
+// hard minimum turned a typed "-3" back into the old mass without a word).
 #pragma once
 
 #include <QDoubleSpinBox>
+
+#include <limits>
 
 namespace tumble::ui {
 
@@ -18,7 +23,12 @@ public:
     void showMixed(double base = 0.0);
     bool isMixed() const { return mixed_; }
 
+    /// The arrows and the wheel do not step below `min`; typing may (see above).
+    void setSoftMinimum(double min);
+
     QString textFromValue(double value) const override;
+    void stepBy(int steps) override;
+    StepEnabled stepEnabled() const override;
     double valueFromText(const QString& text) const override;
     QValidator::State validate(QString& text, int& pos) const override;
     void fixup(QString& input) const override;
@@ -28,6 +38,7 @@ public:
 private:
     QString stripped(const QString& text) const;
     bool mixed_ = false;
+    double softMinimum_ = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace tumble::ui

@@ -39,8 +39,8 @@ void VectorEdit::showValue(const Vec3& v) {
     for (int k = 0; k < 3; ++k) spins_[static_cast<size_t>(k)]->showValue(v[k]);
 }
 
-void VectorEdit::setRange(double min, double max) {
-    for (auto* s : spins_) s->setRange(min, max);
+void VectorEdit::setSoftMinimum(double min) {
+    for (auto* s : spins_) s->setSoftMinimum(min);
 }
 
 void VectorEdit::setSuffix(const QString& suffix) {

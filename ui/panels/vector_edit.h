@@ -24,7 +24,8 @@ public:
     /// `base` is where stepping a "—" component starts from.
     void showValue(const std::array<std::optional<double>, 3>& v, const Vec3& base = Vec3::Zero());
     void showValue(const Vec3& v);
-    void setRange(double min, double max);
+    /// Each component's soft minimum (PropertySpinBox::setSoftMinimum).
+    void setSoftMinimum(double min);
     void setSuffix(const QString& suffix);
     void setSingleStep(double step);
     PropertySpinBox* component(int k) const { return spins_[static_cast<size_t>(k)]; }

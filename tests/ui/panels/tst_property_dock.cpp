@@ -330,6 +330,44 @@ private slots:
         QCOMPARE(f.spin("restitution")->value(), 0.5);
     }
 
+    // Issue 21 item 8: a negative mass typed in is refused with the engine's message, like
+    // 0 (it was turned back without a word); the arrows stop at 0; a refused value's message
+    // goes once the focus leaves the field, which shows the last good value again.
+    void typedValuesBelowZeroAreRefusedAloud() {
+        Fixture f;
+        f.dock.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&f.dock));
+        QApplication::setActiveWindow(&f.dock);
+        const SceneDesc before = f.doc.scene();
+        PropertySpinBox* mass = f.spin("mass");
+        mass->setFocus();
+        QTRY_VERIFY(mass->hasFocus());
+        mass->selectAll();
+        QTest::keyClicks(mass, "-3");
+        QTest::keyClick(mass, Qt::Key_Return);
+        QCOMPARE(f.doc.scene(), before);
+        QVERIFY2(!f.dock.fieldError("mass").isEmpty(), "no message for a negative mass");
+        QCOMPARE(mass->value(), 2.5);
+        // Leaving the field takes the message away; the field holds 2.5, a good value.
+        f.spin("restitution")->setFocus();
+        QTRY_VERIFY(f.dock.fieldError("mass").isEmpty());
+        // The same for a restitution above 1.
+        PropertySpinBox* e = f.spin("restitution");
+        e->selectAll();
+        QTest::keyClicks(e, "1.5");
+        QTest::keyClick(e, Qt::Key_Return);
+        QVERIFY(f.dock.fieldError("restitution").contains("between 0 and 1"));
+        QCOMPARE(e->value(), 0.5);
+        f.spin("friction")->setFocus();
+        QTRY_VERIFY(f.dock.fieldError("restitution").isEmpty());
+        // The arrows stop at 0.
+        f.spin("friction")->setValue(0.05);
+        f.spin("friction")->stepBy(-3);
+        QCOMPARE(f.ballBody().friction, 0.0);
+        QVERIFY(!(f.spin("friction")->stepEnabled() & QAbstractSpinBox::StepDownEnabled));
+        QVERIFY(f.dock.fieldError("friction").isEmpty());
+    }
+
     void frictionAndDamping() {
         Fixture f;
         f.spin("friction")->setValue(0.9);
