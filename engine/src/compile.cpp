@@ -323,17 +323,33 @@ MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMe
 
 }  // namespace
 
-void validate(const SceneDesc& scene) {
-    validateSettings(scene.settings);
+std::vector<SceneError> sceneProblems(const SceneDesc& scene) {
+    std::vector<SceneError> found;
+    auto check = [&](auto&& part) {
+        try {
+            part();
+        } catch (const SceneError& e) {
+            found.push_back(e);
+        }
+    };
+    check([&] { validateSettings(scene.settings); });
     std::set<std::string> names;
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
-        validateBody(scene.bodies[i], static_cast<int>(i));
-        if (!names.insert(scene.bodies[i].name).second) {
-            throw SceneError(at(static_cast<int>(i)) + ".name",
-                             "'" + scene.bodies[i].name + "' is already the name of another body");
-        }
+        check([&] {
+            validateBody(scene.bodies[i], static_cast<int>(i));
+            if (!names.insert(scene.bodies[i].name).second) {
+                throw SceneError(at(static_cast<int>(i)) + ".name",
+                                 "'" + scene.bodies[i].name + "' is already the name of another body");
+            }
+        });
     }
-    validateJoints(scene);
+    check([&] { validateJoints(scene); });
+    return found;
+}
+
+void validate(const SceneDesc& scene) {
+    const std::vector<SceneError> problems = sceneProblems(scene);
+    if (!problems.empty()) throw problems.front();
 }
 
 Model compile(const SceneDesc& scene) {

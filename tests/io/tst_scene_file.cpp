@@ -473,6 +473,35 @@ private slots:
         }
     }
 
+    // Issue 21 item 8: a file with several bad values names all of them (the first in
+    // what(), for the command line's one line; the rest in more(), for the editor), in the
+    // order validation meets them.
+    void everyProblemOfAFileIsNamed() {
+        QString text = kBase;
+        text.replace(R"("dt": 0.01)", R"("dt": -1)");
+        text.replace(R"("radius": 0.5)", R"("radius": 0)");
+        text.replace(R"("density": 1000)", R"("density": -5)");
+        try {
+            io::parseScene(text.toStdString(), "drop.json");
+            QFAIL("no error for this input");
+        } catch (const InputError& e) {
+            QCOMPARE(QString::fromStdString(e.field()), QString("settings.dt"));
+            QCOMPARE(e.more().size(), size_t(2));
+            QVERIFY2(QString::fromStdString(e.more()[0]).startsWith("bodies[1].shape.radius: "),
+                     e.more()[0].c_str());
+            QVERIFY2(QString::fromStdString(e.more()[1]).startsWith("bodies[2].density: "), e.more()[1].c_str());
+        }
+        // One bad value: nothing more.
+        text = kBase;
+        text.replace(R"("radius": 0.5)", R"("radius": 0)");
+        try {
+            io::parseScene(text.toStdString(), "drop.json");
+            QFAIL("no error for this input");
+        } catch (const InputError& e) {
+            QVERIFY(e.more().empty());
+        }
+    }
+
     // The text each row of badInput starts from is itself valid.
     void baseIsValid() {
         const SceneDesc scene = io::parseScene(kBase, "drop.json");

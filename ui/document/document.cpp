@@ -124,6 +124,14 @@ bool Document::open(const QString& path, QString* error) {
             for (const io::InputError& f : failures) warnings << QString::fromStdString(f.what());
             makeMeshPathsAbsolute(scene, QFileInfo(path).absolutePath());
         }
+    } catch (const io::InputError& e) {
+        // Every problem of the file at once, not one per try (the command line names the first).
+        if (error) {
+            QStringList lines{QString::fromStdString(e.what())};
+            for (const std::string& more : e.more()) lines << QString::fromStdString(e.file() + ": " + more);
+            *error = lines.join('\n');
+        }
+        return false;
     } catch (const std::exception& e) {
         if (error) *error = QString::fromStdString(e.what());
         return false;

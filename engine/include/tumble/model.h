@@ -3,6 +3,7 @@
 #pragma once
 
 #include <tumble/collision.h>
+#include <tumble/errors.h>
 #include <tumble/integrators.h>
 #include <tumble/math.h>
 #include <tumble/scene.h>
@@ -102,6 +103,12 @@ struct Model {
 
 /// Checks every value of a scene; throws SceneError naming the first bad field.
 void validate(const SceneDesc& scene);
+
+/// Every problem validate() would find, in the order it checks (the settings, each body,
+/// the joints): the first is the one it throws. A body with several bad fields counts
+/// once (its first), and so do the settings and the joints: an editor can list them all
+/// for a file at once instead of one per try.
+std::vector<SceneError> sceneProblems(const SceneDesc& scene);
 
 /// Compiles a scene: validates it (throws SceneError naming the field) and resolves
 /// mass properties, materials and forces.

@@ -447,10 +447,11 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName,
         for (size_t i = 0; i < v.size(); ++i)
             scene.joints.push_back(readJoint(r, v[i], f + "[" + std::to_string(i) + "]"));
     });
-    try {
-        validate(scene);
-    } catch (const SceneError& e) {
-        throw InputError(fileName, e.path(), e.message());
+    const std::vector<SceneError> problems = sceneProblems(scene);
+    if (!problems.empty()) {
+        InputError e(fileName, problems.front().path(), problems.front().message());
+        for (size_t k = 1; k < problems.size(); ++k) e.addMore(problems[k].what());
+        throw e;
     }
     // After validation, so that a mesh is read only with a usable file name and scale.
     if (baseDir) loadSceneMeshes(scene, *baseDir, fileName);

@@ -186,6 +186,22 @@ private slots:
         QCOMPARE(w.scene(), before);
         QVERIFY(!w.openScene(dir.filePath("missing.json"), &error));
         QVERIFY(error.contains("missing.json"));
+        // Several problems: each named, one a line (issue 21 item 8: only the first was).
+        const QString worse = dir.filePath("worse.json");
+        QFile g(worse);
+        QVERIFY(g.open(QIODevice::WriteOnly));
+        g.write(R"({"format": "tumble-scene", "version": 1, "bodies": [
+            {"name": "a", "shape": {"type": "sphere", "radius": -1}, "mass": 1},
+            {"name": "b", "shape": {"type": "sphere", "radius": 1}, "mass": -3},
+            {"name": "c", "shape": {"type": "sphere", "radius": 1}, "mass": 1, "restitution": 2}]})");
+        g.close();
+        QVERIFY(!w.openScene(worse, &error));
+        const QStringList lines = error.split('\n');
+        QCOMPARE(lines.size(), 3);
+        QCOMPARE(lines[0], worse + ": bodies[0].shape.radius: must be greater than 0");
+        QVERIFY2(lines[1].startsWith(worse + ": bodies[1].mass: "), qPrintable(lines[1]));
+        QVERIFY2(lines[2].startsWith(worse + ": bodies[2].restitution: "), qPrintable(lines[2]));
+        QCOMPARE(w.scene(), before);
     }
 
     void importMesh_data() {

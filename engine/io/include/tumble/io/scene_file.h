@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tumble::io {
 
@@ -20,9 +21,14 @@ public:
     const std::string& file() const { return file_; }
     const std::string& field() const { return field_; }
     const std::string& message() const { return message_; }
+    /// The file's other problems, each "field: message" (see sceneProblems): what() and the
+    /// command line name the first alone, the editor lists them all.
+    const std::vector<std::string>& more() const { return more_; }
+    void addMore(std::string problem) { more_.push_back(std::move(problem)); }
 
 private:
     std::string file_, field_, message_;
+    std::vector<std::string> more_;
 };
 
 /// The newest scene version this build reads and writes.
