@@ -294,9 +294,18 @@ bool MainWindow::save() {
     return true;
 }
 
+QString MainWindow::askSceneFile(const QString& title) {
+    // A name typed without an extension gets ".json" (the Open dialog's filter hid a scene
+    // saved as "my-scene"), and the dialog asks before replacing the file of that name.
+    QFileDialog dialog(this, title, doc_->filePath(), tr("Tumble scenes (*.json)"));
+    dialog.setAcceptMode(QFileDialog::AcceptSave);
+    dialog.setDefaultSuffix(QStringLiteral("json"));
+    if (dialog.exec() != QDialog::Accepted || dialog.selectedFiles().isEmpty()) return QString();
+    return dialog.selectedFiles().first();
+}
+
 bool MainWindow::saveAsDialog() {
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save scene as"), doc_->filePath(),
-                                                      tr("Tumble scenes (*.json)"));
+    const QString path = askSceneFile(tr("Save scene as"));
     if (path.isEmpty()) return false;
     QString error;
     if (!doc_->saveAs(path, &error)) {

@@ -105,6 +105,8 @@ private:
     void openDialog();
     bool save();
     bool saveAsDialog();
+    /// A scene file to save to, asked for (empty: cancelled); ".json" added when none is typed.
+    QString askSceneFile(const QString& title);
     void revert();
     // File > Import Mesh, drops and the import job (ui/window/main_window_import.cpp).
     void importDialog();

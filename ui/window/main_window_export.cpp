@@ -119,8 +119,7 @@ void MainWindow::exportDialog() {
 }
 
 bool MainWindow::saveWithMeshesDialog() {
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save scene with its meshes"),
-                                                      doc_->filePath(), tr("Tumble scenes (*.json)"));
+    const QString path = askSceneFile(tr("Save scene with its meshes"));
     if (path.isEmpty()) return false;
     QString error;
     if (!doc_->saveWithMeshes(path, &error)) {

@@ -18,7 +18,10 @@
 #include <QDockWidget>
 #include <QDragEnterEvent>
 #include <QDropEvent>
+#include <QDir>
 #include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
 #include <QLineEdit>
 #include <QMessageBox>
 #include <QMimeData>
@@ -548,6 +551,33 @@ private slots:
         QVERIFY2(w.timeline()->errorMessage().contains("bodies[1]"),
                  qPrintable(w.timeline()->errorMessage()));
         QCOMPARE(w.scene(), scene);
+    }
+
+    // Issue 21 item 10: Save As with a name typed without an extension writes NAME.json,
+    // which the Open dialog's filter shows.
+    void saveAsAddsTheExtension() {
+        QTemporaryDir dir;
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(":/scenes/bouncing-ball.json", &error));
+        QAction* saveAs = nullptr;
+        for (QAction* a : w.findChildren<QAction*>())
+            if (a->text() == "Save &As...") saveAs = a;
+        QVERIFY(saveAs);
+        bool answered = false;
+        QTimer::singleShot(0, &w, [&] {
+            auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+            if (!dialog) return;
+            dialog->selectFile(QDir(dir.path()).filePath("my-scene"));
+            QMetaObject::invokeMethod(dialog, "accept");  // as its Save button does
+            answered = true;
+        });
+        saveAs->trigger();
+        QVERIFY(answered);
+        QVERIFY2(QFileInfo::exists(QDir(dir.path()).filePath("my-scene.json")),
+                 qPrintable(QDir(dir.path()).entryList(QDir::Files).join(", ")));
+        QVERIFY(!QFileInfo::exists(QDir(dir.path()).filePath("my-scene")));
+        QCOMPARE(w.scenePath(), QDir(dir.path()).filePath("my-scene.json"));
     }
 
     void saveAndReopen() {
