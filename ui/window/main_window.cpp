@@ -11,6 +11,8 @@
 #include "timeline/timeline.h"
 #include "timeline/timeline_dock.h"
 #include "viewport/viewport.h"
+#include "window/shortcuts_dialog.h"
+#include "window/sticky_menu.h"
 
 #include <tumble/io/atomic_file.h>
 #include <tumble/io/mesh_import.h>
@@ -178,15 +180,16 @@ void MainWindow::buildMenus() {
     simulation->addAction(timelineDock_->useFrameAction());
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
-    view->addAction(tr("&Frame Selection"), this, [this] { viewport_->frameSelection(); });
-    view->addAction(tr("Frame &All"), this, [this] { viewport_->frameAll(); });
-    view->addSeparator();
     // The viewport's own keys (W, E, F, A) work while it has the focus; these are the same
-    // switches for the menu.
+    // commands for the menu, which shows the keys after a tab (display only: as window
+    // shortcuts they would take the letters from the fields).
+    view->addAction(tr("&Frame Selection") + "\tF", this, [this] { viewport_->frameSelection(); });
+    view->addAction(tr("Frame &All") + "\tA", this, [this] { viewport_->frameAll(); });
+    view->addSeparator();
     auto* modes = new QActionGroup(this);
-    QAction* move = view->addAction(tr("&Move Handles"), this,
+    QAction* move = view->addAction(tr("&Move Handles") + "\tW", this,
                                     [this] { viewport_->setTransformMode(Viewport::TransformMode::Move); });
-    QAction* rotate = view->addAction(tr("&Rotate Handles"), this, [this] {
+    QAction* rotate = view->addAction(tr("&Rotate Handles") + "\tE", this, [this] {
         viewport_->setTransformMode(Viewport::TransformMode::Rotate);
     });
     for (QAction* a : {move, rotate}) a->setCheckable(true), modes->addAction(a);
@@ -204,13 +207,16 @@ void MainWindow::buildMenus() {
     shapes->setCheckable(true);
     shapes->setChecked(viewport_->showCollisionShapes());
     connect(shapes, &QAction::toggled, viewport_, &Viewport::setShowCollisionShapes);
-    // Overlays of the simulation at the playhead, each computed only while shown.
-    QMenu* overlays = view->addMenu(tr("&Overlays"));
+    // Overlays of the simulation at the playhead, each computed only while shown; the menu
+    // stays open while they are ticked, and Alt+1 ... Alt+8 switch them from anywhere.
+    auto* overlays = new StickyMenu(tr("&Overlays"), view);
+    view->addMenu(overlays);
     for (int i = 0; i < Viewport::kOverlayCount; ++i) {
         const auto which = static_cast<Viewport::Overlay>(i);
         QAction* a = overlays->addAction(Viewport::overlayText(which));
         a->setObjectName(QStringLiteral("overlay%1").arg(i));
         a->setCheckable(true);
+        a->setShortcut(QKeySequence(Qt::ALT | Qt::Key(Qt::Key_1 + i)));
         const QString key =
             QStringLiteral("view/overlay/%1").arg(QMetaEnum::fromType<Viewport::Overlay>().key(i));
         viewport_->setOverlay(which, QSettings().value(key, viewport_->overlay(which)).toBool());
@@ -225,6 +231,31 @@ void MainWindow::buildMenus() {
     }
     view->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&Keyboard Shortcuts"), QKeySequence::HelpContents, this, &MainWindow::showShortcuts)
+        ->setObjectName(QStringLiteral("helpShortcuts"));
+    help->addAction(tr("&About Tumble"), this, [this] {
+        QMessageBox::about(this, tr("About Tumble"),
+                           tr("<b>Tumble %1</b><p>A rigid-body dynamics editor: place bodies, tune them, "
+                              "simulate, play and export.</p><p>docs/editor.md describes the window.</p>")
+                               .arg(QApplication::applicationVersion()));
+    });
+}
+
+QList<ShortcutRow> MainWindow::shortcuts() const {
+    QList<ShortcutRow> rows = shortcutRows(menuBar());
+    // The viewport's camera keys, which no menu holds (viewport.cpp, handleKey).
+    const QString viewport = tr("Viewport");
+    rows.append({viewport, tr("Orbit"), tr("Shift+Arrow keys (Up and Down alone too)")});
+    rows.append({viewport, tr("Zoom in / out"), tr("+ / -")});
+    rows.append({viewport, tr("Cancel a handle drag"), tr("Esc")});
+    return rows;
+}
+
+void MainWindow::showShortcuts() {
+    ShortcutsDialog dialog(shortcuts(), this);
+    dialog.exec();
 }
 
 QString MainWindow::sceneName() const {

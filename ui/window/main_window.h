@@ -8,6 +8,8 @@
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/trajectory_writer.h>
 
+#include "window/shortcuts_dialog.h"
+
 #include <QMainWindow>
 #include <QSize>
 #include <QString>
@@ -33,6 +35,8 @@ public:
     ~MainWindow() override;
 
     Document* document() const { return doc_; }
+    /// Every key of the window (Help > Keyboard Shortcuts): the menus' and the viewport's.
+    QList<ShortcutRow> shortcuts() const;
     Viewport* viewport() const { return viewport_; }
     Timeline* timeline() const { return timeline_; }
     TimelineDock* timelineDock() const { return timelineDock_; }
@@ -97,6 +101,7 @@ protected:
 
 private:
     void buildMenus();
+    void showShortcuts();
     void updateTitle();
     /// The file name of the scene, or of the sample it came from, or "untitled".
     QString sceneName() const;

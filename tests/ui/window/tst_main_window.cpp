@@ -4,6 +4,7 @@
 // its viewport shows one entity per body.
 #include "document/document.h"
 #include "window/main_window.h"
+#include "window/shortcuts_dialog.h"
 #include "import/mesh_import_job.h"
 #include "timeline/timeline.h"
 #include "viewport/viewport.h"
@@ -23,11 +24,13 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLineEdit>
+#include <QMenu>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QProgressDialog>
 #include <QSignalSpy>
 #include <QStandardPaths>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTimer>
 #include <QUndoStack>
@@ -522,6 +525,71 @@ private slots:
         QVERIFY(!again.viewport()->overlay(Viewport::Overlay::Trails));
         again.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)))
             ->trigger();
+    }
+
+    // Issue 21 item 10: the overlays' menu stays open while its boxes are ticked (it
+    // closed at each: three overlays, nine clicks), and Alt+N switches overlay N.
+    void overlaysAreTickedWithTheMenuOpen() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        auto* contacts = w.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Contacts)));
+        auto* forces = w.findChild<QAction*>(QStringLiteral("overlay%1").arg(int(Viewport::Overlay::Forces)));
+        QVERIFY(contacts && forces);
+        auto* menu = qobject_cast<QMenu*>(contacts->parent());
+        QVERIFY(menu);
+        const bool before = w.viewport()->overlay(Viewport::Overlay::Contacts);
+        const bool forcesBefore = w.viewport()->overlay(Viewport::Overlay::Forces);
+        menu->popup(w.mapToGlobal(QPoint(100, 100)));
+        QVERIFY(QTest::qWaitForWindowExposed(menu));
+        QTest::mouseClick(menu, Qt::LeftButton, Qt::NoModifier, menu->actionGeometry(contacts).center());
+        QCOMPARE(w.viewport()->overlay(Viewport::Overlay::Contacts), !before);
+        QVERIFY(menu->isVisible());
+        QTest::mouseClick(menu, Qt::LeftButton, Qt::NoModifier, menu->actionGeometry(forces).center());
+        QCOMPARE(w.viewport()->overlay(Viewport::Overlay::Forces), !forcesBefore);
+        QVERIFY(menu->isVisible());
+        menu->close();
+        QCOMPARE(contacts->shortcut(), QKeySequence(Qt::ALT | Qt::Key_2));
+        contacts->trigger();  // back as they were (the choice is kept between sessions)
+        forces->trigger();
+        QCOMPARE(w.viewport()->overlay(Viewport::Overlay::Contacts), before);
+    }
+
+    // Help > Keyboard Shortcuts (F1) lists every key, from the actions themselves: each
+    // menu item with a key, the View menu's viewport keys, the overlays', the viewport's
+    // camera keys.
+    void helpListsEveryShortcut() {
+        MainWindow w;
+        const QList<ShortcutRow> rows = w.shortcuts();
+        auto has = [&](const QString& menu, const QString& command, const QString& keys) {
+            for (const ShortcutRow& r : rows)
+                if (r.menu == menu && r.command == command && r.keys == keys) return true;
+            return false;
+        };
+        QVERIFY(has("View", "Frame Selection", "F"));
+        QVERIFY(has("View", "Frame All", "A"));
+        QVERIFY(has("View", "Move Handles", "W"));
+        QVERIFY(has("View > Overlays", Viewport::overlayText(Viewport::Overlay::Contacts),
+                    QKeySequence(Qt::ALT | Qt::Key_2).toString(QKeySequence::NativeText)));
+        QVERIFY(has("Edit", "Undo", QKeySequence(QKeySequence::Undo).toString(QKeySequence::NativeText)));
+        QVERIFY(has("Viewport", "Zoom in / out", "+ / -"));
+        // Every action of the menus that has a key is listed.
+        int keyed = 0;
+        for (QAction* a : w.findChildren<QAction*>())
+            if (!a->shortcut().isEmpty() && !a->associatedObjects().isEmpty()) ++keyed;
+        QVERIFY(keyed > 10);
+        auto* help = w.findChild<QAction*>("helpShortcuts");
+        QVERIFY(help);
+        QCOMPARE(help->shortcut(), QKeySequence(QKeySequence::HelpContents));
+        int shown = -1;
+        QTimer::singleShot(0, &w, [&] {
+            auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+            if (!dialog) return;
+            if (auto* table = dialog->findChild<QTableWidget*>("shortcuts")) shown = table->rowCount();
+            dialog->reject();
+        });
+        help->trigger();
+        QCOMPARE(shown, int(rows.size()));
     }
 
     // A scene with a missing mesh opens: the body is marked in the tree and the run fails
