@@ -28,6 +28,7 @@
 #include <QMessageBox>
 #include <QMimeData>
 #include <QProgressDialog>
+#include <QScopeGuard>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -540,6 +541,12 @@ private slots:
         QVERIFY(menu);
         const bool before = w.viewport()->overlay(Viewport::Overlay::Contacts);
         const bool forcesBefore = w.viewport()->overlay(Viewport::Overlay::Forces);
+        // Whatever happens below, the overlays are left as they were (the choice is kept
+        // between sessions, and overlaysFromTheViewMenu starts from the defaults).
+        const auto restore = qScopeGuard([&] {
+            if (contacts->isChecked() != before) contacts->trigger();
+            if (forces->isChecked() != forcesBefore) forces->trigger();
+        });
         menu->popup(w.mapToGlobal(QPoint(100, 100)));
         QVERIFY(QTest::qWaitForWindowExposed(menu));
         QTest::mouseClick(menu, Qt::LeftButton, Qt::NoModifier, menu->actionGeometry(contacts).center());
@@ -550,9 +557,6 @@ private slots:
         QVERIFY(menu->isVisible());
         menu->close();
         QCOMPARE(contacts->shortcut(), QKeySequence(Qt::ALT | Qt::Key_2));
-        contacts->trigger();  // back as they were (the choice is kept between sessions)
-        forces->trigger();
-        QCOMPARE(w.viewport()->overlay(Viewport::Overlay::Contacts), before);
     }
 
     // Help > Keyboard Shortcuts (F1) lists every key, from the actions themselves: each
