@@ -112,7 +112,8 @@ void MeshImportJob::done(bool cancelled) {
     cancelled_ = cancelled;
     clock_->stop();
     if (dialog_) {
-        dialog_->hide();
+        dialog_->reset();  // stops its timer to show itself: hidden alone, it came up later
+        dialog_->hide();   // (over the import's options dialog, which runs before it is deleted)
         dialog_->deleteLater();
         dialog_ = nullptr;
     }

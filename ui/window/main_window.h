@@ -139,6 +139,7 @@ private:
         bool convexHull = true;
         double scale = 1.0;
         bool tellUser = true;
+        bool ask = false;  // Import Mesh: the options are chosen with the mesh read (scale 1)
     } importRequest_;
 };
 

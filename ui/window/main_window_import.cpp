@@ -3,18 +3,15 @@
 // one is read.
 #include "window/main_window.h"
 
+#include "document/body_presets.h"
 #include "document/document.h"
+#include "import/import_options_dialog.h"
 #include "import/mesh_import_job.h"
 #include "viewport/viewport.h"
 
-#include <QComboBox>
-#include <QDialog>
-#include <QDialogButtonBox>
-#include <QDoubleSpinBox>
 #include <QEventLoop>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
 #include <QMessageBox>
 #include <QStatusBar>
 
@@ -24,7 +21,7 @@ namespace tumble::ui {
 
 bool MainWindow::startImport(const QStringList& paths, bool convexHull, double scale, bool tellUser) {
     if (importJob_ || paths.isEmpty()) return false;
-    importRequest_ = {convexHull, scale, tellUser};
+    importRequest_ = {convexHull, scale, tellUser, false};
     importJob_ = new MeshImportJob(paths, Vec3::Constant(scale), importOptions_, this);
     connect(importJob_, &MeshImportJob::finished, this, &MainWindow::importDone);
     importJob_->start();
@@ -40,8 +37,10 @@ void MainWindow::cancelImport() {
     if (importJob_) importJob_->cancel();
 }
 
-// The meshes read become bodies in front of the camera; the document holds their files as
-// absolute paths (a save writes them relative to the scene's folder).
+// The meshes read become bodies where the camera looks, dropped above the scene's bodies
+// (and each other: several files are stacked), as the Add menu places a new body; the
+// document holds their files as absolute paths (a save writes them relative to the scene's
+// folder). From Import Mesh, the options dialog comes first, with the mesh read.
 void MainWindow::importDone() {
     MeshImportJob* job = importJob_;
     importJob_ = nullptr;
@@ -53,22 +52,44 @@ void MainWindow::importDone() {
     }
     QStringList errors;
     std::vector<BodyDesc> bodies;
+    constexpr double kDensity = 1000.0;  // water's, until the user gives another
+    double top = pileTop(doc_->scene());
     for (const MeshImportJob::Result& r : job->results()) {
         if (!r.mesh) {
             errors << r.error;
             continue;
         }
+        double scale = importRequest_.scale;
+        bool hull = importRequest_.convexHull;
+        std::shared_ptr<const TriangleMesh> mesh = r.mesh;
+        if (importRequest_.ask) {
+            ImportOptionsDialog options(QFileInfo(r.path).fileName(), r.mesh, kDensity, this);
+            if (options.exec() != QDialog::Accepted) {
+                statusBar()->showMessage(tr("Import cancelled"), 3000);
+                emit importFinished(0, QString(), true);
+                return;
+            }
+            scale = options.scale();
+            hull = options.convexHull();
+            if (scale != 1.0) {  // read at scale 1: the vertices take the chosen one
+                auto scaled = std::make_shared<TriangleMesh>(*r.mesh);
+                for (Vec3& v : scaled->vertices) v *= scale;
+                mesh = std::move(scaled);
+            }
+        }
         BodyDesc body;
         body.shape.type = ShapeType::Mesh;
-        body.shape.scale = Vec3::Constant(importRequest_.scale);
-        body.shape.collision = importRequest_.convexHull ? MeshCollision::ConvexHull : MeshCollision::Triangles;
-        body.shape.meshData = r.mesh;
+        body.shape.scale = Vec3::Constant(scale);
+        body.shape.collision = hull ? MeshCollision::ConvexHull : MeshCollision::Triangles;
+        body.shape.meshData = mesh;
         body.shape.file = QFileInfo(r.path).absoluteFilePath().toStdString();
         body.name = QFileInfo(r.path).completeBaseName().toStdString();
-        body.density = 1000.0;
+        body.density = kDensity;
         body.mass.reset();
         const QVector3D at = viewport_->cameraTarget();
-        body.position = Vec3(at.x(), std::max(static_cast<double>(at.y()), 1.0), at.z());
+        body.position = Vec3(at.x(), 0.0, at.z());
+        body = placedAbove(body, top);
+        top = body.position.y() + halfHeightAboveOrigin(body);
         bodies.push_back(std::move(body));
     }
     QList<int> added;
@@ -104,23 +125,8 @@ void MainWindow::importDialog() {
     if (importJob_) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Import mesh"), QString(), meshFileFilter());
     if (path.isEmpty()) return;
-    QDialog dialog(this);
-    dialog.setWindowTitle(tr("Import %1").arg(QFileInfo(path).fileName()));
-    auto* form = new QFormLayout(&dialog);
-    auto* collision = new QComboBox(&dialog);
-    collision->addItems({tr("Convex hull"), tr("Triangles (concave allowed)")});
-    auto* scale = new QDoubleSpinBox(&dialog);
-    scale->setRange(1e-6, 1e6);
-    scale->setDecimals(6);
-    scale->setValue(1.0);
-    form->addRow(tr("Collision"), collision);
-    form->addRow(tr("Scale"), scale);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
-    form->addRow(buttons);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    if (dialog.exec() != QDialog::Accepted) return;
-    startImport({path}, collision->currentIndex() == 0, scale->value());
+    // Read first (at scale 1), then the options with the mesh's size and mass (importDone).
+    if (startImport({path}, true, 1.0)) importRequest_.ask = true;
 }
 
 }  // namespace tumble::ui

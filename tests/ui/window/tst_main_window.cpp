@@ -2,7 +2,9 @@
 // losing the open one, imports meshes as undoable bodies, autosaves and recovers, asks
 // before closing over unsaved changes, opens a dropped scene and imports a dropped mesh, and
 // its viewport shows one entity per body.
+#include "document/body_presets.h"
 #include "document/document.h"
+#include "import/import_options_dialog.h"
 #include "window/main_window.h"
 #include "window/shortcuts_dialog.h"
 #include "import/mesh_import_job.h"
@@ -237,6 +239,63 @@ private slots:
         QVERIFY(w.isWindowModified());
         w.document()->undoStack()->undo();  // one step takes it away
         QCOMPARE(w.document()->bodyCount(), before);
+    }
+
+    // Issue 21 item 3: Import Mesh reads the file, then asks its units (or a size to fit)
+    // showing the body's size in metres and its mass; the body is placed above the scene's
+    // bodies, touching none.
+    void importAsksUnitsShowsSizeAndMassAndPlacesAbove() {
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(":/scenes/tower-20.json", &error));
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        const double top = pileTop(w.scene());
+        const int before = w.document()->bodyCount();
+        QAction* import = nullptr;
+        for (QAction* a : w.findChildren<QAction*>())
+            if (a->text() == "&Import Mesh...") import = a;
+        QVERIFY(import);
+        const QString file = TUMBLE_SCENES_DIR "/../meshes/box.stl";  // a unit cube
+        QString inMetres, inCentimetres, fitted;
+        double massFitted = 0.0;
+        bool asked = false;
+        QTimer poll;
+        poll.setInterval(20);
+        connect(&poll, &QTimer::timeout, &w, [&] {
+            QWidget* modal = QApplication::activeModalWidget();
+            if (auto* files = qobject_cast<QFileDialog*>(modal)) {
+                files->selectFile(file);
+                QMetaObject::invokeMethod(files, "accept");
+            } else if (auto* options = qobject_cast<ImportOptionsDialog*>(modal); options && !asked) {
+                asked = true;
+                inMetres = options->sizeText();
+                options->setFit(2.0);
+                fitted = options->sizeText();
+                massFitted = options->mass();
+                options->setFit(0.0);
+                options->setUnits(ImportOptionsDialog::Units::Centimetres);
+                inCentimetres = options->sizeText();
+                options->accept();
+            }
+        });
+        poll.start();
+        import->trigger();
+        QTRY_VERIFY_WITH_TIMEOUT(w.document()->bodyCount() == before + 1, 30000);
+        poll.stop();
+        QVERIFY(asked);
+        QCOMPARE(inMetres, QString("1 × 1 × 1 m"));
+        QCOMPARE(fitted, QString("2 × 2 × 2 m"));
+        QVERIFY2(std::abs(massFitted - 8000.0) < 1e-6, qPrintable(QString::number(massFitted)));  // water, 8 m³
+        QCOMPARE(inCentimetres, QString("0.01 × 0.01 × 0.01 m"));
+        const BodyDesc& b = w.document()->body(before);
+        QCOMPARE(b.shape.scale, Vec3::Constant(0.01));
+        Vec3 lo = b.shape.meshData->vertices.front(), hi = lo;
+        for (const Vec3& v : b.shape.meshData->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        QVERIFY((hi - lo).isApprox(Vec3::Constant(0.01), 1e-12));
+        // Above everything: its lowest point 0.5 m over the highest point of the others.
+        const double lowest = b.position.y() + lo.y();
+        QVERIFY2(lowest >= top + 0.5 - 1e-9, qPrintable(QString("%1 over %2").arg(lowest).arg(top)));
     }
 
     void aBadMeshLeavesTheSceneUntouched() {
