@@ -13,7 +13,8 @@ InertiaEdit::InertiaEdit(const QString& name, QWidget* parent) : QWidget(parent)
     setObjectName(name);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
-    override_ = new QCheckBox(tr("Override (otherwise computed from shape and mass)"), this);
+    override_ = new QCheckBox(tr("Override"), this);
+    override_->setToolTip(tr("Give your own tensor; otherwise it is computed from the shape and the mass"));
     override_->setObjectName(name + ".override");
     layout->addWidget(override_);
     auto* grid = new QGridLayout;

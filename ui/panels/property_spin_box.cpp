@@ -1,9 +1,13 @@
 #include "panels/property_spin_box.h"
 
+#include <QFontMetrics>
 #include <QLineEdit>
+#include <QStyle>
+#include <QStyleOptionSpinBox>
 #include <QLocale>
 #include <QSignalBlocker>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -43,6 +47,32 @@ void PropertySpinBox::showMixed(double base) {
     setValue(base);
     mixed_ = true;
     lineEdit()->setText(prefix() + mixedText() + suffix());
+}
+
+namespace {
+
+// The width of `text` in a spin box like `box` (its frame and arrows included).
+QSize spinSizeFor(const QDoubleSpinBox& box, const QString& text) {
+    QStyleOptionSpinBox opt;
+    opt.initFrom(&box);
+    opt.buttonSymbols = box.buttonSymbols();
+    opt.frame = box.hasFrame();
+    opt.subControls = QStyle::SC_SpinBoxFrame | QStyle::SC_SpinBoxEditField | QStyle::SC_SpinBoxUp | QStyle::SC_SpinBoxDown;
+    const QFontMetrics fm(box.font());
+    const QSize content(fm.horizontalAdvance(text) + 4, std::max(fm.height(), 14));
+    return box.style()->sizeFromContents(QStyle::CT_SpinBox, &opt, content, &box);
+}
+
+}  // namespace
+
+QSize PropertySpinBox::sizeHint() const {
+    ensurePolished();
+    return spinSizeFor(*this, QStringLiteral("-0.0000000") + suffix());
+}
+
+QSize PropertySpinBox::minimumSizeHint() const {
+    ensurePolished();
+    return spinSizeFor(*this, QStringLiteral("-0.00") + suffix());
 }
 
 void PropertySpinBox::setSoftMinimum(double min) {

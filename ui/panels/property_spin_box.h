@@ -23,6 +23,11 @@ public:
     void showMixed(double base = 0.0);
     bool isMixed() const { return mixed_; }
 
+    /// Room for about eight digits and the unit: QDoubleSpinBox sizes itself for its whole
+    /// range at twelve decimals, and three such fields in a row did not fit the panel.
+    QSize sizeHint() const override;
+    QSize minimumSizeHint() const override;
+
     /// The arrows and the wheel do not step below `min`; typing may (see above).
     void setSoftMinimum(double min);
 

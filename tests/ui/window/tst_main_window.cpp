@@ -31,6 +31,8 @@
 #include <QMimeData>
 #include <QProgressDialog>
 #include <QScopeGuard>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -296,6 +298,34 @@ private slots:
         // Above everything: its lowest point 0.5 m over the highest point of the others.
         const double lowest = b.position.y() + lo.y();
         QVERIFY2(lowest >= top + 0.5 - 1e-9, qPrintable(QString("%1 over %2").arg(lowest).arg(top)));
+    }
+
+    // Issue 21 item 6: at the default window size the Properties panel shows every field
+    // whole (the third column of half extents, scale and velocity was cut off behind a
+    // horizontal scroll bar).
+    void thePropertiesFitTheirPanel() {
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(TUMBLE_SCENES_DIR "/mesh-shapes.json", &error));
+        w.resize(1600, 1000);
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        auto* area = w.findChild<QDockWidget*>("PropertyDock")->findChild<QScrollArea*>();
+        QVERIFY(area);
+        for (int i = 1; i < w.document()->bodyCount(); ++i) {  // a static mesh, a dynamic one
+            w.document()->setSelection({i});
+            QApplication::processEvents();
+            QCOMPARE(area->horizontalScrollBar()->maximum(), 0);
+        }
+        BodyDesc box;
+        box.name = "box";
+        box.shape.type = ShapeType::Box;
+        box.mass = 1.0;
+        box.position = Vec3(0, 3, 0);
+        box.velocity = Vec3(1.25, -3.5, 0.75);
+        w.document()->setSelection({w.document()->addBody(box)});
+        QApplication::processEvents();
+        QCOMPARE(area->horizontalScrollBar()->maximum(), 0);
     }
 
     void aBadMeshLeavesTheSceneUntouched() {
