@@ -149,9 +149,9 @@ PlotsDock::PlotsDock(Timeline* timeline, QWidget* parent)
     profile_->horizontalHeader()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
     profile_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     const QString rowNames[ProfileRowCount] = {
-        tr("Forces (ms)"),         tr("Integration (ms)"),       tr("Broadphase (ms)"),
-        tr("Narrowphase (ms)"),    tr("Time of impact (ms)"),    tr("Impact solve (ms)"),
-        tr("Contact solver (ms)"), tr("Islands and sleep (ms)"), tr("All stages (ms)"),
+        tr("Forces"),         tr("Integration"),       tr("Broadphase"),
+        tr("Narrowphase"),    tr("Time of impact"),    tr("Impact solve"),
+        tr("Contact solver"), tr("Islands and sleep"), tr("All stages"),
         tr("Steps (run so far)"),  tr("Broadphase pairs"),       tr("Contact points"),
         tr("Impacts (pairs)"),
     };
@@ -450,6 +450,25 @@ void PlotsDock::updateTimeAxis() {
     }
 }
 
+QString PlotsDock::timeText(double seconds) {
+    // Three figures in the unit that needs no leading zeros (a stage of a small scene took
+    // "0.00010 ms" a step).
+    const double ms = seconds * 1e3;
+    if (ms >= 0.1 || ms == 0.0) return QString::number(ms, 'f', ms >= 100 ? 0 : ms >= 10 ? 1 : 2) + " ms";
+    const double us = ms * 1e3;
+    if (us >= 0.1) return QString::number(us, 'f', us >= 10 ? 1 : 2) + QString::fromUtf8(" µs");
+    return QString::number(us * 1e3, 'f', 0) + " ns";
+}
+
+QString PlotsDock::axisLabelFormat(double lo, double hi, double step) {
+    // Plain numbers with as many decimals as the ticks' step needs ("80000", "0.05"); the
+    // exponent form only past what reads plainly ("8e+04" was the energy axis's label).
+    const double big = std::max(std::abs(lo), std::abs(hi));
+    if (!(step > 0.0) || big >= 1e7 || step < 1e-4) return QStringLiteral("%.3g");
+    const int decimals = std::max(0, int(std::ceil(-std::log10(step) - 1e-9)));
+    return QStringLiteral("%.%1f").arg(decimals);
+}
+
 void PlotsDock::fitAxis(QValueAxis* axis, const Range& r) {
     double lo = -1.0, hi = 1.0;
     if (!r.empty) {
@@ -467,6 +486,7 @@ void PlotsDock::fitAxis(QValueAxis* axis, const Range& r) {
     lo = std::floor(lo / step) * step;
     hi = std::ceil(hi / step) * step;
     if (axis->min() == lo && axis->max() == hi) return;
+    axis->setLabelFormat(axisLabelFormat(lo, hi, step));
     axis->setRange(lo, hi);
     axis->setTickCount(static_cast<int>(std::lround((hi - lo) / step)) + 1);
 }
@@ -474,9 +494,7 @@ void PlotsDock::fitAxis(QValueAxis* axis, const Range& r) {
 void PlotsDock::updateProfile() {
     const Profile p = timeline_->profile();
     const double steps = static_cast<double>(p.steps);
-    auto ms = [&](double seconds) {
-        return p.steps > 0 ? QString::number(seconds * 1e3 / steps, 'f', 5) : QString();
-    };
+    auto ms = [&](double seconds) { return p.steps > 0 ? timeText(seconds / steps) : QString(); };
     auto per = [&](long count) { return p.steps > 0 ? QString::number(count / steps, 'f', 2) : QString(); };
     const double stages[] = {p.forces,       p.integrate,   p.broadphase, p.narrowphase,
                              p.timeOfImpact, p.impactSolve, p.solve,      p.sleep};

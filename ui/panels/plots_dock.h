@@ -87,6 +87,10 @@ public:
     /// Points the chart's series holds now (pointCount once the chart has been shown).
     int drawnPointCount(Series which) const;
     static Chart chartOf(Series which);
+    /// A time per step as the Profile tab shows it: three figures in ms, µs or ns.
+    static QString timeText(double seconds);
+    /// The printf format of a value axis from lo to hi with ticks `step` apart.
+    static QString axisLabelFormat(double lo, double hi, double step);
     /// The body the position and velocity charts show (-1: none selected).
     int plottedBody() const { return body_; }
     /// The playhead's time (s) drawn in every chart; NaN when nothing is recorded.

@@ -32,11 +32,12 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     view_->setSelectionBehavior(QAbstractItemView::SelectRows);
     view_->setEditTriggers(QAbstractItemView::DoubleClicked | QAbstractItemView::EditKeyPressed);
     view_->setContextMenuPolicy(Qt::CustomContextMenu);
-    view_->header()->setStretchLastSection(true);
-    view_->header()->setSectionResizeMode(SceneTreeModel::NameColumn, QHeaderView::Stretch);
+    // The names whole (they were cut to "tetrah..." beside a long shape text): the shape
+    // takes what is left and elides, its whole text in the row's tooltip.
+    view_->header()->setSectionResizeMode(SceneTreeModel::NameColumn, QHeaderView::ResizeToContents);
     view_->header()->setSectionResizeMode(SceneTreeModel::MotionColumn, QHeaderView::ResizeToContents);
-    view_->header()->setSectionResizeMode(SceneTreeModel::ShapeColumn, QHeaderView::ResizeToContents);
-    view_->header()->setStretchLastSection(false);
+    view_->header()->setSectionResizeMode(SceneTreeModel::ShapeColumn, QHeaderView::Stretch);
+    view_->header()->setStretchLastSection(true);
     // Size the fitted columns from the rows in view only: by default Qt measures up to 1000
     // rows on every change of any row (the move of one body took 5 ms at 1000 bodies).
     view_->header()->setResizeContentsPrecision(0);

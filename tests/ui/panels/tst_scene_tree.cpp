@@ -69,6 +69,31 @@ private slots:
         QVERIFY(!(model.flags(model.index(0, SceneTreeModel::ShapeColumn)) & Qt::ItemIsEditable));
     }
 
+    // Issue 21 item 10: a body's name is shown whole in a dock of the window's default
+    // width (260 px) beside a long shape text, which gives way instead.
+    void namesAreShownWhole() {
+        Document doc;
+        BodyDesc b;
+        b.name = "tetrahedron";
+        b.shape.type = ShapeType::Mesh;
+        b.shape.file = "/work/models/tetrahedron.off";
+        b.mass = 1.0;
+        doc.addBody(b);
+        QMainWindow window;
+        auto* dock = new SceneTreeDock(&doc, &window);
+        window.setCentralWidget(new QWidget);
+        window.addDockWidget(Qt::LeftDockWidgetArea, dock);
+        window.resize(800, 400);
+        window.resizeDocks({dock}, {260}, Qt::Horizontal);
+        window.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&window));
+        QTreeView* view = dock->view();
+        const QModelIndex name = view->model()->index(1, SceneTreeModel::NameColumn);
+        const int needed = view->fontMetrics().horizontalAdvance(name.data().toString());
+        QVERIFY2(view->visualRect(name).width() >= needed,
+                 qPrintable(QString("%1 px for %2").arg(view->visualRect(name).width()).arg(needed)));
+    }
+
     void rowsFollowAddDuplicateDeleteAndUndo() {
         Document doc;
         SceneTreeDock dock(&doc, nullptr);
