@@ -361,6 +361,34 @@ void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers)
     d_->doc->setSelection(selection);
 }
 
+bool Viewport::poke(int body, const Vec3& point, const Vec3& drag) {
+    const State* state = d_->frameState();
+    if (!state || body < 0 || body >= d_->doc->bodyCount() || !(drag.norm() > 0.0)) return false;
+    const BodyModel& m = d_->timeline->model()->bodies[size_t(body)];
+    if (m.motion != Motion::Dynamic || !(m.mass > 0.0)) return false;
+    const BodyState& s = state->bodies[size_t(body)];
+    // The impulse that changes the pressed point's velocity by drag / kPokeSeconds: the
+    // point's effective mass along the drag, 1 / (1/m + |I^-1 (r x n)| ...) in closed form.
+    const Vec3 r = point - s.x;
+    const Vec3 n = drag.normalized();
+    const Mat3 R = s.q.toRotationMatrix();
+    const Mat3 invI = R * m.invInertia * R.transpose();
+    const double k = 1.0 / m.mass + n.dot((invI * r.cross(n)).cross(r));
+    const Vec3 impulse = (drag.norm() / kPokeSeconds / k) * n;
+    const double dt = 1.0 / d_->timeline->frameRate();  // over one frame from the playhead
+    ForceDesc f;
+    f.type = ForceType::Force;
+    f.vector = impulse / dt;
+    f.frame = Frame::World;
+    f.point = Vec3(s.q.conjugate() * r + m.centerOfMass);  // body frame, about the body's origin
+    f.start = state->time;
+    f.end = state->time + dt;
+    BodyDesc b = d_->doc->body(body);
+    b.forces.push_back(f);
+    d_->doc->setBody(body, b, tr("Poke %1").arg(QString::fromStdString(b.name)));
+    return true;
+}
+
 void Viewport::frameSelection() {
     frameBodies(d_->doc->selection());
 }
@@ -457,6 +485,17 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
                 d_->dragButton = e->button();
                 d_->pressPos = d_->lastPos = e->position().toPoint();
                 d_->dragged = false;
+                // Ctrl on a dynamic body of a recorded frame: a drag from it pokes it.
+                d_->pokeBody = -1;
+                if (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ControlModifier) && d_->frameState()) {
+                    QVector3D o, dir;
+                    rayAt(p, &o, &dir);
+                    const auto hit = rayCast(*d_->timeline->model(), *d_->frameState(), toVec(o), toVec(dir));
+                    if (hit && d_->doc->body(hit->body).motion == Motion::Dynamic) {
+                        d_->pokeBody = hit->body;
+                        d_->pokePoint = hit->point;
+                    }
+                }
             }
             d_->container->setFocus(Qt::MouseFocusReason);
             return true;
@@ -475,6 +514,7 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
             }
             if (!d_->dragged && (p - d_->pressPos).manhattanLength() < kClickSlop) return true;
             d_->dragged = true;
+            if (d_->pokeBody >= 0) return true;  // the poke is made on release
             const QPoint delta = p - d_->lastPos;
             d_->lastPos = p;
             const bool pan = d_->dragButton == Qt::MiddleButton ||
@@ -495,9 +535,20 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
             if (d_->dragAxis >= 0) {
                 dragHandle(e->position().toPoint(), e->modifiers());  // where and how it ends
                 endHandleDrag();
+            } else if (d_->dragged && d_->pokeBody >= 0) {
+                // The drag's end on the plane through the pressed point that faces the camera.
+                QVector3D o, dir;
+                rayAt(e->position().toPoint(), &o, &dir);
+                const Vec3 facing = toVec(d_->camera.target() - d_->camera.eye()).normalized();
+                const double along = toVec(dir).dot(facing);
+                if (std::abs(along) > 1e-9) {
+                    const Vec3 end = toVec(o) + toVec(dir) * ((d_->pokePoint - toVec(o)).dot(facing) / along);
+                    poke(d_->pokeBody, d_->pokePoint, end - d_->pokePoint);
+                }
             } else if (!d_->dragged && d_->dragButton == Qt::LeftButton) {
                 clickAt(e->position().toPoint(), e->modifiers());
             }
+            d_->pokeBody = -1;
             d_->dragButton = Qt::NoButton;
             return true;
         }

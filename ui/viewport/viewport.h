@@ -50,6 +50,14 @@ public:
     /// the selection); empty space clears the selection (Ctrl: leaves it). What a left click
     /// does.
     void clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers = Qt::NoModifier);
+    /// A poke: an impulse on dynamic body `body` at world point `point` of the frame at the
+    /// playhead, along `drag` (world, m): it changes the body's velocity at that point by
+    /// drag / kPokeSeconds (as if the drag were done in that time). Added to the scene as a
+    /// force on the body over one frame from the playhead's time (an undo step, saved with
+    /// the scene); the run is made again with it. False when there is no recorded frame or
+    /// the body cannot be pushed.
+    bool poke(int body, const Vec3& point, const Vec3& drag);
+    static constexpr double kPokeSeconds = 0.5;
 
     /// Bodies drawn in the 3D scene, one per body of the document (primitives are instanced:
     /// one draw per shape kind).

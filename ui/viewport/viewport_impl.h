@@ -123,6 +123,9 @@ struct Viewport::Impl {
     QPoint pressPos;
     QPoint lastPos;
     bool dragged = false;
+    // A poke (Ctrl+drag on a body at the playhead): the body and the world point pressed.
+    int pokeBody = -1;
+    Vec3 pokePoint = Vec3::Zero();
 
     // Handles.
     std::unique_ptr<ViewportGizmo> gizmo;

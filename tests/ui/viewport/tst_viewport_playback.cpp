@@ -14,6 +14,8 @@
 
 #include <QSignalSpy>
 #include <QWindow>
+#include <QMouseEvent>
+#include <QUndoStack>
 #include <QtTest>
 
 #include <cmath>
@@ -105,6 +107,48 @@ struct Fixture {
 class TestViewportPlayback : public QObject {
     Q_OBJECT
 private slots:
+    // Issue 21 (what to build, 5): Ctrl+drag on a body at the playhead pokes it: a force
+    // over one frame from the playhead's time is added to the scene (one undo step), the
+    // run is made again, and from that frame the body has taken the impulse: its momentum
+    // changed by J exactly (in flight, nothing else differs), the pressed point's velocity
+    // along the drag by drag / 0.5 s (to the frame's rotation), nothing before the frame.
+    void ctrlDragPokesABodyAtThePlayhead() {
+        Fixture f(":/scenes/projectile.json");
+        QVERIFY(f.ok);
+        const int k = 10, ball = 1;
+        f.timeline->seek(k);
+        const State before = f.frame(k), after = f.frame(k + 1), early = f.frame(k - 1);
+        f.view->setCamera(toQt(before.bodies[ball].x), 3.0f, 0.0f, 0.0f);  // from +z, level
+        QApplication::processEvents();
+        const QPoint at = projected(*f.view, before.bodies[ball].x);
+        const int steps = f.doc.undoStack()->count();
+        QTest::mousePress(f.view->renderWindow(), Qt::LeftButton, Qt::ControlModifier, at);
+        QMouseEvent move(QEvent::MouseMove, QPointF(at + QPoint(40, 0)), f.view->renderWindow()->mapToGlobal(QPointF(at + QPoint(40, 0))),
+                         Qt::NoButton, Qt::LeftButton, Qt::ControlModifier);
+        QApplication::sendEvent(f.view->renderWindow(), &move);
+        QTest::mouseRelease(f.view->renderWindow(), Qt::LeftButton, Qt::ControlModifier, at + QPoint(80, 0));
+        QCOMPARE(f.doc.undoStack()->count(), steps + 1);
+        const BodyDesc& b = f.doc.body(ball);
+        QCOMPARE(b.forces.size(), size_t(1));
+        const ForceDesc& poke = b.forces[0];
+        QCOMPARE(*poke.start, before.time);
+        QVERIFY(std::abs(*poke.end - (before.time + 1.0 / 30.0)) < 1e-12);
+        QVERIFY(poke.vector.x() > 0.0 && std::abs(poke.vector.y()) < 1e-9 * poke.vector.norm());
+        const Vec3 J = poke.vector / 30.0;
+        QVERIFY(QTest::qWaitFor(
+            [&] { return f.timeline->status() == Timeline::Status::Complete && !f.timeline->isStale(); }, kWaitMs));
+        const State early2 = f.frame(k - 1), after2 = f.frame(k + 1);
+        QCOMPARE(early2.bodies[ball].x, early.bodies[ball].x);  // nothing before the poke
+        const Vec3 dP = after2.bodies[ball].P - after.bodies[ball].P;
+        QVERIFY2((dP - J).norm() < 1e-9 * J.norm(), qPrintable(QString("%1 vs %2").arg(dP.x()).arg(J.x())));
+        // The pressed point (on the ball's face towards the camera) took the push: the spin
+        // about y changed, the ball's centre moved on along +x faster.
+        QVERIFY(after2.bodies[ball].P.x() > after.bodies[ball].P.x());
+        QVERIFY(std::abs(after2.bodies[ball].L.y() - after.bodies[ball].L.y()) > 0.0);
+        f.doc.undoStack()->undo();
+        QVERIFY(f.doc.body(ball).forces.empty());
+    }
+
     void drawsTheFrameAtThePlayheadExactly() {
         Fixture f(":/scenes/tumbling-box.json");
         QVERIFY(f.ok);
