@@ -29,6 +29,7 @@
 //   --pieces  also the property dock alone and the scene tree dock alone (with a Document,
 //             no viewport): their share of load, selection and move
 #include "document/document.h"
+#include "editor_main.h"
 #include "window/main_window.h"
 #include "panels/property_dock.h"
 #include "panels/scene_tree_dock.h"
@@ -317,6 +318,7 @@ void printRow(const Setup& s, int n, const Figures& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    tumble::ui::keepFrameMemory();  // as the editor does (editor_main.h)
     QApplication app(argc, argv);
     // Keep the bench's window geometry, recent files and autosave away from the user's.
     QApplication::setOrganizationName("TumbleBench");

@@ -31,6 +31,7 @@ std::string renderImages(const SceneDesc& scene, const std::string& folder, cons
         static int argc = 1;
         static char name[] = "tumble";
         static char* argv[] = {name, nullptr};
+        keepFrameMemory();
         app = std::make_unique<QApplication>(argc, argv);
     }
     // Qt3D's start-up chatter is not for a command line's stderr.

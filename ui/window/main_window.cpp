@@ -40,6 +40,8 @@
 #include <QUndoStack>
 #include <QUndoView>
 
+#include <malloc.h>
+
 namespace tumble::ui {
 
 namespace {
@@ -465,7 +467,15 @@ void MainWindow::dropEvent(QDropEvent* event) {
     startImport(meshes, true, 1.0);
 }
 
+void keepFrameMemory() {
+    // Below 32 MB from the heap, and up to 64 MB freed at its top kept (glibc's own
+    // thresholds rise to these only after the first large free).
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 64 << 20);
+}
+
 int runEditor(int argc, char** argv) {
+    keepFrameMemory();
     QApplication app(argc, argv);
     QApplication::setApplicationName("Tumble");
     QApplication::setOrganizationName("Tumble");
