@@ -141,12 +141,17 @@ private slots:
         QTest::mouseClick(f.view->renderWindow(), Qt::LeftButton, Qt::ControlModifier, floor);
         QVERIFY(f.doc.selection().isEmpty());
         f.doc.setSelection({0});  // as the Scene list does
+        // Until the frame with the selected ground is on screen (its tint is yellowish: blue
+        // under green, where the unselected ground is bluish), then: not lit up.
         QColor c;
-        for (int tries = 0; tries < 20; ++tries) {
+        for (int tries = 0; tries < 200; ++tries) {
             QTest::qWait(50);
             c = f.view->screen()->grabWindow(f.view->winId()).toImage().pixelColor(floor);
+            if (c.blue() + 5 < c.green()) break;
         }
-        QVERIFY2(c.red() < 120 && c.green() < 120, qPrintable(QString("rgb(%1, %2, %3)").arg(c.red()).arg(c.green()).arg(c.blue())));
+        const QString rgb = QString("rgb(%1, %2, %3)").arg(c.red()).arg(c.green()).arg(c.blue());
+        QVERIFY2(c.blue() + 5 < c.green(), qPrintable("the selected ground is not tinted: " + rgb));
+        QVERIFY2(c.red() < 120 && c.green() < 120, qPrintable(rgb));
     }
 
     void aDragOrbitsInsteadOfSelecting() {
@@ -340,7 +345,7 @@ private slots:
         auto orangeAt = [&](const Vec3& p) {
             const QPoint at = projected(view, p);
             QImage shot;
-            for (int tries = 0; tries < 40; ++tries) {  // until a frame with it is on screen
+            for (int tries = 0; tries < 200; ++tries) {  // until a frame with it is on screen (10 s)
                 QTest::qWait(50);
                 shot = view.screen()->grabWindow(view.winId()).toImage();
                 const QColor c = shot.pixelColor(at);
