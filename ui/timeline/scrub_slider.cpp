@@ -20,35 +20,35 @@ void ScrubSlider::setMarks(std::vector<Mark> marks) {
     update();
 }
 
-int ScrubSlider::xOf(int value) const {
+ScrubSlider::Track ScrubSlider::track() const {
     QStyleOptionSlider opt;
     initStyleOption(&opt);
-    const QRect groove = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderGroove, this);
-    const QRect handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
-    const int span = groove.width() - handle.width();
-    return groove.x() + handle.width() / 2 +
-           QStyle::sliderPositionFromValue(minimum(), maximum(), value, std::max(0, span), opt.upsideDown);
+    Track t;
+    t.groove = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderGroove, this);
+    t.handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
+    t.span = std::max(0, t.groove.width() - t.handle.width());
+    t.upsideDown = opt.upsideDown;
+    return t;
+}
+
+int ScrubSlider::xOf(int value) const {
+    const Track t = track();
+    return t.groove.x() + t.handle.width() / 2 +
+           QStyle::sliderPositionFromValue(minimum(), maximum(), value, t.span, t.upsideDown);
 }
 
 int ScrubSlider::valueAt(int x) const {
-    QStyleOptionSlider opt;
-    initStyleOption(&opt);
-    const QRect groove = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderGroove, this);
-    const QRect handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
-    const int span = groove.width() - handle.width();
-    return QStyle::sliderValueFromPosition(minimum(), maximum(), x - groove.x() - handle.width() / 2,
-                                           std::max(0, span), opt.upsideDown);
+    const Track t = track();
+    return QStyle::sliderValueFromPosition(minimum(), maximum(), x - t.groove.x() - t.handle.width() / 2, t.span,
+                                           t.upsideDown);
 }
 
 void ScrubSlider::mousePressEvent(QMouseEvent* event) {
     // A click on the track jumps to the frame under the pointer (QSlider steps a page
     // towards it, ten frames), and the handle, now under the pointer, drags from there.
     if (event->button() == Qt::LeftButton) {
-        QStyleOptionSlider opt;
-        initStyleOption(&opt);
-        const QRect handle = style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, this);
         const QPoint at = event->position().toPoint();
-        if (!handle.contains(at)) setValue(valueAt(at.x()));
+        if (!track().handle.contains(at)) setValue(valueAt(at.x()));
     }
     QSlider::mousePressEvent(event);
 }

@@ -3,6 +3,7 @@
 // on the track jumps to the frame there.
 #pragma once
 
+#include <QRect>
 #include <QSlider>
 #include <QString>
 
@@ -35,6 +36,14 @@ protected:
     bool event(QEvent* event) override;
 
 private:
+    // Where the style draws the groove and the handle, and how far the handle travels.
+    struct Track {
+        QRect groove, handle;
+        int span = 0;
+        bool upsideDown = false;
+    };
+    Track track() const;
+
     std::vector<Mark> marks_;
 };
 
