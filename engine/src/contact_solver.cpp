@@ -471,6 +471,7 @@ double solvedEnergy(const Model& model, const State& state, const ContactSolverS
 void solveContacts(const Model& model, State& state, const State& before,
                    const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
+    s.jointsOpen = 0.0;  // (projectJoints sets it, the last call's standing)
     if (contacts.empty() && model.joints.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
         s.points.clear();
         s.geometry.clear();

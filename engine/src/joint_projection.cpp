@@ -15,7 +15,6 @@ using namespace joint;
 
 namespace {
 
-constexpr int kMostJoints = 64;  // a larger group is left to Gauss-Seidel (a dense solve)
 
 int root(std::vector<int>& parent, int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -90,7 +89,7 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
         std::size_t last = first;
         while (last < members.size() && groupOf(members[last]) == groupOf(members[first])) ++last;
         const int count = static_cast<int>(last - first);
-        if (count > kMostJoints) {
+        if (count > kMostGroupJoints) {
             first = last;
             continue;
         }
@@ -182,6 +181,46 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
         }
         first = last;
     }
+}
+
+namespace {
+
+// Per joint of `joints`, the number of joints in its group: joints joined through bodies
+// for which `moves` holds (every joint type counted).
+template <class Moves>
+std::vector<int> groupSizes(const Model& model, const std::vector<int>& joints, Moves&& moves) {
+    const int n = static_cast<int>(model.bodies.size());
+    std::vector<int> parent(n), size(n, 0), out;
+    std::iota(parent.begin(), parent.end(), 0);
+    auto anchorOf = [&](const JointModel& j) { return root(parent, moves(j.a) ? j.a : j.b); };
+    for (int k : joints) {
+        const JointModel& j = model.joints[k];
+        if (moves(j.a) && moves(j.b)) parent[root(parent, j.a)] = root(parent, j.b);
+    }
+    for (int k : joints) ++size[anchorOf(model.joints[k])];
+    for (int k : joints) out.push_back(size[anchorOf(model.joints[k])]);
+    return out;
+}
+
+}  // namespace
+
+double smallGroupsOpen(const Model& model, const State& state, const ContactSolverScratch& s) {
+    std::vector<int> joints;
+    for (const JointModel& j : model.joints)
+        if (active(model, state, j) && j.index < static_cast<int>(s.jointChecks.size())) joints.push_back(j.index);
+    const std::vector<int> sizes = groupSizes(model, joints, [&](int i) { return movable(model, state, i); });
+    double open = 0.0;
+    for (std::size_t k = 0; k < joints.size(); ++k)
+        if (sizes[k] <= kMostGroupJoints) open = std::max(open, s.jointChecks[joints[k]].error);
+    return open;
+}
+
+int largestJointGroup(const Model& model) {
+    std::vector<int> joints(model.joints.size());
+    std::iota(joints.begin(), joints.end(), 0);
+    const std::vector<int> sizes =
+        groupSizes(model, joints, [&](int i) { return i >= 0 && model.bodies[i].motion == Motion::Dynamic; });
+    return sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
 }
 
 }  // namespace tumble

@@ -20,4 +20,15 @@ namespace tumble {
 void projectGroups(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
                    int iterations);
 
+/// The largest error (as the last positions-only pass found it, ContactSolverScratch::
+/// jointChecks) of the active joints whose group, every joint type counted, has at most 64
+/// joints: what a shorter step would close. Larger groups are left out: their Gauss-Seidel
+/// passes leave a 100-link chain open by 1 cm at any step, and halving the step for them
+/// cost eight times the step (World::stepJointed).
+double smallGroupsOpen(const Model& model, const State& state, const ContactSolverScratch& s);
+
+/// The most joints in one group of the model (joined through dynamic bodies, every joint
+/// counted as if active): no group at run time is larger.
+int largestJointGroup(const Model& model);
+
 }  // namespace tumble

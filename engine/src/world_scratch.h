@@ -56,6 +56,17 @@ struct World::Scratch {
     std::vector<collision::Manifold> parkedContacts;   // at the end of their free step
     std::vector<collision::Manifold> merged;
     std::unique_ptr<Workers> workers;  // setThreads(n > 1)
+    // A step whose joints stayed open is taken again in halves (World::stepJointed): what
+    // it starts from, per depth of splitting.
+    struct JointRedo {
+        State state;
+        EnergyLedger ledger;
+        EnergyGuard guard;
+    };
+    std::vector<JointRedo> jointRedo;
+    std::vector<int> jointedBodies;  // dynamic bodies with a joint (the model never changes)
+    double jointedWeight = 0.0;      // Σ m |g| r over them: the floor of the energy a split checks
+    bool jointsPassive = true;       // no motor, no joint to a kinematic body that moves
 };
 
 // What a cut goes back to: the state without its contact memory and touching pairs, which

@@ -34,6 +34,7 @@ struct Profile {
     long parkedBodySteps = 0;   ///< bodies of islands without an impact kept out of the cuts, summed
     long islandRestarts = 0;    ///< steps taken again with every body cut (a cut body met a parked one)
     long stillBodySteps = 0;    ///< bodies whose contacts were taken as last solved (at their fixed point), summed
+    long jointSplits = 0;       ///< steps taken again in two halves: their joints did not hold (World::step)
 };
 
 /// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no
@@ -70,7 +71,9 @@ public:
     /// time of impact (cutting the step at each first touch for the impact impulses) ->
     /// contact solver -> sleeping. Throws SimulationError, naming the body, the time and the
     /// likely cause, when a body's state becomes non-finite or (settings.energyGuard) the
-    /// scene's energy runs away.
+    /// scene's energy runs away. A step after which a joint is left open (its projection did
+    /// not converge: a whipping chain at 1/30 s) is taken again as two steps of h/2, and
+    /// each of those likewise once more (at most four pieces).
     void step(double h);
 
     /// Worker threads for the stages whose items are independent (narrow phase and time of
@@ -92,6 +95,8 @@ public:
     const std::vector<collision::ImpactEvent>& impacts() const;
 
 private:
+    void stepWhole(double h);                // one step of h, as step() describes
+    void stepJointed(double h, int splits);  // stepWhole, in halves while the joints stay open
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
     void impactsAtStart();             // touching bodies that approach as a run starts

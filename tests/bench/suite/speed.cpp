@@ -142,6 +142,7 @@ int childMain(int argc, char** argv) {
                 double(p.parkedBodySteps) / steps, double(p.islandRestarts) / steps, double(p.stillBodySteps) / steps);
             // The end state's hash: a change meant to leave the results bit for bit as they
             // were shows it here (the parent reads numbers only and skips it).
+            if (!jointed.joints.empty()) std::printf(" splits=%.6g", double(p.jointSplits) / steps);
             std::printf(" state=%016llx", static_cast<unsigned long long>(hashState(t->world().state())));
         }
         std::printf("\n");
