@@ -134,6 +134,44 @@ private slots:
         QVERIFY2(worst < 1e-3 * scale, qPrintable(QString::number(worst / scale)));
     }
 
+    // Issue 20's drift bounds over 60 s at 1/240 s, for the ball pendulum above let go at
+    // 2 rad, and the same bob on a hinge: the energy's drift (its mean over the first swing against its
+    // mean over the last; the step's bounded oscillation, 2.4e-5 of m g L, averages out) at
+    // most 1e-6 of m g L, and the joint held to 1e-9 m all along. (The period is within
+    // 7e-6 to 3.4e-5 of the closed form there, pendulumPeriod and hingePendulum: RATTLE's
+    // second-order error, (ωh)²/24 for small swings; the issue's 1e-6 needs a fourth-order
+    // step, which is not built.)
+    void pendulumEnergyDoesNotDrift_data() {
+        QTest::addColumn<bool>("hinge");
+        QTest::newRow("ball joint") << false;
+        QTest::newRow("hinge") << true;
+    }
+    void pendulumEnergyDoesNotDrift() {
+        QFETCH(bool, hinge);
+        SceneDesc scene = pendulum(1.0, 0.05, 2.0);
+        if (hinge) {
+            scene.joints[0].type = JointType::Hinge;
+            scene.joints[0].axisA = Vec3::UnitZ();
+            scene.joints[0].axisB = Vec3::UnitZ();
+        }
+        World w(scene);
+        const double h = 1.0 / 240.0, e0 = energy(w), swing = 2.5;  // s, more than a period
+        double first = 0.0, last = 0.0, gap = 0.0;
+        long nFirst = 0, nLast = 0;
+        while (w.state().time < 60.0 - 1e-9) {
+            w.step(h);
+            gap = std::max(gap, anchorGap(w, 0));
+            const double t = w.state().time, e = energy(w) - e0;
+            if (t <= swing) first += e, ++nFirst;
+            if (t > 60.0 - swing - 1e-9) last += e, ++nLast;
+        }
+        const double scale = 1.0 * g * 1.0;  // m g L
+        const double drift = (last / nLast - first / nFirst) / scale;
+        qInfo("energy drift over 60 s %.1e of m g L; joint held to %.1e m", drift, gap);
+        QVERIFY2(std::abs(drift) < 1e-6, qPrintable(QString::number(drift)));
+        QVERIFY2(gap < 1e-9, qPrintable(QString::number(gap)));
+    }
+
     // A chain of 50 boxes on ball joints, hung from the world and let go level, at the steps
     // people use: it swings down, its joints open by less than 0.1 % of its length in all
     // (issue 20's bound) and its energy never rises above the start. At 1/60 s the chain's
