@@ -1,4 +1,6 @@
 #include "cli.h"
+#include "sweep/run_metrics.h"
+#include "sweep/sweep_cli.h"
 
 #include <tumble/errors.h>
 #include <tumble/io/atomic_file.h>
@@ -55,7 +57,14 @@ Options for --headless:
                       step before each frame; a CSV gets them in FILE-joints.csv beside it)
   --image-size WxH    pixels of the images and video (default 1280x720)
   --save-scene FILE   writes the scene as run (options applied), normalised
+  --metrics FILE      writes the run's measures as JSON (what a sweep's summary holds,
+                      docs/sweeps.md): per body its final position and speed, highest
+                      point and the time it came to rest; the energy contacts and damping
+                      took; the deepest overlap; the state hash
   --quiet             prints nothing but errors
+
+  tumble sweep SCENE --vary PATH=VALUES ... --out DIR [options]
+                      runs variants of SCENE (tumble sweep --help)
 
 Exit status: 0 success; 2 invalid input (the message names the file and the field);
 1 any other failure, such as a state that became non-finite (the message names the
@@ -82,7 +91,7 @@ struct Options {
     std::optional<double> duration, dt, frameRate;
     std::optional<std::string> integrator;
     std::optional<ImpactTiming> impacts;
-    std::string out, saveScene;
+    std::string out, saveScene, metrics;
     int imageWidth = 1280, imageHeight = 720;
     int threads = 1;
     bool quiet = false;
@@ -155,6 +164,7 @@ Options parse(const std::vector<std::string>& args) {
         }
         else if (a == "--out") o.out = next();
         else if (a == "--save-scene") o.saveScene = next();
+        else if (a == "--metrics") o.metrics = next();
         else if (a == "--image-size") {
             const std::string v = next();
             int w = 0, h = 0;
@@ -262,11 +272,14 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     }
 
     const Energy before = energy(world->model(), world->state());
+    std::optional<RunMetrics> metrics;
+    if (!o.metrics.empty()) metrics.emplace(*world);
     const auto t0 = std::chrono::steady_clock::now();
     RunResult result;
     try {
         result = simulate(*world, [&](int k, const State& s) {
             if (trajectory) trajectory->frame(k, s);
+            if (metrics) metrics->frame(*world);
         });
     } catch (const SimulationError& e) {
         err << "tumble: " << o.scene << ": " << e.what() << "\n";
@@ -281,6 +294,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         if (savedScene) savedScene->stream() << io::sceneToJson(scene);
         if (trajectory) trajectory->finish();
         if (savedScene) savedScene->commit();
+        if (metrics) metrics->write(o.metrics, *world, result.steps, wall, before.total());
     } catch (const std::exception& e) {
         err << "tumble: " << e.what() << "\n";
         return kFailure;
@@ -345,6 +359,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
 void setImageRenderer(ImageRenderer renderer) { imageRenderer() = std::move(renderer); }
 
 bool wantsCommandLine(const std::vector<std::string>& args) {
+    if (!args.empty() && args.front() == "sweep") return true;
     for (const std::string& a : args) {
         if (a == "--headless" || a == "--help" || a == "-h" || a == "--version" || a == "--list-integrators") {
             return true;
@@ -354,6 +369,7 @@ bool wantsCommandLine(const std::vector<std::string>& args) {
 }
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (!args.empty() && args.front() == "sweep") return sweep::run({args.begin() + 1, args.end()}, out, err);
     for (const std::string& a : args) {
         if (a == "--help" || a == "-h") {
             out << kHelp;

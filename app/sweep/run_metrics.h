@@ -1,0 +1,43 @@
+// What `tumble --headless SCENE --metrics FILE` writes: the measures of one run that a sweep
+// puts in its summary (docs/sweeps.md), taken at every recorded frame.
+//
+// Per dynamic body: where its frame ends (final_x, final_y, final_z: the position the
+// trajectory CSV gives), how fast its centre of mass moves then (final_speed), its highest
+// point (its frame's height along -gravity; y without gravity) and when it came to rest (rest_time: the first frame from which its centre and
+// its fastest surface point stay below 1 cm/s to the end; empty if it is still moving).
+// For the scene: the energy contacts took (normal impulses and friction), the energy
+// damping took (what the start less the end leaves once contacts, joints and position
+// correction are booked: damping's, as long as no applied force or spring does work), and
+// the deepest overlap of two bodies seen at a frame.
+#pragma once
+
+#include <tumble/world.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tumble::cli {
+
+class RunMetrics {
+public:
+    explicit RunMetrics(const World& world);
+    /// After each recorded frame.
+    void frame(const World& world);
+    /// The file: JSON with the run's figures (`run`: state_hash, steps, simulated_time,
+    /// wall_seconds), `scene` and `bodies` (by name); written whole or not at all.
+    void write(const std::filesystem::path& file, const World& world, long steps, double wall, double energyStart) const;
+
+private:
+    struct Body {
+        int index = 0;
+        double highest = 0.0;
+        std::optional<double> restingSince;
+    };
+    std::vector<Body> bodies_;
+    Vec3 up_ = Vec3::UnitY();
+    double deepest_ = 0.0;
+};
+
+}  // namespace tumble::cli

@@ -1,0 +1,146 @@
+#include "sweep_run.h"
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace tumble::sweep {
+
+namespace {
+
+volatile std::sig_atomic_t stopAsked = 0;
+
+void onStop(int) { stopAsked = 1; }
+
+// SIGINT and SIGTERM set stopAsked while a run lasts; the old handlers come back after.
+struct StopSignals {
+    struct sigaction oldInt {}, oldTerm {};
+    StopSignals() {
+        stopAsked = 0;
+        struct sigaction sa {};
+        sa.sa_handler = onStop;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, &oldInt);
+        sigaction(SIGTERM, &sa, &oldTerm);
+    }
+    ~StopSignals() {
+        sigaction(SIGINT, &oldInt, nullptr);
+        sigaction(SIGTERM, &oldTerm, nullptr);
+    }
+};
+
+struct Running {
+    pid_t pid = 0;
+    int variant = 0;
+    std::chrono::steady_clock::time_point start;
+};
+
+// Starts a job with stdout and stderr into its log and stdin from /dev/null; 0 on failure.
+pid_t start(const Job& job) {
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&files, 1, job.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&files, 1, 2);
+    // The child starts with default signal handling and nothing blocked, whatever this
+    // process has set.
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sigset_t none, defaults;
+    sigemptyset(&none);
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    sigaddset(&defaults, SIGTERM);
+    posix_spawnattr_setsigmask(&attr, &none);
+    posix_spawnattr_setsigdefault(&attr, &defaults);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    std::vector<char*> argv;
+    for (const std::string& a : job.argv) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    const int r = posix_spawn(&pid, argv[0], &files, &attr, argv.data(), environ);
+    posix_spawnattr_destroy(&attr);
+    posix_spawn_file_actions_destroy(&files);
+    return r == 0 ? pid : 0;
+}
+
+}  // namespace
+
+bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<void(const Outcome&)>& done,
+                const std::function<void(int running)>& tick) {
+    StopSignals signals;
+    std::vector<Running> running;
+    std::size_t next = 0;
+    auto lastTick = std::chrono::steady_clock::now();
+    while (!stopAsked && (next < jobs.size() || !running.empty())) {
+        while (!stopAsked && next < jobs.size() && static_cast<int>(running.size()) < parallel) {
+            const Job& job = jobs[next++];
+            const auto t0 = std::chrono::steady_clock::now();
+            const pid_t pid = start(job);
+            if (pid == 0) {  // could not start: reported as a failure of its own
+                std::ofstream(job.log) << "tumble sweep: could not start " << job.argv[0] << ": " << std::strerror(errno)
+                                       << "\n";
+                done({job.variant, 127, 0, 0.0});
+                continue;
+            }
+            running.push_back({pid, job.variant, t0});
+        }
+        bool reaped = false;
+        for (std::size_t k = 0; k < running.size();) {
+            int status = 0;
+            const pid_t r = waitpid(running[k].pid, &status, WNOHANG);
+            if (r != running[k].pid) {
+                ++k;
+                continue;
+            }
+            Outcome o;
+            o.variant = running[k].variant;
+            o.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - running[k].start).count();
+            if (WIFEXITED(status)) o.exitCode = WEXITSTATUS(status);
+            if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
+            running.erase(running.begin() + static_cast<long>(k));
+            reaped = true;
+            // A variant stopped by the same Ctrl-C as this process (one process group) is
+            // not a result.
+            if (stopAsked && o.signal != 0) continue;
+            done(o);
+        }
+        const auto now = std::chrono::steady_clock::now();
+        if (now - lastTick >= std::chrono::milliseconds(100)) {
+            tick(static_cast<int>(running.size()));
+            lastTick = now;
+        }
+        if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!stopAsked) return true;
+    for (const Running& r : running) kill(r.pid, SIGTERM);
+    for (const Running& r : running) {
+        int status = 0;
+        waitpid(r.pid, &status, 0);
+    }
+    return false;
+}
+
+std::string selfExecutable() {
+    std::error_code ec;
+    const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("tumble") : p.string();
+}
+
+std::string lastLine(const std::filesystem::path& log) {
+    std::ifstream in(log);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+    return last;
+}
+
+}  // namespace tumble::sweep

@@ -1,0 +1,167 @@
+#include "sweep_summary.h"
+
+#include <tumble/io/atomic_file.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+namespace tumble::sweep {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+namespace {
+
+const std::vector<std::string> kSceneMeasures = {"energy_lost_contacts", "energy_lost_damping", "deepest_overlap"};
+const std::vector<std::string> kBodyMeasures = {"final_x", "final_y", "final_z", "final_speed", "highest", "rest_time"};
+
+ojson readJson(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) return nullptr;
+    try {
+        return ojson::parse(in);
+    } catch (const std::exception&) {
+        return nullptr;
+    }
+}
+
+std::string csvText(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+    return q + "\"";
+}
+
+std::string csvValue(const ojson& v) {
+    if (v.is_null()) return {};
+    if (v.is_number_float()) {
+        char buf[64];
+        const auto r = std::to_chars(buf, buf + sizeof buf, v.get<double>());
+        return std::string(buf, r.ptr);
+    }
+    if (v.is_string()) return csvText(v.get<std::string>());
+    return v.dump();
+}
+
+// A measure column's value in a result's measures: "scene measure" or "body.measure".
+ojson measure(const ojson& metrics, const std::string& column) {
+    if (!metrics.is_object()) return nullptr;
+    if (metrics.contains("scene") && metrics["scene"].contains(column)) return metrics["scene"][column];
+    const auto dot = column.rfind('.');
+    if (dot == std::string::npos || !metrics.contains("bodies")) return nullptr;
+    const std::string body = column.substr(0, dot), kind = column.substr(dot + 1);
+    const ojson& bodies = metrics["bodies"];
+    if (!bodies.contains(body) || !bodies[body].contains(kind)) return nullptr;
+    return bodies[body][kind];
+}
+
+}  // namespace
+
+fs::path metricsFile(const Plan& plan, const fs::path& dir, int k) {
+    return dir / "results" / (plan.name(k) + ".metrics.json");
+}
+fs::path logFile(const Plan& plan, const fs::path& dir, int k) { return dir / "results" / (plan.name(k) + ".log"); }
+fs::path trajectoryFile(const Plan& plan, const fs::path& dir, int k) {
+    return dir / "trajectories" / (plan.name(k) + ".csv");
+}
+fs::path resultFile(const Plan& plan, const fs::path& dir, int k) { return dir / "results" / (plan.name(k) + ".json"); }
+
+void recordOutcome(const Plan& plan, const fs::path& dir, const Outcome& o) {
+    ojson r;
+    const ojson metrics = o.exitCode == 0 ? readJson(metricsFile(plan, dir, o.variant)) : ojson(nullptr);
+    if (o.exitCode == 0 && metrics.is_object()) {
+        r["status"] = "ok";
+    } else {
+        r["status"] = o.exitCode == 2 ? "invalid" : "failed";
+        std::string message = lastLine(logFile(plan, dir, o.variant));
+        if (o.signal != 0) message = "killed by signal " + std::to_string(o.signal);
+        else if (o.exitCode == 0) message = "its measures were not written";
+        r["message"] = message;
+    }
+    r["exit"] = o.exitCode;
+    r["wall_s"] = o.wall;
+    r["metrics"] = metrics;
+    io::writeFileAtomically(resultFile(plan, dir, o.variant), r.dump(2) + "\n");
+}
+
+std::vector<std::string> metricColumns(const Plan& plan, const std::vector<std::string>& metrics) {
+    const std::vector<std::string>& bodies = plan.bodies;
+    std::vector<std::string> columns;
+    auto add = [&](const std::string& c) {
+        if (std::find(columns.begin(), columns.end(), c) == columns.end()) columns.push_back(c);
+    };
+    auto addKind = [&](const std::string& body, const std::string& kind) {
+        if (kind == "final_position") {
+            for (const char* axis : {"final_x", "final_y", "final_z"}) add(body + "." + axis);
+            return true;
+        }
+        if (std::find(kBodyMeasures.begin(), kBodyMeasures.end(), kind) == kBodyMeasures.end()) return false;
+        add(body + "." + kind);
+        return true;
+    };
+    if (metrics.empty()) {
+        for (const std::string& m : kSceneMeasures) add(m);
+        for (const std::string& b : bodies)
+            for (const std::string& k : kBodyMeasures) addKind(b, k);
+        return columns;
+    }
+    for (const std::string& m : metrics) {
+        if (std::find(kSceneMeasures.begin(), kSceneMeasures.end(), m) != kSceneMeasures.end()) {
+            add(m);
+            continue;
+        }
+        const auto dot = m.rfind('.');
+        bool known = false;
+        if (dot == std::string::npos) {
+            known = !bodies.empty();
+            for (const std::string& b : bodies) known = addKind(b, m) && known;
+        } else {
+            const std::string body = m.substr(0, dot);
+            known = std::find(bodies.begin(), bodies.end(), body) != bodies.end() && addKind(body, m.substr(dot + 1));
+        }
+        if (!known) {
+            std::string all;
+            for (const std::string& s : kSceneMeasures) all += s + ", ";
+            for (const std::string& s : kBodyMeasures) all += s + ", ";
+            throw SweepError{"--metric " + m + ": not a measure (" + all +
+                             "final_position; a body's alone as BODY.MEASURE, BODY a dynamic body)"};
+        }
+    }
+    return columns;
+}
+
+Tally writeSummary(const Plan& plan, const fs::path& dir, const std::vector<std::string>& columns) {
+    std::ostringstream csv;
+    csv << "variant";
+    for (const Vary& v : plan.vary) csv << ',' << csvText(v.path);
+    csv << ",status,state_hash,wall_s";
+    for (const std::string& c : columns) csv << ',' << csvText(c);
+    csv << ",message\n";
+    Tally tally;
+    for (int k = 0; k < plan.count; ++k) {
+        const ojson r = readJson(resultFile(plan, dir, k));
+        csv << plan.name(k);
+        const std::vector<int> c = plan.choice(k);
+        for (std::size_t i = 0; i < plan.vary.size(); ++i) csv << ',' << csvText(plan.vary[i].values[c[i]]);
+        const std::string status = r.is_object() ? r.value("status", std::string("failed")) : "not run";
+        (status == "ok" ? tally.ok : status == "not run" ? tally.notRun : tally.failed) += 1;
+        const ojson metrics = r.is_object() && r.contains("metrics") ? r["metrics"] : ojson(nullptr);
+        const ojson run = metrics.is_object() && metrics.contains("run") ? metrics["run"] : ojson(nullptr);
+        csv << ',' << status << ',' << (run.is_object() ? csvValue(run["state_hash"]) : "") << ','
+            << (r.is_object() ? csvValue(r["wall_s"]) : "");
+        for (const std::string& col : columns) csv << ',' << csvValue(measure(metrics, col));
+        csv << ',' << (r.is_object() && r.contains("message") ? csvValue(r["message"]) : "") << '\n';
+    }
+    try {
+        io::writeFileAtomically(dir / "summary.csv", csv.str());
+    } catch (const std::runtime_error& e) {
+        throw SweepError{e.what()};
+    }
+    return tally;
+}
+
+}  // namespace tumble::sweep
