@@ -1,0 +1,256 @@
+// tumble sweep (issue 22, docs/sweeps.md): variants of a scene run as processes of their
+// own, their results merged into summary.csv. The physics of a swept value against its
+// closed form, a variant that runs alone to the same hash, resuming after a stop and after
+// a kill, failed variants as rows, and bad input refused before anything is written.
+#include <QtTest>
+
+#include "cli_harness.h"
+
+#include <csignal>
+
+using namespace tumble::clitest;
+
+namespace {
+
+// A ball of radius 0.05 whose bottom is 1 m above a ground that bounces nothing back
+// (restitution 0: a pair takes the larger of its two), dropped from rest; frames at 240/s.
+const char* const kDrop = R"({
+  "format": "tumble-scene",
+  "version": 1,
+  "settings": {"gravity": [0, -9.81, 0], "dt": 0.004166666666666667, "duration": 1.0, "frame_rate": 240},
+  "bodies": [
+    {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0},
+     "restitution": 0},
+    {"name": "ball", "shape": {"type": "sphere", "radius": 0.05}, "mass": 0.2, "position": [0, 1.05, 0],
+     "restitution": 0.5}
+  ]
+}
+)";
+
+// summary.csv as rows of name -> value (no quoted commas in these sweeps' values).
+QList<QMap<QString, QString>> summaryRows(const QByteArray& csv) {
+    const QStringList l = lines(QString::fromUtf8(csv));
+    QList<QMap<QString, QString>> rows;
+    if (l.isEmpty()) return rows;
+    const QStringList head = l.first().split(',');
+    for (int i = 1; i < l.size(); ++i) {
+        const QStringList cells = l[i].split(',');
+        QMap<QString, QString> row;
+        for (int c = 0; c < head.size() && c < cells.size(); ++c) row.insert(head[c], cells[c]);
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+}  // namespace
+
+class TestSweep : public QObject, private Harness {
+    Q_OBJECT
+
+private slots:
+    void init() {
+        makeFolder();
+        write("drop.json", kDrop);
+    }
+    void cleanup() { dir_.reset(); }
+
+    // The ball's first rebound rises e² m (its bottom), e swept over five values: the
+    // impact at its moment sends it back at e times its landing speed, and the step
+    // (constant gravity, Strang splitting) is exact on the parabola. The apex is read from
+    // each variant's trajectory at 240 frames/s (within g (1/480)² / 2 = 2e-5 m of the true
+    // one); the summary's columns hold the values, ok, and the ball's measures.
+    void reboundApexIsESquared() {
+        RUN(r, {"sweep", "drop.json", "--vary", "ball.restitution=0.2:1:5", "--out", "sw", "--trajectories",
+                "--jobs", "2"});
+        QCOMPARE(r.code, 0);
+        const QMap<QString, QString> kv = report(r.out);
+        QCOMPARE(kv.value("variants"), QString("5"));
+        QCOMPARE(kv.value("ok"), QString("5"));
+        const auto rows = summaryRows(read("sw/summary.csv"));
+        QCOMPARE(rows.size(), 5);
+        for (const auto& row : rows) {
+            QCOMPARE(row.value("status"), QString("ok"));
+            const double e = row.value("ball.restitution").toDouble();
+            // The trajectory: time,body,x,y,... (the body by name).
+            const QStringList traj = lines(QString::fromUtf8(read("sw/trajectories/" + row.value("variant") + ".csv")));
+            // Landed when it first moves up; the apex is the highest frame until it falls again.
+            double apex = -1e9;
+            bool landed = false;
+            for (const QString& line : traj.mid(1)) {
+                const QStringList c = line.split(',');
+                if (c.value(1) != "ball") continue;
+                const double bottom = c.value(3).toDouble() - 0.05, vy = c.value(10).toDouble();
+                if (!landed) {
+                    landed = vy > 0.0;
+                    if (!landed) continue;
+                }
+                apex = std::max(apex, bottom);
+                if (vy < 0.0) break;  // falling again: the first rebound is over
+            }
+            qInfo("e = %.1f: first rebound apex %.6f m, e^2 = %.6f", e, apex, e * e);
+            QVERIFY(landed);
+            QVERIFY2(std::abs(apex - e * e) < 1e-4, qPrintable(QString::number(apex)));
+            QCOMPARE(row.value("ball.highest").toDouble(), 1.05);  // where it started
+            QVERIFY(!row.value("state_hash").isEmpty());
+            QVERIFY(row.value("wall_s").toDouble() > 0.0);
+        }
+    }
+
+    // A variant's file runs by itself to the hash its row records, and that is the hash of
+    // the scene edited by hand to the same value: the sweep changes nothing else.
+    void aVariantRunsAloneToTheSameHash() {
+        RUN(r, {"sweep", "drop.json", "--vary", "ball.restitution=0.3,0.7", "--vary", "ball.velocity[0]=0,1", "--out",
+                "sw"});
+        QCOMPARE(r.code, 0);
+        const auto rows = summaryRows(read("sw/summary.csv"));
+        QCOMPARE(rows.size(), 4);
+        // The last --vary changes fastest.
+        QCOMPARE(rows[1].value("ball.restitution"), QString("0.3"));
+        QCOMPARE(rows[1].value("ball.velocity[0]"), QString("1"));
+        RUN(alone, {"--headless", "sw/variants/0001.json"});
+        QCOMPARE(alone.code, 0);
+        QCOMPARE(report(alone.out).value("state_hash"), rows[1].value("state_hash"));
+        QByteArray edited = kDrop;
+        edited.replace("\"position\": [0, 1.05, 0],", "\"position\": [0, 1.05, 0], \"velocity\": [1, 0, 0],");
+        edited.replace("\"restitution\": 0.5", "\"restitution\": 0.3");
+        write("edited.json", edited);
+        RUN(byHand, {"--headless", "edited.json"});
+        QCOMPARE(byHand.code, 0);
+        QCOMPARE(report(byHand.out).value("state_hash"), rows[1].value("state_hash"));
+        QVERIFY(rows[0].value("state_hash") != rows[1].value("state_hash"));
+    }
+
+    // Stopped by SIGINT (as Ctrl-C does) after its first result, the sweep exits 130, keeps
+    // what finished, leaves no half-written file, and lists the rest as not run; killed
+    // outright (SIGKILL) it leaves what finished too. The same command then runs only what
+    // is missing, and the results equal a sweep run in one go.
+    void resumesAfterAStopAndAKill_data() {
+        QTest::addColumn<int>("signal");
+        QTest::newRow("SIGINT") << int(SIGINT);
+        QTest::newRow("SIGKILL") << int(SIGKILL);
+    }
+    void resumesAfterAStopAndAKill() {
+        QFETCH(int, signal);
+        // Six variants of about a second each, one at a time (a tenth of the steps where a
+        // step costs thirty times as much).
+#ifdef TUMBLE_TEST_SANITIZED
+        const QString dt = "settings.dt=1e-4";
+#else
+        const QString dt = "settings.dt=1e-5";
+#endif
+        const QStringList args = {"sweep", "drop.json", "--vary", dt, "--vary",
+                                  "ball.restitution=0.1:0.6:6", "--vary", "settings.duration=1.2",
+                                  "--out", "sw", "--jobs", "1"};
+        QProcess p;
+        p.setWorkingDirectory(dir_->path());
+        p.start(TUMBLE_EXECUTABLE, args);
+        QVERIFY(p.waitForStarted(10000));
+        QTRY_VERIFY_WITH_TIMEOUT(QFile::exists(path("sw/results/0000.json")), 60000);
+        ::kill(static_cast<pid_t>(p.processId()), signal);
+        QVERIFY(p.waitForFinished(30000));
+        if (signal == SIGINT) {
+            QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+            QCOMPARE(p.exitCode(), 130);
+            QVERIFY(QString::fromUtf8(p.readAllStandardError()).contains("run the same command to resume"));
+            const auto rows = summaryRows(read("sw/summary.csv"));
+            QCOMPARE(rows.size(), 6);
+            QCOMPARE(rows[0].value("status"), QString("ok"));
+            QCOMPARE(rows[5].value("status"), QString("not run"));
+        }
+        QTest::qWait(signal == SIGKILL ? 3000 : 0);  // (the killed sweep's last variant runs on alone)
+        const QStringList before = QDir(path("sw/results")).entryList({"*.json"}, QDir::Files);
+        QVERIFY(before.contains("0000.json"));
+        QVERIFY(!before.contains("0005.json"));
+        for (const QString& f : QDir(path("sw")).entryList(QDir::Files) + QDir(path("sw/results")).entryList(QDir::Files))
+            QVERIFY2(!f.contains(".tumble-tmp-"), qPrintable(f));
+        const QByteArray first = read("sw/results/0000.json");
+
+        RUN(again, args);
+        QCOMPARE(again.code, 0);
+        QCOMPARE(read("sw/results/0000.json"), first);  // not run again
+        RUN(whole, QStringList(args).replaceInStrings(QRegularExpression("^sw$"), "whole"));
+        QCOMPARE(whole.code, 0);
+        const auto resumed = summaryRows(read("sw/summary.csv")), once = summaryRows(read("whole/summary.csv"));
+        QCOMPARE(resumed.size(), 6);
+        for (int k = 0; k < 6; ++k) {
+            QCOMPARE(resumed[k].value("status"), QString("ok"));
+            QCOMPARE(resumed[k].value("state_hash"), once[k].value("state_hash"));
+            QCOMPARE(resumed[k].value("ball.final_y"), once[k].value("ball.final_y"));
+        }
+    }
+
+    // A value the scene refuses and a run the energy guard stops are rows with their
+    // status and message; the sweep goes on and exits 1.
+    void failedVariantsAreRows() {
+        write("blowup.json", kBlowUp);
+        RUN(r, {"sweep", "drop.json", "--vary", "ball.restitution=0.5,1.5", "--out", "sw"});
+        QCOMPARE(r.code, 1);
+        auto rows = summaryRows(read("sw/summary.csv"));
+        QCOMPARE(rows.size(), 2);
+        QCOMPARE(rows[0].value("status"), QString("ok"));
+        QCOMPARE(rows[1].value("status"), QString("invalid"));
+        QVERIFY2(rows[1].value("message").contains("bodies[1].restitution"), qPrintable(rows[1].value("message")));
+        QVERIFY(rows[1].value("state_hash").isEmpty());
+
+        RUN(b, {"sweep", "blowup.json", "--vary", "ball.forces[0].stiffness=10,1e12", "--out", "blow"});
+        QCOMPARE(b.code, 1);
+        rows = summaryRows(read("blow/summary.csv"));
+        QCOMPARE(rows[0].value("status"), QString("ok"));
+        QCOMPARE(rows[1].value("status"), QString("failed"));
+        QVERIFY2(rows[1].value("message").contains("energy"), qPrintable(rows[1].value("message")));
+    }
+
+    // Bad input: exit 2, a message naming what is wrong, and nothing written.
+    void badInputIsRefused_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        const QStringList base = {"sweep", "drop.json", "--out", "sw"};
+        QTest::newRow("unknown body") << base + QStringList{"--vary", "bal.restitution=1"} << "no body or joint named 'bal'";
+        QTest::newRow("unknown key") << base + QStringList{"--vary", "ball.bounce=1"} << "body 'ball' has no 'bounce'";
+        QTest::newRow("a list, not a value") << base + QStringList{"--vary", "ball.velocity=1"} << "ball.velocity[N]";
+        QTest::newRow("index past the end") << base + QStringList{"--vary", "ball.velocity[3]=1"} << "no [3]";
+        QTest::newRow("empty list") << base + QStringList{"--vary", "ball.restitution="} << "an empty list";
+        QTest::newRow("empty value") << base + QStringList{"--vary", "ball.restitution=0.1,,0.2"} << "an empty value";
+        QTest::newRow("not a number") << base + QStringList{"--vary", "ball.restitution=high"} << "'high' is not a number";
+        QTest::newRow("bad range") << base + QStringList{"--vary", "ball.restitution=0:1"} << "is not start:stop:count";
+        QTest::newRow("count 0") << base + QStringList{"--vary", "ball.restitution=0:1:0"} << "the count '0'";
+        QTest::newRow("not whole") << base + QStringList{"--vary", "settings.solver_iterations=1:10:3"}
+                                   << "'5.5' is not a whole number";
+        QTest::newRow("not true or false") << base + QStringList{"--vary", "settings.sleeping=yes"}
+                                           << "is not true or false";
+        QTest::newRow("twice") << base + QStringList{"--vary", "ball.mass=1", "--vary", "ball.mass=2"} << "given twice";
+        QTest::newRow("no vary") << base << "nothing varies";
+        QTest::newRow("no out") << QStringList{"sweep", "drop.json", "--vary", "ball.mass=1"} << "needs --out";
+        QTest::newRow("unknown measure") << base + QStringList{"--vary", "ball.mass=1", "--metric", "apex"}
+                                         << "--metric apex: not a measure";
+        QTest::newRow("bad scene") << QStringList{"sweep", "missing.json", "--vary", "ball.mass=1", "--out", "sw"}
+                                   << "missing.json";
+    }
+    void badInputIsRefused() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        RUN(r, args);
+        QCOMPARE(r.code, 2);
+        QVERIFY2(r.err.contains(message), qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(path("sw")));
+    }
+
+    // --merge writes the summary again from the results, with the measures asked for; a
+    // folder holding another sweep is not overwritten.
+    void mergeAndAnotherSweepsFolder() {
+        RUN(r, {"sweep", "drop.json", "--vary", "ball.restitution=0.4,0.6", "--out", "sw"});
+        QCOMPARE(r.code, 0);
+        QVERIFY(QFile::remove(path("sw/summary.csv")));
+        RUN(m, {"sweep", "--merge", "sw", "--metric", "ball.highest,rest_time"});
+        QCOMPARE(m.code, 0);
+        const QStringList l = lines(QString::fromUtf8(read("sw/summary.csv")));
+        QCOMPARE(l.first(), QString("variant,ball.restitution,status,state_hash,wall_s,ball.highest,ball.rest_time,message"));
+        QCOMPARE(l.size(), 3);
+        RUN(other, {"sweep", "drop.json", "--vary", "ball.mass=1,2", "--out", "sw"});
+        QCOMPARE(other.code, 2);
+        QVERIFY2(other.err.contains("holds another sweep"), qPrintable(other.err));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestSweep)
+#include "tst_sweep.moc"
