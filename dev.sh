@@ -28,13 +28,15 @@ PACKAGES=(
   ffmpeg
   gnuplot-nox
   blender python3-numpy
+  slurm-wlm munge
   clang-14 libfuzzer-14-dev
   liblsan0
 )
 # ffmpeg is optional for users (the editor's MP4 export detects it at run time); the tests
 # install it so that the video path is tested, not skipped. gnuplot draws tumble-bench's
 # work-precision diagrams as PNGs (without it, only the .gp scripts are written). Blender
-# reads the glTF exports in the blender/roundtrip test (its importer needs numpy).
+# reads the glTF exports in the blender/roundtrip test (its importer needs numpy). slurm-wlm
+# and munge: cli/sweep_slurm starts a one-node Slurm cluster for `tumble sweep --slurm`.
 
 # The Khronos glTF validator for the export tests (tests/io/gltf_validator.h), from npm into
 # the build folder; its 2.x releases are all "2.0.0-dev.3.N", which npm's "@2" does not match.

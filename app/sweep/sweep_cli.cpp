@@ -1,6 +1,8 @@
 #include "sweep_cli.h"
 
 #include "sweep_plan.h"
+#include "sweep_progress.h"
+#include "sweep_slurm.h"
 #include "sweep_run.h"
 #include "sweep_summary.h"
 
@@ -45,6 +47,15 @@ guard) is a row with its status and message.
                       final_speed, highest, rest_time; BODY.NAME for one body's
   --merge DIR         write DIR/summary.csv again from the results there
 
+On a Slurm cluster (DIR on a file system the nodes share):
+  --slurm             run the variants as a job array: writes DIR/sweep.sbatch (at most
+                      1000 tasks; each runs its share of the variants), submits it with
+                      sbatch, follows it with squeue and merges when it ends; Ctrl-C
+                      cancels the job (scancel). The same command resumes what is missing
+  --sbatch OPTION     one more #SBATCH line, e.g. --sbatch=--partition=short (repeat)
+  --max-running M     at most M tasks at once (the array's %M)
+  --no-wait           submit and return; tumble sweep --merge DIR when the job has ended
+
 Exit status: 0 every variant ran; 1 one or more failed; 2 bad input (an unknown PATH, an
 empty list: nothing is run); 130 stopped (Ctrl-C): run the same command to resume.
 )";
@@ -55,7 +66,17 @@ struct Options {
     std::vector<std::string> metrics;
     int jobs = 0;
     bool trajectories = false;
+    bool slurm = false;
+    SlurmOptions slurmOptions;
 };
+
+int wholeNumber(const std::string& flag, const std::string& v, int most) {
+    int n = 0;
+    char extra = 0;
+    if (std::sscanf(v.c_str(), "%d%c", &n, &extra) != 1 || n < 1 || n > most)
+        throw SweepError{flag + ": '" + v + "' is not a whole number from 1 to " + std::to_string(most)};
+    return n;
+}
 
 std::vector<std::string> splitList(const std::string& s) {
     std::vector<std::string> out;
@@ -90,12 +111,15 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--metric") {
             for (const std::string& m : splitList(next())) o.metrics.push_back(m);
         } else if (a == "--jobs") {
-            const std::string v = next();
-            int n = 0;
-            char extra = 0;
-            if (std::sscanf(v.c_str(), "%d%c", &n, &extra) != 1 || n < 1 || n > 1024)
-                throw SweepError{"--jobs: '" + v + "' is not a whole number from 1 to 1024"};
-            o.jobs = n;
+            o.jobs = wholeNumber(a, next(), 1024);
+        } else if (a == "--slurm") {
+            o.slurm = true;
+        } else if (a == "--sbatch") {
+            o.slurmOptions.sbatch.push_back(next());
+        } else if (a == "--max-running") {
+            o.slurmOptions.maxRunning = wholeNumber(a, next(), 1000000);
+        } else if (a == "--no-wait") {
+            o.slurmOptions.wait = false;
         } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
             throw SweepError{"sweep: unknown option '" + a + "' (see tumble sweep --help)"};
         } else if (o.scene.empty()) {
@@ -112,49 +136,12 @@ Options parse(const std::vector<std::string>& args) {
     if (o.scene.empty()) throw SweepError{"sweep: needs a scene file (see tumble sweep --help)"};
     if (o.out.empty()) throw SweepError{"sweep: needs --out DIR, the folder for its variants and results"};
     if (o.vary.empty()) throw SweepError{"sweep: nothing varies: give at least one --vary PATH=VALUES"};
+    if (!o.slurm && (!o.slurmOptions.sbatch.empty() || o.slurmOptions.maxRunning > 0 || !o.slurmOptions.wait))
+        throw SweepError{"--sbatch, --max-running and --no-wait go with --slurm"};
+    if (o.slurm && o.jobs > 0) throw SweepError{"--jobs is for a sweep on this machine; with --slurm, --max-running"};
+    o.slurmOptions.trajectories = o.trajectories;
     return o;
 }
-
-// "done / running / failed / ETA" on stderr: rewritten in place on a terminal, else a line
-// at most every two seconds and at the end.
-class Progress {
-public:
-    Progress(std::ostream& err, int total, int alreadyDone)
-        : err_(err), total_(total), done_(alreadyDone), tty_(isatty(2) != 0) {}
-    void finished(bool ok, double wall) {
-        ++done_;
-        ++ranHere_;
-        failed_ += ok ? 0 : 1;
-        wallSum_ += wall;
-    }
-    void show(int running, int parallel, bool last = false) {
-        const auto now = std::chrono::steady_clock::now();
-        if (!last && !tty_ && now - shown_ < std::chrono::seconds(2)) return;
-        if (!last && !tty_ && done_ == lastDone_) return;
-        shown_ = now;
-        lastDone_ = done_;
-        char line[160];
-        std::string eta = "";
-        if (ranHere_ > 0 && done_ < total_) {
-            const double each = wallSum_ / ranHere_;
-            const double s = each * (total_ - done_) / std::max(1, parallel);
-            char buf[32];
-            std::snprintf(buf, sizeof buf, ", about %.0f s left", s);
-            eta = buf;
-        }
-        std::snprintf(line, sizeof line, "sweep: %d of %d done, %d running, %d failed%s", done_, total_, running,
-                      failed_, eta.c_str());
-        if (tty_) err_ << '\r' << line << "\x1b[K" << (last ? "\n" : "") << std::flush;
-        else err_ << line << '\n' << std::flush;
-    }
-
-private:
-    std::ostream& err_;
-    int total_, done_, failed_ = 0, ranHere_ = 0, lastDone_ = -1;
-    double wallSum_ = 0.0;
-    bool tty_;
-    std::chrono::steady_clock::time_point shown_{};
-};
 
 int finish(const Plan& plan, const fs::path& dir, const std::vector<std::string>& columns, bool stopped,
            std::ostream& out, std::ostream& err) {
@@ -172,7 +159,7 @@ int finish(const Plan& plan, const fs::path& dir, const std::vector<std::string>
     return t.failed > 0 || t.notRun > 0 ? kFailed : kOk;
 }
 
-int sweepLocally(const Options& o, std::ostream& out, std::ostream& err) {
+int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
     const fs::path dir = o.out;
     const Plan plan = makePlan(o.scene, o.vary);
     const std::vector<std::string> columns = metricColumns(plan, o.metrics);
@@ -182,20 +169,16 @@ int sweepLocally(const Options& o, std::ostream& out, std::ostream& err) {
     if (!ec && o.trajectories) fs::create_directories(dir / "trajectories", ec);
     if (ec) throw SweepError{dir.string() + ": " + ec.message()};
 
+    if (o.slurm) {
+        const bool ended = runOnSlurm(plan, dir, o.slurmOptions, out, err);
+        if (!o.slurmOptions.wait) return kOk;
+        return finish(plan, dir, columns, !ended, out, err);
+    }
     const std::string exe = selfExecutable();
     std::vector<Job> jobs;
     for (int k = 0; k < plan.count; ++k) {
         if (fs::exists(resultFile(plan, dir, k), ec)) continue;
-        Job job;
-        job.variant = k;
-        job.argv = {exe, "--headless", variantFile(plan, dir, k).string(), "--quiet", "--metrics",
-                    metricsFile(plan, dir, k).string()};
-        if (o.trajectories) {
-            job.argv.push_back("--out");
-            job.argv.push_back(trajectoryFile(plan, dir, k).string());
-        }
-        job.log = logFile(plan, dir, k);
-        jobs.push_back(std::move(job));
+        jobs.push_back(variantJob(plan, dir, k, o.trajectories, exe));
     }
     const int parallel = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     Progress progress(err, plan.count, plan.count - static_cast<int>(jobs.size()));
@@ -219,12 +202,20 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
             return kOk;
         }
     try {
+        // (Internal: one task of a Slurm array, sweep_slurm.h.)
+        if (args.size() == 4 && args[0] == "--task") {
+            int task = -1;
+            char extra = 0;
+            if (std::sscanf(args[3].c_str(), "%d%c", &task, &extra) != 1 || task < 0)
+                throw SweepError{"--task: '" + args[3] + "' is not a task index"};
+            return runTask(args[1], args[2], task);
+        }
         const Options o = parse(args);
         if (!o.merge.empty()) {
             const Plan plan = readPlan(o.merge);
             return finish(plan, o.merge, metricColumns(plan, o.metrics), false, out, err);
         }
-        return sweepLocally(o, out, err);
+        return sweepInFolder(o, out, err);
     } catch (const SweepError& e) {
         err << "tumble: " << e.message << "\n";
         return kInvalid;

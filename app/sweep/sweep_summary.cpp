@@ -70,6 +70,19 @@ fs::path trajectoryFile(const Plan& plan, const fs::path& dir, int k) {
 }
 fs::path resultFile(const Plan& plan, const fs::path& dir, int k) { return dir / "results" / (plan.name(k) + ".json"); }
 
+Job variantJob(const Plan& plan, const fs::path& dir, int k, bool trajectories, const std::string& exe) {
+    Job job;
+    job.variant = k;
+    job.argv = {exe, "--headless", variantFile(plan, dir, k).string(), "--quiet", "--metrics",
+                metricsFile(plan, dir, k).string()};
+    if (trajectories) {
+        job.argv.push_back("--out");
+        job.argv.push_back(trajectoryFile(plan, dir, k).string());
+    }
+    job.log = logFile(plan, dir, k);
+    return job;
+}
+
 void recordOutcome(const Plan& plan, const fs::path& dir, const Outcome& o) {
     ojson r;
     const ojson metrics = o.exitCode == 0 ? readJson(metricsFile(plan, dir, o.variant)) : ojson(nullptr);

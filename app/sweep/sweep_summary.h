@@ -19,6 +19,10 @@ std::filesystem::path logFile(const Plan& plan, const std::filesystem::path& dir
 std::filesystem::path trajectoryFile(const Plan& plan, const std::filesystem::path& dir, int k);
 std::filesystem::path resultFile(const Plan& plan, const std::filesystem::path& dir, int k);
 
+/// The process that runs variant k: `EXE --headless VARIANT --quiet --metrics FILE`
+/// (with a trajectory CSV when asked), its output into its log.
+Job variantJob(const Plan& plan, const std::filesystem::path& dir, int k, bool trajectories, const std::string& exe);
+
 /// Writes a variant's result file from how its process ended: status `ok` (exit 0, its
 /// measures read back), `invalid` (exit 2: a value the scene does not accept) or `failed`
 /// (any other end; the message is the last line it printed).
