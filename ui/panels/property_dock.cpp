@@ -8,6 +8,7 @@
 #include "panels/property_dock_impl.h"
 
 #include "panels/joint_panel.h"
+#include "sweep/sweep_dialog.h"
 #include "panels/live_state_box.h"
 #include "panels/field_guard.h"
 
@@ -257,6 +258,14 @@ void PropertyDock::setTimeline(Timeline* timeline) {
 QString PropertyDock::fieldError(const QString& field) const {
     QLabel* label = d_->errors.value(field);
     return label && !label->isHidden() ? label->text() : QString();
+}
+
+void PropertyDock::Impl::openSweep(const QString& key, double value) {
+    const auto bodies = selected();
+    if (bodies.size() != 1) return;
+    auto* dialog = new SweepDialog(doc, QString::fromStdString(bodies[0]->name) + "." + key, value, q);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    dialog->show();
 }
 
 }  // namespace tumble::ui

@@ -367,12 +367,22 @@ struct PropertyDock::Impl {
         return box;
     }
 
+    // "Sweep this value…" on a field of one selected body: `key` as tumble sweep names it
+    // after the body's name ("restitution", "shape.radius", "velocity[1]"); a function for
+    // the mass field, whose key is mass or density as the body has it.
+    void offerSweep(PropertySpinBox* spin, const std::function<QString()>& key) {
+        spin->setSweep([this, spin, key] { openSweep(key(), spin->value()); },
+                       [this] { return selected().size() == 1 && doc->selection().size() == 1; });
+    }
+    void openSweep(const QString& key, double value);  // (property_dock.cpp)
+
     PropertySpinBox* addDouble(QFormLayout* form, const QString& label, const QString& key,
                                const QString& suffix, double min, double step, const QString& text,
                                std::function<std::optional<double>(const BodyDesc&)> get,
                                std::function<void(BodyDesc&, double)> set) {
         auto* spin = new PropertySpinBox;
         spin->setObjectName(key);
+        offerSweep(spin, [key] { return key; });
         spin->setSuffix(suffix);
         spin->setSoftMinimum(min);
         spin->setSingleStep(step);
@@ -397,6 +407,8 @@ struct PropertyDock::Impl {
                           const QString& text, std::function<std::optional<Vec3>(const BodyDesc&)> get,
                           std::function<void(BodyDesc&, int, double)> set) {
         auto* edit = new VectorEdit(key, suffix);
+        if (key != "orientation")  // (Euler angles here; the file holds a quaternion)
+            for (int k = 0; k < 3; ++k) offerSweep(edit->component(k), [key, k] { return QString("%1[%2]").arg(key).arg(k); });
         QWidget* row = withError(edit, key);
         form->addRow(label, row);
         QObject::connect(edit, &VectorEdit::componentEdited, q, [this, key, text, set](int k, double v) {

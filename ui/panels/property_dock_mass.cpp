@@ -20,6 +20,10 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
     massKind->addItem(QObject::tr("Density"), 1);
     mass = new PropertySpinBox;
     mass->setObjectName("mass");
+    offerSweep(mass, [this] {
+        const auto bodies = selected();
+        return bodies.size() == 1 && bodies[0]->density ? QString("density") : QString("mass");
+    });
     mass->setSoftMinimum(0.0);
     mass->setSingleStep(0.1);
     h->addWidget(massKind);

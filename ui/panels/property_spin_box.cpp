@@ -1,7 +1,9 @@
 #include "panels/property_spin_box.h"
 
+#include <QContextMenuEvent>
 #include <QFontMetrics>
 #include <QLineEdit>
+#include <QMenu>
 #include <QStyle>
 #include <QStyleOptionSpinBox>
 #include <QLocale>
@@ -132,6 +134,31 @@ QValidator::State PropertySpinBox::validate(QString& text, int&) const {
 
 void PropertySpinBox::fixup(QString& input) const {
     if (mixed_) input = prefix() + mixedText() + suffix();
+}
+
+void PropertySpinBox::setSweep(std::function<void()> sweep, std::function<bool()> enabled) {
+    sweep_ = std::move(sweep);
+    sweepEnabled_ = std::move(enabled);
+}
+
+// The line edit's own menu and the steps, as QAbstractSpinBox makes them, and the sweep.
+void PropertySpinBox::contextMenuEvent(QContextMenuEvent* event) {
+    if (!sweep_) {
+        QDoubleSpinBox::contextMenuEvent(event);
+        return;
+    }
+    QMenu* menu = lineEdit()->createStandardContextMenu();
+    menu->setAttribute(Qt::WA_DeleteOnClose);
+    menu->addSeparator();
+    const StepEnabled steps = stepEnabled();
+    menu->addAction(tr("&Step up"), this, [this] { stepBy(1); })->setEnabled(steps & StepUpEnabled);
+    menu->addAction(tr("Step &down"), this, [this] { stepBy(-1); })->setEnabled(steps & StepDownEnabled);
+    menu->addSeparator();
+    QAction* sweep = menu->addAction(tr("Sweep this value…"), this, [this] { sweep_(); });
+    sweep->setObjectName("sweepThisValue");
+    sweep->setEnabled(!sweepEnabled_ || sweepEnabled_());
+    menu->popup(event->globalPos());
+    event->accept();
 }
 
 }  // namespace tumble::ui

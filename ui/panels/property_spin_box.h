@@ -8,6 +8,7 @@
 
 #include <QDoubleSpinBox>
 
+#include <functional>
 #include <limits>
 
 namespace tumble::ui {
@@ -40,7 +41,17 @@ public:
 
     static QString mixedText();
 
+    /// Adds "Sweep this value…" to the field's context menu, calling `sweep` (the panel
+    /// sets it for the values a sweep can vary; `enabled` says whether it can now: one body
+    /// selected, say).
+    void setSweep(std::function<void()> sweep, std::function<bool()> enabled);
+
+protected:
+    void contextMenuEvent(QContextMenuEvent* event) override;
+
 private:
+    std::function<void()> sweep_;
+    std::function<bool()> sweepEnabled_;
     QString stripped(const QString& text) const;
     bool mixed_ = false;
     double softMinimum_ = -std::numeric_limits<double>::infinity();
