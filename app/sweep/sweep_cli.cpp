@@ -54,6 +54,10 @@ On a Slurm cluster (DIR on a file system the nodes share):
                       cancels the job (scancel). The same command resumes what is missing
   --sbatch OPTION     one more #SBATCH line, e.g. --sbatch=--partition=short (repeat)
   --max-running M     at most M tasks at once (the array's %M)
+  --tasks T           at most T array tasks, each running its share of the variants one
+                      after another (default: a task per variant, up to 1000): for
+                      variants of a fraction of a second, which a task per variant would
+                      spend mostly waiting for the scheduler
   --no-wait           submit and return; tumble sweep --merge DIR when the job has ended
 
 Exit status: 0 every variant ran; 1 one or more failed; 2 bad input (an unknown PATH, an
@@ -118,6 +122,8 @@ Options parse(const std::vector<std::string>& args) {
             o.slurmOptions.sbatch.push_back(next());
         } else if (a == "--max-running") {
             o.slurmOptions.maxRunning = wholeNumber(a, next(), 1000000);
+        } else if (a == "--tasks") {
+            o.slurmOptions.tasks = wholeNumber(a, next(), 1000);
         } else if (a == "--no-wait") {
             o.slurmOptions.wait = false;
         } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
@@ -136,8 +142,9 @@ Options parse(const std::vector<std::string>& args) {
     if (o.scene.empty()) throw SweepError{"sweep: needs a scene file (see tumble sweep --help)"};
     if (o.out.empty()) throw SweepError{"sweep: needs --out DIR, the folder for its variants and results"};
     if (o.vary.empty()) throw SweepError{"sweep: nothing varies: give at least one --vary PATH=VALUES"};
-    if (!o.slurm && (!o.slurmOptions.sbatch.empty() || o.slurmOptions.maxRunning > 0 || !o.slurmOptions.wait))
-        throw SweepError{"--sbatch, --max-running and --no-wait go with --slurm"};
+    if (!o.slurm && (!o.slurmOptions.sbatch.empty() || o.slurmOptions.maxRunning > 0 || o.slurmOptions.tasks > 0 ||
+                     !o.slurmOptions.wait))
+        throw SweepError{"--sbatch, --max-running, --tasks and --no-wait go with --slurm"};
     if (o.slurm && o.jobs > 0) throw SweepError{"--jobs is for a sweep on this machine; with --slurm, --max-running"};
     o.slurmOptions.trajectories = o.trajectories;
     return o;

@@ -1,11 +1,14 @@
 #include "sweep_plan.h"
 
 #include <tumble/io/atomic_file.h>
+#include <tumble/integrators.h>
 #include <tumble/io/scene_file.h>
 
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -95,6 +98,11 @@ ojson& resolve(ojson& scene, const std::string& path, const std::string& sceneNa
     if (head == "settings") {
         node = &scene["settings"];
         what = "settings";
+        // Settings the file leaves out when they are the default: there to be varied.
+        if (steps.size() > 1 && steps[1].key == "integrator" && !node->contains("integrator"))
+            (*node)["integrator"] = defaultIntegrator().name;
+        if (steps.size() > 1 && steps[1].key == "impacts" && !node->contains("impacts"))
+            (*node)["impacts"] = toString(ImpactTiming::Exact);
     } else {
         for (const char* list : {"bodies", "joints"}) {
             if (!scene.contains(list)) continue;
@@ -211,8 +219,13 @@ Vary parseVary(const std::string& text) {
             throw SweepError{where + "the count '" + parts[2] + "' is not a whole number from 1 to 1000000"};
         const int count = static_cast<int>(n);
         if (count == 1 && a != b) throw SweepError{where + "one value cannot include both ends; give a count of 2 or more"};
-        for (int k = 0; k < count; ++k)
-            v.values.push_back(shortest(k == count - 1 ? b : a + (b - a) * k / (count - 1)));
+        // Each value to 12 significant digits: 0.1 to 1.5 in 15 steps is 0.4, not
+        // 0.39999999999999997 (the values are what the summary shows and the variants hold).
+        for (int k = 0; k < count; ++k) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%.12g", k == count - 1 ? b : a + (b - a) * k / (count - 1));
+            v.values.push_back(shortest(std::strtod(buf, nullptr)));
+        }
         return v;
     }
     v.values = split(values, ',');

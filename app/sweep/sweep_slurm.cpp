@@ -87,7 +87,8 @@ bool runOnSlurm(const Plan& plan, const fs::path& dir, const SlurmOptions& optio
     int n = 0;
     while (fs::exists(abs / "slurm" / ("submit-" + std::to_string(n) + ".json"), ec)) ++n;
     const fs::path list = abs / "slurm" / ("submit-" + std::to_string(n) + ".json");
-    const int tasks = std::min(static_cast<int>(pending.size()), kMostTasks);
+    const int tasks = std::min({static_cast<int>(pending.size()), kMostTasks,
+                                options.tasks > 0 ? options.tasks : kMostTasks});
     try {
         io::writeFileAtomically(
             list, ojson({{"tasks", tasks}, {"trajectories", options.trajectories}, {"variants", pending}}).dump() + "\n");

@@ -19,6 +19,7 @@ namespace tumble::sweep {
 struct SlurmOptions {
     std::vector<std::string> sbatch;  // more #SBATCH options, each as given ("--partition=short")
     int maxRunning = 0;               // the array's %M (0: no limit)
+    int tasks = 0;                    // at most this many array tasks (0: one per variant, up to 1000)
     bool wait = true;                 // false: submit and return
     bool trajectories = false;        // a trajectory CSV per variant too
 };

@@ -120,6 +120,21 @@ private slots:
         QVERIFY(rows[0].value("state_hash") != rows[1].value("state_hash"));
     }
 
+    // A setting the file leaves at its default (the integrator, the impacts' timing) can be
+    // varied too: each variant holds it, and runs as the scene with that setting does.
+    void settingsTheFileLeavesOut() {
+        RUN(r, {"sweep", "drop.json", "--vary", "settings.integrator=rk4,euler", "--vary",
+                "settings.impacts=end-of-step", "--out", "sw"});
+        QCOMPARE(r.code, 0);
+        const auto rows = summaryRows(read("sw/summary.csv"));
+        QCOMPARE(rows.size(), 2);
+        RUN(rk4, {"--headless", "drop.json", "--integrator", "rk4", "--impacts", "end-of-step"});
+        RUN(euler, {"--headless", "drop.json", "--integrator", "euler", "--impacts", "end-of-step"});
+        QCOMPARE(rows[0].value("state_hash"), report(rk4.out).value("state_hash"));
+        QCOMPARE(rows[1].value("state_hash"), report(euler.out).value("state_hash"));
+        QVERIFY(rows[0].value("state_hash") != rows[1].value("state_hash"));
+    }
+
     // Stopped by SIGINT (as Ctrl-C does) after its first result, the sweep exits 130, keeps
     // what finished, leaves no half-written file, and lists the rest as not run; killed
     // outright (SIGKILL) it leaves what finished too. The same command then runs only what

@@ -1,6 +1,7 @@
 #include "sweep/sweep_dialog.h"
 
 #include "document/document.h"
+#include "panels/property_spin_box.h"
 
 #include <tumble/io/scene_file.h>
 
@@ -34,6 +35,7 @@
 #include <QValueAxis>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -46,10 +48,9 @@ QString& executable() {
     return program;
 }
 
-QDoubleSpinBox* numberBox(double value) {
-    auto* box = new QDoubleSpinBox;
-    box->setRange(-1e12, 1e12);
-    box->setDecimals(6);
+// (The property panel's spin box: numbers as typed, no trailing zeros.)
+PropertySpinBox* numberBox(double value) {
+    auto* box = new PropertySpinBox;
     box->setValue(value);
     return box;
 }
@@ -124,7 +125,13 @@ SweepDialog::SweepDialog(Document* doc, const QString& path, double value, QWidg
 
     auto* form = new QFormLayout;
     auto* first = new QHBoxLayout;
-    const double low = value == 0.0 ? 0.0 : 0.5 * value, high = value == 0.0 ? 1.0 : 1.5 * value;
+    // Around the value, half to one and a half times it (0 to 1 from 0); a restitution
+    // stays within [0, 1].
+    double low = value == 0.0 ? 0.0 : 0.5 * value, high = value == 0.0 ? 1.0 : 1.5 * value;
+    if (path.endsWith(".restitution")) {
+        low = std::clamp(low, 0.0, 1.0);
+        high = std::clamp(high, 0.0, 1.0);
+    }
     from_ = numberBox(std::min(low, high));
     to_ = numberBox(std::max(low, high));
     count_ = countBox(5);

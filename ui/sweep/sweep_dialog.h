@@ -13,7 +13,6 @@
 #include <QStringList>
 
 class QComboBox;
-class QDoubleSpinBox;
 class QLabel;
 class QProgressBar;
 class QPushButton;
@@ -25,6 +24,7 @@ class QWidget;
 namespace tumble::ui {
 
 class Document;
+class PropertySpinBox;
 
 class SweepDialog : public QDialog {
     Q_OBJECT
@@ -73,7 +73,7 @@ private:
     QString folder_;
     QProcess process_;
     QByteArray errors_;
-    QDoubleSpinBox *from_ = nullptr, *to_ = nullptr, *from2_ = nullptr, *to2_ = nullptr;
+    PropertySpinBox *from_ = nullptr, *to_ = nullptr, *from2_ = nullptr, *to2_ = nullptr;
     QSpinBox *count_ = nullptr, *count2_ = nullptr;
     QCheckBox* second_ = nullptr;
     QComboBox *path2_ = nullptr, *measure_ = nullptr;

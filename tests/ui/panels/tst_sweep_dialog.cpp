@@ -76,8 +76,8 @@ private slots:
         auto* dialog = dock.findChild<SweepDialog*>();
         QVERIFY(dialog);
         QCOMPARE(dialog->windowTitle(), QString("Sweep ball.restitution"));
-        QCOMPARE(test::field<QDoubleSpinBox>(*dialog, "from")->value(), 0.25);
-        QCOMPARE(test::field<QDoubleSpinBox>(*dialog, "to")->value(), 0.75);
+        QCOMPARE(test::field<PropertySpinBox>(*dialog, "from")->value(), 0.25);
+        QCOMPARE(test::field<PropertySpinBox>(*dialog, "to")->value(), 0.75);
         // Several bodies selected: which one's value would it be? Not offered.
         doc.setSelection({0, 1});
         QApplication::sendEvent(spin, &event);
