@@ -168,7 +168,7 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
                 measure(model, state, at, rows);
                 break;
             }
-            if (from && h > 0.0)  // the move as the impulse J / h over the step (RATTLE)
+            if (from && h != 0.0)  // the move as the impulse J / h over the step (RATTLE)
                 for (const Rows& r : rows) {
                     const JointModel& j = *r.joint;
                     const Vec3 J = scale * (r.D * lambda.segment(r.offset, r.count));

@@ -357,7 +357,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     if (!lambda.allFinite()) return error;
     nudgeGeneral(then, A, a, moveA, B, b, moveB, lambda);
     const double past = projectLimit(j, a, b, moveA, moveB, A, B, near);
-    if (from && h > 0.0) {  // the move was made by the impulse λ / h over the step
+    if (from && h != 0.0) {  // the move was made by the impulse λ / h over the step
         s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * lambda.head(then.nl) / h;
         s.projectedCouple[j.index] += then.ang.leftCols(then.na) * lambda.segment(then.nl, then.na) / h;
         if (moveA) applyToBody(s.bodies[j.a], then.JA * (lambda / h));
@@ -411,7 +411,7 @@ double projectOne(const Model& model, State& state, ContactSolverScratch& s, dou
     if (!J.allFinite()) return error;
     if (moveA) nudge(A, a, arA, J);
     if (moveB) nudge(B, state.bodies[j.b], arB, -J);
-    if (from && h > 0.0) {  // the move was made by the impulse J / h over the step
+    if (from && h != 0.0) {  // the move was made by the impulse J / h over the step
         if (moveA) applyImpulse(s.bodies[j.a], arA, J / h);
         if (moveB) applyImpulse(s.bodies[j.b], arB, -J / h);
         s.projectedImpulse[j.index] += J / h;
@@ -427,7 +427,7 @@ bool samePlace(const ContactSolverScratch::JointCheck::Place& p, const BodyState
 
 // One Gauss-Seidel pass of Newton steps over the active joints; returns the largest error
 // it found. With `from` (the step's start) the impulses act along the joints' directions
-// there and, with h > 0, also change the solver bodies' velocities (RATTLE); without, along
+// there and, with h ≠ 0, also change the solver bodies' velocities (RATTLE); without, along
 // the directions now, positions only (a plain nonlinear Gauss-Seidel projection). With
 // `checks` (the positions-only passes), joints found holding are remembered as held.
 double projectionPass(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
@@ -464,7 +464,7 @@ double projectionPass(const Model& model, State& state, ContactSolverScratch& s,
 }  // namespace
 
 void projectJoints(const Model& model, State& state, ContactSolverScratch& s, double h, const State* start) {
-    if (start && h > 0.0) {
+    if (start && h != 0.0) {
         s.projectedImpulse.assign(model.joints.size(), Vec3::Zero());
         s.projectedCouple.assign(model.joints.size(), Vec3::Zero());
     }
@@ -485,7 +485,7 @@ void projectJoints(const Model& model, State& state, ContactSolverScratch& s, do
     for (int pass = 0; pass < kProjectionPasses && worst > kHeld; ++pass)
         worst = projectionPass(model, state, s, 0.0, nullptr, &s.jointChecks);
     s.jointsOpen = smallGroupsOpen(model, state, s);
-    if (start && h > 0.0)
+    if (start && h != 0.0)
         for (const JointModel& j : model.joints)
             for (int i : {j.a, j.b})
                 if (movable(model, state, i)) s.bodies[i].x = state.bodies[i].x;

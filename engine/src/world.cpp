@@ -17,8 +17,6 @@
 #include <tumble/world.h>
 
 #include "joint_general.h"
-#include "joint_math.h"
-#include "joint_projection.h"
 #include "world_scratch.h"
 
 #include "guard.h"
@@ -103,23 +101,7 @@ World::World(Model model, State state)
     }
     scratch_->touchTolerance = kTouchTolerance * largest;
     scratch_->contacts = needsContacts(model_) || !model_.joints.empty();  // joints are solved with the contacts
-    for (const JointModel& j : model_.joints)
-        for (int i : {j.a, j.b}) {
-            if (i < 0) continue;
-            const BodyModel& b = model_.bodies[i];
-            if (b.motion == Motion::Dynamic) scratch_->jointedBodies.push_back(i);
-            if (b.motion == Motion::Kinematic && !b.standsStill()) scratch_->jointsPassive = false;
-        }
-    for (const JointModel& j : model_.joints) scratch_->jointsPassive = scratch_->jointsPassive && !j.motor;
-    // (A group of more than 64 joints is left to Gauss-Seidel, which gives and takes energy
-    // as its passes go: a 100-link chain at 1/60 s split a fifth of its steps for gains its
-    // total energy never showed, and cost 50 % more. Only the energy of small groups counts.)
-    scratch_->jointsPassive = scratch_->jointsPassive && largestJointGroup(model_) <= joint::kMostGroupJoints;
-    std::sort(scratch_->jointedBodies.begin(), scratch_->jointedBodies.end());
-    scratch_->jointedBodies.erase(std::unique(scratch_->jointedBodies.begin(), scratch_->jointedBodies.end()),
-                                  scratch_->jointedBodies.end());
-    for (int i : scratch_->jointedBodies)
-        scratch_->jointedWeight += model_.bodies[i].mass * model_.settings.gravity.norm() * scratch_->sizes[i];
+    prepareJointedSteps();
     if (scratch_->contacts) {
         // The contact stages' per-body arrays, at loading rather than in the first step.
         sizeContactSolver(model_, scratch_->solver);
@@ -284,57 +266,6 @@ Profile World::profile() const {
     return p;
 }
 
-void World::step(double h) {
-    if (model_.joints.empty())
-        stepWhole(h);
-    else
-        stepJointed(h, 0);
-}
-
-// A step whose joints it could not keep is taken again from its start as two halves, each
-// of which may split once more (at most four pieces). Not kept: a joint left open, its
-// projection (joints.h) not converged (a 50-link chain whipping at 1/30 s opened by 0.25 %
-// of its length, and held to 1e-13 m at 1/35 s and shorter); or, where joints can only take
-// energy out (no motor, no moving kinematic body), joints that gave the bodies more than a
-// thousandth of their kinetic energy and weight (the same chain at 1/20 s gained 41 % of
-// its energy in one step whose projection converged). "Open" is 1e-8 of the largest body's
-// size: the projection stops at 1e-13 m, and a pile of ragdolls whose passes run to their
-// cap ends near 1e-11 m.
-void World::stepJointed(double h, int splits) {
-    constexpr int kMostSplits = 2;
-    Scratch& s = *scratch_;
-    if (splits >= kMostSplits) {
-        stepWhole(h);
-        return;
-    }
-    if (static_cast<int>(s.jointRedo.size()) <= splits) s.jointRedo.resize(splits + 1);
-    Scratch::JointRedo& r = s.jointRedo[splits];
-    r.state = state_;
-    r.ledger = ledger_;
-    r.guard = s.energy;
-    double kinetic = 0.0;
-    for (int i : s.jointedBodies) {
-        const BodyState& b = state_.bodies[i];
-        kinetic += 0.5 * (b.P.squaredNorm() / model_.bodies[i].mass + b.L.dot(angularVelocity(model_.bodies[i], b)));
-    }
-    s.solver.stepJointsOpen = 0.0;
-    stepWhole(h);
-    const double open = 1e-3 * s.touchTolerance;  // (kTouchTolerance: 1e-5 of the largest size)
-    const double gained = r.ledger.lostInJoints - ledger_.lostInJoints;
-    const bool kept = !(s.solver.stepJointsOpen > open) &&
-                      !(s.jointsPassive && gained > 1e-3 * (kinetic + s.jointedWeight));
-    if (kept) return;
-    const double end = state_.time;
-    state_ = r.state;
-    ledger_ = r.ledger;
-    s.energy = r.guard;
-    forgetStill(s.still);  // (what the step taken back found still)
-    ++profile_.jointSplits;
-    stepJointed(0.5 * h, splits + 1);
-    stepJointed(end - state_.time, splits + 1);
-    state_.time = end;  // (the halves' sum may differ from h in its last bit)
-}
-
 void World::stepWhole(double h) {
     Scratch& s = *scratch_;
     DetectScratch& d = s.detect;
@@ -342,7 +273,7 @@ void World::stepWhole(double h) {
     s.stepStart0 = state_.time;
     s.stepLength = h;
     ++profile_.steps;
-    s.resting = restingSpeed(model_, h);
+    s.resting = restingSpeed(model_, std::abs(h));  // (a composed step's middle piece is negative)
     s.margin = contactMargin(model_, s.touchTolerance, h);
     if (!s.contacts) {  // nothing can touch: the contact stages are skipped
         advance(h);

@@ -67,6 +67,7 @@ struct World::Scratch {
     std::vector<int> jointedBodies;  // dynamic bodies with a joint (the model never changes)
     double jointedWeight = 0.0;      // Σ m |g| r over them: the floor of the energy a split checks
     bool jointsPassive = true;       // no motor, no joint to a kinematic body that moves
+    bool composed = false;           // a mechanism stepped by World::stepComposed
 };
 
 // What a cut goes back to: the state without its contact memory and touching pairs, which

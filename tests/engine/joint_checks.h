@@ -1,9 +1,11 @@
 // What the joint suites build and measure: a joint, how far a joint is from holding in a
-// World, and the energy of the dynamic bodies (kinetic plus gravity's potential along y,
-// g = 9.81).
+// World, the energy of the dynamic bodies (kinetic plus gravity's potential along y,
+// g = 9.81), the elliptic integral of a pendulum's period, and a swing's crossings.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <string>
 
 #include <tumble/model.h>
@@ -47,5 +49,34 @@ inline double energy(const World& w) {
     }
     return e;
 }
+
+/// K(k), the complete elliptic integral of the first kind, by the arithmetic-geometric mean.
+inline double ellipticK(double k) {
+    double a = 1.0, b = std::sqrt(1.0 - k * k);
+    for (int i = 0; i < 40; ++i) {
+        const double an = 0.5 * (a + b);
+        b = std::sqrt(a * b);
+        a = an;
+    }
+    return std::numbers::pi / (2.0 * a);
+}
+
+/// Times at which a body's centre crosses x = 0 (interpolated within the step): the
+/// period from the first to the last, two crossings a period. add() after each step.
+struct Crossings {
+    double lastX, first = -1.0, last = -1.0;
+    int count = 0;
+    explicit Crossings(double x0) : lastX(x0) {}
+    void add(double t0, double h, double x) {
+        if ((lastX > 0.0) != (x > 0.0)) {
+            const double t = t0 + h * lastX / (lastX - x);
+            if (first < 0.0) first = t;
+            last = t;
+            ++count;
+        }
+        lastX = x;
+    }
+    double period() const { return 2.0 * (last - first) / (count - 1); }
+};
 
 }  // namespace tumble::test

@@ -73,7 +73,10 @@ public:
     /// likely cause, when a body's state becomes non-finite or (settings.energyGuard) the
     /// scene's energy runs away. A step after which a joint is left open (its projection did
     /// not converge: a whipping chain at 1/30 s) is taken again as two steps of h/2, and
-    /// each of those likewise once more (at most four pieces).
+    /// each of those likewise once more (at most four pieces). A mechanism alone (joints
+    /// without limits, motors or breaking, no damping, no two bodies that can touch) with
+    /// the splitting-4 integrator takes three such steps, of h/(2 - 2^(1/3)), a negative
+    /// middle one and the first again: a fourth-order step (docs/architecture.md "Joints").
     void step(double h);
 
     /// Worker threads for the stages whose items are independent (narrow phase and time of
@@ -97,6 +100,8 @@ public:
 private:
     void stepWhole(double h);                // one step of h, as step() describes
     void stepJointed(double h, int splits);  // stepWhole, in halves while the joints stay open
+    void stepComposed(double h);             // a fourth-order composition of stepJointed
+    void prepareJointedSteps();              // (the constructor: what those need of the model)
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
     void impactsAtStart();             // touching bodies that approach as a run starts
