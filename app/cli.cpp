@@ -1,4 +1,5 @@
 #include "cli.h"
+#include "arg_reader.h"
 #include "sweep/run_metrics.h"
 #include "sweep/sweep_cli.h"
 
@@ -127,19 +128,12 @@ double parseNumber(const std::string& flag, const std::string& text) {
 
 Options parse(const std::vector<std::string>& args) {
     Options o;
-    for (size_t i = 0; i < args.size(); ++i) {
-        std::string a = args[i];
-        std::string value;
-        bool hasValue = false;
-        if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-            value = a.substr(a.find('=') + 1);
-            a = a.substr(0, a.find('='));
-            hasValue = true;
-        }
+    ArgReader reader(args);
+    while (reader.next()) {
+        const std::string& a = reader.flag();
         auto next = [&]() -> std::string {
-            if (hasValue) return value;
-            if (i + 1 >= args.size()) throw UsageError{a + ": needs a value"};
-            return args[++i];
+            if (auto v = reader.value()) return *v;
+            throw UsageError{a + ": needs a value"};
         };
         if (a == "--headless") continue;
         if (a == "--quiet") o.quiet = true;

@@ -1,5 +1,7 @@
 #include "sweep_cli.h"
 
+#include "arg_reader.h"
+
 #include "sweep_plan.h"
 #include "sweep_progress.h"
 #include "sweep_slurm.h"
@@ -95,18 +97,12 @@ std::vector<std::string> splitList(const std::string& s) {
 
 Options parse(const std::vector<std::string>& args) {
     Options o;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        std::string a = args[i], value;
-        bool hasValue = false;
-        if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-            value = a.substr(a.find('=') + 1);
-            a = a.substr(0, a.find('='));
-            hasValue = true;
-        }
+    cli::ArgReader reader(args);
+    while (reader.next()) {
+        const std::string& a = reader.flag();
         auto next = [&]() -> std::string {
-            if (hasValue) return value;
-            if (i + 1 >= args.size()) throw SweepError{a + ": needs a value"};
-            return args[++i];
+            if (auto v = reader.value()) return *v;
+            throw SweepError{a + ": needs a value"};
         };
         if (a == "--vary") o.vary.push_back(parseVary(next()));
         else if (a == "--out") o.out = next();
