@@ -168,6 +168,20 @@ bool runOnSlurm(const Plan& plan, const fs::path& dir, const SlurmOptions& optio
     countResults(plan, dir, done, failed);
     progress.set(done, failed);
     progress.show(0, 1, true);
+    // Tasks that ended without running all their variants (a time limit, a node lost): where
+    // accounting is on, sacct says how; their variants stay without a result (`not run`),
+    // and the same command runs them again. (Accounting off, as on the test cluster: sacct
+    // fails and nothing is said.)
+    if (done < plan.count) {
+        const Command acct = shell("sacct -n -P -X -j " + job + " -o JobID,State");
+        std::istringstream lines(acct.status == 0 ? acct.output : std::string());
+        for (std::string line; std::getline(lines, line);) {
+            const auto bar = line.find('|');
+            if (bar == std::string::npos || line.compare(bar + 1, 9, "COMPLETED") == 0) continue;
+            err << "tumble sweep: Slurm task " << line.substr(0, bar) << " ended " << line.substr(bar + 1)
+                << "; its variants without a result run again with the same command\n";
+        }
+    }
     return true;
 }
 

@@ -3,7 +3,8 @@
 // an array (`#SBATCH --array=0-(T-1)`, at most 1000 tasks: task t takes the list's entries
 // t, t + T, ...), each task with `tumble sweep --task DIR LIST t`, which runs its variants one
 // by one exactly as a local sweep does (the same child process, the same result files).
-// The sweep then follows the job with squeue, and merges when it has left the queue. Slurm
+// The sweep then follows the job with squeue, and merges when it has left the queue (a task
+// that ended short is named from sacct where accounting is on). Slurm
 // is only ever called (sbatch, squeue, scancel): it is the scheduler, Tumble has none.
 #pragma once
 
