@@ -34,6 +34,18 @@ SceneDesc pendulum(double L, double r, double theta0) {
     return s;
 }
 
+// The period tests' rows: a small and a large swing, with the default step (RATTLE, second
+// order: 2e-4) and with splitting-4 (its fourth-order composition: the 1e-6).
+void periodRows() {
+        QTest::addColumn<double>("theta0");
+        QTest::addColumn<double>("tolerance");
+        QTest::addColumn<QString>("integrator");
+        QTest::newRow("small, 0.1 rad") << 0.1 << 2e-4 << "";
+        QTest::newRow("large, 2 rad") << 2.0 << 2e-4 << "";
+        QTest::newRow("small, 0.1 rad, splitting-4") << 0.1 << 1e-6 << "splitting-4";
+        QTest::newRow("large, 2 rad, splitting-4") << 2.0 << 1e-6 << "splitting-4";
+}
+
 }  // namespace
 
 class TestJointAccuracy : public QObject {
@@ -44,15 +56,7 @@ private slots:
     // vertical (interpolated), over 20 s at 1/240 s; the joint held to 1e-9 m all along.
     // With splitting-4 the step is a fourth-order composition (World::stepComposed): the
     // issue's 1e-6 over 60 s (RATTLE alone: (ωh)²/24 = 7.1e-6 for small swings).
-    void pendulumPeriod_data() {
-        QTest::addColumn<double>("theta0");
-        QTest::addColumn<double>("tolerance");
-        QTest::addColumn<QString>("integrator");
-        QTest::newRow("small, 0.1 rad") << 0.1 << 2e-4 << "";
-        QTest::newRow("large, 2 rad") << 2.0 << 2e-4 << "";
-        QTest::newRow("small, 0.1 rad, splitting-4") << 0.1 << 1e-6 << "splitting-4";
-        QTest::newRow("large, 2 rad, splitting-4") << 2.0 << 1e-6 << "splitting-4";
-    }
+    void pendulumPeriod_data() { periodRows(); }
     void pendulumPeriod() {
         QFETCH(double, theta0);
         QFETCH(double, tolerance);
@@ -191,15 +195,7 @@ private slots:
     // only a turn across the axis could give it: the hinge takes it out at once, and the
     // bar swings in its plane from then on, its axis and anchor held to 1e-9.
     // (splitting-4: the fourth-order composition, within the 1e-6 over 60 s.)
-    void hingePendulum_data() {
-        QTest::addColumn<double>("theta0");
-        QTest::addColumn<double>("tolerance");
-        QTest::addColumn<QString>("integrator");
-        QTest::newRow("small, 0.1 rad") << 0.1 << 2e-4 << "";
-        QTest::newRow("large, 2 rad") << 2.0 << 2e-4 << "";
-        QTest::newRow("small, 0.1 rad, splitting-4") << 0.1 << 1e-6 << "splitting-4";
-        QTest::newRow("large, 2 rad, splitting-4") << 2.0 << 1e-6 << "splitting-4";
-    }
+    void hingePendulum_data() { periodRows(); }
     void hingePendulum() {
         QFETCH(double, theta0);
         QFETCH(double, tolerance);
