@@ -342,9 +342,8 @@ void markChangedMemory(const State& state, double h, ContactSolverScratch& s, bo
     }
     for (size_t b = 0; b < s.blocks.size(); ++b) {
         const auto& block = s.blocks[b];
-        // A body that moves ends with momentum and is not still whatever its memory.
-        const Point& p = s.points[block.begin];
-        if (!atRest(s.bodies[p.a]) || !atRest(s.bodies[p.b])) continue;
+        // Every block, moving bodies' too: the energy limit, after this, can stop a body
+        // that moves here (all of a step's motion scaled by 0), which then ends at rest.
         for (int i = 0; i < block.count; ++i) {
             const ContactMemory m = memoryOf(s, block, i, h, s.kept[b]);
             const int k = s.geometry[block.begin + i].memory;
@@ -409,12 +408,13 @@ void slidingFriction(double sliding, ContactSolverScratch& s) {
     for (const auto& block : s.blocks) {
         if (block.mu <= 0.0) continue;
         const double limit = block.mu * normalImpulse(s, block);
-        if (!(limit > 0.0) || block.lambdaT.norm() < (1.0 - 1e-9) * limit) continue;
+        const Eigen::Vector2d T = block.lambdaT + block.shockT;  // all the friction applied
+        if (!(limit > 0.0) || T.norm() < (1.0 - 1e-9) * limit) continue;
         // ... and still sliding at the end: a resting pile's side contacts hold almost no
         // normal impulse, so their friction sits at its (tiny) limit while nothing moves.
         if (!(slipVelocity(s, block).norm() > sliding)) continue;
         const Point& p = s.points[block.begin];
-        const Vec3 J = block.lambdaT[0] * block.t1 + block.lambdaT[1] * block.t2;
+        const Vec3 J = T[0] * block.t1 + T[1] * block.t2;
         s.slide[p.a] += s.bodies[p.a].invMass * J;
         s.slide[p.b] -= s.bodies[p.b].invMass * J;
     }
@@ -506,7 +506,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     bool converged = false;
     for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k, cfg.quietSpeed);
     // (Not with joints yet: the shock pass holds bodies still that a joint may have to move.)
-    if (!s.blocks.empty() && s.jointRows.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed);
+    if (!s.blocks.empty() && s.jointRows.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed, kStillSpeed * cfg.restingSpeed);
     stopRoundingMotion(sizes, kStillSpeed * cfg.restingSpeed, s);
     remember(model, state, cfg.h, cfg.quietSpeed, s, true);
     rememberJoints(model, s, cfg.h, state);

@@ -79,6 +79,10 @@ struct ContactSolverScratch {
         double twistMass = 0.0, radius = 0.0;
         Eigen::Vector2d lambdaT = Eigen::Vector2d::Zero();
         double lambdaTwist = 0.0;
+        // What the shock pass added to the friction (shock_propagation.cpp): applied to the
+        // bodies and counted in the ledger, but not remembered for the next warm start.
+        Eigen::Vector2d shockT = Eigen::Vector2d::Zero();
+        double shockTwist = 0.0;
         // The friction impulses the warm start gave: a block at rest that ends with about
         // them is remembered as it was (remember).
         Eigen::Vector2d warmT = Eigen::Vector2d::Zero();

@@ -184,7 +184,12 @@ private slots:
         Run r(scene);
         QVERIFY(r.step(1.0 / 60, 300));
         compareEnds(r);
-        QVERIFY(r.skipped() > r.bodySteps() / 10);
+        // Few of these rocks come to an exact fixed point (at 6-9 s about one body a step
+        // is skipped), so the share depends on how the heap happened to land: 663 of 4 610
+        // body-steps with the shock pass's friction always remembered, 180 of 4 717 since
+        // it is remembered only on a support at rest (shock_propagation.cpp). (One rock
+        // starts under the bowl's rim and falls away.)
+        QVERIFY(r.skipped() > r.bodySteps() / 40);
     }
 
     void aMovingPlatformBesideARestingPile() {
