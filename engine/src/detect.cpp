@@ -205,6 +205,8 @@ namespace {
 
 // cos 45°: a contact at the end whose normal is this near the first touch's is on the near side.
 constexpr double kSameSide = 0.7071;
+constexpr double kSurelySameSide = 0.7660;  // cos 40°
+constexpr double kNearTouch = 1e-3;         // of the smaller body
 
 Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& after) {
     Sweep w;
@@ -284,8 +286,17 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
         const double size = std::min(sizes[a], sizes[b]);
-        const auto hit = timeOfImpact(A.collider, sweepOf(A, before.bodies[a], after.bodies[a]), B.collider,
-                                      sweepOf(B, before.bodies[b], after.bodies[b]), tolerance * size);
+        const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a]), sb = sweepOf(B, before.bodies[b], after.bodies[b]);
+        if (found >= 0) {
+            // Touching at the end: whether the first touch was on the same side needs no
+            // exact moment. Near it (within 1e-3 of the smaller body) its normal is taken
+            // when it is well inside the same-side cone (40°, 5° to spare); else the moment
+            // is found as for a cut.
+            const auto near = timeOfImpact(A.collider, sa, B.collider, sb, kNearTouch * size);
+            if (!near) return;
+            if (s.contacts[found].normal.dot(near->normal) >= kSurelySameSide) return;
+        }
+        const auto hit = timeOfImpact(A.collider, sa, B.collider, sb, tolerance * size);
         if (!hit) return;
         // Touching at the end along much the normal of the first touch: the end's contact is
         // on the side the bodies met, not past the middle, and the contact solver resolves

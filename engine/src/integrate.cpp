@@ -179,6 +179,8 @@ Quat turnBetween(const Vec3& a, const Vec3& b) {
 }
 
 void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) {
+    // No spin, no turn (a body at rest on others: the solver leaves it so to the bit).
+    if (s.L.isZero(0.0)) return;
     // A body whose three moments are equal (a sphere, a cube) spins at ω = L / I, constant:
     // one exact turn about L, whatever the step.
     const Vec3& I = b.principalMoments;
