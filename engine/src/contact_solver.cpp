@@ -235,7 +235,7 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
 // most that speed times the block's first normal mass, 1e-10 of the resting speed from
 // World): the blocks of a resting pile otherwise hover in their last bits for all twenty
 // passes (piles-sleep-off: 6.0 M block updates in 600 steps, 0.52 M with the tolerance).
-// With quietSpeed 0 the skipping is exact. Stamps count block updates within the step; a
+// Between moving bodies "nothing" is also up to 1e-4 of how fast they move (updateBlock). Stamps count block updates within the step; a
 // body that cannot move (static, kinematic) is never stamped, since no impulse changes it.
 bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     const int nb = static_cast<int>(s.blocks.size());
