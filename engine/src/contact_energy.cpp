@@ -156,9 +156,9 @@ double frictionLost(ContactSolverScratch& s) {
         const SolverBody &A = s.bodies[p.a], &B = s.bodies[p.b];
         const Vec3 u =
             relativeVelocity(A0, block.rA, B0, block.rB) + relativeVelocity(A, block.rA, B, block.rB);
-        const Eigen::Vector2d T = block.lambdaT + block.shockT;  // all the friction applied
+        const Eigen::Vector2d T = block.frictionApplied();
         const Vec3 J = T[0] * block.t1 + T[1] * block.t2;
-        const double twist = block.lambdaTwist + block.shockTwist;
+        const double twist = block.twistApplied();
         const double l = -(0.5 * J.dot(u) + 0.5 * twist * p.n.dot(A0.w - B0.w + A.w - B.w));
         lost += l;
         if (keep) s.frictionShare[A.invMass > 0.0 ? p.a : p.b] += l;

@@ -9,7 +9,8 @@ using Point = ContactSolverScratch::Point;
 
 namespace {
 
-constexpr double kQuietShare = 1e-4;  // of the bodies' motion: a block's change below it is quiet (updateBlock)
+// Of the bodies' motion: a block whose change is below it is quiet (updateBlock).
+constexpr double kQuietShare = 1e-4;
 
 // The normal velocity of A's point relative to B's.
 double normalVelocity(const SolverBody& A, const SolverBody& B, const Point& p) {

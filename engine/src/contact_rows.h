@@ -35,9 +35,9 @@ Eigen::Vector2d slipVelocity(const ContactSolverScratch& s, const ContactSolverS
 double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block);
 /// Block k of s.blocks, friction then normals, unless it is quiet: its last update changed
 /// its impulses by at most its normal mass times quietSpeed, or times 1e-4 of how fast its
-/// bodies move, whichever is more, and no block has changed its
-/// bodies since (ContactSolverScratch::quietSince, changedAt). Returns whether it changed
-/// more than that (and then stamps its bodies).
+/// bodies move, whichever is more, and no block has changed its bodies since
+/// (ContactSolverScratch::quietSince, changedAt). Returns whether it changed more than that
+/// (and then stamps its bodies).
 bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed);
 
 }  // namespace tumble

@@ -235,8 +235,9 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
 // most that speed times the block's first normal mass, 1e-10 of the resting speed from
 // World): the blocks of a resting pile otherwise hover in their last bits for all twenty
 // passes (piles-sleep-off: 6.0 M block updates in 600 steps, 0.52 M with the tolerance).
-// Between moving bodies "nothing" is also up to 1e-4 of how fast they move (updateBlock). Stamps count block updates within the step; a
-// body that cannot move (static, kinematic) is never stamped, since no impulse changes it.
+// Between moving bodies "nothing" is also up to 1e-4 of how fast they move (updateBlock).
+// Stamps count block updates within the step; a body that cannot move (static, kinematic)
+// is never stamped, since no impulse changes it.
 bool iterate(ContactSolverScratch& s, int pass, double quietSpeed) {
     const int nb = static_cast<int>(s.blocks.size());
     bool changed = false;
@@ -408,7 +409,7 @@ void slidingFriction(double sliding, ContactSolverScratch& s) {
     for (const auto& block : s.blocks) {
         if (block.mu <= 0.0) continue;
         const double limit = block.mu * normalImpulse(s, block);
-        const Eigen::Vector2d T = block.lambdaT + block.shockT;  // all the friction applied
+        const Eigen::Vector2d T = block.frictionApplied();
         if (!(limit > 0.0) || T.norm() < (1.0 - 1e-9) * limit) continue;
         // ... and still sliding at the end: a resting pile's side contacts hold almost no
         // normal impulse, so their friction sits at its (tiny) limit while nothing moves.
@@ -506,7 +507,8 @@ void solveContacts(const Model& model, State& state, const State& before,
     bool converged = false;
     for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k, cfg.quietSpeed);
     // (Not with joints yet: the shock pass holds bodies still that a joint may have to move.)
-    if (!s.blocks.empty() && s.jointRows.empty()) shockPass(s, kShockPasses, converged, cfg.quietSpeed, kStillSpeed * cfg.restingSpeed);
+    if (!s.blocks.empty() && s.jointRows.empty())
+        shockPass(s, kShockPasses, converged, cfg.quietSpeed, kStillSpeed * cfg.restingSpeed);
     stopRoundingMotion(sizes, kStillSpeed * cfg.restingSpeed, s);
     remember(model, state, cfg.h, cfg.quietSpeed, s, true);
     rememberJoints(model, s, cfg.h, state);

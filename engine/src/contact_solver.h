@@ -83,6 +83,9 @@ struct ContactSolverScratch {
         // bodies and counted in the ledger, but not remembered for the next warm start.
         Eigen::Vector2d shockT = Eigen::Vector2d::Zero();
         double shockTwist = 0.0;
+        /// All the friction this solve applied (the ledger, sliding friction's re-posing).
+        Eigen::Vector2d frictionApplied() const { return lambdaT + shockT; }
+        double twistApplied() const { return lambdaTwist + shockTwist; }
         // The friction impulses the warm start gave: a block at rest that ends with about
         // them is remembered as it was (remember).
         Eigen::Vector2d warmT = Eigen::Vector2d::Zero();

@@ -286,7 +286,8 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const BodyModel& B = model.bodies[b];
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
         const double size = std::min(sizes[a], sizes[b]);
-        const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a]), sb = sweepOf(B, before.bodies[b], after.bodies[b]);
+        const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a]);
+        const Sweep sb = sweepOf(B, before.bodies[b], after.bodies[b]);
         if (found >= 0) {
             // Touching at the end: whether the first touch was on the same side needs no
             // exact moment. Near it (within 1e-3 of the smaller body) its normal is taken

@@ -281,8 +281,8 @@ ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<
     // energy running away) took 77 000, 1.5 million row updates in one impact, and the
     // sanitized build 18 s for its first three steps. Past the bound the impact stops as at
     // kMaxSweeps (`limited`) and the contact solver takes what is left.
-    const long jointBudget =
-        jointed ? static_cast<long>(kMaxSweeps) * kJointRounds * static_cast<long>(joints->jointRows.size()) : 0;
+    const long rows = jointed ? static_cast<long>(joints->jointRows.size()) : 0;
+    const long jointBudget = static_cast<long>(kMaxSweeps) * kJointRounds * rows;
     long jointUpdates = 0;
     const std::function<bool(int, int)> sweepJoints = [&](int a, int b) {
         if (a >= 0) s.changedAt[a] = s.changedAt[b] = ++clock;

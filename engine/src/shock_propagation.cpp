@@ -123,10 +123,10 @@ void shockPass(ContactSolverScratch& s, int passes, bool converged, double quiet
             }
         // What these passes added to the friction is remembered only where the support
         // stands still under the upper body (at the patch, slower than `stillSpeed`, what
-        // the solve takes as its passes' rounding: stopRoundingMotion): then
-        // it holds the upper body on a support at rest, a load that the support will carry
-        // next step. On a support that the passes left moving it matched the upper body to
-        // that motion, an error of the passes and not a force: it is applied and counted
+        // the solve takes as its passes' rounding: stopRoundingMotion): then it holds the
+        // upper body on a support at rest, a load that the support will carry next step.
+        // On a support that the passes left moving it matched the upper body to that
+        // motion, an error of the passes and not a force: it is applied and counted
         // (shockT) but not remembered. Remembered, it came back in the next warm start as a
         // push on the support that the support had never felt, and with few passes that
         // grew step by step: pyramid-15 with 5 passes at 1/240 s, sleeping off, turned its

@@ -10,11 +10,10 @@ namespace tumble {
 /// contacts between them and the next level are solved, `passes` times; the blocks'
 /// friction impulses are kept for the warm start where the support is at rest (moving
 /// slower than `stillSpeed` where it holds the upper body), else applied only (shockT).
-/// `converged`: the solver's passes ended
-/// at their fixed point, so a level whose lower bodies cannot move anyway (nothing to
-/// hold still) would change nothing while nothing below it has: it is skipped. Such a
-/// level's blocks are otherwise solved as they are, with the passes' quiet skipping
-/// (updateBlock, `quietSpeed`).
+/// `converged`: the solver's passes ended at their fixed point, so a level whose lower
+/// bodies cannot move anyway (nothing to hold still) would change nothing while nothing
+/// below it has: it is skipped. Such a level's blocks are otherwise solved as they are,
+/// with the passes' quiet skipping (updateBlock, `quietSpeed`).
 void shockPass(ContactSolverScratch& s, int passes, bool converged, double quietSpeed, double stillSpeed);
 
 }  // namespace tumble
