@@ -265,12 +265,16 @@ bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed) {
     // rounding); in a heap still landing and rolling the blocks went on for all twenty
     // passes, changing velocities of 1 m/s by 1e-10 m/s (hull-rain: 97 of the 121 blocks
     // not in still islands took every pass; instructions in the step -9 % with the share).
-    const SolverBody& A = s.bodies[p.a];
-    const SolverBody& B = s.bodies[p.b];
-    const double motion = A.v.cwiseAbs().sum() + B.v.cwiseAbs().sum() +
-                          A.w.cwiseAbs().sum() * block.rA.cwiseAbs().sum() +
-                          B.w.cwiseAbs().sum() * block.rB.cwiseAbs().sum();
-    if (!(change > std::max(quietSpeed, kQuietShare * motion) * p.kn)) {
+    // (The bodies' motion is only read when the change passes the resting tolerance.)
+    const auto belowShare = [&] {
+        const SolverBody& A = s.bodies[p.a];
+        const SolverBody& B = s.bodies[p.b];
+        const double motion = A.v.cwiseAbs().sum() + B.v.cwiseAbs().sum() +
+                              A.w.cwiseAbs().sum() * block.rA.cwiseAbs().sum() +
+                              B.w.cwiseAbs().sum() * block.rB.cwiseAbs().sum();
+        return !(change > kQuietShare * motion * p.kn);
+    };
+    if (!(change > quietSpeed * p.kn) || belowShare()) {
         s.quietSince[k] = tick;
         return false;
     }
