@@ -85,6 +85,25 @@ int viewportSamples() {
     return samples;
 }
 
+// Qt3D prepares each frame with jobs on a thread pool of its own, and Qt 6.4's render jobs
+// share state between pool threads without a lock: two jobs building the light uniforms of
+// one frame can both fill a light's uniform block for the first time, and the second
+// replaces the list the first is still reading (QTBUG-111427, fixed in Qt 6.7; a SIGSEGV in
+// UniformBlockValueBuilder on a new view's first frame, seen in about 1 of 6 runs of the
+// tests under load); RenderView also sorts the lights into one shared list from every job
+// at once, and RenderCapture hands out requests unlocked (addRenderCapture). One pool
+// thread runs those jobs one after another. It costs little here: the views draw a few
+// hundred instanced bodies, and the machines Tumble runs on spend their cores on the
+// simulation. QT3D_MAX_THREAD_COUNT set by the user is kept. Qt3D reads it once, when the
+// first aspect engine starts, so this runs before the first window is made.
+void limitQt3dJobThreads() {
+    static const bool once = [] {
+        if (!qEnvironmentVariableIsSet("QT3D_MAX_THREAD_COUNT")) qputenv("QT3D_MAX_THREAD_COUNT", "1");
+        return true;
+    }();
+    (void)once;
+}
+
 }  // namespace
 
 QString Viewport::glRenderer() {
@@ -100,6 +119,7 @@ bool Viewport::isSoftwareRenderer(const QString& renderer) {
 }
 Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(std::make_unique<Impl>()) {
     d_->doc = document;
+    limitQt3dJobThreads();
     d_->window = new Qt3DExtras::Qt3DWindow();
     // Qt3DWindow asks for 4x multisampling (and makes it the default format); that is kept
     // on a GPU and dropped on a software renderer (viewportSamples), before the window's

@@ -433,6 +433,16 @@ private slots:
         QCOMPARE(view.samples(), Viewport::isSoftwareRenderer(renderer) ? 0 : 4);
         QCOMPARE(view.renderWindow()->format().samples(), view.samples());
     }
+
+    // Qt 6.4's frame jobs race with each other on a view's lights (QTBUG-111427) and on a
+    // capture's requests; the viewport asks Qt3D for one job thread before its first
+    // window (limitQt3dJobThreads in viewport.cpp). Qt3D reads the variable once, at the
+    // first aspect engine, so it must be in place by the time a Viewport exists.
+    void qt3dPreparesFramesOnOneThread() {
+        Document doc;
+        Viewport view(&doc);
+        QCOMPARE(qgetenv("QT3D_MAX_THREAD_COUNT"), QByteArray("1"));
+    }
 };
 
 QTEST_MAIN(TestViewport)
