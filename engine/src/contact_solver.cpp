@@ -2,6 +2,7 @@
 
 #include "contact_energy.h"
 #include "contact_rows.h"
+#include "islands.h"
 #include "joints.h"
 #include "make_room.h"
 #include "pair_key.h"
@@ -186,7 +187,6 @@ void prepare(const Model& model, const State& state, const State& before,
 // was scaled up.
 bool warmStart(const State& state, double h, double growth, ContactSolverScratch& s) {
     bool grew = false;
-    s.used.assign(state.contacts.size(), 0);
     for (auto& block : s.blocks) {
         Vec3 tangent = Vec3::Zero();
         double twist = 0.0;
@@ -279,6 +279,8 @@ void warmStartChecked(const Model& model, const State& state, double h, ContactS
     const double after = grew || keep ? kineticAfterWarmStart(model, state, s) : 0.0;
     if (grew && after > 1.1 * solvedKinetic(model, state, s, s.entry)) {
         for (int i : s.involved) static_cast<BodyVelocity&>(s.bodies[i]) = s.entry[i];
+        for (const ContactSolverScratch::PointGeometry& g : s.geometry)
+            if (g.memory >= 0) s.used[g.memory] = 0;  // (this solve's points took them)
         warmStart(state, h, 1.0, s);  // (sets again every remembered point's impulse)
         prepareJoints(model, state, h, s);
     }
@@ -331,9 +333,10 @@ ContactMemory memoryOf(const ContactSolverScratch& s, const ContactSolverScratch
     return c;
 }
 
-// What remember() is about to write, against what the points started from (remember).
+// What rememberIsland is about to write, against what the points started from.
+// The remembered points that go: those of solved pairs that no point took.
 template <class Idle>
-void markChangedMemory(const State& state, double h, ContactSolverScratch& s, bool warmStarted, const Idle& idle) {
+void markDroppedMemory(const State& state, ContactSolverScratch& s, bool warmStarted, const Idle& idle) {
     std::vector<std::uint8_t>& changed = *s.memoryChanged;
     const std::vector<ContactMemory>& memory = state.contacts;
     for (size_t k = 0; k < memory.size(); ++k) {
@@ -341,6 +344,12 @@ void markChangedMemory(const State& state, double h, ContactSolverScratch& s, bo
         if (idle(c.bodyA) && idle(c.bodyB)) continue;  // kept as it is
         if (!warmStarted || k >= s.used.size() || !s.used[k]) changed[c.bodyA] = changed[c.bodyB] = 1;
     }
+}
+
+// The points of this island's blocks whose memory is not what they started from.
+void markChangedMemory(const State& state, double h, ContactSolverScratch& s) {
+    std::vector<std::uint8_t>& changed = *s.memoryChanged;
+    const std::vector<ContactMemory>& memory = state.contacts;
     for (size_t b = 0; b < s.blocks.size(); ++b) {
         const auto& block = s.blocks[b];
         // Every block, moving bodies' too: the energy limit, after this, can stop a body
@@ -362,22 +371,36 @@ void markChangedMemory(const State& state, double h, ContactSolverScratch& s, bo
 // they sleep (or stand still) keep what they had (and tell who rests on whom when
 // something wakes them), the solved points are added after them. (A second list traded
 // with this one every solve held as much again: a third of a megabyte of hull-rain's
-// peak, with its ~1 100 points of sleeping rocks.)
-//
-// With s.memoryChanged, the bodies of every point whose memory is not the one it started
-// from, bit for bit, and of every remembered point of a solved pair that no point took
-// (`warmStarted`: the points' sources are known), are marked there.
-void remember(const Model& model, State& state, double h, double quietSpeed, ContactSolverScratch& s,
-              bool warmStarted) {
+// peak, with its ~1 100 points of sleeping rocks.) First the memory of the pairs solved
+// goes; with s.memoryChanged, the bodies of every remembered point of a solved pair that
+// no point took (`warmStarted`: the points' sources are known) are marked there.
+void dropSolvedMemory(const Model& model, State& state, ContactSolverScratch& s, bool warmStarted) {
     auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill() || isStill(s, b); };
-    std::vector<ContactMemory>& memory = state.contacts;
+    if (s.memoryChanged) markDroppedMemory(state, s, warmStarted, idle);
+    std::erase_if(state.contacts, [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); });
+}
+
+// ... then this island's points are added: at once when it is the only one, else to
+// s.fresh, which rememberFresh adds when every island has taken its warm start from the
+// memory as it was. With s.memoryChanged, the bodies of every point whose memory is not
+// the one it started from, bit for bit, are marked there.
+void rememberIsland(const Model& model, State& state, double h, double quietSpeed, ContactSolverScratch& s,
+                    bool onlyIsland) {
     s.kept.resize(s.blocks.size());
     for (size_t b = 0; b < s.blocks.size(); ++b) s.kept[b] = keepsMemory(s, s.blocks[b], quietSpeed);
-    if (s.memoryChanged) markChangedMemory(state, h, s, warmStarted, idle);
-    std::erase_if(memory, [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); });
-    makeRoom(memory, memory.size() + s.points.size());
+    if (s.memoryChanged) markChangedMemory(state, h, s);
+    if (onlyIsland) dropSolvedMemory(model, state, s, true);
+    std::vector<ContactMemory>& out = onlyIsland ? state.contacts : s.fresh;
+    makeRoom(out, out.size() + s.points.size());
     for (size_t b = 0; b < s.blocks.size(); ++b)
-        for (int i = 0; i < s.blocks[b].count; ++i) memory.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
+        for (int i = 0; i < s.blocks[b].count; ++i) out.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
+}
+
+void rememberFresh(const Model& model, State& state, ContactSolverScratch& s) {
+    dropSolvedMemory(model, state, s, true);
+    makeRoom(state.contacts, state.contacts.size() + s.fresh.size());
+    state.contacts.insert(state.contacts.end(), s.fresh.begin(), s.fresh.end());
+    s.fresh.clear();
 }
 
 // A body the contacts hold whose velocity the solve left below `still` (and whose spin
@@ -469,24 +492,63 @@ double solvedEnergy(const Model& model, const State& state, const ContactSolverS
 
 }  // namespace
 
-void solveContacts(const Model& model, State& state, const State& before,
-                   const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
-                   const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
-    s.jointsOpen = 0.0;  // (projectJoints sets it, the last call's standing)
-    if (contacts.empty() && model.joints.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
-        s.points.clear();
-        s.geometry.clear();
-        s.blocks.clear();
-        s.jointRows.clear();
-        remember(model, state, cfg.h, cfg.quietSpeed, s, false);
-        return;
+// The contacts' islands: manifolds linked through the bodies that can move (dynamic and
+// awake; a static, kinematic or sleeping body moves the same whatever its partners do, so
+// it links nothing). Islands are solved one after another, each to its own fixed point,
+// with its own warm-start check and energy limit, and only one island's rows are in
+// memory at a time. Returns how many there are; with two or more, island k's manifolds
+// are s.islandManifolds[s.islandBegin[k] .. s.islandBegin[k + 1]), in the contacts' order,
+// the islands numbered as the contacts first name them. A manifold none of whose bodies
+// can move is in none (the solve passes over it).
+int contactIslands(const Model& model, const State& state, const std::vector<Manifold>& contacts,
+                   ContactSolverScratch& s) {
+    const size_t n = model.bodies.size();
+    if (s.parent.size() != n) s.parent.assign(n, 0), s.islandOfRoot.assign(n, -1);
+    auto movable = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
+    for (const Manifold& m : contacts) s.parent[m.bodyA] = m.bodyA, s.parent[m.bodyB] = m.bodyB;
+    for (const Manifold& m : contacts) {
+        if (!movable(m.bodyA) || !movable(m.bodyB)) continue;
+        const int ra = islandRoot(s.parent, m.bodyA), rb = islandRoot(s.parent, m.bodyB);
+        if (ra != rb) s.parent[std::max(ra, rb)] = std::min(ra, rb);
     }
+    s.islandOf.resize(contacts.size());
+    s.roots.clear();
+    for (size_t k = 0; k < contacts.size(); ++k) {
+        const Manifold& m = contacts[k];
+        const int body = movable(m.bodyA) ? m.bodyA : movable(m.bodyB) ? m.bodyB : -1;
+        if (body < 0) {
+            s.islandOf[k] = -1;
+            continue;
+        }
+        const int r = islandRoot(s.parent, body);
+        if (s.islandOfRoot[r] < 0) s.islandOfRoot[r] = static_cast<int>(s.roots.size()), s.roots.push_back(r);
+        s.islandOf[k] = s.islandOfRoot[r];
+    }
+    const int islands = static_cast<int>(s.roots.size());
+    for (int r : s.roots) s.islandOfRoot[r] = -1;
+    if (islands <= 1) return islands;
+    s.islandBegin.assign(islands + 1, 0);
+    for (int i : s.islandOf)
+        if (i >= 0) ++s.islandBegin[i + 1];
+    for (int k = 0; k < islands; ++k) s.islandBegin[k + 1] += s.islandBegin[k];
+    s.islandFill.assign(s.islandBegin.begin(), s.islandBegin.end() - 1);
+    s.islandManifolds.resize(s.islandBegin[islands]);
+    for (size_t k = 0; k < contacts.size(); ++k)
+        if (s.islandOf[k] >= 0) s.islandManifolds[s.islandFill[s.islandOf[k]]++] = static_cast<int>(k);
+    return islands;
+}
+
+// The solve of one island (contactIslands): of all the contacts and joints when the model
+// has joints.
+void solveIsland(const Model& model, State& state, const State& before, const std::vector<Manifold>& contacts,
+                 const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s,
+                 EnergyLedger& ledger, bool onlyIsland) {
     bodiesOf(contacts, s.seen, s.involved);
     addJointBodies(model, state, s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
-    s.stillBodies = s.still ? static_cast<int>(std::count_if(s.involved.begin(), s.involved.end(),
-                                                             [&](int i) { return isStill(s, i); }))
-                            : 0;
+    if (s.still)
+        s.stillBodies += static_cast<int>(
+            std::count_if(s.involved.begin(), s.involved.end(), [&](int i) { return isStill(s, i); }));
     // The jointed bodies' free step put them off their joints: placed back now, with the
     // velocity that move implies; the velocity rows below then act at the joints' new
     // places (RATTLE's two halves), and these bodies keep these poses (redoPoses).
@@ -496,7 +558,6 @@ void solveContacts(const Model& model, State& state, const State& before,
         ledger.lostInJoints += energy - solvedEnergy(model, state, s);
     }
     prepare(model, state, before, contacts, sizes, cfg, s);
-    indexMemory(state, s);
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
     for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStartChecked(model, state, cfg.h, s);  // and the joints' rows
@@ -510,7 +571,7 @@ void solveContacts(const Model& model, State& state, const State& before,
     if (!s.blocks.empty() && s.jointRows.empty())
         shockPass(s, kShockPasses, converged, cfg.quietSpeed, kStillSpeed * cfg.restingSpeed);
     stopRoundingMotion(sizes, kStillSpeed * cfg.restingSpeed, s);
-    remember(model, state, cfg.h, cfg.quietSpeed, s, true);
+    rememberIsland(model, state, cfg.h, cfg.quietSpeed, s, onlyIsland);
     rememberJoints(model, s, cfg.h, state);
     if (s.points.empty() && s.jointRows.empty() && s.stillMoving.empty()) return;
 
@@ -557,6 +618,36 @@ void solveContacts(const Model& model, State& state, const State& before,
         BodyState& b = state.bodies[i];
         b.L = b.q * (model.bodies[i].inertia * s.bodySpin[i]);
     }
+}
+
+void solveContacts(const Model& model, State& state, const State& before,
+                   const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
+                   const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
+    s.jointsOpen = 0.0;  // (projectJoints sets it, the last call's standing)
+    s.stillBodies = 0;
+    if (contacts.empty() && model.joints.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
+        s.points.clear();
+        s.geometry.clear();
+        s.blocks.clear();
+        s.jointRows.clear();
+        dropSolvedMemory(model, state, s, false);
+        return;
+    }
+    indexMemory(state, s);
+    s.used.assign(state.contacts.size(), 0);
+    const int islands = model.joints.empty() ? contactIslands(model, state, contacts, s) : 1;
+    if (islands <= 1) {
+        solveIsland(model, state, before, contacts, sizes, cfg, s, ledger, true);
+        return;
+    }
+    s.fresh.clear();
+    for (int k = 0; k < islands; ++k) {
+        s.islandContacts.clear();
+        for (int m = s.islandBegin[k]; m < s.islandBegin[k + 1]; ++m)
+            s.islandContacts.push_back(contacts[s.islandManifolds[m]]);
+        solveIsland(model, state, before, s.islandContacts, sizes, cfg, s, ledger, false);
+    }
+    rememberFresh(model, state, s);
 }
 
 void sizeContactSolver(const Model& model, ContactSolverScratch& s) {

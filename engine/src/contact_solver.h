@@ -202,6 +202,11 @@ struct ContactSolverScratch {
     // contacts changed or went (remember), or one of its points overlaps by more than the
     // slop after the solve (correctPositions); null: not kept.
     std::vector<std::uint8_t>* memoryChanged = nullptr;
+    // The islands (contactIslands): union-find per body, each manifold's island, the
+    // manifolds island by island, and the one island being solved.
+    std::vector<int> parent, islandOfRoot, roots, islandOf, islandBegin, islandFill, islandManifolds;
+    std::vector<collision::Manifold> islandContacts;
+    std::vector<ContactMemory> fresh;  // the solved points' memory, island by island (rememberFresh)
 };
 
 struct ContactSolverSettings {

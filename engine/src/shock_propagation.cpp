@@ -14,9 +14,9 @@ namespace {
 // number of contacts between it and such a body (a large number when none is reached).
 void supportLevels(ContactSolverScratch& s) {
     constexpr int kUnreached = 1 << 29;
-    s.level.assign(s.bodies.size(), kUnreached);
-    for (size_t i = 0; i < s.bodies.size(); ++i)
-        if (s.bodies[i].invMass == 0.0) s.level[i] = 0;
+    // (The blocks name the solve's bodies only: one island's, of a world of thousands.)
+    s.level.resize(s.bodies.size());
+    for (int i : s.involved) s.level[i] = s.bodies[i].invMass == 0.0 ? 0 : kUnreached;
     // Relaxation over the blocks; a pile is as many rounds deep as it has layers.
     for (bool changed = true; changed;) {
         changed = false;
