@@ -37,7 +37,7 @@ struct ForceTerm {
 struct BodyModel {
     std::string name;
     Motion motion = Motion::Dynamic;
-    ShapeDesc shape;
+    ShapeDesc shape;                      ///< as described, without meshData (the collider has the mesh)
     collision::Shape collider;            ///< the shape as the collision stages see it
     double mass = 0.0;
     double invMass = 0.0;
