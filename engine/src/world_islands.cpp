@@ -73,13 +73,14 @@ void World::unpark(bool unwind) {
     } else {
         state_.asleep = s.realAsleep;
         if (!model_.settings.sleeping) state_.asleep.clear();
-        s.merged.clear();
-        makeRoom(s.merged, d.contacts.size() + s.parkedContacts.size());
-        std::merge(d.contacts.begin(), d.contacts.end(), s.parkedContacts.begin(), s.parkedContacts.end(),
-                   std::back_inserter(s.merged), [](const collision::Manifold& a, const collision::Manifold& b) {
-                       return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
-                   });
-        d.contacts.swap(s.merged);
+        // In place (a second list for the merge stayed as large as the contacts between steps).
+        const auto cut = static_cast<std::ptrdiff_t>(d.contacts.size());
+        makeRoom(d.contacts, d.contacts.size() + s.parkedContacts.size());
+        d.contacts.insert(d.contacts.end(), s.parkedContacts.begin(), s.parkedContacts.end());
+        std::inplace_merge(d.contacts.begin(), d.contacts.begin() + cut, d.contacts.end(),
+                           [](const collision::Manifold& a, const collision::Manifold& b) {
+                               return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
+                           });
     }
     s.parkedContacts.clear();
     s.parked.clear();

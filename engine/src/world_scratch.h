@@ -54,7 +54,6 @@ struct World::Scratch {
     EnergyLedger ledgerAtStart;
     std::vector<std::uint8_t> realAsleep;              // the sleep flags without the parked ones
     std::vector<collision::Manifold> parkedContacts;   // at the end of their free step
-    std::vector<collision::Manifold> merged;
     std::unique_ptr<Workers> workers;  // setThreads(n > 1)
     // A step whose joints stayed open is taken again in halves (World::stepJointed): what
     // it starts from, per depth of splitting.
