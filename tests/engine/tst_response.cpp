@@ -201,6 +201,76 @@ private slots:
     // comes back, and hits B (at rest at x = 0.15, outside A's path before the bounce) 0.55/60 s
     // later; equal masses exchange velocities. At the end of the step (1/60 s): A at rest at
     // x = 0.35, B at x = 0.10 moving at -60 m/s.
+    // The contact solver solves each island on its own (contactIslands): its passes run to its
+    // own fixed point, its energy limit and warm-start check are its own, and the memory it
+    // leaves is its own. So towers far apart, whose tops slide and spin to a stop on them,
+    // each end exactly as in a world of their own: no tower's solve is changed by another's.
+    void contactIslandsSolveAsIfAlone() {
+        const double dt = 1.0 / 60.0;
+        struct Tower {
+            int boxes;
+            double mass;
+            Vec3 v, w;  // given to the top box
+        };
+        const Tower towers[3] = {{3, 1.0, Vec3(0.8, 0, 0), Vec3(0, 2.0, 0)},
+                                 {4, 2.5, Vec3(0, 0, -0.5), Vec3(0, -1.0, 0)},
+                                 {2, 0.7, Vec3(0.3, 0, 0.4), Vec3(0, 3.0, 0)}};
+        auto towerBodies = [&](int k) {
+            std::vector<BodyDesc> out;
+            const Tower& t = towers[k];
+            for (int j = 0; j < t.boxes; ++j) {
+                BodyDesc b = material(boxBody("t" + std::to_string(k) + "b" + std::to_string(j),
+                                              Vec3(0.25, 0.25, 0.25), t.mass * (1 + 0.5 * j)),
+                                      0.2, 0.5);
+                b.position = Vec3(4.0 * k, 0.25 + 0.5 * j, 0);
+                if (j == t.boxes - 1) b.velocity = t.v, b.angularVelocity = t.w;
+                out.push_back(b);
+            }
+            return out;
+        };
+        std::vector<BodyDesc> all = {groundPlane(0.2, 0.5)};
+        for (int k = 0; k < 3; ++k)
+            for (const BodyDesc& b : towerBodies(k)) all.push_back(b);
+        SceneDesc together = sceneOf(all);
+        together.settings.sleeping = false;
+        World world(together);
+        std::vector<World> alone;
+        for (int k = 0; k < 3; ++k) {
+            std::vector<BodyDesc> one = {groundPlane(0.2, 0.5)};
+            for (const BodyDesc& b : towerBodies(k)) one.push_back(b);
+            SceneDesc scene = sceneOf(one);
+            scene.settings.sleeping = false;
+            alone.emplace_back(scene);
+        }
+        double worst = 0.0;
+        int towersInOneSolve = 0;  // the most towers with contacts in one step of `world`
+        for (int n = 0; n < 120; ++n) {
+            world.step(dt);
+            std::array<bool, 3> touching{};
+            for (const collision::Manifold& m : world.contacts()) {
+                const int body = std::max(m.bodyA, m.bodyB);
+                touching[body <= 3 ? 0 : body <= 7 ? 1 : 2] = true;
+            }
+            towersInOneSolve = std::max(towersInOneSolve, int(std::count(touching.begin(), touching.end(), true)));
+            int first = 1;
+            for (int k = 0; k < 3; ++k) {
+                alone[k].step(dt);
+                for (int j = 0; j < towers[k].boxes; ++j) {
+                    const BodyState& a = world.state().bodies[first + j];
+                    const BodyState& b = alone[k].state().bodies[1 + j];
+                    worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm(), (a.L - b.L).norm(),
+                                      (a.q.coeffs() - b.q.coeffs()).norm()});
+                }
+                first += towers[k].boxes;
+            }
+        }
+        QCOMPARE(towersInOneSolve, 3);  // precondition: three islands solved in the same step
+        // The tops slid and turned (precondition: there was friction to solve).
+        const BodyState& top = world.state().bodies[3];
+        QVERIFY2(std::abs(top.x.x()) > 0.01, "precondition: the first tower's top slid");
+        QVERIFY2(worst == 0.0, qPrintable(QString("a tower moved %1 away from its run alone").arg(worst)));
+    }
+
     void aCutBodyMeetingAParkedOneRedoesTheStep() {
         BodyDesc wall;
         wall.name = "wall";
