@@ -469,14 +469,15 @@ void redoPoses(const Model& model, State& state, const State& before, double sli
     }
 }
 
-// The potential energy of the bodies `only` (gravity and their springs): what the position
-// passes can change.
-double potentialOf(const Model& model, const State& state, const std::vector<int>& only) {
+// The potential energy of the solve's bodies (gravity and their springs): what the position
+// passes can change. (The springs are listed once, in sizeContactSolver: a solve per island
+// went over every force of the model each time.)
+double potentialOf(const Model& model, const State& state, const ContactSolverScratch& s) {
+    const std::vector<int>& only = s.involved;
     double e = gravityPotential(model, state, only);
-    for (const ForceTerm& f : model.forces) {
-        if (f.type != ForceType::Spring || !f.activeAt(state.time) ||
-            !std::binary_search(only.begin(), only.end(), f.body))
-            continue;
+    for (int k : s.springs) {
+        const ForceTerm& f = model.forces[k];
+        if (!f.activeAt(state.time) || !std::binary_search(only.begin(), only.end(), f.body)) continue;
         const BodyState& s = state.bodies[f.body];
         const double stretch = (s.x + s.q * f.arm - f.anchor).norm() - f.restLength;
         e += 0.5 * f.stiffness * stretch * stretch;
@@ -487,7 +488,7 @@ double potentialOf(const Model& model, const State& state, const std::vector<int
 // The kinetic energy of the solve's bodies as s.bodies has them, and their potential
 // energy in `state` (the joints' first projection changes both).
 double solvedEnergy(const Model& model, const State& state, const ContactSolverScratch& s) {
-    return solvedKinetic(model, state, s, s.bodies) + potentialOf(model, state, s.involved);
+    return solvedKinetic(model, state, s, s.bodies) + potentialOf(model, state, s);
 }
 
 }  // namespace
@@ -604,14 +605,14 @@ void solveIsland(const Model& model, State& state, const State& before, const st
     // again at the new orientation.
     s.bodySpin.resize(model.bodies.size());
     for (int i : s.involved) s.bodySpin[i] = state.bodies[i].q.conjugate() * s.bodies[i].w;
-    const double potential = potentialOf(model, state, s.involved);
+    const double potential = potentialOf(model, state, s);
     redoPoses(model, state, before, 0.01 * cfg.restingSpeed, s);
     correctOverlap(model, state, s, cfg, e, limited);
-    const double corrected = potentialOf(model, state, s.involved);
+    const double corrected = potentialOf(model, state, s);
     ledger.positionCorrection += corrected - potential;
     if (!s.jointRows.empty()) {
         projectJoints(model, state, s, 0.0);
-        ledger.lostInJoints += corrected - potentialOf(model, state, s.involved);
+        ledger.lostInJoints += corrected - potentialOf(model, state, s);
     }
     for (int i : s.involved) {
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
@@ -663,6 +664,9 @@ void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
     s.nudgedAt.assign(n, 0);
     s.level.assign(n, 0);
     s.seen.assign(n, 0);
+    s.springs.clear();
+    for (size_t k = 0; k < model.forces.size(); ++k)
+        if (model.forces[k].type == ForceType::Spring) s.springs.push_back(static_cast<int>(k));
 }
 
 }  // namespace tumble
