@@ -333,7 +333,6 @@ ContactMemory memoryOf(const ContactSolverScratch& s, const ContactSolverScratch
     return c;
 }
 
-// What rememberIsland is about to write, against what the points started from.
 // The remembered points that go: those of solved pairs that no point took.
 template <class Idle>
 void markDroppedMemory(const State& state, ContactSolverScratch& s, bool warmStarted, const Idle& idle) {
@@ -346,7 +345,8 @@ void markDroppedMemory(const State& state, ContactSolverScratch& s, bool warmSta
     }
 }
 
-// The points of this island's blocks whose memory is not what they started from.
+// What rememberIsland is about to write, against what the points started from: the points
+// of this island's blocks whose memory is not what they started from.
 void markChangedMemory(const State& state, double h, ContactSolverScratch& s) {
     std::vector<std::uint8_t>& changed = *s.memoryChanged;
     const std::vector<ContactMemory>& memory = state.contacts;
