@@ -3,6 +3,7 @@
 #include "contact_energy.h"
 #include "contact_rows.h"
 #include "islands.h"
+#include "joint_math.h"
 #include "joints.h"
 #include "make_room.h"
 #include "pair_key.h"
@@ -505,7 +506,7 @@ int contactIslands(const Model& model, const State& state, const std::vector<Man
                    ContactSolverScratch& s) {
     const size_t n = model.bodies.size();
     if (s.parent.size() != n) s.parent.assign(n, 0), s.islandOfRoot.assign(n, -1);
-    auto movable = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
+    auto movable = [&](int b) { return joint::movable(model, state, b); };  // (as loadBody gives a mass)
     for (const Manifold& m : contacts) s.parent[m.bodyA] = m.bodyA, s.parent[m.bodyB] = m.bodyB;
     for (const Manifold& m : contacts) {
         if (!movable(m.bodyA) || !movable(m.bodyB)) continue;
