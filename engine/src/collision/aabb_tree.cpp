@@ -179,57 +179,54 @@ void AabbTree::refitUpwards(int node) {
 }
 
 void AabbTree::rebuild() {
-    scratch_.clear();
-    for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
-        if (nodes_[id].height == 0) scratch_.push_back(id);  // the leaves, in id order
-    spare_.clear();
-    // Room for the rebuilt tree and some insertions after it, so that nodes_ (which spare_
-    // becomes) does not grow while the number of leaves stays put.
-    spare_.reserve(2 * scratch_.size() + 64);
-    root_ = scratch_.empty() ? kNull : buildRange(0, static_cast<int>(scratch_.size()));
-    std::swap(nodes_, spare_);
-    spare_.clear();
-    spare_.reserve(nodes_.capacity());  // the next rebuild of as many leaves allocates nothing
+    leafList_.clear();
+    for (const Node& n : nodes_)
+        if (n.height == 0) leafList_.push_back({n.box, n.body()});  // the leaves, in id order
+    // Built over the old nodes, which the leaf list has copied: a second array of nodes to
+    // build into and swap with kept the tree's memory twice (and more) over between
+    // rebuilds. Room for some insertions after it, so that nodes_ does not grow while the
+    // number of leaves stays put.
+    nodes_.clear();
+    nodes_.reserve(2 * leafList_.size() + 64);
+    root_ = leafList_.empty() ? kNull : buildRange(0, static_cast<int>(leafList_.size()));
     free_ = kNull;
     unlinked_ = 0;
     changes_ = 0;
 }
 
-// Builds, into spare_ and in depth-first order, the subtree over the leaves of nodes_ listed
-// in scratch_[begin, end); returns its root.
+// Builds, into nodes_ and in depth-first order, the subtree over the leaves
+// leafList_[begin, end); returns its root.
 int AabbTree::buildRange(int begin, int end) {
-    const int index = static_cast<int>(spare_.size());
-    spare_.emplace_back();
+    const int index = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
     if (end - begin == 1) {
-        const Node& old = nodes_[scratch_[begin]];
-        spare_[index].box = old.box;
-        spare_[index].child2 = old.body();
-        leafOf_[old.body()] = index;
+        const Leaf& leaf = leafList_[begin];
+        nodes_[index].box = leaf.box;
+        nodes_[index].child2 = leaf.body;
+        leafOf_[leaf.body] = index;
         return index;
     }
     Aabb centres;  // of the doubled centres min + max: the same order, one operation less
-    for (int k = begin; k < end; ++k) centres.add(nodes_[scratch_[k]].box.min + nodes_[scratch_[k]].box.max);
+    for (int k = begin; k < end; ++k) centres.add(leafList_[k].box.min + leafList_[k].box.max);
     int axis = 0;
     centres.extent().maxCoeff(&axis);
     const int mid = begin + (end - begin) / 2;
     // Ties broken by body: a strict total order, so the halves do not depend on the library.
-    std::nth_element(scratch_.begin() + begin, scratch_.begin() + mid, scratch_.begin() + end,
-                     [&](int a, int b) {
-                         const Node& na = nodes_[a];
-                         const Node& nb = nodes_[b];
-                         const double ca = na.box.min[axis] + na.box.max[axis];
-                         const double cb = nb.box.min[axis] + nb.box.max[axis];
-                         return ca < cb || (ca == cb && na.body() < nb.body());
+    std::nth_element(leafList_.begin() + begin, leafList_.begin() + mid, leafList_.begin() + end,
+                     [&](const Leaf& a, const Leaf& b) {
+                         const double ca = a.box.min[axis] + a.box.max[axis];
+                         const double cb = b.box.min[axis] + b.box.max[axis];
+                         return ca < cb || (ca == cb && a.body < b.body);
                      });
     const int left = buildRange(begin, mid);
     const int right = buildRange(mid, end);
-    Node& n = spare_[index];
+    Node& n = nodes_[index];
     n.child1 = left;
     n.child2 = right;
-    n.box = merged(spare_[left].box, spare_[right].box);
-    n.height = 1 + std::max(spare_[left].height, spare_[right].height);
-    spare_[left].parent = index;
-    spare_[right].parent = index;
+    n.box = merged(nodes_[left].box, nodes_[right].box);
+    n.height = 1 + std::max(nodes_[left].height, nodes_[right].height);
+    nodes_[left].parent = index;
+    nodes_[right].parent = index;
     return index;
 }
 

@@ -90,10 +90,14 @@ private:
         return b.leaf() || (!a.leaf() && a.height >= b.height);
     }
 
+    struct Leaf {
+        Aabb box;
+        int body = kNull;
+    };
+
     std::vector<Node> nodes_;
-    std::vector<Node> spare_;   // rebuild builds here, then swaps; both keep their capacity
-    std::vector<int> leafOf_;   // per body: its leaf or kNull
-    std::vector<int> scratch_;  // rebuild's list of leaves
+    std::vector<int> leafOf_;      // per body: its leaf or kNull
+    std::vector<Leaf> leafList_;   // rebuild's copy of the leaves, which it builds over
     int root_ = kNull;
     int free_ = kNull;          // free list threaded through Node::parent
     int leaves_ = 0;            // linked and unlinked
