@@ -28,7 +28,7 @@
 namespace tumble {
 
 struct ImpactScratch {
-    std::vector<SolverBody> bodies;
+    std::vector<SolverBody> bodies;  // with a contact solver's scratch, its own (borrowed by resolveImpacts)
     std::vector<std::uint8_t> inIsland;
     std::vector<std::uint8_t> seen;  // bodiesOf's flags
     std::vector<int> manifolds;  // in the order of the contacts
@@ -67,7 +67,8 @@ void approachingBodies(const Model& model, const State& before, const State& sta
 /// With joints, the bodies joined to the island's are in it too, and the joints' rows
 /// (impulsive: joints.h) are swept with the manifolds until nothing approaches and no joint
 /// moves, so that an impact passes through a joint as through a contact; `joints`: the
-/// contact solver's scratch, whose joint rows this uses (its bodies are swapped in).
+/// contact solver's scratch, whose joint rows this uses (its bodies are swapped in); given
+/// one, the impact works on that scratch's solver bodies too.
 ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
                             ImpactScratch& scratch, EnergyLedger& ledger, ContactSolverScratch* joints = nullptr);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <stdexcept>
 
 namespace tumble {
 
@@ -18,8 +19,7 @@ void World::park() {
         return;
     }
     profile_.parkedBodySteps += s.parkedCount;
-    s.stepStart = state_;  // the contact memory and touching pairs of the step's start: unchanged so far
-    copyMotion(s.before, s.stepStart);
+    saveStepStart();
     s.touchingAtStart = d.touching;
     s.ledgerAtStart = ledger_;
     s.realAsleep = state_.asleep;
@@ -30,12 +30,66 @@ void World::park() {
         state_.asleep[i] = 1;
         s.before.bodies[i] = state_.bodies[i];  // a cut goes back to s.before: they stay at the end
     }
-    // Their contacts wait for the end of the step.
-    auto it = std::stable_partition(d.contacts.begin(), d.contacts.end(), [&](const collision::Manifold& m) {
-        return !s.parked[m.bodyA] && !s.parked[m.bodyB];
-    });
-    s.parkedContacts.assign(it, d.contacts.end());
-    d.contacts.erase(it, d.contacts.end());
+    // Their contacts wait for the end of the step (split in one pass: std::stable_partition
+    // took a buffer as large as the contacts for it).
+    const auto parkedPair = [&](const collision::Manifold& m) { return s.parked[m.bodyA] || s.parked[m.bodyB]; };
+    const auto n = static_cast<size_t>(std::count_if(d.contacts.begin(), d.contacts.end(), parkedPair));
+    s.parkedContacts.clear();
+    if (s.parkedContacts.capacity() < n) s.parkedContacts.reserve(n);  // (as assign would: no more)
+    size_t cut = 0;
+    for (size_t k = 0; k < d.contacts.size(); ++k) {
+        const collision::Manifold& m = d.contacts[k];
+        if (parkedPair(m)) {
+            s.parkedContacts.push_back(m);
+        } else if (cut++ != k) {
+            d.contacts[cut - 1] = m;
+        }
+    }
+    d.contacts.resize(cut);
+}
+
+// What an unwind goes back to (unpark): the state at the start of the step but its contact
+// memory and touching pairs, which are large in a pile and which a cut changes little. The
+// touching pairs change only at the end of the step. Of the memory, the piece solves of the
+// cuts (impactAt) drop and remake the points with a body that is neither parked (asleep to
+// them) nor standing still, and keep every other as it is, in order: those points alone are
+// kept here, with their places. (A copy of the whole memory was 76 KB of hull-rain's peak.)
+void World::saveStepStart() {
+    Scratch& s = *scratch_;
+    std::vector<ContactMemory> contacts = std::move(state_.contacts);
+    std::vector<std::uint64_t> touching = std::move(state_.touching);
+    s.stepStart = state_;
+    state_.contacts = std::move(contacts);
+    state_.touching = std::move(touching);
+    copyMotion(s.before, s.stepStart);
+    s.cutMemory.clear();
+    s.cutMemoryAt.clear();
+    s.memoryAtStart = state_.contacts.size();
+    for (size_t k = 0; k < state_.contacts.size(); ++k) {
+        const ContactMemory& c = state_.contacts[k];
+        if (parkedOrStill(c.bodyA) && parkedOrStill(c.bodyB)) continue;
+        s.cutMemory.push_back(c);
+        s.cutMemoryAt.push_back(k);
+    }
+}
+
+bool World::parkedOrStill(int body) const {
+    return scratch_->parked[body] != 0 || model_.bodies[body].standsStill();
+}
+
+void World::restoreStepStart() {
+    Scratch& s = *scratch_;
+    std::vector<ContactMemory> contacts = std::move(state_.contacts);
+    std::vector<std::uint64_t> touching = std::move(state_.touching);
+    state_ = s.stepStart;
+    state_.contacts = std::move(contacts);
+    state_.touching = std::move(touching);
+    // The points kept as they were, in order, then the saved ones back in their places.
+    std::vector<ContactMemory>& m = state_.contacts;
+    std::erase_if(m, [&](const ContactMemory& c) { return !(parkedOrStill(c.bodyA) && parkedOrStill(c.bodyB)); });
+    if (m.size() + s.cutMemory.size() != s.memoryAtStart)  // (a cut changed a point it keeps: a bug)
+        throw std::logic_error("World: the contact memory a cut kept is not the step's start's");
+    putBackInPlaces(m, s.cutMemory, s.cutMemoryAt);
 }
 
 // After each look at the cut bodies: false when one pairs with a parked body (its new path
@@ -66,21 +120,30 @@ void World::unpark(bool unwind) {
     Scratch& s = *scratch_;
     DetectScratch& d = s.detect;
     if (unwind) {
-        state_ = s.stepStart;
+        restoreStepStart();
         ledger_ = s.ledgerAtStart;
         d.touching = s.touchingAtStart;
         s.impacts.clear();
     } else {
         state_.asleep = s.realAsleep;
         if (!model_.settings.sleeping) state_.asleep.clear();
-        // In place (a second list for the merge stayed as large as the contacts between steps).
-        const auto cut = static_cast<std::ptrdiff_t>(d.contacts.size());
-        makeRoom(d.contacts, d.contacts.size() + s.parkedContacts.size());
-        d.contacts.insert(d.contacts.end(), s.parkedContacts.begin(), s.parkedContacts.end());
-        std::inplace_merge(d.contacts.begin(), d.contacts.begin() + cut, d.contacts.end(),
-                           [](const collision::Manifold& a, const collision::Manifold& b) {
-                               return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
-                           });
+        // In place, from the back, the cut pairs' first among equals as in a stable merge (a
+        // second list for the merge stayed as large as the contacts between steps, and
+        // std::inplace_merge takes a buffer for it).
+        auto after = [](const collision::Manifold& a, const collision::Manifold& b) {
+            return std::pair(a.bodyA, a.bodyB) > std::pair(b.bodyA, b.bodyB);
+        };
+        size_t cut = d.contacts.size(), parked = s.parkedContacts.size();
+        makeRoom(d.contacts, cut + parked);
+        d.contacts.resize(cut + parked);
+        for (size_t k = cut + parked; parked > 0;) {
+            --k;
+            if (cut > 0 && after(d.contacts[cut - 1], s.parkedContacts[parked - 1])) {
+                d.contacts[k] = d.contacts[--cut];
+            } else {
+                d.contacts[k] = s.parkedContacts[--parked];
+            }
+        }
     }
     s.parkedContacts.clear();
     s.parked.clear();

@@ -44,12 +44,16 @@ struct World::Scratch {
     double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
     double margin = 0.0;   // contact points are found this far apart (contactMargin)
     double stepStart0 = 0.0, stepLength = 0.0;  // the step being taken: its start time, its h
-    std::vector<collision::Manifold> restingContacts;  // at a cut, all but the impacting pairs'
+    std::vector<collision::Manifold> setAside;  // at a cut, the impacting pairs' (impactAt)
+    std::vector<std::size_t> setAsideAt;        // ... and their places among the contacts
     // Parked islands (see the top of this file); parkedCount == 0: none this step.
     IslandScratch islands;
     std::vector<std::uint8_t> parked;
     int parkedCount = 0;
-    State stepStart;                                   // to take the step again
+    State stepStart;  // to take the step again (World::saveStepStart): all but the memory and touching
+    std::vector<ContactMemory> cutMemory;              // the memory a cut can change, as it was
+    std::vector<std::size_t> cutMemoryAt;              // ... and its places in State::contacts
+    std::size_t memoryAtStart = 0;                     // the memory's length at the step's start
     std::vector<std::uint64_t> touchingAtStart;
     EnergyLedger ledgerAtStart;
     std::vector<std::uint8_t> realAsleep;              // the sleep flags without the parked ones
@@ -76,6 +80,22 @@ inline void copyMotion(const State& from, State& to) {
     to.bodies = from.bodies;
     to.restTime = from.restTime;
     to.asleep = from.asleep;
+}
+
+// `list`, which is what it was less the entries `aside` taken from the places `at`
+// (ascending) and in the same order, made what it was: each entry back in its place.
+template <class T>
+void putBackInPlaces(std::vector<T>& list, const std::vector<T>& aside, const std::vector<std::size_t>& at) {
+    size_t kept = list.size();
+    list.resize(kept + aside.size());
+    size_t back = aside.size();
+    for (size_t k = list.size(); back > 0 && k-- > 0;) {
+        if (at[back - 1] == k) {
+            list[k] = aside[--back];
+        } else {
+            list[k] = list[--kept];
+        }
+    }
 }
 
 }  // namespace tumble

@@ -111,6 +111,9 @@ private:
     bool leaveParked();
     void dropParked();
     void unpark(bool unwind);
+    void saveStepStart();
+    void restoreStepStart();
+    bool parkedOrStill(int body) const;
     void forgetSleepUnlessSleeping();
 
     Model model_;
