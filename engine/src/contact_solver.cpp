@@ -336,10 +336,11 @@ ContactMemory memoryOf(const ContactSolverScratch& s, const ContactSolverScratch
 
 // The remembered points that go: those of solved pairs that no point took.
 template <class Idle>
-void markDroppedMemory(const State& state, ContactSolverScratch& s, bool warmStarted, const Idle& idle) {
+void markDroppedMemory(const State& state, ContactSolverScratch& s, bool warmStarted, const Idle& idle,
+                       size_t fresh) {
     std::vector<std::uint8_t>& changed = *s.memoryChanged;
     const std::vector<ContactMemory>& memory = state.contacts;
-    for (size_t k = 0; k < memory.size(); ++k) {
+    for (size_t k = 0; k < fresh; ++k) {
         const ContactMemory& c = memory[k];
         if (idle(c.bodyA) && idle(c.bodyB)) continue;  // kept as it is
         if (!warmStarted || k >= s.used.size() || !s.used[k]) changed[c.bodyA] = changed[c.bodyB] = 1;
@@ -373,35 +374,35 @@ void markChangedMemory(const State& state, double h, ContactSolverScratch& s) {
 // something wakes them), the solved points are added after them. (A second list traded
 // with this one every solve held as much again: a third of a megabyte of hull-rain's
 // peak, with its ~1 100 points of sleeping rocks.) First the memory of the pairs solved
-// goes; with s.memoryChanged, the bodies of every remembered point of a solved pair that
-// no point took (`warmStarted`: the points' sources are known) are marked there.
-void dropSolvedMemory(const Model& model, State& state, ContactSolverScratch& s, bool warmStarted) {
+// goes, of the points before `fresh` (those from `fresh` on are this solve's, added island
+// by island: they stay, after the others); with s.memoryChanged, the bodies of every
+// remembered point of a solved pair that no point took (`warmStarted`: the points' sources
+// are known) are marked there.
+void dropSolvedMemory(const Model& model, State& state, ContactSolverScratch& s, bool warmStarted, size_t fresh) {
     auto idle = [&](int b) { return state.isAsleep(b) || model.bodies[b].standsStill() || isStill(s, b); };
-    if (s.memoryChanged) markDroppedMemory(state, s, warmStarted, idle);
-    std::erase_if(state.contacts, [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); });
+    if (s.memoryChanged) markDroppedMemory(state, s, warmStarted, idle, fresh);
+    std::vector<ContactMemory>& m = state.contacts;
+    const auto fromFresh = m.begin() + static_cast<std::ptrdiff_t>(fresh);
+    m.erase(std::remove_if(m.begin(), fromFresh,
+                           [&](const ContactMemory& c) { return !(idle(c.bodyA) && idle(c.bodyB)); }),
+            fromFresh);
 }
 
-// ... then this island's points are added: at once when it is the only one, else to
-// s.fresh, which rememberFresh adds when every island has taken its warm start from the
-// memory as it was. With s.memoryChanged, the bodies of every point whose memory is not
-// the one it started from, bit for bit, are marked there.
+// ... then this island's points are added, after the memory as it was (the islands after
+// this one take their warm starts from that part only, as solveContacts indexed it; a
+// second list for them was 56 KB of hull-rain's peak): when it is the only island the
+// memory of its pairs is dropped first. With s.memoryChanged, the bodies of every point
+// whose memory is not the one it started from, bit for bit, are marked there.
 void rememberIsland(const Model& model, State& state, double h, double quietSpeed, ContactSolverScratch& s,
                     bool onlyIsland) {
     s.kept.resize(s.blocks.size());
     for (size_t b = 0; b < s.blocks.size(); ++b) s.kept[b] = keepsMemory(s, s.blocks[b], quietSpeed);
     if (s.memoryChanged) markChangedMemory(state, h, s);
-    if (onlyIsland) dropSolvedMemory(model, state, s, true);
-    std::vector<ContactMemory>& out = onlyIsland ? state.contacts : s.fresh;
-    makeRoom(out, out.size() + s.points.size());
+    if (onlyIsland) dropSolvedMemory(model, state, s, true, state.contacts.size());
+    makeRoom(state.contacts, state.contacts.size() + s.points.size());
     for (size_t b = 0; b < s.blocks.size(); ++b)
-        for (int i = 0; i < s.blocks[b].count; ++i) out.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
-}
-
-void rememberFresh(const Model& model, State& state, ContactSolverScratch& s) {
-    dropSolvedMemory(model, state, s, true);
-    makeRoom(state.contacts, state.contacts.size() + s.fresh.size());
-    state.contacts.insert(state.contacts.end(), s.fresh.begin(), s.fresh.end());
-    s.fresh.clear();
+        for (int i = 0; i < s.blocks[b].count; ++i)
+            state.contacts.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
 }
 
 // A body the contacts hold whose velocity the solve left below `still` (and whose spin
@@ -632,7 +633,7 @@ void solveContacts(const Model& model, State& state, const State& before,
         s.geometry.clear();
         s.blocks.clear();
         s.jointRows.clear();
-        dropSolvedMemory(model, state, s, false);
+        dropSolvedMemory(model, state, s, false, state.contacts.size());
         return;
     }
     indexMemory(state, s);
@@ -642,14 +643,19 @@ void solveContacts(const Model& model, State& state, const State& before,
         solveIsland(model, state, before, contacts, sizes, cfg, s, ledger, true);
         return;
     }
-    s.fresh.clear();
+    // Room for every point the islands can add (each manifold's points at most) after the
+    // memory as it is, which the islands' warm starts read.
+    const size_t remembered = state.contacts.size();
+    size_t points = 0;
+    for (const Manifold& m : contacts) points += static_cast<size_t>(m.count);
+    makeRoom(state.contacts, remembered + points);
     for (int k = 0; k < islands; ++k) {
         s.islandContacts.clear();
         for (int m = s.islandBegin[k]; m < s.islandBegin[k + 1]; ++m)
             s.islandContacts.push_back(contacts[s.islandManifolds[m]]);
         solveIsland(model, state, before, s.islandContacts, sizes, cfg, s, ledger, false);
     }
-    rememberFresh(model, state, s);
+    dropSolvedMemory(model, state, s, true, remembered);
 }
 
 void sizeContactSolver(const Model& model, ContactSolverScratch& s) {

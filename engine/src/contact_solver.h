@@ -207,7 +207,6 @@ struct ContactSolverScratch {
     std::vector<int> parent, islandOfRoot, roots, islandOf, islandBegin, islandFill, islandManifolds;
     std::vector<collision::Manifold> islandContacts;
     std::vector<int> springs;  // Model::forces' springs, by index (sizeContactSolver)
-    std::vector<ContactMemory> fresh;  // the solved points' memory, island by island (rememberFresh)
 };
 
 struct ContactSolverSettings {

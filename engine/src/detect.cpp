@@ -1,4 +1,6 @@
 #include "detect.h"
+
+#include "make_room.h"
 #include "workers.h"
 
 #include "collision/narrowphase.h"
@@ -149,6 +151,11 @@ void refreshJointPairs(const Model& model, const State& state, DetectScratch& s)
 
 void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.contacts.clear();
+    // Room for about as many as the last time and an eighth: in a scene whose contacts keep
+    // growing (a heap filling up), grown by half ahead of need rather than doubled by the
+    // narrowphase's appends (hull-rain's ~300 manifolds held room for 512, 100 KB).
+    const size_t lastCount = s.lastPairs.manifolds.size();
+    makeRoom(s.contacts, lastCount + lastCount / 8 + 4);
     const DetectScratch::PairMemory& last = s.lastPairs;
     const bool remembered = last.margin == margin && s.pairedPose.size() == model.bodies.size();
     // The manifolds of (a, b) from the last narrowphase, if both bodies stand still since.

@@ -179,47 +179,49 @@ void AabbTree::refitUpwards(int node) {
 }
 
 void AabbTree::rebuild() {
-    leafList_.clear();
+    // Built over the old nodes, which the list of leaves has copied: a second array of
+    // nodes to build into and swap with kept the tree's memory twice (and more) over
+    // between rebuilds. The list lives for the rebuild only (one allocation of its exact
+    // size, where the rebuild itself is O(n log n)). Room for some insertions after it, so
+    // that nodes_ does not grow while the number of leaves stays put.
+    std::vector<Leaf> leaves;
+    leaves.reserve(static_cast<std::size_t>(leaves_));
     for (const Node& n : nodes_)
-        if (n.height == 0) leafList_.push_back({n.box, n.body()});  // the leaves, in id order
-    // Built over the old nodes, which the leaf list has copied: a second array of nodes to
-    // build into and swap with kept the tree's memory twice (and more) over between
-    // rebuilds. Room for some insertions after it, so that nodes_ does not grow while the
-    // number of leaves stays put.
+        if (n.height == 0) leaves.push_back({n.box, n.body()});  // in id order
     nodes_.clear();
-    nodes_.reserve(2 * leafList_.size() + 64);
-    root_ = leafList_.empty() ? kNull : buildRange(0, static_cast<int>(leafList_.size()));
+    nodes_.reserve(2 * leaves.size() + 64);
+    root_ = leaves.empty() ? kNull : buildRange(leaves, 0, static_cast<int>(leaves.size()));
     free_ = kNull;
     unlinked_ = 0;
     changes_ = 0;
 }
 
-// Builds, into nodes_ and in depth-first order, the subtree over the leaves
-// leafList_[begin, end); returns its root.
-int AabbTree::buildRange(int begin, int end) {
+// Builds, into nodes_ and in depth-first order, the subtree over leaves[begin, end);
+// returns its root.
+int AabbTree::buildRange(std::vector<Leaf>& leaves, int begin, int end) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
     if (end - begin == 1) {
-        const Leaf& leaf = leafList_[begin];
+        const Leaf& leaf = leaves[begin];
         nodes_[index].box = leaf.box;
         nodes_[index].child2 = leaf.body;
         leafOf_[leaf.body] = index;
         return index;
     }
     Aabb centres;  // of the doubled centres min + max: the same order, one operation less
-    for (int k = begin; k < end; ++k) centres.add(leafList_[k].box.min + leafList_[k].box.max);
+    for (int k = begin; k < end; ++k) centres.add(leaves[k].box.min + leaves[k].box.max);
     int axis = 0;
     centres.extent().maxCoeff(&axis);
     const int mid = begin + (end - begin) / 2;
     // Ties broken by body: a strict total order, so the halves do not depend on the library.
-    std::nth_element(leafList_.begin() + begin, leafList_.begin() + mid, leafList_.begin() + end,
+    std::nth_element(leaves.begin() + begin, leaves.begin() + mid, leaves.begin() + end,
                      [&](const Leaf& a, const Leaf& b) {
                          const double ca = a.box.min[axis] + a.box.max[axis];
                          const double cb = b.box.min[axis] + b.box.max[axis];
                          return ca < cb || (ca == cb && a.body < b.body);
                      });
-    const int left = buildRange(begin, mid);
-    const int right = buildRange(mid, end);
+    const int left = buildRange(leaves, begin, mid);
+    const int right = buildRange(leaves, mid, end);
     Node& n = nodes_[index];
     n.child1 = left;
     n.child2 = right;

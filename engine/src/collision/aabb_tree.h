@@ -83,21 +83,19 @@ private:
     void insertLeaf(int leaf);
     void removeLeaf(int leaf);
     void refitUpwards(int node);
-    int buildRange(int begin, int end);
+    struct Leaf {  // rebuild's copy of a leaf
+        Aabb box;
+        int body = kNull;
+    };
+    int buildRange(std::vector<Leaf>& leaves, int begin, int end);
     bool validSubtree(int node, int parent, int& leaves) const;
     // Which of a and b to open next in a pair descent: the taller, a on ties.
     static bool openFirst(const Node& a, const Node& b) {
         return b.leaf() || (!a.leaf() && a.height >= b.height);
     }
 
-    struct Leaf {
-        Aabb box;
-        int body = kNull;
-    };
-
     std::vector<Node> nodes_;
     std::vector<int> leafOf_;      // per body: its leaf or kNull
-    std::vector<Leaf> leafList_;   // rebuild's copy of the leaves, which it builds over
     int root_ = kNull;
     int free_ = kNull;          // free list threaded through Node::parent
     int leaves_ = 0;            // linked and unlinked
