@@ -388,21 +388,21 @@ void dropSolvedMemory(const Model& model, State& state, ContactSolverScratch& s,
             fromFresh);
 }
 
-// ... then this island's points are added, after the memory as it was (the islands after
-// this one take their warm starts from that part only, as solveContacts indexed it; a
-// second list for them was 56 KB of hull-rain's peak): when it is the only island the
-// memory of its pairs is dropped first. With s.memoryChanged, the bodies of every point
-// whose memory is not the one it started from, bit for bit, are marked there.
+// ... then this island's points are added: when it is the only island, once the memory
+// of its pairs is dropped; else after the memory as it was (the islands after this one
+// take their warm starts from that part only, as solveContacts indexed it), or to s.fresh
+// when solveContacts found no room there (s.toFresh). With s.memoryChanged, the bodies of
+// every point whose memory is not the one it started from, bit for bit, are marked there.
 void rememberIsland(const Model& model, State& state, double h, double quietSpeed, ContactSolverScratch& s,
                     bool onlyIsland) {
     s.kept.resize(s.blocks.size());
     for (size_t b = 0; b < s.blocks.size(); ++b) s.kept[b] = keepsMemory(s, s.blocks[b], quietSpeed);
     if (s.memoryChanged) markChangedMemory(state, h, s);
     if (onlyIsland) dropSolvedMemory(model, state, s, true, state.contacts.size());
-    makeRoom(state.contacts, state.contacts.size() + s.points.size());
+    std::vector<ContactMemory>& out = !onlyIsland && s.toFresh ? s.fresh : state.contacts;
+    makeRoom(out, out.size() + s.points.size());
     for (size_t b = 0; b < s.blocks.size(); ++b)
-        for (int i = 0; i < s.blocks[b].count; ++i)
-            state.contacts.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
+        for (int i = 0; i < s.blocks[b].count; ++i) out.push_back(memoryOf(s, s.blocks[b], i, h, s.kept[b]));
 }
 
 // A body the contacts hold whose velocity the solve left below `still` (and whose spin
@@ -643,12 +643,17 @@ void solveContacts(const Model& model, State& state, const State& before,
         solveIsland(model, state, before, contacts, sizes, cfg, s, ledger, true);
         return;
     }
-    // Room for every point the islands can add (each manifold's points at most) after the
-    // memory as it is, which the islands' warm starts read.
+    // The islands' points (each manifold's at most) go after the memory as it is, which the
+    // islands' warm starts read, when the memory has room for them: a heap mostly at rest,
+    // few points solved against many remembered (a second list for them was 56 KB of
+    // hull-rain's peak). Else to a list of their own: with every pair solved there are as
+    // many points as remembered, and room for twice the memory (grown by half again, the
+    // old room still held while it is copied) was more than the second list.
     const size_t remembered = state.contacts.size();
     size_t points = 0;
     for (const Manifold& m : contacts) points += static_cast<size_t>(m.count);
-    makeRoom(state.contacts, remembered + points);
+    s.toFresh = state.contacts.capacity() < remembered + points;
+    s.fresh.clear();
     for (int k = 0; k < islands; ++k) {
         s.islandContacts.clear();
         for (int m = s.islandBegin[k]; m < s.islandBegin[k + 1]; ++m)
@@ -656,6 +661,11 @@ void solveContacts(const Model& model, State& state, const State& before,
         solveIsland(model, state, before, s.islandContacts, sizes, cfg, s, ledger, false);
     }
     dropSolvedMemory(model, state, s, true, remembered);
+    if (s.toFresh) {
+        makeRoom(state.contacts, state.contacts.size() + s.fresh.size());
+        state.contacts.insert(state.contacts.end(), s.fresh.begin(), s.fresh.end());
+        s.fresh.clear();
+    }
 }
 
 void sizeContactSolver(const Model& model, ContactSolverScratch& s) {

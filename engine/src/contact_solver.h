@@ -181,6 +181,10 @@ struct ContactSolverScratch {
     };
     std::vector<MemoryRun> memory;  // sorted by key (a map's nodes were an allocation per pair and step)
     std::vector<std::uint8_t> used;  // remembered points already taken this step (warmStart)
+    // The islands' new memory when State::contacts has no room for it after the old
+    // (solveContacts, rememberIsland).
+    std::vector<ContactMemory> fresh;
+    bool toFresh = false;
     std::vector<std::uint8_t> seen;  // bodiesOf's flags
     // The passes' skipping (iterate): per block, the update after which it was quiet (-1: it
     // changed something); per body, the update that last changed its velocity.

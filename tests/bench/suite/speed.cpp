@@ -7,11 +7,14 @@
 
 #include <tumble/model.h>
 
+#include <malloc.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -34,6 +37,35 @@ double vmKB(const char* key) {
     while (std::getline(in, line))
         if (line.rfind(key, 0) == 0) return std::atof(line.c_str() + std::strlen(key));
     return 0.0;
+}
+
+// With TUMBLE_BENCH_MEMORY set, where the child's memory is (stderr): its peak and resident
+// size beyond `base` (kB), malloc's heap (arena, in use, mapped chunks) and the resident
+// kB of each mapping by name (the program's code, [heap], each library, anonymous maps).
+// Once the scene is loaded and again at the end, so that two engines' growth can be set
+// side by side (docs/benchmarks.md, "Where the memory is").
+void memoryReport(const char* when, double base) {
+    if (!std::getenv("TUMBLE_BENCH_MEMORY")) return;
+    const struct mallinfo2 mi = mallinfo2();
+    std::fprintf(stderr, "MEMORY %s peak=%.0f rss=%.0f arena=%zu inuse=%zu mapped=%zu (kB above base; bytes)\n",
+                 when, vmKB("VmHWM:") - base, vmKB("VmRSS:") - base, mi.arena, mi.uordblks, mi.hblkhd);
+    std::ifstream maps("/proc/self/smaps");
+    std::map<std::string, long> byName;
+    std::string line, name;
+    while (std::getline(maps, line)) {
+        if (line.rfind("Rss:", 0) == 0) {
+            byName[name] += std::atol(line.c_str() + 4);
+        } else if (!line.empty() && std::isxdigit(static_cast<unsigned char>(line[0])) &&
+                   line.find(' ') < line.find(':')) {  // a mapping's first line: range perms offset dev inode [name]
+            std::istringstream fields(line);
+            std::string range, perms, offset, dev, inode;
+            fields >> range >> perms >> offset >> dev >> inode;
+            std::getline(fields >> std::ws, name);
+            name = (name.empty() ? "anonymous" : name) + " " + perms;
+        }
+    }
+    for (const auto& [mapping, kb] : byName)
+        if (kb > 0) std::fprintf(stderr, "MEMORY %s %6ld kB %s\n", when, kb, mapping.c_str());
 }
 
 std::string selfPath() {
@@ -99,6 +131,7 @@ int childMain(int argc, char** argv) {
             return 0;
         }
         const int steps = quick ? sc.quickSteps : sc.steps;
+        memoryReport("loaded", base);
         double total = 0, worst = 0, contacts = 0, gap = 0;
         try {
             for (int i = 0; i < steps; ++i) {
@@ -118,6 +151,7 @@ int childMain(int argc, char** argv) {
         // How settled the scene is at the end (what the speed bought): the bodies still
         // moving faster than 1 cm/s (a heap that has come to rest has few; rocks that keep
         // jittering or rolling count), and those that fell through the ground.
+        memoryReport("end", base);
         int stillMoving = 0, fellThrough = 0;
         for (int i = 0; i < engine->bodyCount(); ++i) {
             if (i >= static_cast<int>(dynamic.size()) || !dynamic[i]) continue;
