@@ -115,6 +115,10 @@ void rememberPairs(const Model& model, DetectScratch& s, double margin) {
     next.keys.clear();
     next.ranges.clear();
     next.apart.swap(s.apart);  // (findContacts assigns s.apart afresh)
+    // Grown by half when it must grow: assigned at its exact size, a list that grows by a
+    // manifold or two a step (a heap filling up) was allocated anew each time, and each old
+    // one left a hole in the heap that nothing later fitted.
+    makeRoom(next.manifolds, s.contacts.size());
     next.manifolds.assign(s.contacts.begin(), s.contacts.end());
     next.margin = margin;
     if (s.pairedPose.size() != model.bodies.size()) s.pairedPose.assign(model.bodies.size(), Pose{});

@@ -35,7 +35,7 @@ void World::park() {
     const auto parkedPair = [&](const collision::Manifold& m) { return s.parked[m.bodyA] || s.parked[m.bodyB]; };
     const auto n = static_cast<size_t>(std::count_if(d.contacts.begin(), d.contacts.end(), parkedPair));
     s.parkedContacts.clear();
-    if (s.parkedContacts.capacity() < n) s.parkedContacts.reserve(n);  // (as assign would: no more)
+    makeRoom(s.parkedContacts, n);  // (grown by half, as rememberPairs' list and for the same reason)
     size_t cut = 0;
     for (size_t k = 0; k < d.contacts.size(); ++k) {
         const collision::Manifold& m = d.contacts[k];

@@ -51,11 +51,14 @@ QString hullProblem(const ConvexHull& h, double eps) {
     std::map<std::pair<int, int>, int> directed;
     for (size_t f = 0; f < h.faces.size(); ++f) {
         const auto& face = h.faces[f];
-        if (face.vertices.size() < 3) return QString("face %1 has fewer than 3 vertices").arg(f);
+        if (face.first < 0 || face.count < 0 || face.first + face.count > static_cast<int>(h.faceVertices.size()))
+            return QString("face %1: its vertices are outside faceVertices").arg(f);
+        const std::span<const int> vs = h.verticesOf(face);
+        if (vs.size() < 3) return QString("face %1 has fewer than 3 vertices").arg(f);
         if (std::abs(face.normal.norm() - 1.0) > 1e-12) return QString("face %1: normal not unit").arg(f);
         Vec3 newell = Vec3::Zero();
-        for (size_t k = 0; k < face.vertices.size(); ++k) {
-            const int a = face.vertices[k], b = face.vertices[(k + 1) % face.vertices.size()];
+        for (size_t k = 0; k < vs.size(); ++k) {
+            const int a = vs[k], b = vs[(k + 1) % vs.size()];
             if (a < 0 || a >= n) return QString("face %1: bad index").arg(f);
             if (std::abs(face.normal.dot(h.vertices[a]) - face.offset) > eps)
                 return QString("face %1: vertex off its plane").arg(f);
@@ -115,7 +118,7 @@ private slots:
         QCOMPARE(h.faces.size(), size_t(6));
         QCOMPARE(h.edges.size(), size_t(12));
         for (const auto& f : h.faces) {
-            QCOMPARE(f.vertices.size(), size_t(4));
+            QCOMPARE(h.verticesOf(f).size(), size_t(4));
             QCOMPARE(f.offset, f.normal.cwiseAbs().dot(Vec3(0.5, 1, 1.5)));
         }
         QVERIFY(h.interiorPoint == Vec3::Zero());
@@ -136,11 +139,11 @@ private slots:
         QCOMPARE(h.faces.size(), size_t(6));
         QCOMPARE(h.edges.size(), size_t(12));
         for (const auto& f : h.faces) {
-            QCOMPARE(f.vertices.size(), size_t(4));
+            QCOMPARE(h.verticesOf(f).size(), size_t(4));
             // Outward axis normals: the face's centre lies along its normal from the middle.
             QVERIFY(std::abs(f.normal.cwiseAbs().maxCoeff() - 1.0) < 1e-12);
             Vec3 c = Vec3::Zero();
-            for (int v : f.vertices) c += h.vertices[v];
+            for (int v : h.verticesOf(f)) c += h.vertices[v];
             QVERIFY(f.normal.dot(c) > 0.0);
         }
         for (const Vec3& v : h.vertices) QCOMPARE(v.cwiseAbs(), Vec3(2, 3, 4));

@@ -207,7 +207,7 @@ void TestReference::boxVertexInsideBox() {
     ConvexHull hull;
     const ref::Polyhedron bp = ref::worldPolyhedron(b, Pose{});
     hull.vertices = bp.vertices;
-    for (const auto& f : bp.faces) hull.faces.push_back({f.normal, f.offset, f.vertices});
+    for (const auto& f : bp.faces) hull.addFace(f.normal, f.offset, f.vertices);
     const Pose moved =
         makePose(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix(), Vec3(4, 5, 6));
     const ref::Inside in2 = ref::pointInConvex(hull, moved, moved.toWorld(tip));

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace tumble::collision {
@@ -57,14 +58,28 @@ struct Aabb {
 /// A convex polyhedron in the body frame, as qhull builds it with coplanar facets merged.
 struct ConvexHull {
     struct Face {
-        Vec3 normal;               ///< outward unit normal
-        double offset = 0.0;       ///< normal·p == offset on the face, < offset inside
-        std::vector<int> vertices; ///< counter-clockwise seen from outside
+        Vec3 normal;          ///< outward unit normal
+        double offset = 0.0;  ///< normal·p == offset on the face, < offset inside
+        int first = 0;        ///< its vertices are faceVertices[first .. first + count)
+        int count = 0;
     };
     std::vector<Vec3> vertices;
     std::vector<Face> faces;
+    /// Every face's vertex indices, face after face, each face's counter-clockwise seen from
+    /// outside. (One list for all: a list per face was a heap block per face, and half of
+    /// the memory of a small hull.)
+    std::vector<int> faceVertices;
     std::vector<std::array<int, 2>> edges;  ///< each undirected edge once
     Vec3 interiorPoint = Vec3::Zero();      ///< strictly inside (the mean of the vertices)
+
+    std::span<const int> verticesOf(const Face& f) const {
+        return {faceVertices.data() + f.first, static_cast<std::size_t>(f.count)};
+    }
+    /// Appends a face with these vertices.
+    void addFace(const Vec3& normal, double offset, std::span<const int> vertexIndices) {
+        faces.push_back({normal, offset, static_cast<int>(faceVertices.size()), static_cast<int>(vertexIndices.size())});
+        faceVertices.insert(faceVertices.end(), vertexIndices.begin(), vertexIndices.end());
+    }
 };
 
 class TriangleBvh;  // engine internal: a bounding-volume hierarchy over a mesh's triangles

@@ -112,13 +112,14 @@ Feature supportingFeature(const ConvexProxy& p, const Vec3& dir) {
                 const double t = faces[i].normal.dot(d);
                 if (t > bestDot) bestDot = t, best = i;
             }
-            if (best < 0 || static_cast<int>(faces[best].vertices.size()) > Feature::kMax) {
+            if (best < 0 || faces[best].count > Feature::kMax) {
                 pointFeature(f, p, dir);
                 return f;
             }
             const auto& face = faces[best];
-            f.count = static_cast<int>(face.vertices.size());
-            for (int i = 0; i < f.count; ++i) f.v[i] = pose.toWorld(p.hull->vertices[face.vertices[i]]);
+            const std::span<const int> v = p.hull->verticesOf(face);
+            f.count = face.count;
+            for (int i = 0; i < f.count; ++i) f.v[i] = pose.toWorld(p.hull->vertices[v[i]]);
             f.normal = pose.R * face.normal;
             f.face = true;
             f.id = static_cast<std::uint32_t>(best);

@@ -136,7 +136,8 @@ Polyhedron worldPolyhedron(const Shape& shape, const Pose& pose) {
             for (const Vec3& v : h.vertices) poly.vertices.push_back(pose.toWorld(v));
             for (const auto& f : h.faces) {
                 const Vec3 n = pose.directionToWorld(f.normal);
-                poly.faces.push_back({n, f.offset + n.dot(pose.p), f.vertices});
+                const std::span<const int> v = h.verticesOf(f);
+                poly.faces.push_back({n, f.offset + n.dot(pose.p), std::vector<int>(v.begin(), v.end())});
             }
             poly.edges = h.edges;
             return poly;

@@ -40,19 +40,35 @@ void orderCounterClockwise(std::vector<int>& face, const Vec3& normal, const std
     for (size_t k = 0; k < face.size(); ++k) face[k] = byAngle[k].second;
 }
 
-void finish(ConvexHull& hull) {
+// A face as found: its outward normal and its vertices in any order.
+struct RawFace {
+    Vec3 normal;
+    std::vector<int> vertices;
+};
+
+// The hull's faces from `raw`: each face's vertices in order, its plane, and the edges; every
+// list exactly as long as it needs to be (a hull is made once and kept as long as its body).
+void finish(ConvexHull& hull, std::vector<RawFace>& raw) {
     std::set<std::array<int, 2>> edges;
-    for (ConvexHull::Face& f : hull.faces) {
+    size_t indices = 0;
+    for (const RawFace& f : raw) indices += f.vertices.size();
+    hull.faces.clear();
+    hull.faces.reserve(raw.size());
+    hull.faceVertices.clear();
+    hull.faceVertices.reserve(indices);
+    for (RawFace& f : raw) {
         orderCounterClockwise(f.vertices, f.normal, hull.vertices);
         // The plane through the face's own vertices, placed so that none is outside it.
-        f.offset = -std::numeric_limits<double>::infinity();
-        for (int v : f.vertices) f.offset = std::max(f.offset, f.normal.dot(hull.vertices[v]));
+        double offset = -std::numeric_limits<double>::infinity();
+        for (int v : f.vertices) offset = std::max(offset, f.normal.dot(hull.vertices[v]));
         for (size_t k = 0; k < f.vertices.size(); ++k) {
             const int a = f.vertices[k];
             const int b = f.vertices[(k + 1) % f.vertices.size()];
             edges.insert({std::min(a, b), std::max(a, b)});
         }
+        hull.addFace(f.normal, offset, f.vertices);
     }
+    hull.vertices.shrink_to_fit();
     hull.edges.assign(edges.begin(), edges.end());
     hull.interiorPoint = Vec3::Zero();
     for (const Vec3& v : hull.vertices) hull.interiorPoint += v;
@@ -120,6 +136,7 @@ ConvexHull convexHull(const std::vector<Vec3>& points) {
     const int exitCode =
         qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, options, nullptr, errFile);
     ConvexHull hull;
+    std::vector<RawFace> raw;
     if (exitCode == 0) {
         // Hull vertices in the order of the input points, so the result does not depend
         // on qhull's internal lists.
@@ -135,10 +152,10 @@ ConvexHull convexHull(const std::vector<Vec3>& points) {
         facetT* facet;
         vertexT** vertexp;
         FORALLfacets {
-            ConvexHull::Face f;
+            RawFace f;
             f.normal = Vec3(facet->normal[0], facet->normal[1], facet->normal[2]).normalized();
             FOREACHvertex_(facet->vertices) f.vertices.push_back(index.at(qh_pointid(qh, vertex->point)));
-            hull.faces.push_back(std::move(f));
+            raw.push_back(std::move(f));
         }
     }
     int curLong = 0, totLong = 0;
@@ -151,7 +168,7 @@ ConvexHull convexHull(const std::vector<Vec3>& points) {
         throw HullError("qhull could not build the hull: " +
                         (message.empty() ? "error " + std::to_string(exitCode) : message));
     }
-    finish(hull);
+    finish(hull, raw);
     return hull;
 }
 
@@ -161,18 +178,19 @@ ConvexHull boxHull(const Vec3& h) {
     for (int k = 0; k < 8; ++k) {
         hull.vertices.emplace_back(k & 1 ? h.x() : -h.x(), k & 2 ? h.y() : -h.y(), k & 4 ? h.z() : -h.z());
     }
+    std::vector<RawFace> raw;
     for (int axis = 0; axis < 3; ++axis) {
         for (int side = 0; side < 2; ++side) {
-            ConvexHull::Face f;
+            RawFace f;
             f.normal = Vec3::Zero();
             f.normal[axis] = side ? 1.0 : -1.0;
             for (int k = 0; k < 8; ++k) {
                 if (((k >> axis) & 1) == side) f.vertices.push_back(k);
             }
-            hull.faces.push_back(std::move(f));
+            raw.push_back(std::move(f));
         }
     }
-    finish(hull);
+    finish(hull, raw);
     hull.interiorPoint = Vec3::Zero();  // exact, rather than a mean that rounds
     return hull;
 }

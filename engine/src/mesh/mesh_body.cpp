@@ -30,9 +30,8 @@ TriangleMesh hullSurface(const collision::ConvexHull& hull) {
     TriangleMesh m;
     m.vertices = hull.vertices;
     for (const auto& f : hull.faces) {
-        for (size_t k = 1; k + 1 < f.vertices.size(); ++k) {
-            m.triangles.push_back({f.vertices[0], f.vertices[k], f.vertices[k + 1]});
-        }
+        const std::span<const int> v = hull.verticesOf(f);
+        for (size_t k = 1; k + 1 < v.size(); ++k) m.triangles.push_back({v[0], v[k], v[k + 1]});
     }
     return m;
 }

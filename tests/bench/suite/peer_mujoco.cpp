@@ -231,9 +231,10 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
         os << "<mesh name=\"mesh" << i << "\" vertex=\"";
         for (const Vec3& v : h.vertices) os << str(v) << ' ';
         os << "\" face=\"";
-        for (const auto& f : h.faces)
-            for (std::size_t k = 1; k + 1 < f.vertices.size(); ++k)
-                os << f.vertices[0] << ' ' << f.vertices[k] << ' ' << f.vertices[k + 1] << ' ';
+        for (const auto& f : h.faces) {
+            const std::span<const int> v = h.verticesOf(f);
+            for (std::size_t k = 1; k + 1 < v.size(); ++k) os << v[0] << ' ' << v[k] << ' ' << v[k + 1] << ' ';
+        }
         os << "\"/>\n";
     }
     os << "</asset>\n<worldbody>\n";

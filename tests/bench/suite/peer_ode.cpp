@@ -172,8 +172,8 @@ dGeomID OdeAdapter::makeGeom(const BodyModel& b, const Vec3& position, const Qua
                     h->points.insert(h->points.end(), {v.x(), v.y(), v.z()});
                 for (const auto& f : c.hull->faces) {
                     h->planes.insert(h->planes.end(), {f.normal.x(), f.normal.y(), f.normal.z(), f.offset});
-                    h->polygons.push_back(unsigned(f.vertices.size()));
-                    for (int v : f.vertices) h->polygons.push_back(unsigned(v));
+                    h->polygons.push_back(unsigned(f.count));
+                    for (int v : c.hull->verticesOf(f)) h->polygons.push_back(unsigned(v));
                 }
                 dGeomID g =
                     dCreateConvex(space_, h->planes.data(), unsigned(c.hull->faces.size()), h->points.data(),
