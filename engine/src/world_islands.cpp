@@ -9,6 +9,22 @@
 
 namespace tumble {
 
+namespace {
+
+// `to` made `from` but for the contact memory and the touching pairs, which neither copies:
+// each keeps its own (a pile's are large, and a cut changes little of them).
+void assignAllButMemory(State& to, State& from) {
+    std::vector<ContactMemory> fromContacts = std::move(from.contacts), toContacts = std::move(to.contacts);
+    std::vector<std::uint64_t> fromTouching = std::move(from.touching), toTouching = std::move(to.touching);
+    to = from;
+    from.contacts = std::move(fromContacts);
+    from.touching = std::move(fromTouching);
+    to.contacts = std::move(toContacts);
+    to.touching = std::move(toTouching);
+}
+
+}  // namespace
+
 // After the first look at the step: the islands without an impact keep their free step.
 void World::park() {
     Scratch& s = *scratch_;
@@ -56,11 +72,7 @@ void World::park() {
 // kept here, with their places. (A copy of the whole memory was 76 KB of hull-rain's peak.)
 void World::saveStepStart() {
     Scratch& s = *scratch_;
-    std::vector<ContactMemory> contacts = std::move(state_.contacts);
-    std::vector<std::uint64_t> touching = std::move(state_.touching);
-    s.stepStart = state_;
-    state_.contacts = std::move(contacts);
-    state_.touching = std::move(touching);
+    assignAllButMemory(s.stepStart, state_);
     copyMotion(s.before, s.stepStart);
     s.cutMemory.clear();
     s.cutMemoryAt.clear();
@@ -79,11 +91,7 @@ bool World::parkedOrStill(int body) const {
 
 void World::restoreStepStart() {
     Scratch& s = *scratch_;
-    std::vector<ContactMemory> contacts = std::move(state_.contacts);
-    std::vector<std::uint64_t> touching = std::move(state_.touching);
-    state_ = s.stepStart;
-    state_.contacts = std::move(contacts);
-    state_.touching = std::move(touching);
+    assignAllButMemory(state_, s.stepStart);
     // The points kept as they were, in order, then the saved ones back in their places.
     std::vector<ContactMemory>& m = state_.contacts;
     std::erase_if(m, [&](const ContactMemory& c) { return !(parkedOrStill(c.bodyA) && parkedOrStill(c.bodyB)); });
