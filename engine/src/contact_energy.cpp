@@ -6,6 +6,7 @@
 namespace tumble {
 
 using collision::Manifold;
+using collision::ManifoldList;
 using Point = ContactSolverScratch::Point;
 
 namespace {
@@ -171,7 +172,7 @@ double frictionLost(ContactSolverScratch& s) {
 
 // Whether the contacts of this step may only take energy out: none of them is with a
 // kinematic body that moves (a conveyor or a paddle does work on what it touches).
-bool passive(const Model& model, const std::vector<Manifold>& contacts) {
+bool passive(const Model& model, const ManifoldList& contacts) {
     for (const Manifold& m : contacts)
         for (int b : {m.bodyA, m.bodyB})
             if (model.bodies[b].motion == Motion::Kinematic && !model.bodies[b].standsStill()) return false;

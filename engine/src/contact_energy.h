@@ -40,7 +40,7 @@ double solvedKinetic(const Model& model, const State& state, const ContactSolver
 /// Gravity's potential energy of the dynamic bodies `which` as they stand in `state`.
 double gravityPotential(const Model& model, const State& state, const std::vector<int>& which);
 /// Whether the contacts may only take energy out (no moving kinematic body among them).
-bool passive(const Model& model, const std::vector<collision::Manifold>& contacts);
+bool passive(const Model& model, const collision::ManifoldList& contacts);
 /// The balance of s.moving; `before`: the state at the start of the step (or its last part).
 EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
                             const ContactSolverScratch& s);

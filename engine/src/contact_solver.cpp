@@ -16,6 +16,7 @@
 namespace tumble {
 
 using collision::Manifold;
+using collision::ManifoldList;
 using Point = ContactSolverScratch::Point;
 
 namespace {
@@ -88,7 +89,7 @@ double roundness(const collision::Shape& shape) {
 }
 
 void prepare(const Model& model, const State& state, const State& before,
-             const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
+             const ManifoldList& contacts, const std::vector<double>& sizes,
              const ContactSolverSettings& cfg, ContactSolverScratch& s) {
     s.points.clear();
     s.geometry.clear();
@@ -503,7 +504,7 @@ double solvedEnergy(const Model& model, const State& state, const ContactSolverS
 // are s.islandManifolds[s.islandBegin[k] .. s.islandBegin[k + 1]), in the contacts' order,
 // the islands numbered as the contacts first name them. A manifold none of whose bodies
 // can move is in none (the solve passes over it).
-int contactIslands(const Model& model, const State& state, const std::vector<Manifold>& contacts,
+int contactIslands(const Model& model, const State& state, const ManifoldList& contacts,
                    ContactSolverScratch& s) {
     const size_t n = model.bodies.size();
     if (s.parent.size() != n) s.parent.assign(n, 0), s.islandOfRoot.assign(n, -1);
@@ -543,7 +544,7 @@ int contactIslands(const Model& model, const State& state, const std::vector<Man
 
 // The solve of one island (contactIslands): of all the contacts and joints when the model
 // has joints.
-void solveIsland(const Model& model, State& state, const State& before, const std::vector<Manifold>& contacts,
+void solveIsland(const Model& model, State& state, const State& before, const ManifoldList& contacts,
                  const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s,
                  EnergyLedger& ledger, bool onlyIsland) {
     bodiesOf(contacts, s.seen, s.involved);
@@ -624,7 +625,7 @@ void solveIsland(const Model& model, State& state, const State& before, const st
 }
 
 void solveContacts(const Model& model, State& state, const State& before,
-                   const std::vector<Manifold>& contacts, const std::vector<double>& sizes,
+                   const ManifoldList& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
     s.jointsOpen = 0.0;  // (projectJoints sets it, the last call's standing)
     s.stillBodies = 0;

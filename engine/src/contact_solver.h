@@ -209,7 +209,7 @@ struct ContactSolverScratch {
     // The islands (contactIslands): union-find per body, each manifold's island, the
     // manifolds island by island, and the one island being solved.
     std::vector<int> parent, islandOfRoot, roots, islandOf, islandBegin, islandFill, islandManifolds;
-    std::vector<collision::Manifold> islandContacts;
+    collision::ManifoldList islandContacts;
     std::vector<int> springs;  // Model::forces' springs, by index (sizeContactSolver)
 };
 
@@ -242,7 +242,7 @@ void sizeContactSolver(const Model& model, ContactSolverScratch& scratch);
 /// pushed is moved again from there with its new velocity (x = x0 + h v, q turned by h ω),
 /// so that the motion the contact forbids (sinking, creeping down a slope) never happens.
 void solveContacts(const Model& model, State& state, const State& before,
-                   const std::vector<collision::Manifold>& contacts, const std::vector<double>& sizes,
+                   const collision::ManifoldList& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& settings, ContactSolverScratch& scratch,
                    EnergyLedger& ledger);
 

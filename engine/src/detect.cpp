@@ -74,8 +74,8 @@ constexpr int kPairGrain = 8;  // pairs per chunk on the worker threads
 // s.impacts) in the pairs' order: on the worker threads each chunk of pairs fills a list of
 // its own, and the lists are joined in chunk order, so the result does not depend on the
 // threads.
-template <class T, class Pair>
-void overPairs(DetectScratch& s, std::vector<T>& out, std::vector<std::vector<T>>& chunkOut, Pair&& pair) {
+template <class List, class Pair>
+void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, Pair&& pair) {
     const auto& pairs = s.broadphase.pairs();
     const int n = static_cast<int>(pairs.size());
     if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain) {
@@ -85,7 +85,7 @@ void overPairs(DetectScratch& s, std::vector<T>& out, std::vector<std::vector<T>
     const int chunks = (n + kPairGrain - 1) / kPairGrain;
     if (static_cast<int>(chunkOut.size()) < chunks) chunkOut.resize(chunks);
     s.pool->run(chunks, [&](int c) {
-        std::vector<T>& mine = chunkOut[c];
+        List& mine = chunkOut[c];
         mine.clear();
         const int end = std::min(n, (c + 1) * kPairGrain);
         for (int k = c * kPairGrain; k < end; ++k) pair(k, pairs[k].first, pairs[k].second, mine);
@@ -178,7 +178,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
     };
     s.apart.assign(s.broadphase.pairs().size(), Vec3::Zero());
     std::atomic<long> reused{0}, provedApart{0};
-    overPairs(s, s.contacts, s.chunkContacts, [&](int k, int a, int b, std::vector<Manifold>& out) {
+    overPairs(s, s.contacts, s.chunkContacts, [&](int k, int a, int b, ManifoldList& out) {
         if (const auto* range = lastOf(a, b)) {
             out.insert(out.end(), last.manifolds.begin() + range->first, last.manifolds.begin() + range->second);
             s.apart[k] = last.apart[range - last.ranges.data()];
@@ -247,7 +247,7 @@ double approachSpeed(const Model& model, const State& before, const State& after
 
 }  // namespace
 
-void touchingPairs(const std::vector<Manifold>& contacts, double touchTolerance,
+void touchingPairs(const ManifoldList& contacts, double touchTolerance,
                    std::vector<std::uint64_t>& out) {
     out.clear();
     for (const Manifold& m : contacts)

@@ -29,7 +29,7 @@ struct DetectScratch {
     std::vector<std::uint8_t> moving;
     std::vector<collision::HalfSpace> halfSpaces;  // of the planes that stand still; empty if none
     collision::Broadphase broadphase;
-    std::vector<collision::Manifold> contacts;
+    collision::ManifoldList contacts;
     std::vector<collision::ImpactEvent> impacts;
     std::vector<std::uint64_t> touching;  // sorted keys of the pairs touching at the start of the step
     // The pairs with contacts at the end, sorted by key, each with its first manifold's
@@ -45,7 +45,7 @@ struct DetectScratch {
         std::vector<std::uint64_t> keys;          // the pairs, sorted
         std::vector<std::pair<int, int>> ranges;  // keys[k]'s manifolds: [first, second) of manifolds
         std::vector<Vec3> apart;                  // keys[k]'s direction apart (out of b towards a), or zero
-        std::vector<collision::Manifold> manifolds;
+        collision::ManifoldList manifolds;
         double margin = std::numeric_limits<double>::quiet_NaN();
     };
     PairMemory lastPairs;
@@ -54,7 +54,7 @@ struct DetectScratch {
     long reusedPairs = 0;                     // pairs taken from lastPairs, summed
     long apartPairs = 0;                      // pairs shown apart by their last direction, summed
     Workers* pool = nullptr;              // the world's worker threads; null: this thread only
-    std::vector<std::vector<collision::Manifold>> chunkContacts;  // per chunk of pairs (with a pool)
+    std::vector<collision::ManifoldList> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
 };
 
@@ -80,7 +80,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin);
 void refreshJointPairs(const Model& model, const State& state, DetectScratch& s);
 
 /// The sorted keys of the pairs with a point deeper than -touchTolerance.
-void touchingPairs(const std::vector<collision::Manifold>& contacts, double touchTolerance,
+void touchingPairs(const collision::ManifoldList& contacts, double touchTolerance,
                    std::vector<std::uint64_t>& out);
 
 /// Time of impact: for pairs that did not touch at the start of the step (not in

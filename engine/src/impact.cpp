@@ -9,6 +9,7 @@
 namespace tumble {
 
 using collision::Manifold;
+using collision::ManifoldList;
 
 namespace {
 
@@ -33,7 +34,7 @@ bool touches(const Manifold& m, double tol) {
 // carry the reach on, static and kinematic ones do not. A breadth-first search over each
 // body's touching manifolds: linear in the contacts (sweeping the whole list until nothing
 // grew took a pass per link of the longest chain, quadratic for a long row or a tall pile).
-void collectIsland(const Model& model, const State& state, const std::vector<Manifold>& contacts,
+void collectIsland(const Model& model, const State& state, const ManifoldList& contacts,
                    const std::vector<int>& seeds, double tol, ImpactScratch& s) {
     const size_t n = model.bodies.size();
     s.inIsland.assign(n, 0);
@@ -197,7 +198,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
 }  // namespace
 
 void approachingBodies(const Model& model, const State& before, const State& state,
-                       const std::vector<Manifold>& contacts, double tol, double speed,
+                       const ManifoldList& contacts, double tol, double speed,
                        std::vector<int>& seeds) {
     seeds.clear();
     // Each manifold's bodies are loaded when one of its points touches, and their velocities
@@ -222,7 +223,7 @@ void approachingBodies(const Model& model, const State& before, const State& sta
 
 namespace {
 
-ImpactResult resolve(const Model& model, State& state, const std::vector<Manifold>& contacts,
+ImpactResult resolve(const Model& model, State& state, const ManifoldList& contacts,
                      const std::vector<int>& seeds, double touchTolerance, double restingSpeed, ImpactScratch& s,
                      EnergyLedger& ledger, ContactSolverScratch* joints) {
     ImpactResult result;
@@ -336,7 +337,7 @@ ImpactResult resolve(const Model& model, State& state, const std::vector<Manifol
 
 }  // namespace
 
-ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<Manifold>& contacts,
+ImpactResult resolveImpacts(const Model& model, State& state, const ManifoldList& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
                             ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints) {
     // With the contact solver's scratch, the impact borrows its per-body array (each loads

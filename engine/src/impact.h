@@ -61,7 +61,7 @@ void sizeImpacts(const Model& model, ImpactScratch& scratch);
 /// e.g. of bodies touching at the start of the step. A contact that approaches only
 /// because of this step's forces (a body pressed onto its support) is resting, not bouncing.
 void approachingBodies(const Model& model, const State& before, const State& state,
-                       const std::vector<collision::Manifold>& contacts, double touchTolerance, double speed,
+                       const collision::ManifoldList& contacts, double touchTolerance, double speed,
                        std::vector<int>& seeds);
 
 /// With joints, the bodies joined to the island's are in it too, and the joints' rows
@@ -69,7 +69,7 @@ void approachingBodies(const Model& model, const State& before, const State& sta
 /// moves, so that an impact passes through a joint as through a contact; `joints`: the
 /// contact solver's scratch, whose joint rows this uses (its bodies are swapped in); given
 /// one, the impact works on that scratch's solver bodies too.
-ImpactResult resolveImpacts(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
+ImpactResult resolveImpacts(const Model& model, State& state, const collision::ManifoldList& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
                             ImpactScratch& scratch, EnergyLedger& ledger, ContactSolverScratch* joints = nullptr);
 

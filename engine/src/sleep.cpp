@@ -7,6 +7,7 @@
 namespace tumble {
 
 using collision::Manifold;
+using collision::ManifoldList;
 
 namespace {
 
@@ -37,7 +38,7 @@ void awakeBodies(const Model& model, const State& state, std::vector<int>& out) 
         if (!state.isAsleep(i)) out.push_back(i);
 }
 
-bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& contacts, double tol, double h,
+bool updateSleep(const Model& model, State& state, const ManifoldList& contacts, double tol, double h,
                  SleepScratch& s, EnergyLedger& ledger) {
     const int n = static_cast<int>(model.bodies.size());
     state.restTime.resize(n, 0.0);
@@ -103,7 +104,7 @@ bool updateSleep(const Model& model, State& state, const std::vector<Manifold>& 
     return fell;
 }
 
-bool wakeTouched(const Model& model, State& state, const std::vector<Manifold>& contacts,
+bool wakeTouched(const Model& model, State& state, const ManifoldList& contacts,
                  const std::vector<collision::ImpactEvent>& impacts, const std::vector<std::uint8_t>& parked) {
     if (state.asleep.empty()) return false;
     std::vector<int> stack;

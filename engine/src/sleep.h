@@ -26,13 +26,13 @@ struct SleepScratch {
 };
 
 /// After the solve: rest times, islands, and islands falling asleep. True when any fell asleep.
-bool updateSleep(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
+bool updateSleep(const Model& model, State& state, const collision::ManifoldList& contacts,
                  double touchTolerance, double h, SleepScratch& scratch, EnergyLedger& ledger);
 
 /// Wakes the sleeping bodies an awake body touches (`contacts`, `impacts`) or whose applied
 /// forces act at state.time, with their sleeping neighbours. True when any woke. Bodies with
 /// parked[i] set (World::step's parked islands; empty: none) are left alone.
-bool wakeTouched(const Model& model, State& state, const std::vector<collision::Manifold>& contacts,
+bool wakeTouched(const Model& model, State& state, const collision::ManifoldList& contacts,
                  const std::vector<collision::ImpactEvent>& impacts, const std::vector<std::uint8_t>& parked = {});
 
 /// The dynamic bodies that are awake, in index order.

@@ -67,7 +67,7 @@ void uniqueBodies(std::vector<int>& list, std::vector<std::uint8_t>& seen) {
     std::sort(list.begin(), list.end());
 }
 
-void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<std::uint8_t>& seen,
+void bodiesOf(const collision::ManifoldList& contacts, std::vector<std::uint8_t>& seen,
               std::vector<int>& out) {
     out.clear();
     for (const collision::Manifold& m : contacts) {

@@ -32,7 +32,7 @@ struct SolverBody : BodyVelocity {
 
 /// The bodies of `contacts`, ascending, each once. `seen` is scratch: one flag per body,
 /// all 0 before and after (sized here on first use).
-void bodiesOf(const std::vector<collision::Manifold>& contacts, std::vector<std::uint8_t>& seen,
+void bodiesOf(const collision::ManifoldList& contacts, std::vector<std::uint8_t>& seen,
               std::vector<int>& out);
 /// `list` made ascending with each body once, `seen` as for bodiesOf.
 void uniqueBodies(std::vector<int>& list, std::vector<std::uint8_t>& seen);

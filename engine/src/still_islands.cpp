@@ -38,7 +38,7 @@ void startStillStep(const Model& model, const State& state, double h, StillScrat
     s.changed.assign(n, 0);
 }
 
-void closeStillIslands(const Model& model, const std::vector<collision::Manifold>& contacts,
+void closeStillIslands(const Model& model, const collision::ManifoldList& contacts,
                        std::vector<std::uint8_t>& flags) {
     // A body that loses its flag can take a neighbour's with it, which may come earlier in
     // the list: again until a pass drops none (as deep as the largest island is wide).
@@ -56,7 +56,7 @@ void closeStillIslands(const Model& model, const std::vector<collision::Manifold
     }
 }
 
-void endStillStep(const Model& model, const State& state, const std::vector<collision::Manifold>& contacts,
+void endStillStep(const Model& model, const State& state, const collision::ManifoldList& contacts,
                   StillScratch& s) {
     if (!s.enabled || !s.started) return;
     s.still.assign(model.bodies.size(), 0);

@@ -43,12 +43,12 @@ void startStillStep(const Model& model, const State& state, double h, StillScrat
 
 /// Of `flags` (per body), drops every body that touches, through `contacts`, a dynamic body
 /// not flagged or a kinematic body that moves, and so on through its island.
-void closeStillIslands(const Model& model, const std::vector<collision::Manifold>& contacts,
+void closeStillIslands(const Model& model, const collision::ManifoldList& contacts,
                        std::vector<std::uint8_t>& flags);
 
 /// At the end of the step: the bodies that it left exactly as they were, at rest, their
 /// contacts' memory unchanged, in islands of such bodies (`contacts`: the step's last).
-void endStillStep(const Model& model, const State& state, const std::vector<collision::Manifold>& contacts,
+void endStillStep(const Model& model, const State& state, const collision::ManifoldList& contacts,
                   StillScratch& s);
 
 /// Forgets what was found (a new state, a changed setting).

@@ -383,7 +383,7 @@ void World::impactsAtStart() {
 // Bounces that no time of impact found (bodies that touched at the start of the step and
 // now approach fast) get the impact loop at the end of the step; then the contact solver
 // over the last part of the step, from `before`.
-void World::finishStep(const State& before, const std::vector<collision::Manifold>& contacts) {
+void World::finishStep(const State& before, const collision::ManifoldList& contacts) {
     Scratch& s = *scratch_;
     Lap lap;
     approachingBodies(model_, before, state_, contacts, s.touchTolerance, s.resting, s.seeds);
@@ -417,7 +417,7 @@ void World::finishStep(const State& before, const std::vector<collision::Manifol
     profile_.solve += lap.next();
 }
 
-const std::vector<collision::Manifold>& World::contacts() const {
+const collision::ManifoldList& World::contacts() const {
     return scratch_->detect.contacts;
 }
 

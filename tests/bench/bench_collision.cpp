@@ -288,7 +288,7 @@ void benchNarrowphase(bool quick) {
         const bool mesh = c.a.kind == Kind::Mesh || c.b.kind == Kind::Mesh;
         const int n = quick || mesh ? 200 : 2000;
         std::vector<std::pair<Pose, Pose>> poses;
-        std::vector<Manifold> out;
+        ManifoldList out;
         const double ra = boundingRadius(c.a);
         const double small = c.b.kind == Kind::Plane ? ra : std::min(ra, boundingRadius(c.b));
         for (int k = 0; k < n; ++k) {

@@ -159,7 +159,7 @@ private slots:
         const Shape top = Shape::box(Vec3(0.5, 0.5, 0.5)), floor = Shape::box(Vec3(2, 1, 2));
         const double yaw = 0.4;
         const Pose pa = pose(Vec3(0.1, 1.49, 0.2), about(Vec3::UnitY(), yaw));
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(top, pa, floor, pose(Vec3::Zero()), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         const Manifold& m = out[0];
@@ -171,7 +171,7 @@ private slots:
         QVERIFY(hasPoints(m, corners, 0.01, 1e-12));
         QCOMPARE(ids(m).size(), size_t(4));
         // Nudged sideways the same features touch: the same ids.
-        std::vector<Manifold> moved;
+        ManifoldList moved;
         collideConvex(top, pose(pa.p + Vec3(1e-3, 0, -1e-3), about(Vec3::UnitY(), yaw)), floor,
                       pose(Vec3::Zero()), 0.0, moved);
         QCOMPARE(moved.size(), size_t(1));
@@ -185,7 +185,7 @@ private slots:
         const Vec3 lowest = pa.toWorld(Vec3(-0.5, -0.5, 0));  // lowest corner (x<0 side goes down)
         Pose placed = pa;
         placed.p.y() = 1.0 - 0.01 - lowest.y();
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), placed, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()),
                       0.001, out);
         QCOMPARE(out.size(), size_t(1));
@@ -196,7 +196,7 @@ private slots:
 
     void boxOnHullFace() {
         const Pose pa = pose(Vec3(0.3, 1.0 + 0.5 - 0.02, -0.4), about(Vec3::UnitY(), 1.1));
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(Shape::box(Vec3(0.5, 0.5, 0.5)), pa, prism(1.0), pose(Vec3::Zero()), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
@@ -219,7 +219,7 @@ private slots:
         const Shape tet = hullOf({Vec3(-0.5, 0, -0.4), Vec3(0.5, 0, -0.4), Vec3(0, 0, 0.6), Vec3(0, 0.8, 0)});
         const Vec3 far(1000, -2000, 500);
         const Pose pa = pose(far + Vec3(0.5, 1.0 - 0.05, 0.5), about(Vec3::UnitY(), 0.3));
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(tet, pa, prism(1.0), pose(far), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY((out[0].normal - Vec3(0, 1, 0)).norm() < 1e-12);
@@ -232,7 +232,7 @@ private slots:
     void cylinderOnItsCap() {
         // Standing on a box: four points on the rim, all at the depth.
         const Pose pc = pose(Vec3(0.2, 1.0 + 1.5 - 0.01, -0.1), about(Vec3::UnitY(), 0.25));
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(Shape::cylinder(0.6, 1.5), pc, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         const Manifold& m = out[0];
@@ -268,7 +268,7 @@ private slots:
         const Vec3 lowest = pc.toWorld(Vec3(-0.6, -1.5, 0));
         QVERIFY(lowest.y() < pc.toWorld(Vec3(0.6, -1.5, 0)).y());
         pc.p = Vec3(0, 1.0 - 0.01 - lowest.y(), 0);
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(Shape::cylinder(0.6, 1.5), pc, Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.001,
                       out);
         QCOMPARE(out.size(), size_t(1));
@@ -279,7 +279,7 @@ private slots:
         // A cylinder on its side and a capsule, each lying along x on a box: two points, at
         // the ends of the line of contact.
         const Quat alongX = about(Vec3::UnitZ(), std::numbers::pi / 2);
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(Shape::cylinder(0.3, 0.8), pose(Vec3(0, 1.0 + 0.3 - 0.02, 0.1), alongX),
                       Shape::box(Vec3(2, 1, 2)), pose(Vec3::Zero()), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
@@ -302,7 +302,7 @@ private slots:
 
     void singlePointsAndMargin() {
         // A sphere on a hull face: one point; the depth and position in closed form.
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvex(Shape::sphere(0.5), pose(Vec3(0.2, 1.45, 0.1)), prism(1.0), pose(Vec3::Zero()), 0.0,
                       out);
         QCOMPARE(out.size(), size_t(1));
@@ -322,7 +322,7 @@ private slots:
         // The box covers the shared diagonal of two triangles: one manifold, its 4 corners.
         for (bool withBvh : {true, false}) {
             const Pose pa = pose(Vec3(0.5, 0.5 - 0.01, 0.3), about(Vec3::UnitY(), 0.2));
-            std::vector<Manifold> out;
+            ManifoldList out;
             collideConvexMesh(Shape::box(Vec3(0.3, 0.5, 0.3)), pa, groundStrip(1, withBvh),
                               pose(Vec3::Zero()), 0.0, out);
             QCOMPARE(out.size(), size_t(1));
@@ -344,7 +344,7 @@ private slots:
         const Penetration raw = penetration(proxyOf(box, pa), sliver, 0.0);
         QVERIFY(raw.hit && raw.normal.y() < 0.5);
         // ... but on the mesh every contact pushes up.
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvexMesh(box, pa, groundStrip(4), pose(Vec3::Zero()), 0.0, out);
         QVERIFY(!out.empty());
         for (const Manifold& m : out) {
@@ -361,7 +361,7 @@ private slots:
         const Shape cube = unitCubeMesh();
         const Vec3 dir = Vec3(1, 1, 0).normalized();
         const Vec3 centre = Vec3(1, 1, 0.5) + (0.3 - 0.01) * dir;
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvexMesh(Shape::sphere(0.3), pose(centre), cube, pose(Vec3(0, 0, 0)), 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY((out[0].normal - dir).norm() < 1e-9);
@@ -388,7 +388,7 @@ private slots:
         const double cy = 1.0 - d + hy * std::cos(th) + s * std::sin(th);
         const Pose pa = pose(Vec3(cx, cy, 0.5), about(Vec3::UnitZ(), -th));
         const Vec3 bottomNormal(std::sin(th), std::cos(th), 0.0);  // out of the table, into the plank
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvexMesh(Shape::box(Vec3(hx, hy, 0.2)), pa, unitCubeMesh(), pose(Vec3::Zero()), 0.0, out);
         QVERIFY(!out.empty());
         for (const Manifold& m : out) {
@@ -405,7 +405,7 @@ private slots:
         Pose pa;
         pa.R = pm.R * local.R;
         pa.p = pm.toWorld(local.p);
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideConvexMesh(Shape::box(Vec3(0.3, 0.5, 0.3)), pa, groundStrip(1), pm, 0.0, out);
         QCOMPARE(out.size(), size_t(1));
         QVERIFY((out[0].normal - pm.R.col(1)).norm() < 1e-12);
@@ -442,7 +442,7 @@ private slots:
             }
             const Pose pa = pose(Vec3(1.0 + 1.6 * u(rng), 0.5 * u(rng), 0.75 + 1.4 * u(rng)),
                                  Quat(g(rng), g(rng), g(rng), g(rng)));
-            std::vector<Manifold> out;
+            ManifoldList out;
             collideConvexMesh(sa, pa, tri, pose(Vec3::Zero()), margin, out);
             const bool hit = penetration(proxyOf(sa, pa), T, margin).hit;
             QVERIFY2(out.empty() != hit, qPrintable(QString("trial %1: gjk %2").arg(trial).arg(hit)));
@@ -477,13 +477,13 @@ private slots:
                 const Vec3 n = d == 0 ? Vec3((pa.p - pb.p).normalized()) : rng.direction();
                 if (!apartAlong(a, pa, b, pb, n, margin)) continue;
                 ++proofs;
-                std::vector<Manifold> out;
+                ManifoldList out;
                 collideConvex(a, pa, b, pb, margin, out);
                 QVERIFY2(out.empty() && distance > margin,
                          qPrintable(QString("trial %1: apart along n, yet %2 manifolds, distance %3")
                                         .arg(trial).arg(out.size()).arg(distance)));
             }
-            std::vector<Manifold> out;
+            ManifoldList out;
             Vec3 apart = Vec3::Zero();
             collide(a, pa, b, pb, margin, out, apart);
             QCOMPARE(out.empty(), distance > margin);
@@ -525,7 +525,7 @@ private slots:
             Pose pa = pose(Vec3(u(rng), u(rng), u(rng)) * 1.5, Quat(g(rng), g(rng), g(rng), g(rng)));
             const Pose pb = pose(Vec3(u(rng), u(rng), u(rng)) * 1.5, Quat(g(rng), g(rng), g(rng), g(rng)));
             if (trial % 3 == 0) pa.R = pb.R;
-            std::vector<Manifold> out;
+            ManifoldList out;
             collideConvex(sa, pa, sb, pb, margin, out);
             const Penetration p = penetration(proxyOf(sa, pa), proxyOf(sb, pb), margin);
             QCOMPARE(out.size(), size_t(p.hit ? 1 : 0));

@@ -68,7 +68,7 @@ struct Stats {
 
 void describe(const char* why, const Shape& a, const Pose& pa, const Shape& b, const Pose& pb) {
     const ref::RefContacts rc = ref::referenceContacts(a, pa, b, pb);
-    std::vector<Manifold> out;
+    ManifoldList out;
     collide(a, pa, b, pb, 0.0, out);
     const ref::Polyhedron A = ref::worldPolyhedron(a, pa), B = ref::worldPolyhedron(b, pb);
     qWarning(
@@ -98,7 +98,7 @@ void checkPair(Path path, const Shape& a, const Pose& pa, const Shape& b, const 
         if (ax.overlap < minimum) minimum = ax.overlap, minAxis = ax.axis;
     const double size = boundingRadius(a) + boundingRadius(b);
     const double touch = 1e-7 * size, abs = 1e-9 * size;
-    std::vector<Manifold> out;
+    ManifoldList out;
     collide(a, pa, b, pb, 0.0, out);
     auto fail = [&](const char* why) {
         if (st.failures[why]++ == 0) describe(why, a, pa, b, pb);
@@ -295,7 +295,7 @@ void TestCrossCheck::polyhedronPlane() {
         const ref::RefContacts rc = ref::referenceContacts(a, placed, plane, pp);
         const ref::Polyhedron A = ref::worldPolyhedron(a, placed);
         const double size = boundingRadius(a), abs = 1e-12 * (size + placed.p.norm() + pp.p.norm() + 1);
-        std::vector<Manifold> out;
+        ManifoldList out;
         collide(a, placed, plane, pp, 0.0, out);
         if (rc.depth < -abs) {
             ++separated;
@@ -337,7 +337,7 @@ void TestCrossCheck::spherePlane() {
         const Pose pa{rng.rotation(), c - n * (n.dot(c) - offset) + n * rng.uniform(-0.3 * r, 1.2 * r)};
         const double e = ref::planeValue(n, -offset, pa.p);
         const double depth = r - e;
-        std::vector<Manifold> out;
+        ManifoldList out;
         collide(Shape::sphere(r), pa, plane, pp, 0.0, out);
         const double abs = 1e-12 * (4 + pa.p.norm());
         if (depth < -abs) {
@@ -390,7 +390,7 @@ void TestCrossCheck::sphereBox() {
             n = (pa.p - q) / dist;
             mid = 0.5 * ((pa.p - r * n) + q);
         }
-        std::vector<Manifold> out;
+        ManifoldList out;
         collide(Shape::sphere(r), pa, box, pb, 0.0, out);
         const double abs = 1e-12 * (4 + pb.p.norm());
         if (depth < -abs) {

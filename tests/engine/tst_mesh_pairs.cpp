@@ -89,7 +89,7 @@ void TestMeshPairs::uStandsOnAPlaneByItsFeet() {
     const Pose pp{Eigen::AngleAxisd(-std::numbers::pi / 2, Vec3::UnitX()).toRotationMatrix(), Vec3(5, 0, -2)};
     QVERIFY((pp.directionToWorld(Vec3(0, 0, 1)) - Vec3(0, 1, 0)).norm() < 1e-15);
     const double delta = 0.02;
-    std::vector<Manifold> out;
+    ManifoldList out;
     collideMeshPlane(uPrism(), Pose{Mat3::Identity(), Vec3(0, -delta, 0)}, plane, pp, 0.0, out);
     QCOMPARE(out.size(), std::size_t(1));
     const Manifold& m = out[0];
@@ -115,7 +115,7 @@ void TestMeshPairs::tiltedUTouchesWithOneFoot() {
     // [2,3] stays up, the one at [0,1] goes down; each corner's depth is minus its height.
     const Shape u = uPrism();
     const Pose pm{Eigen::AngleAxisd(0.1, Vec3::UnitZ()).toRotationMatrix(), Vec3(0, -0.15, 0)};
-    std::vector<Manifold> out;
+    ManifoldList out;
     collideMeshPlane(u, pm, Shape::plane(Vec3(0, 1, 0), 0.0), Pose{}, 0.0, out);
     QCOMPARE(out.size(), std::size_t(1));
     int below = 0;
@@ -138,7 +138,7 @@ void TestMeshPairs::tiltedUTouchesWithOneFoot() {
 void TestMeshPairs::meshAbovePlaneNearContactsWithMargin() {
     const Shape u = uPrism();
     const Shape plane = Shape::plane(Vec3(0, 1, 0), 0.0);
-    std::vector<Manifold> out;
+    ManifoldList out;
     collideMeshPlane(u, Pose{Mat3::Identity(), Vec3(0, 0.03, 0)}, plane, Pose{}, 0.0, out);
     QVERIFY(out.empty());
     collideMeshPlane(u, Pose{Mat3::Identity(), Vec3(0, 0.03, 0)}, plane, Pose{}, 0.05, out);
@@ -159,7 +159,7 @@ void TestMeshPairs::lPushedIntoAnotherLsNotch() {
     const double delta = 0.1;
     const Shape b = lPrism(0.0, 1.0), a = lPrism(0.25, 0.75);
     const Pose pa{Mat3::Identity(), Vec3(1 - delta, 1.25, 0)};
-    std::vector<Manifold> out;
+    ManifoldList out;
     collideMeshMesh(a, pa, b, Pose{}, 0.0, out);
     QCOMPARE(out.size(), std::size_t(1));
     const Manifold& m = out[0];
@@ -176,7 +176,7 @@ void TestMeshPairs::lPushedIntoAnotherLsNotch() {
     }
     QVERIFY(edgeContact);
     // The same pair swapped: the normal turns, the depths stay.
-    std::vector<Manifold> swapped;
+    ManifoldList swapped;
     collideMeshMesh(b, Pose{}, a, pa, 0.0, swapped);
     QCOMPARE(swapped.size(), std::size_t(1));
     QVERIFY((swapped[0].normal + Vec3(1, 0, 0)).norm() < 1e-12);
@@ -193,7 +193,7 @@ void TestMeshPairs::cubeMeshesCrossedRidgeOverRidge() {
     const Pose pb{Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()};
     const Pose pa{Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()).toRotationMatrix(),
                   Vec3(0, 0, 2 * s2 - delta)};
-    std::vector<Manifold> out;
+    ManifoldList out;
     collideMeshMesh(cube, pa, cube, pb, 0.0, out);
     QCOMPARE(out.size(), std::size_t(1));
     QVERIFY((out[0].normal - Vec3(0, 0, 1)).norm() < 1e-12);
@@ -210,7 +210,7 @@ void TestMeshPairs::cubeMeshesCrossedRidgeOverRidge() {
 
 void TestMeshPairs::separatedMeshesGiveNothing() {
     const Shape a = lPrism(0, 1), b = lPrism(0, 1);
-    std::vector<Manifold> out;
+    ManifoldList out;
     // Side by side with a gap of 0.05 between B's x = 2 face and A's x = 0 face.
     collideMeshMesh(a, Pose{Mat3::Identity(), Vec3(2.05, 0, 0)}, b, Pose{}, 0.0, out);
     QVERIFY(out.empty());
@@ -236,7 +236,7 @@ void TestMeshPairs::randomCubeMeshesAgreeWithReference() {
         const Shape a = cubeMesh(ha), b = cubeMesh(hb);
         const Pose pa{rng.rotation(), rng.vec(-1.3, 1.3)}, pb{rng.rotation(), Vec3::Zero()};
         const ref::RefContacts rc = ref::referenceContacts(Shape::box(ha), pa, Shape::box(hb), pb);
-        std::vector<Manifold> out;
+        ManifoldList out;
         collideMeshMesh(a, pa, b, pb, 0.0, out);
         if (rc.depth < -1e-6) {
             QVERIFY(out.empty());

@@ -18,8 +18,8 @@ Pose at(const Vec3& p, const Quat& q = Quat::Identity()) { return {q.toRotationM
 
 Quat about(const Vec3& axis, double angle) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
 
-std::vector<Manifold> run(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin = 0.0) {
-    std::vector<Manifold> out;
+ManifoldList run(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin = 0.0) {
+    ManifoldList out;
     collide(a, pa, b, pb, margin, out);
     return out;
 }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <tumble/math.h>
+#include <tumble/page_vector.h>
 #include <tumble/scene.h>
 
 #include <array>
@@ -146,6 +147,10 @@ struct Manifold {
     }
     double maxDepth() const;
 };
+
+/// A list of manifolds. The step's lists live from step to step and grow with the contacts:
+/// their large rooms are pages of their own, given back when a list outgrows them.
+using ManifoldList = PageVector<Manifold>;
 
 /// A pair that came into contact during a step: first touch at `time` (s), found by the
 /// time-of-impact stage so that the response can act at the moment of impact.

@@ -93,7 +93,7 @@ public:
     void skipStillIslands(bool on);
 
     /// The contact manifolds at the end of the last step (bodyA < bodyB).
-    const std::vector<collision::Manifold>& contacts() const;
+    const collision::ManifoldList& contacts() const;
     /// The pairs that came into contact during the last step, with the time of first touch.
     const std::vector<collision::ImpactEvent>& impacts() const;
 
@@ -106,7 +106,7 @@ private:
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
     void impactsAtStart();             // touching bodies that approach as a run starts
     void impactAt(double t0);          // cut the step at the first impact and resolve it
-    void finishStep(const State& before, const std::vector<collision::Manifold>& contacts);
+    void finishStep(const State& before, const collision::ManifoldList& contacts);
     void park();                       // the islands without an impact keep their free step
     bool leaveParked();
     void dropParked();

@@ -50,7 +50,7 @@ std::vector<ClipPoint> clip(const std::vector<ClipPoint>& poly, const Vec3& s, d
 // Face `axis` of box `ref` (sign +1/-1: the side facing the other box) is the reference;
 // the face of `inc` most opposed to it is clipped against it.
 void faceContact(const Box& ref, int axis, double sign, const Box& inc, const Vec3& normalBtoA,
-                 bool refIsB, double margin, std::vector<Manifold>& out) {
+                 bool refIsB, double margin, ManifoldList& out) {
     const Vec3 m = ref.R.col(axis) * sign;  // out of the reference box towards the other
     // Incident face: the face of inc whose outward normal is most against m.
     int incAxis = 0;
@@ -89,7 +89,7 @@ void faceContact(const Box& ref, int axis, double sign, const Box& inc, const Ve
 }  // namespace
 
 void boxBox(const Shape& sa, const Pose& pa, const Shape& sb, const Pose& pb, double margin,
-            std::vector<Manifold>& out) {
+            ManifoldList& out) {
     const Box A{pa.p, pa.R, sa.halfExtents};
     const Box B{pb.p, pb.R, sb.halfExtents};
     const Vec3 d = A.c - B.c;

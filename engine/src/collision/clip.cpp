@@ -318,7 +318,7 @@ void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration
     out.push_back({0.5 * (pen.pointA + pen.pointB), pen.depth, single});
 }
 
-void appendReduced(const std::vector<Candidate>& all, const Vec3& normal, std::vector<Manifold>& out) {
+void appendReduced(const std::vector<Candidate>& all, const Vec3& normal, ManifoldList& out) {
     // Coincident points (a degenerate face, two clips meeting at a corner) count once.
     thread_local std::vector<Candidate> c;  // kept between calls, per thread
     c.clear();

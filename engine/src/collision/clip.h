@@ -40,7 +40,7 @@ void contactPoints(const ConvexProxy& a, const ConvexProxy& b, const Penetration
 
 /// At most four of the candidates: the deepest, the farthest from it, then the two that
 /// span the largest area in the plane normal to `normal`. Appends a manifold if any.
-void appendReduced(const std::vector<Candidate>& candidates, const Vec3& normal, std::vector<Manifold>& out);
+void appendReduced(const std::vector<Candidate>& candidates, const Vec3& normal, ManifoldList& out);
 
 /// Combines feature ids (order matters).
 inline std::uint32_t mixId(std::uint32_t h, std::uint32_t x) {

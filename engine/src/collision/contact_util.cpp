@@ -57,7 +57,7 @@ Vec3 anyPerpendicular(const Vec3& n) {
     return n.cross(other).normalized();
 }
 
-void addReduced(const std::vector<Candidate>& c, const Vec3& normal, std::vector<Manifold>& out) {
+void addReduced(const std::vector<Candidate>& c, const Vec3& normal, ManifoldList& out) {
     if (c.empty()) return;
     Manifold m;
     m.normal = normal;

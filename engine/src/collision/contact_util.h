@@ -25,7 +25,7 @@ struct Candidate {
 /// Keeps at most four of the candidates for a manifold with the given normal: the deepest,
 /// then the points that span the largest area in the contact plane, so that a face resting
 /// on a face keeps its corners. Appends the manifold when any candidate is left.
-void addReduced(const std::vector<Candidate>& candidates, const Vec3& normal, std::vector<Manifold>& out);
+void addReduced(const std::vector<Candidate>& candidates, const Vec3& normal, ManifoldList& out);
 
 /// Any unit vector perpendicular to the unit vector n.
 Vec3 anyPerpendicular(const Vec3& n);

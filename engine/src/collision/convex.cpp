@@ -8,13 +8,13 @@
 namespace tumble::collision {
 
 void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                   std::vector<Manifold>& out) {
+                   ManifoldList& out) {
     Vec3 apart;
     collideConvex(a, pa, b, pb, margin, out, apart);
 }
 
 void collideConvex(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                   std::vector<Manifold>& out, Vec3& apart) {
+                   ManifoldList& out, Vec3& apart) {
     const ConvexProxy A = proxyOf(a, pa);
     const ConvexProxy B = proxyOf(b, pb);
     const Penetration pen = penetration(A, B, margin);

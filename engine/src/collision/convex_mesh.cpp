@@ -79,7 +79,7 @@ void trianglesNear(const MeshShape& m, const Aabb& box, Visit&& visit) {
 }  // namespace
 
 void collideConvexMesh(const Shape& convex, const Pose& pc, const Shape& meshShape, const Pose& pm,
-                       double margin, std::vector<Manifold>& out) {
+                       double margin, ManifoldList& out) {
     const MeshShape& mesh = *meshShape.mesh;
     const ConvexProxy A = proxyOf(convex, pc);
     const Vec3 centre = A.center();

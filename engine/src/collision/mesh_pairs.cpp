@@ -96,7 +96,7 @@ void reduce(std::vector<Candidate> group, const Vec3& n, Manifold& m) {
 }
 
 // Greedy grouping by normal, deepest first; each group becomes one manifold.
-void emit(std::vector<Candidate> cands, std::vector<Manifold>& out) {
+void emit(std::vector<Candidate> cands, ManifoldList& out) {
     std::stable_sort(cands.begin(), cands.end(),
                      [](const Candidate& x, const Candidate& y) { return x.depth > y.depth; });
     std::vector<std::vector<Candidate>> groups;
@@ -312,7 +312,7 @@ void edgeContacts(const MeshShape& body, const std::vector<Vec3>& bodyInOther, c
 }  // namespace
 
 void collideMeshPlane(const Shape& mesh, const Pose& pm, const Shape& plane, const Pose& pp, double margin,
-                      std::vector<Manifold>& out) {
+                      ManifoldList& out) {
     const Vec3 n = pp.directionToWorld(plane.normal);
     const double offset = plane.distance + n.dot(pp.p);
     // The whole mesh is farther than its bounding radius from its origin.
@@ -333,7 +333,7 @@ void collideMeshPlane(const Shape& mesh, const Pose& pm, const Shape& plane, con
 }
 
 void collideMeshMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                     std::vector<Manifold>& out) {
+                     ManifoldList& out) {
     const MeshShape& ma = *a.mesh;
     const MeshShape& mb = *b.mesh;
     if (!bounds(a, pa).inflated(std::max(margin, 0.0)).overlaps(bounds(b, pb))) return;

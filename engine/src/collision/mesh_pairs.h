@@ -14,7 +14,7 @@ namespace tumble::collision {
 /// the plane's normal (out of the plane towards the mesh), the deepest vertex and up to
 /// three more spread over the support; points with depth > -margin.
 void collideMeshPlane(const Shape& mesh, const Pose& pm, const Shape& plane, const Pose& pp, double margin,
-                      std::vector<Manifold>& out);
+                      ManifoldList& out);
 
 /// Two triangle meshes: vertices of each inside the other by ray parity (closed meshes),
 /// plus edge-face crossings, through the BVHs (TriangleBvh::queryPairs / query).
@@ -28,6 +28,6 @@ void collideMeshPlane(const Shape& mesh, const Pose& pm, const Shape& plane, con
 /// points each, several manifolds allowed; bodyA/bodyB left for the caller. A mesh
 /// without a BVH gets a temporary one.
 void collideMeshMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                     std::vector<Manifold>& out);
+                     ManifoldList& out);
 
 }  // namespace tumble::collision

@@ -12,7 +12,7 @@ namespace tumble::collision {
 
 namespace {
 
-using Routine = void (*)(const Shape&, const Pose&, const Shape&, const Pose&, double, std::vector<Manifold>&);
+using Routine = void (*)(const Shape&, const Pose&, const Shape&, const Pose&, double, ManifoldList&);
 
 bool isConvex(Kind k) { return k != Kind::Plane && k != Kind::Mesh; }
 
@@ -47,7 +47,7 @@ bool generalConvex(Kind a, Kind b) {
 }
 
 void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-             std::vector<Manifold>& out, Vec3& apart) {
+             ManifoldList& out, Vec3& apart) {
     const Routine general = collideConvex;
     if (routineFor(a.kind, b.kind) == general) {
         collideConvex(a, pa, b, pb, margin, out, apart);
@@ -74,7 +74,7 @@ bool apartAlong(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, 
 }
 
 void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-             std::vector<Manifold>& out) {
+             ManifoldList& out) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return;
     if (Routine r = routineFor(a.kind, b.kind)) {
         r(a, pa, b, pb, margin, out);

@@ -35,7 +35,7 @@ struct PlaneTest {
 }  // namespace
 
 void convexPlane(const Shape& a, const Pose& pa, const Shape& plane, const Pose& pp, double margin,
-                 std::vector<Manifold>& out) {
+                 ManifoldList& out) {
     thread_local std::vector<Candidate> c;  // kept between calls, per thread
     c.clear();
     PlaneTest t{Vec3::Zero(), 0.0, margin, &c};

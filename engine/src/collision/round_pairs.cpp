@@ -38,7 +38,7 @@ bool roundContact(const Vec3& ca, double ra, const Vec3& cb, double rb, double m
 }  // namespace
 
 void sphereSphere(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                  std::vector<Manifold>& out) {
+                  ManifoldList& out) {
     Vec3 n;
     Candidate c;
     if (roundContact(pa.p, a.radius, pb.p, b.radius, margin, Vec3::UnitY(), &n, &c, 0)) {
@@ -47,7 +47,7 @@ void sphereSphere(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
 }
 
 void sphereCapsule(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                   std::vector<Manifold>& out) {
+                   ManifoldList& out) {
     const Segment s = capsuleSegment(b, pb);
     const Vec3 q = closestOnSegment(s.p0, s.p1, pa.p);
     Vec3 n;
@@ -58,7 +58,7 @@ void sphereCapsule(const Shape& a, const Pose& pa, const Shape& b, const Pose& p
 }
 
 void capsuleCapsule(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                    std::vector<Manifold>& out) {
+                    ManifoldList& out) {
     const Segment sa = capsuleSegment(a, pa);
     const Segment sb = capsuleSegment(b, pb);
     const Vec3 da = sa.p1 - sa.p0, db = sb.p1 - sb.p0;
@@ -99,7 +99,7 @@ void capsuleCapsule(const Shape& a, const Pose& pa, const Shape& b, const Pose& 
 }
 
 void sphereBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-               std::vector<Manifold>& out) {
+               ManifoldList& out) {
     const Vec3 c = pb.toLocal(pa.p);  // sphere centre in the box frame
     const Vec3& h = b.halfExtents;
     const Vec3 clamped = c.cwiseMax(-h).cwiseMin(h);
@@ -133,7 +133,7 @@ void sphereBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, d
 }
 
 void capsuleBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                std::vector<Manifold>& out) {
+                ManifoldList& out) {
     // In the box frame: the segment's closest approach to the box by sampling is not exact,
     // so treat each end and the closest point of the segment to the box as spheres, and keep
     // the deepest with the normal it gives. The ends make the lying-flat manifold of two points.
@@ -157,7 +157,7 @@ void capsuleBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, 
         else lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = boxDistance(x2);
     }
     const double tMid = 0.5 * (lo + hi);
-    std::vector<Manifold> one;
+    ManifoldList one;
     Pose at = pa;
     at.p = s.p0 + tMid * (s.p1 - s.p0);
     sphereBox(ball, at, b, pb, margin, one);
@@ -168,7 +168,7 @@ void capsuleBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, 
     std::vector<Candidate> points;
     for (int k = 0; k < 2; ++k) {
         if (std::abs(tMid - k) < 1e-9) continue;  // the middle point is this end
-        std::vector<Manifold> e;
+        ManifoldList e;
         at.p = k == 0 ? s.p0 : s.p1;
         sphereBox(ball, at, b, pb, margin, e);
         if (!e.empty() && e[0].normal.dot(n) > 0.999) {
