@@ -5,8 +5,12 @@
 #include "joint_math.h"
 
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <numeric>
 
 namespace tumble {
@@ -20,6 +24,9 @@ int root(std::vector<int>& parent, int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
 }
+
+// A block of K: 3×3 at most (a ball joint's rows).
+using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
 
 // One joint of a group as the solve sees it at the present iterate.
 struct Rows {
@@ -61,6 +68,145 @@ double measure(const Model& /*model*/, const State& state, const State& at, std:
     return worst;
 }
 
+// The pairs (k, l) of a group's joints that share a body that moves, each once, ascending:
+// the blocks of K that are not zero (a chain's joints share a body with their two
+// neighbours only, so its K is block-tridiagonal).
+std::vector<std::pair<int, int>> sharingPairs(const Model& model, const State& state, const std::vector<Rows>& rows) {
+    std::vector<std::pair<int, int>> byBody;  // (body, joint)
+    for (int k = 0; k < static_cast<int>(rows.size()); ++k)
+        for (int body : {rows[k].joint->a, rows[k].joint->b})
+            if (movable(model, state, body)) byBody.emplace_back(body, k);
+    std::sort(byBody.begin(), byBody.end());
+    std::vector<std::pair<int, int>> pairs;
+    for (std::size_t first = 0; first < byBody.size();) {
+        std::size_t last = first;
+        while (last < byBody.size() && byBody[last].first == byBody[first].first) ++last;
+        for (std::size_t x = first; x < last; ++x)
+            for (std::size_t y = first; y < last; ++y) pairs.emplace_back(byBody[x].second, byBody[y].second);
+        first = last;
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+}
+
+// How joint k's anchor gap moves per unit impulse at joint l's anchors, through the bodies
+// the two share (+ on a joint's first body, - on its second).
+Mat3 shared(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk, const Rows& rl) {
+    Mat3 M = Mat3::Zero();
+    auto add = [&](int body, double sk, const Vec3& nowK, double sl, const Vec3& thenL) {
+        if (body >= 0 && movable(model, state, body)) M += sk * sl * moveFor(s.bodies[body], nowK, thenL);
+    };
+    const JointModel &jk = *rk.joint, &jl = *rl.joint;
+    if (jk.a == jl.a) add(jk.a, 1, rk.nowA, 1, rl.thenA);
+    if (jk.a == jl.b) add(jk.a, 1, rk.nowA, -1, rl.thenB);
+    if (jk.b >= 0 && jk.b == jl.a) add(jk.b, -1, rk.nowB, 1, rl.thenA);
+    if (jk.b >= 0 && jk.b == jl.b) add(jk.b, -1, rk.nowB, -1, rl.thenB);
+    return M;
+}
+
+Small block(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk, const Rows& rl) {
+    const Mat3 M = shared(model, state, s, rk, rl);
+    if (M.isZero(0.0)) return Small::Zero(rk.count, rl.count);
+    return rk.E.transpose() * M * rl.D;
+}
+
+// The joints of a group in the order of a path, when the group is one (each joint shares
+// bodies with two others at most, and no ring: a chain, a rope of links, a bridge): then K
+// is block-tridiagonal in that order. Empty when it is not.
+std::vector<int> pathOrder(int count, const std::vector<std::pair<int, int>>& pairs) {
+    std::vector<std::array<int, 2>> next(count, {-1, -1});
+    int links = 0;
+    for (const auto& [k, l] : pairs) {
+        if (k >= l) continue;
+        for (auto [x, y] : {std::pair{k, l}, std::pair{l, k}}) {
+            if (next[x][0] < 0) next[x][0] = y;
+            else if (next[x][1] < 0) next[x][1] = y;
+            else return {};
+        }
+        ++links;
+    }
+    if (links != count - 1) return {};  // a ring (the groups are joined)
+    int at = 0;
+    while (at < count && next[at][1] >= 0) ++at;
+    std::vector<int> order;
+    for (int from = -1; at >= 0 && static_cast<int>(order.size()) < count;) {
+        order.push_back(at);
+        const int to = next[at][0] != from ? next[at][0] : next[at][1];
+        from = at;
+        at = to;
+    }
+    if (static_cast<int>(order.size()) != count) return {};
+    return order;
+}
+
+// K λ = -C for a chain of ball joints in path order (`order`): block elimination along the
+// path and back substitution, three 3×3 blocks a joint. Not invertible: no step (NaN).
+Eigen::VectorXd alongPath(const Model& model, const State& state, const ContactSolverScratch& s,
+                          const std::vector<Rows>& rows, const std::vector<int>& order, int size) {
+    const std::size_t n = order.size();
+    std::vector<Mat3> pivotInverse(n), upper(n);
+    std::vector<Vec3> y(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Rows& r = rows[order[i]];
+        Mat3 pivot = shared(model, state, s, r, r);  // a ball joint's rows are the axes: K's block is M
+        Vec3 rhs = -r.C;
+        if (i > 0) {
+            const Mat3 g = shared(model, state, s, r, rows[order[i - 1]]) * pivotInverse[i - 1];
+            pivot -= g * upper[i - 1];
+            rhs -= g * y[i - 1];
+        }
+        bool invertible = false;
+        pivot.computeInverseWithCheck(pivotInverse[i], invertible, 0.0);
+        if (!invertible || !pivotInverse[i].allFinite())
+            return Eigen::VectorXd::Constant(size, std::numeric_limits<double>::quiet_NaN());
+        y[i] = rhs;
+        if (i + 1 < n) upper[i] = shared(model, state, s, r, rows[order[i + 1]]);
+    }
+    Eigen::VectorXd lambda(size);
+    Vec3 x = Vec3::Zero();
+    for (std::size_t i = n; i-- > 0;) {
+        x = pivotInverse[i] * (i + 1 < n ? Vec3(y[i] - upper[i] * x) : y[i]);
+        lambda.segment<3>(rows[order[i]].offset) = x;
+    }
+    return lambda;
+}
+
+// The Newton step's impulses: K λ = -C over the group's rows. Up to kMostGroupJoints joints
+// by a dense LU; a larger chain of ball joints (`path`, in its order) along the path; any
+// other larger group by a sparse LU (a tree's K fills in little), the pattern's ordering
+// found once per group (`lu`). Not finite: no step.
+Eigen::VectorXd newtonImpulses(const Model& model, const State& state, const ContactSolverScratch& s,
+                               const std::vector<Rows>& rows, const std::vector<std::pair<int, int>>& pairs,
+                               const std::vector<int>& path, int size,
+                               Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu, bool& analysed) {
+    Eigen::VectorXd C(size);
+    for (const Rows& r : rows) C.segment(r.offset, r.count) = r.C;
+    if (static_cast<int>(rows.size()) <= kMostGroupJoints) {
+        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
+        for (const auto& [k, l] : pairs)
+            K.block(rows[k].offset, rows[l].offset, rows[k].count, rows[l].count) = block(model, state, s, rows[k], rows[l]);
+        return Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(-C);
+    }
+    if (!path.empty()) return alongPath(model, state, s, rows, path, size);
+    std::vector<Eigen::Triplet<double>> entries;
+    for (const auto& [k, l] : pairs) {
+        // Every shared pair's entries, zeros too: the pattern stays the one analysed.
+        const Small b = block(model, state, s, rows[k], rows[l]);
+        for (int i = 0; i < b.rows(); ++i)
+            for (int j = 0; j < b.cols(); ++j) entries.emplace_back(rows[k].offset + i, rows[l].offset + j, b(i, j));
+    }
+    Eigen::SparseMatrix<double> K(size, size);
+    K.setFromTriplets(entries.begin(), entries.end());
+    if (!analysed) {
+        lu.analyzePattern(K);
+        analysed = true;
+    }
+    lu.factorize(K);
+    if (lu.info() != Eigen::Success) return Eigen::VectorXd::Constant(size, std::numeric_limits<double>::quiet_NaN());
+    return lu.solve(-C);
+}
+
 }  // namespace
 
 void projectGroups(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
@@ -89,10 +235,6 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
         std::size_t last = first;
         while (last < members.size() && groupOf(members[last]) == groupOf(members[first])) ++last;
         const int count = static_cast<int>(last - first);
-        if (count > kMostGroupJoints) {
-            first = last;
-            continue;
-        }
         std::vector<Rows> rows(count);
         int size = 0;
         for (int k = 0; k < count; ++k) {
@@ -101,30 +243,15 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
             rows[k].count = rows[k].joint->type == JointType::Ball ? 3 : 1;
             size += rows[k].count;
         }
+        const std::vector<std::pair<int, int>> pairs = sharingPairs(model, state, rows);
+        const bool balls = std::all_of(rows.begin(), rows.end(), [](const Rows& r) { return r.count == 3; });
+        const std::vector<int> path = count > kMostGroupJoints && balls ? pathOrder(count, pairs) : std::vector<int>{};
+        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+        bool analysed = false;
         double squares = 0.0;
         double error = measure(model, state, at, rows, &squares);
         for (int it = 0; it < iterations && error > kHeld; ++it) {
-            // K(k, l): how joint k's error moves per unit impulse of joint l's rows, through
-            // the bodies the two share (+ on a joint's first body, - on its second).
-            Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
-            Eigen::VectorXd C(size);
-            for (const Rows& rk : rows) {
-                C.segment(rk.offset, rk.count) = rk.C;
-                for (const Rows& rl : rows) {
-                    Mat3 M = Mat3::Zero();
-                    auto add = [&](int body, double sk, const Vec3& nowK, double sl, const Vec3& thenL) {
-                        if (body >= 0 && movable(model, state, body)) M += sk * sl * moveFor(s.bodies[body], nowK, thenL);
-                    };
-                    const JointModel &jk = *rk.joint, &jl = *rl.joint;
-                    if (jk.a == jl.a) add(jk.a, 1, rk.nowA, 1, rl.thenA);
-                    if (jk.a == jl.b) add(jk.a, 1, rk.nowA, -1, rl.thenB);
-                    if (jk.b >= 0 && jk.b == jl.a) add(jk.b, -1, rk.nowB, 1, rl.thenA);
-                    if (jk.b >= 0 && jk.b == jl.b) add(jk.b, -1, rk.nowB, -1, rl.thenB);
-                    if (!M.isZero(0.0))
-                        K.block(rk.offset, rl.offset, rk.count, rl.count) = rk.E.transpose() * M * rl.D;
-                }
-            }
-            const Eigen::VectorXd lambda = Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(-C);
+            const Eigen::VectorXd lambda = newtonImpulses(model, state, s, rows, pairs, path, size, lu, analysed);
             if (!lambda.allFinite()) break;
             // Every joint's impulse from the same linearisation, then the error again. Along
             // the start's directions (RATTLE, which also sets the velocities) only a full
@@ -213,14 +340,6 @@ double smallGroupsOpen(const Model& model, const State& state, const ContactSolv
     for (std::size_t k = 0; k < joints.size(); ++k)
         if (sizes[k] <= kMostGroupJoints) open = std::max(open, s.jointChecks[joints[k]].error);
     return open;
-}
-
-int largestJointGroup(const Model& model) {
-    std::vector<int> joints(model.joints.size());
-    std::iota(joints.begin(), joints.end(), 0);
-    const std::vector<int> sizes =
-        groupSizes(model, joints, [&](int i) { return i >= 0 && model.bodies[i].motion == Motion::Dynamic; });
-    return sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
 }
 
 }  // namespace tumble
