@@ -247,8 +247,7 @@ double approachSpeed(const Model& model, const State& before, const State& after
 
 }  // namespace
 
-void touchingPairs(const ManifoldList& contacts, double touchTolerance,
-                   std::vector<std::uint64_t>& out) {
+void touchingPairs(const ManifoldList& contacts, double touchTolerance, std::vector<std::uint64_t>& out) {
     out.clear();
     for (const Manifold& m : contacts)
         if (m.maxDepth() >= -touchTolerance) out.push_back(pairKey(m.bodyA, m.bodyB));

@@ -10,7 +10,7 @@ namespace tumble::joint {
 
 inline constexpr double kDegenerate = 1e-12;  // m: anchors this close have no line between them
 inline constexpr double kHeld = 1e-13;        // m: the position error projection stops at
-inline constexpr int kMostGroupJoints = 64;    // the most joints solved as one dense system (joint_projection.cpp)
+inline constexpr int kMostGroupJoints = 64;    // the most joints in one dense solve (joint_projection.cpp)
 
 inline bool movable(const Model& model, const State& state, int i) {
     return i >= 0 && model.bodies[i].motion == Motion::Dynamic && !state.isAsleep(i);

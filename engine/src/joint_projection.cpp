@@ -71,7 +71,8 @@ double measure(const Model& /*model*/, const State& state, const State& at, std:
 // The pairs (k, l) of a group's joints that share a body that moves, each once, ascending:
 // the blocks of K that are not zero (a chain's joints share a body with their two
 // neighbours only, so its K is block-tridiagonal).
-std::vector<std::pair<int, int>> sharingPairs(const Model& model, const State& state, const std::vector<Rows>& rows) {
+std::vector<std::pair<int, int>> sharingPairs(const Model& model, const State& state,
+                                              const std::vector<Rows>& rows) {
     std::vector<std::pair<int, int>> byBody;  // (body, joint)
     for (int k = 0; k < static_cast<int>(rows.size()); ++k)
         for (int body : {rows[k].joint->a, rows[k].joint->b})
@@ -92,7 +93,8 @@ std::vector<std::pair<int, int>> sharingPairs(const Model& model, const State& s
 
 // How joint k's anchor gap moves per unit impulse at joint l's anchors, through the bodies
 // the two share (+ on a joint's first body, - on its second).
-Mat3 shared(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk, const Rows& rl) {
+Mat3 shared(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk,
+            const Rows& rl) {
     Mat3 M = Mat3::Zero();
     auto add = [&](int body, double sk, const Vec3& nowK, double sl, const Vec3& thenL) {
         if (body >= 0 && movable(model, state, body)) M += sk * sl * moveFor(s.bodies[body], nowK, thenL);
@@ -105,7 +107,8 @@ Mat3 shared(const Model& model, const State& state, const ContactSolverScratch& 
     return M;
 }
 
-Small block(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk, const Rows& rl) {
+Small block(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk,
+            const Rows& rl) {
     const Mat3 M = shared(model, state, s, rk, rl);
     if (M.isZero(0.0)) return Small::Zero(rk.count, rl.count);
     return rk.E.transpose() * M * rl.D;
@@ -120,9 +123,12 @@ std::vector<int> pathOrder(int count, const std::vector<std::pair<int, int>>& pa
     for (const auto& [k, l] : pairs) {
         if (k >= l) continue;
         for (auto [x, y] : {std::pair{k, l}, std::pair{l, k}}) {
-            if (next[x][0] < 0) next[x][0] = y;
-            else if (next[x][1] < 0) next[x][1] = y;
-            else return {};
+            if (next[x][0] < 0)
+                next[x][0] = y;
+            else if (next[x][1] < 0)
+                next[x][1] = y;
+            else
+                return {};
         }
         ++links;
     }
@@ -185,7 +191,8 @@ Eigen::VectorXd newtonImpulses(const Model& model, const State& state, const Con
     if (static_cast<int>(rows.size()) <= kMostGroupJoints) {
         Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
         for (const auto& [k, l] : pairs)
-            K.block(rows[k].offset, rows[l].offset, rows[k].count, rows[l].count) = block(model, state, s, rows[k], rows[l]);
+            K.block(rows[k].offset, rows[l].offset, rows[k].count, rows[l].count) =
+                block(model, state, s, rows[k], rows[l]);
         return Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(-C);
     }
     if (!path.empty()) return alongPath(model, state, s, rows, path, size);
@@ -194,7 +201,8 @@ Eigen::VectorXd newtonImpulses(const Model& model, const State& state, const Con
         // Every shared pair's entries, zeros too: the pattern stays the one analysed.
         const Small b = block(model, state, s, rows[k], rows[l]);
         for (int i = 0; i < b.rows(); ++i)
-            for (int j = 0; j < b.cols(); ++j) entries.emplace_back(rows[k].offset + i, rows[l].offset + j, b(i, j));
+            for (int j = 0; j < b.cols(); ++j)
+                entries.emplace_back(rows[k].offset + i, rows[l].offset + j, b(i, j));
     }
     Eigen::SparseMatrix<double> K(size, size);
     K.setFromTriplets(entries.begin(), entries.end());
@@ -203,7 +211,8 @@ Eigen::VectorXd newtonImpulses(const Model& model, const State& state, const Con
         analysed = true;
     }
     lu.factorize(K);
-    if (lu.info() != Eigen::Success) return Eigen::VectorXd::Constant(size, std::numeric_limits<double>::quiet_NaN());
+    if (lu.info() != Eigen::Success)
+        return Eigen::VectorXd::Constant(size, std::numeric_limits<double>::quiet_NaN());
     return lu.solve(-C);
 }
 
@@ -245,13 +254,15 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
         }
         const std::vector<std::pair<int, int>> pairs = sharingPairs(model, state, rows);
         const bool balls = std::all_of(rows.begin(), rows.end(), [](const Rows& r) { return r.count == 3; });
-        const std::vector<int> path = count > kMostGroupJoints && balls ? pathOrder(count, pairs) : std::vector<int>{};
+        const std::vector<int> path =
+            count > kMostGroupJoints && balls ? pathOrder(count, pairs) : std::vector<int>{};
         Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
         bool analysed = false;
         double squares = 0.0;
         double error = measure(model, state, at, rows, &squares);
         for (int it = 0; it < iterations && error > kHeld; ++it) {
-            const Eigen::VectorXd lambda = newtonImpulses(model, state, s, rows, pairs, path, size, lu, analysed);
+            const Eigen::VectorXd lambda =
+                newtonImpulses(model, state, s, rows, pairs, path, size, lu, analysed);
             if (!lambda.allFinite()) break;
             // Every joint's impulse from the same linearisation, then the error again. Along
             // the start's directions (RATTLE, which also sets the velocities) only a full

@@ -44,7 +44,7 @@ struct World::Scratch {
     double resting = 0.0;  // the resting speed of the step being taken (restingSpeed)
     double margin = 0.0;   // contact points are found this far apart (contactMargin)
     double stepStart0 = 0.0, stepLength = 0.0;  // the step being taken: its start time, its h
-    collision::ManifoldList setAside;  // at a cut, the impacting pairs' (impactAt)
+    collision::ManifoldList setAside;           // at a cut, the impacting pairs' (impactAt)
     std::vector<std::size_t> setAsideAt;        // ... and their places among the contacts
     // Parked islands (see the top of this file); parkedCount == 0: none this step.
     IslandScratch islands;
@@ -57,7 +57,7 @@ struct World::Scratch {
     std::vector<std::uint64_t> touchingAtStart;
     EnergyLedger ledgerAtStart;
     std::vector<std::uint8_t> realAsleep;              // the sleep flags without the parked ones
-    collision::ManifoldList parkedContacts;   // at the end of their free step
+    collision::ManifoldList parkedContacts;            // at the end of their free step
     std::unique_ptr<Workers> workers;  // setThreads(n > 1)
     // A step whose joints stayed open is taken again in halves (World::stepJointed): what
     // it starts from, per depth of splitting.

@@ -123,7 +123,8 @@ private slots:
             b.position = Vec3(rod * (i + 1), 12.0, 0.0);
             s.bodies.push_back(b);
             if (i == 0)
-                s.joints.push_back(joint("top", JointType::Distance, b.name, Vec3::Zero(), "", Vec3(0, 12, 0)));
+                s.joints.push_back(
+                    joint("top", JointType::Distance, b.name, Vec3::Zero(), "", Vec3(0, 12, 0)));
             else
                 s.joints.push_back(joint("rod" + std::to_string(i), JointType::Distance, b.name, Vec3::Zero(),
                                          "ball" + std::to_string(i - 1), Vec3::Zero()));
@@ -135,12 +136,13 @@ private slots:
         while (w.state().time < 3.0) {
             w.step(1.0 / 60.0);
             most = std::max(most, energy(w));
-            for (size_t j = 0; j < w.model().joints.size(); ++j) worst = std::max(worst, std::abs(anchorGap(w, int(j)) - rod));
+            for (size_t j = 0; j < w.model().joints.size(); ++j)
+                worst = std::max(worst, std::abs(anchorGap(w, int(j)) - rod));
             QVERIFY(w.state().bodies.back().x.allFinite());
         }
         const double gained = (most - e0) / std::abs(e0);
-        qInfo("rods off their length by %.2e m at most; energy at most %+.2e of the start; %ld splits", worst, gained,
-              w.profile().jointSplits);
+        qInfo("rods off their length by %.2e m at most; energy at most %+.2e of the start; %ld splits", worst,
+              gained, w.profile().jointSplits);
         QVERIFY2(worst < 1e-6, qPrintable(QString::number(worst)));
         QVERIFY2(gained < 1e-3, qPrintable(QString::number(gained)));
         QVERIFY(w.state().bodies.back().x.y() < 12.0 - 1.0);  // it swung down
