@@ -12,6 +12,7 @@
 #include <array>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace tumble {
 
@@ -181,11 +182,11 @@ Eigen::VectorXd alongPath(const Model& model, const State& state, const ContactS
 // The Newton step's impulses: K λ = -C over the group's rows. Up to kMostGroupJoints joints
 // by a dense LU; a larger chain of ball joints (`path`, in its order) along the path; any
 // other larger group by a sparse LU (a tree's K fills in little), the pattern's ordering
-// found once per group (`lu`). Not finite: no step.
+// found once per group (`lu`, made at the first such solve). Not finite: no step.
 Eigen::VectorXd newtonImpulses(const Model& model, const State& state, const ContactSolverScratch& s,
                                const std::vector<Rows>& rows, const std::vector<std::pair<int, int>>& pairs,
                                const std::vector<int>& path, int size,
-                               Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu, bool& analysed) {
+                               std::optional<Eigen::SparseLU<Eigen::SparseMatrix<double>>>& lu) {
     Eigen::VectorXd C(size);
     for (const Rows& r : rows) C.segment(r.offset, r.count) = r.C;
     if (static_cast<int>(rows.size()) <= kMostGroupJoints) {
@@ -206,14 +207,11 @@ Eigen::VectorXd newtonImpulses(const Model& model, const State& state, const Con
     }
     Eigen::SparseMatrix<double> K(size, size);
     K.setFromTriplets(entries.begin(), entries.end());
-    if (!analysed) {
-        lu.analyzePattern(K);
-        analysed = true;
-    }
-    lu.factorize(K);
-    if (lu.info() != Eigen::Success)
+    if (!lu) lu.emplace().analyzePattern(K);
+    lu->factorize(K);
+    if (lu->info() != Eigen::Success)
         return Eigen::VectorXd::Constant(size, std::numeric_limits<double>::quiet_NaN());
-    return lu.solve(-C);
+    return lu->solve(-C);
 }
 
 }  // namespace
@@ -256,13 +254,12 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
         const bool balls = std::all_of(rows.begin(), rows.end(), [](const Rows& r) { return r.count == 3; });
         const std::vector<int> path =
             count > kMostGroupJoints && balls ? pathOrder(count, pairs) : std::vector<int>{};
-        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-        bool analysed = false;
+        std::optional<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu;  // made when a large group needs it
         double squares = 0.0;
         double error = measure(model, state, at, rows, &squares);
         for (int it = 0; it < iterations && error > kHeld; ++it) {
             const Eigen::VectorXd lambda =
-                newtonImpulses(model, state, s, rows, pairs, path, size, lu, analysed);
+                newtonImpulses(model, state, s, rows, pairs, path, size, lu);
             if (!lambda.allFinite()) break;
             // Every joint's impulse from the same linearisation, then the error again. Along
             // the start's directions (RATTLE, which also sets the velocities) only a full
