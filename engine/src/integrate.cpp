@@ -140,34 +140,50 @@ void symplecticEuler(const Model& model, State& state, double h, IntegrateScratc
 constexpr double kMaxTurn = 0.5;  // rad per sub-step of the splitting
 constexpr int kMaxSubsteps = 1000;
 
-// Π (body axes) moved on its sphere to the energy level 2T = e0 (Newton along the energy's
-// tangential gradient); unchanged when it is there already or on a principal axis. Near the middle axis the gradient along the
-// sphere is small and Newton slow (a box spun at 1 000 rad/s about its middle axis kept
-// 1.6e-7 of energy error after four iterations a step); it stops as soon as the level is
-// reached, so the cap is rarely met.
+// Π (body axes) moved on its sphere to the energy level 2T = e0: Newton along the energy's
+// gradient on the sphere, each step accepted only where it brings the energy nearer the
+// level (halved until it does; none that does: stop where it is). Unchanged when the
+// level is met to rounding already.
+// Why the safeguard: the gradient vanishes on a principal axis, so a body spinning about
+// one (whatever its pose) had a rounding-level energy error divided by a near-zero
+// gradient: the step threw Π across the sphere, the error grew, the loop stopped there,
+// and the body was turned with it (a box turned at random and spun about a principal axis
+// changed its energy by 1 % to 110 % in 3 s; issue 44). Near an axis the level is a small
+// ellipse around it, or beyond reach when rounding put e0 past the extreme value: the
+// halved steps then only ever go as far as the energy needs, and Π stays on the axis.
+// Near the middle axis the gradient along the sphere is small and Newton slow (a box spun
+// at 1 000 rad/s about its middle axis kept 1.6e-7 of energy error after four iterations a
+// step); it stops as soon as the level is reached, so the cap is rarely met.
 Vec3 ontoEnergy(const BodyModel& b, const Vec3& bodyL, double e0) {
     const Mat3& A = b.principalAxes;
     Vec3 p = A.transpose() * bodyL;
     const double g0 = p.squaredNorm(), radius = std::sqrt(g0);
     const Vec3 invI = b.principalMoments.cwiseInverse();
-    double last = std::numeric_limits<double>::infinity();
-    for (int it = 0; it < 50; ++it) {
+    auto offLevel = [&](const Vec3& x) { return x.dot(invI.cwiseProduct(x)) - e0; };
+    // The energy as read from Π carries a few roundings of e0 (Π = q* L q, then the sum).
+    // An error within them is corrected only where that costs a turn of rounding size: near
+    // an axis, where the gradient vanishes, it would turn the body by far more.
+    const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * e0;
+    double e = offLevel(p);
+    bool moved = false;
+    for (int it = 0; it < 50 && std::abs(e) > 4e-16 * e0; ++it) {
         const Vec3 Jp = invI.cwiseProduct(p);
-        const double e = p.dot(Jp) - e0;
-        // Done at the level, or once rounding stops the error falling (1 % of the calls on
-        // 10 000 tumbling boxes went on to the cap without this).
-        if (!(std::abs(e) > 4e-16 * e0) || !(std::abs(e) < 0.9 * last)) {
-            if (it == 0) return bodyL;  // on the level already: nothing to turn
-            break;
-        }
-        last = std::abs(e);
         const Vec3 d = Jp - (Jp.dot(p) / g0) * p;  // the energy's gradient along the sphere, /2
         const double dd = d.squaredNorm();
-        if (!(dd > 1e-30 * Jp.squaredNorm())) break;
-        p -= (0.5 * e / dd) * d;
-        p *= radius / p.norm();
+        if (!(dd > 0.0)) break;
+        Vec3 step = -(0.5 * e / dd) * d;
+        if (!(std::abs(e) > rounding) && step.squaredNorm() > 1e-24 * g0) break;
+        bool better = false;
+        for (int halve = 0; halve < 64 && !better; ++halve, step *= 0.5) {
+            Vec3 trial = p + step;
+            trial *= radius / trial.norm();
+            const double et = offLevel(trial);
+            if (std::abs(et) < std::abs(e)) p = trial, e = et, better = true;
+        }
+        if (!better) break;
+        moved = true;
     }
-    return A * p;
+    return moved ? Vec3(A * p) : bodyL;
 }
 
 // The rotation that takes a to b, two vectors of the same length (Π before and after the
