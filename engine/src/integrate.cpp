@@ -88,7 +88,10 @@ void rk4(const Model& model, State& state, double h, IntegrateScratch& scr, Prof
             const auto& k = scr.rates[n][i];
             BodyState& y = scr.stage[i];
             y.x = s.x + stageStep[n] * k.x;
-            y.q = addToQuat(s.q, k.q, stageStep[n]);
+            // Unit, as every stage that reads it (a force at a point, a spring) turns vectors
+            // with it: a quaternion off unit length turns them by a rotation that depends on
+            // the pose (a spring pendulum turned as a whole ran 0.14 rad from the original).
+            y.q = addToQuat(s.q, k.q, stageStep[n]).normalized();
             y.P = s.P + stageStep[n] * k.P;
             y.L = s.L + stageStep[n] * k.L;
         }

@@ -1,6 +1,6 @@
 // One pose proves one pose: a scene turned and shifted as a whole (every body's pose and
-// velocities, the gravity, world-frame forces, spring anchors, planes and world-anchored
-// joints) must move as the original does, turned and shifted the same way. These helpers
+// velocities, which carry planes and meshes, the gravity, world-frame forces, spring
+// anchors and world-anchored joints) must move as the original does, turned and shifted the same way. These helpers
 // build the turned scene, turn a state the same way, and measure how far two states are
 // apart, for the tests that check an answer in both worlds.
 #pragma once
@@ -49,10 +49,6 @@ inline SceneDesc turnedScene(SceneDesc s, const WorldPose& pose) {
         b.orientation = pose.orientation(b.orientation);
         b.velocity = pose.direction(b.velocity);
         b.angularVelocity = pose.direction(b.angularVelocity);
-        if (b.shape.type == ShapeType::Plane) {  // a world plane n·p = d
-            b.shape.normal = pose.direction(b.shape.normal.normalized());
-            b.shape.distance += b.shape.normal.dot(pose.t);
-        }
         for (ForceDesc& f : b.forces) {
             if (f.frame == Frame::World && f.type != ForceType::Spring) f.vector = pose.direction(f.vector);
             if (f.type == ForceType::Spring) f.anchor = pose.point(f.anchor);
