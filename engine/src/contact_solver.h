@@ -26,6 +26,7 @@
 #include <tumble/world.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -191,7 +192,10 @@ struct ContactSolverScratch {
     std::vector<long> quietSince;
     std::vector<long> changedAt;
     long tick = 0;
-    std::vector<Vec3> slide;         // per body: the velocity change of sliding friction (redoPoses)
+    // Per body: how many directions it slides across (-1: held), and those normals (redoPoses).
+    std::vector<int> slideCount;
+    std::vector<std::array<Vec3, 3>> slideNormals;
+    std::vector<int> slideBlock;  // per body: its only block this solve, -1 none, -2 several
     // Islands at their fixed point (still_islands.h): per body, 1 for the bodies whose
     // contacts are taken as last solved (null: none); set by World around one solve.
     const std::vector<std::uint8_t>* still = nullptr;
