@@ -196,6 +196,7 @@ struct ContactSolverScratch {
     std::vector<int> slideCount;
     std::vector<std::array<Vec3, 3>> slideNormals;
     std::vector<int> slideBlock;  // per body: its only block this solve, -1 none, -2 several
+    std::vector<BodyState> poses;  // per body: the poses the ledger measures a move from (keepPoses)
     // Islands at their fixed point (still_islands.h): per body, 1 for the bodies whose
     // contacts are taken as last solved (null: none); set by World around one solve.
     const std::vector<std::uint8_t>* still = nullptr;

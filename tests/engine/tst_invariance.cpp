@@ -2,6 +2,7 @@
 // any orientation, and a scene turned and shifted as a whole (gravity too) moves as the
 // original does, turned and shifted. A failure names its seed and writes its scene.
 #include "joint_checks.h"
+#include "ledger_checks.h"
 #include "scene_builders.h"
 #include "turned_world.h"
 
@@ -91,6 +92,57 @@ SceneDesc jointScene(const QString& name) {
         JointDesc elbow = joint("elbow", JointType::Hinge, "lower", Vec3(0, 0.5, 0), "upper", Vec3(0, -0.5, 0));
         elbow.axisA = level.conjugate() * Vec3(0, 0.2, 1).normalized();
         s.joints = {top, elbow};
+    }
+    return s;
+}
+
+// Whether anything in the scene drives its bodies (the ledger then does not close: their
+// work is not booked): an applied force or torque, damping, a motor, a moving kinematic body.
+bool driven(const SceneDesc& s) {
+    for (const BodyDesc& b : s.bodies) {
+        if (b.linearDamping > 0 || b.angularDamping > 0) return true;
+        if (b.motion == Motion::Kinematic && !(b.velocity.isZero() && b.angularVelocity.isZero())) return true;
+        for (const ForceDesc& f : b.forces)
+            if (f.type != ForceType::Spring || f.damping > 0) return true;
+    }
+    for (const JointDesc& j : s.joints)
+        if (j.motor) return true;
+    return false;
+}
+
+// A seeded scene of `n` bodies of every shape drifting into each other in empty space (no
+// gravity, nothing static): elastic and frictionless, or with random materials and two
+// pairs of them on rods.
+SceneDesc randomCollisions(std::uint64_t seed, int n, bool elastic) {
+    Rng rng{seed};
+    SceneDesc s = sceneOf({}, Vec3::Zero());
+    s.settings.sleeping = false;
+    for (int i = 0; i < n; ++i) {
+        BodyDesc b;
+        b.name = "b" + std::to_string(i);
+        const int kind = static_cast<int>(rng.uniform(0, 4));
+        b.shape.type = kind == 0 ? ShapeType::Sphere : kind == 1 ? ShapeType::Box
+                     : kind == 2 ? ShapeType::Capsule : ShapeType::Cylinder;
+        b.shape.radius = rng.uniform(0.1, 0.3);
+        b.shape.halfHeight = rng.uniform(0.1, 0.3);
+        b.shape.halfExtents = rng.vec(0.1, 0.3);
+        b.mass = rng.uniform(0.5, 3.0);
+        b.position = Vec3(i % 3, (i / 3) % 3, i / 9) * 0.9 + rng.vec(-0.05, 0.05);
+        b.orientation = randomWorldPose(seed * 100 + i).R;
+        b.velocity = rng.vec(-1.5, 1.5) - 1.5 * (b.position - Vec3::Constant(0.9));  // towards the middle
+        b.angularVelocity = rng.vec(-4, 4);
+        b.restitution = rng.uniform(0.0, 1.0);
+        b.friction = rng.uniform(0.0, 1.0);
+        if (elastic) b.friction = 0, b.restitution = 1;
+        s.bodies.push_back(b);
+    }
+    for (int k = 0; k + 1 < n && k < 4 && !elastic; k += 2) {  // two pairs on distance rods
+        JointDesc j;
+        j.name = "rod" + std::to_string(k);
+        j.type = JointType::Distance;
+        j.bodyA = s.bodies[k].name;
+        j.bodyB = s.bodies[k + 1].name;
+        s.joints.push_back(j);
     }
     return s;
 }
@@ -308,6 +360,140 @@ private slots:
             worst = std::max(worst, (omegaOf(w, 0) - spin * axis).norm() / spin);
         }
         QVERIFY2(worst < 1e-12, qPrintable(QString("spin off by %1 of itself").arg(worst)));
+    }
+
+    // The ledger tells the truth (issue 44). A scene at rest books nothing: tower-20,
+    // pyramid-15 and a box held on a 30° slope by friction, sleeping off, 10 s at 1/30 s: every
+    // entry within the rounding of the bodies' positions (contacts 1e-9 J of pyramid-15's
+    // 1e4 J; before, contacts 6 416 J and correction as much for the tower, and the pyramid
+    // with 5 passes booked −0.05 J to friction).
+    void aSceneAtRestBooksNothing_data() {
+        QTest::addColumn<QString>("scene");
+        QTest::addColumn<int>("iterations");
+        QTest::newRow("tower-20") << "tower-20.json" << 20;
+        QTest::newRow("pyramid-15") << "pyramid-15.json" << 20;
+        QTest::newRow("pyramid-15, 5 passes") << "pyramid-15.json" << 5;
+        QTest::newRow("a box held on a slope") << "" << 20;
+    }
+    void aSceneAtRestBooksNothing() {
+        QFETCH(QString, scene);
+        QFETCH(int, iterations);
+        SceneDesc s;
+        if (scene.isEmpty()) {
+            BodyDesc box = material(boxBody("box", Vec3(0.3, 0.2, 0.3), 1.0), 0.0, 0.7);
+            box.position = Vec3(0, 0.2, 0);
+            s = sceneOf({groundPlane(0.0, 0.7), box}, 9.81 * Vec3(std::sin(M_PI / 6), -std::cos(M_PI / 6), 0));
+        } else {
+            s = io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath(scene).toStdString());
+        }
+        s.settings.sleeping = false;
+        s.settings.solverIterations = iterations;
+        World w(s);
+        const double start = energy(w.model(), w.state()).total();
+        const long steps = 300;
+        for (long k = 0; k < steps; ++k) w.step(1.0 / 30);
+        const double rounding = 1e-15 * steps * weightTimesHeight(w);
+        const EnergyLedger& l = w.ledger();
+        const QString what = describeLedger(w, start) + QString(" (rounding %1 J)").arg(rounding, 0, 'g', 3);
+        QVERIFY2(std::abs(l.lostInContacts) <= rounding && std::abs(l.lostInFriction) <= rounding, qPrintable(what));
+        QVERIFY2(l.positionCorrection == 0.0 && l.lostInJoints == 0.0, qPrintable(what));
+    }
+
+    // ... and where things move, the ledger's losses never go below zero and its parts add up
+    // to the change of the scene's energy: every sample scene that nothing drives, 3 s at
+    // 1/30 and 1/60 s, checked every step: contacts and friction at least −rounding, the gap
+    // within 1e-9 of the scene's energy scale (its weight times height and its largest
+    // kinetic energy); with joints, within their integration error (1e-3).
+    void theLedgerClosesAndNeverGoesNegative_data() {
+        QTest::addColumn<QString>("file");
+        QTest::addColumn<int>("rate");
+        for (const QString& f : QDir(TUMBLE_SCENES_DIR).entryList({"*.json"}, QDir::Files)) {
+            // (The driven samples, the door's motor and the ragdoll's and spring's damping, do
+            // work the ledger does not book.)
+            if (driven(io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath(f).toStdString()))) continue;
+            for (int rate : {30, 60}) QTest::addRow("%s at 1/%d s", qPrintable(f), rate) << f << rate;
+        }
+    }
+    void theLedgerClosesAndNeverGoesNegative() {
+        QFETCH(QString, file);
+        QFETCH(int, rate);
+        SceneDesc s = io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath(file).toStdString());
+        s.settings.dt = 1.0 / rate;
+        s.settings.frameRate = rate;
+        World w(s);
+        const double start = energy(w.model(), w.state()).total();
+        double scale = weightTimesHeight(w), worstLoss = 0.0, worstJoints = 0.0;
+        for (int k = 1; k <= 3 * rate; ++k) {
+            advanceFrame(w, k);
+            scale = std::max(scale, weightTimesHeight(w) + energy(w.model(), w.state()).kinetic);
+            // Where joints and contacts meet in one impact (the cradle on strings), the sweeps'
+            // rows pass energy between them: a contact pushes again what a string slowed, and
+            // its row books that push as given. Their sum is the loss there.
+            const EnergyLedger& l = w.ledger();
+            const double contacts = s.joints.empty() ? l.lostInContacts : l.lostInContacts + l.lostInJoints;
+            worstLoss = std::min({worstLoss, contacts, l.lostInFriction});
+            worstJoints = std::min(worstJoints, l.lostInJoints);
+        }
+        const double rounding = 1e-15 * 3 * rate * scale;
+        // Joints may give up to 1e-3 of their bodies' kinetic energy and weight in a step
+        // before the step is taken again in halves (World::stepJointed): the chain's gave
+        // 7e-3 J of 137 J for a while before they took 19-31 J (issue 45's losses).
+        const double jointSlack = s.joints.empty() ? 0.0 : 1e-4 * scale;
+        QVERIFY2(worstLoss >= -rounding - jointSlack && worstJoints >= -jointSlack,
+                 qPrintable(describeLedger(w, start) + QString("; a loss reached %1 J, the joints' %2 J").arg(worstLoss).arg(worstJoints)));
+        const double bound = s.joints.empty() ? 1e-9 * scale : 1e-3 * scale;
+        QVERIFY2(std::abs(ledgerGap(w, start)) <= bound, qPrintable(describeLedger(w, start)));
+    }
+
+    // Seeded random scenes of 12 bodies of every shape colliding in empty space for 2 s:
+    // nothing outside acts on them, so their momentum is kept (1e-10: the energy limit
+    // scales velocities now and then), their energy never rises above the start, and the
+    // ledger closes. Elastic and frictionless, they meet only in impacts, which keep the
+    // angular momentum and the energy to rounding. With friction, inelastic contacts and
+    // rods, bodies that stay in contact are re-placed from the step's start with their new
+    // velocities while the solver's impulses acted at the arms of the free step's end: the
+    // angular momentum drifts by h J × Δv at such a contact (up to 1.5e-4 of it here),
+    // bounded at 1e-3 (a known limit, docs/architecture.md "Energy ledger").
+    void randomCollisionsKeepWhatTheyMust_data() {
+        QTest::addColumn<int>("seed");
+        QTest::addColumn<bool>("elastic");
+        for (bool elastic : {true, false})
+            for (int seed = 1; seed <= 10; ++seed)
+                QTest::addRow("%s, seed %d", elastic ? "elastic" : "any material", seed) << seed << elastic;
+    }
+    void randomCollisionsKeepWhatTheyMust() {
+        QFETCH(int, seed);
+        QFETCH(bool, elastic);
+        const SceneDesc s = randomCollisions(seed, 12, elastic);
+        World w(s);
+        auto momenta = [&](Vec3& P, Vec3& L, double& scale) {
+            P = L = Vec3::Zero();
+            scale = 0.0;
+            for (const BodyState& b : w.state().bodies) {
+                P += b.P;
+                L += b.x.cross(b.P) + b.L;
+                scale += b.P.norm() * (1.0 + b.x.norm()) + b.L.norm();
+            }
+        };
+        Vec3 P0, L0, P, L;
+        double scale0, scale;
+        momenta(P0, L0, scale0);
+        const double start = energy(w.model(), w.state()).total();
+        double worstP = 0, worstL = 0, rise = 0;
+        for (int k = 0; k < 120; ++k) {
+            w.step(1.0 / 60);
+            momenta(P, L, scale);
+            worstP = std::max(worstP, (P - P0).norm() / scale0);
+            worstL = std::max(worstL, (L - L0).norm() / scale0);
+            rise = std::max(rise, (energy(w.model(), w.state()).total() - start) / start);
+        }
+        const QString what = QString("momentum off by %1, angular momentum %2, energy rose %3 of the start; %4; the scene: %5")
+                                 .arg(worstP, 0, 'g', 3).arg(worstL, 0, 'g', 3).arg(rise, 0, 'g', 3)
+                                 .arg(describeLedger(w, start))
+                                 .arg(keepFailedScene(s, elastic ? "elastic-collisions" : "random-collisions", seed));
+        QVERIFY2(worstP < 1e-10 && worstL < (elastic ? 1e-12 : 1e-3), qPrintable(what));
+        QVERIFY2(rise < 1e-12 && std::abs(ledgerGap(w, start)) < 1e-12 * start, qPrintable(what));
+        if (elastic) QVERIFY2(std::abs(energy(w.model(), w.state()).total() - start) < 1e-12 * start, qPrintable(what));
     }
 };
 
