@@ -15,7 +15,7 @@ struct Wrench {
 };
 
 /// Fills `out` (one entry per body; entries of non-dynamic bodies stay zero) for the
-/// body states `bodies` at time t.
+/// body states `bodies`, with the applied forces active at time t.
 void accumulateForces(const Model& model, const std::vector<BodyState>& bodies, double t,
                       std::vector<Wrench>& out);
 

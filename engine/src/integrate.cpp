@@ -27,10 +27,14 @@ namespace {
 
 constexpr int kBodyGrain = 256;  // bodies per chunk on the worker threads
 
+// The forces on `bodies` as they stand, with the forces that act during the step: those
+// active at its middle `during` (World::step cuts a step where a force switches, so one set
+// acts over each piece; read at the piece's ends, a force starting at the end of a piece
+// gave it half a kick of F h too many, and one ending there half a kick too few).
 const std::vector<Wrench>& evaluateForces(const Model& model, const std::vector<BodyState>& bodies,
-                                          double t, IntegrateScratch& scratch, Profile& profile) {
+                                          double during, IntegrateScratch& scratch, Profile& profile) {
     const std::uint64_t t0 = stage_clock::now();
-    accumulateForces(model, bodies, t, scratch.wrench);
+    accumulateForces(model, bodies, during, scratch.wrench);
     profile.forces += stage_clock::since(t0);  // ticks (stage_clock.h)
     ++profile.forceEvaluations;
     return scratch.wrench;
@@ -50,10 +54,11 @@ Quat addToQuat(const Quat& q, const Eigen::Vector4d& d, double h) {
     return Quat(q.w() + h * d[0], q.x() + h * d[1], q.y() + h * d[2], q.z() + h * d[3]);
 }
 
-// The state derivative (18) of every dynamic body at (t, bodies).
-void rates(const Model& model, const std::vector<BodyState>& bodies, double t,
+// The state derivative (18) of every dynamic body at `bodies`, with the forces of the step
+// whose middle is `during`.
+void rates(const Model& model, const std::vector<BodyState>& bodies, double during,
            std::vector<IntegrateScratch::Rate>& out, IntegrateScratch& scratch, Profile& profile) {
-    const std::vector<Wrench>& w = evaluateForces(model, bodies, t, scratch, profile);
+    const std::vector<Wrench>& w = evaluateForces(model, bodies, during, scratch, profile);
     out.resize(bodies.size());
     for (int i : awake(model, scratch)) {
         const BodyModel& b = model.bodies[i];
@@ -66,7 +71,7 @@ void rates(const Model& model, const std::vector<BodyState>& bodies, double t,
 
 void euler(const Model& model, State& state, double h, IntegrateScratch& scr, Profile& prof) {
     auto& k = scr.rates[0];
-    rates(model, state.bodies, state.time, k, scr, prof);
+    rates(model, state.bodies, state.time + 0.5 * h, k, scr, prof);
     for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];
         s.x += h * k[i].x;
@@ -81,7 +86,7 @@ void rk4(const Model& model, State& state, double h, IntegrateScratch& scr, Prof
     scr.stage = state.bodies;
     const double stageStep[3] = {0.5 * h, 0.5 * h, h};
     for (int n = 0; n < 4; ++n) {
-        rates(model, scr.stage, n == 0 ? t : t + stageStep[n - 1], scr.rates[n], scr, prof);
+        rates(model, scr.stage, t + 0.5 * h, scr.rates[n], scr, prof);
         if (n == 3) break;
         for (int i : awake(model, scr)) {
             const BodyState& s = state.bodies[i];
@@ -112,7 +117,7 @@ void rk4(const Model& model, State& state, double h, IntegrateScratch& scr, Prof
 
 void symplecticEuler(const Model& model, State& state, double h, IntegrateScratch& scr,
                      Profile& prof) {
-    const std::vector<Wrench>& w = evaluateForces(model, state.bodies, state.time, scr, prof);
+    const std::vector<Wrench>& w = evaluateForces(model, state.bodies, state.time + 0.5 * h, scr, prof);
     for (int i : awake(model, scr)) {
         const BodyModel& b = model.bodies[i];
         BodyState& s = state.bodies[i];
@@ -263,7 +268,7 @@ void freeRotation(const BodyModel& b, BodyState& s, double h, bool fourthOrder) 
 
 void splitting(const Model& model, State& state, double h, IntegrateScratch& scr, Profile& prof,
                bool fourthOrderRotation) {
-    const std::vector<Wrench>& w0 = evaluateForces(model, state.bodies, state.time, scr, prof);
+    const std::vector<Wrench>& w0 = evaluateForces(model, state.bodies, state.time + 0.5 * h, scr, prof);
     // Each body's kick and drift is its own: spread over the worker threads.
     const std::vector<int>& bodies = awake(model, scr);
     forEachChunk(scr.pool, static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end) {
@@ -277,7 +282,7 @@ void splitting(const Model& model, State& state, double h, IntegrateScratch& scr
             freeRotation(b, s, h, fourthOrderRotation);
         }
     });
-    const std::vector<Wrench>& w1 = evaluateForces(model, state.bodies, state.time + h, scr, prof);
+    const std::vector<Wrench>& w1 = evaluateForces(model, state.bodies, state.time + 0.5 * h, scr, prof);
     for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];
         s.P += 0.5 * h * w1[i].force;

@@ -1,7 +1,8 @@
-// Steps of scenes with joints (World::step): a step the joints could not keep is taken
-// again in halves (stepJointed); a mechanism alone (joints, no contacts, nothing that only
-// takes energy) with the fourth-order integrator is stepped as a fourth-order composition of
-// the second-order constrained step (stepComposed).
+// World::step: a step is cut where a force switches on or off (stepPiece between). Steps of
+// scenes with joints: a step the joints could not keep is taken again in halves
+// (stepJointed); a mechanism alone (joints, no contacts, nothing that only takes energy)
+// with the fourth-order integrator is stepped as a fourth-order composition of the
+// second-order constrained step (stepComposed).
 #include <tumble/world.h>
 
 #include "pair_key.h"
@@ -62,6 +63,24 @@ void World::prepareJointedSteps() {
 }
 
 void World::step(double h) {
+    const std::vector<double>& switches = model_.forceSwitchTimes;
+    if (switches.empty() || !(h > 0.0)) {
+        stepPiece(h);
+        return;
+    }
+    const double end = state_.time + h, near = 1e-9 * h;
+    auto next = std::upper_bound(switches.begin(), switches.end(), state_.time - near);
+    if (next != switches.end() && *next <= state_.time + near) state_.time = *next++;  // at the start
+    for (; next != switches.end() && *next < end - near; ++next) {
+        stepPiece(*next - state_.time);
+        state_.time = *next;  // (the piece's sum may differ in its last bit)
+    }
+    stepPiece(end - state_.time);
+    state_.time = end;
+}
+
+// One step of h in which no force switches.
+void World::stepPiece(double h) {
     if (model_.joints.empty())
         stepWhole(h);
     else if (scratch_->composed)

@@ -77,6 +77,10 @@ public:
     /// without limits, motors or breaking, no damping, no two bodies that can touch) with
     /// the splitting-4 integrator takes three such steps, of h/(2 - 2^(1/3)), a negative
     /// middle one and the first again: a fourth-order step (docs/architecture.md "Joints").
+    /// A force that switches on or off inside the step cuts it there, so that it acts for
+    /// exactly its interval whatever the step; one within a billionth of the step of its
+    /// start is taken as switching at the start (a time summed from steps of 1/30 s reads
+    /// 0.9999999999999999 where the force starts at 1).
     void step(double h);
 
     /// Worker threads for the stages whose items are independent (narrow phase and time of
@@ -98,6 +102,7 @@ public:
     const std::vector<collision::ImpactEvent>& impacts() const;
 
 private:
+    void stepPiece(double h);                // step() between two force switch times
     void stepWhole(double h);                // one step of h, as step() describes
     void stepJointed(double h, int splits);  // stepWhole, in halves while the joints stay open
     void stepComposed(double h);             // a fourth-order composition of stepJointed

@@ -262,6 +262,54 @@ private:
     BodySample last_;
 };
 
+// A box moved along `dir` by constant forces beyond its friction (a push switched on at t0,
+// or gravity along a slope): it slides d = ½ a (t − t0)² from where it rested (issue 44).
+class ForcedSlide : public Observer {
+public:
+    ForcedSlide(const Vec3& dir, double a, double t0) : dir_(dir.normalized()), a_(a), t0_(t0) {}
+    void start(const EngineAdapter& eng) override { s0_ = eng.body(1); }
+    void observe(const EngineAdapter& eng) override {
+        last_ = eng.body(1);
+        t_ = eng.time();
+    }
+    std::vector<std::pair<std::string, double>> errors() const override {
+        const double d = 0.5 * a_ * (t_ - t0_) * (t_ - t0_);
+        return {{"slide_distance_error_m", finite(last_) ? std::abs((last_.x - s0_.x).dot(dir_) - d) : kInf}};
+    }
+
+private:
+    Vec3 dir_;
+    double a_, t0_, t_ = 0.0;
+    BodySample s0_, last_;
+};
+
+// A 1 kg box (half extents 0.3, 0.2, 0.3) resting on the ground, both of friction mu, under
+// gravity g; pushed by `push` from t = 1 s when it is not zero.
+SceneDesc boxOnGround(const Vec3& g, const Vec3& push, double mu) {
+    SceneDesc s = sampleScene("sliding-block.json");  // its ground plane, then the box
+    s.settings.gravity = g;
+    s.settings.sleeping = false;
+    s.bodies.resize(1);
+    s.bodies[0].friction = mu;
+    s.bodies[0].restitution = 0.0;
+    BodyDesc box;
+    box.name = "box";
+    box.shape.type = ShapeType::Box;
+    box.shape.halfExtents = Vec3(0.3, 0.2, 0.3);
+    box.mass = 1.0;
+    box.position = Vec3(0, 0.2, 0);
+    box.friction = mu;
+    box.restitution = 0.0;
+    if (!push.isZero()) {
+        ForceDesc f;
+        f.vector = push;
+        f.start = 1.0;
+        box.forces.push_back(f);
+    }
+    s.bodies.push_back(box);
+    return s;
+}
+
 // The orientation at time T of the tumbling box, from Tumble's RK4 at 1/61440 s (16 times
 // below the smallest step swept): its error is far below every swept run's.
 Quat tumblingReference(const SceneDesc& scene, double T) {
@@ -327,6 +375,23 @@ std::vector<AccuracyScene> accuracyScenes() {
                    "rolling-sphere.json, 3 s: rolls from 2 v0/(7 mu g) = 0.728 s at 5/7 v0 = 3.571 m/s",
                    sampleScene("rolling-sphere.json"), 3.0,
                    [] { return std::make_unique<SlideToRoll>(0.11, 0.2); }});
+    // Sliding driven by a constant force (issue 44): a box at rest pushed from t = 1 s with
+    // 1.05 mu m g, and a box let go on a 30° slope (gravity tilted over the flat ground).
+    const double mu = 0.5, g = 9.81, theta = std::numbers::pi / 6;
+    const double push = 1.05 * mu * g;
+    out.push_back({"pushed-box",
+                   "a 1 kg box at rest (mu 0.5) pushed from t = 1 s with 1.05 mu m g, 5 s: slides "
+                   "(F/m - mu g)(t - 1)^2 / 2 = 1.962 m",
+                   boxOnGround(Vec3(0, -g, 0), Vec3(push, 0, 0), mu), 5.0,
+                   [=] { return std::make_unique<ForcedSlide>(Vec3::UnitX(), push - mu * g, 1.0); }});
+    const Vec3 tilted(g * std::sin(theta), -g * std::cos(theta), 0);
+    out.push_back({"slope-slide",
+                   "a 1 kg box let go on a 30 degree slope (mu 0.5), 3 s: slides g (sin 30 - mu cos 30) t^2 / 2 "
+                   "= 2.957 m",
+                   boxOnGround(tilted, Vec3::Zero(), mu), 3.0, [=] {
+                       return std::make_unique<ForcedSlide>(Vec3::UnitX(), g * (std::sin(theta) - mu * std::cos(theta)),
+                                                            0.0);
+                   }});
     return out;
 }
 
