@@ -93,6 +93,7 @@ struct ContactSolverScratch {
         double warmTwist = 0.0;
         bool warmWhole = false;  // every point started from a remembered point, unscaled
         int subsets = -1;  ///< its entry in the pool of sub-inverses once it needs one (-1: none yet)
+        bool arriving = false;  ///< a point apart at the step's start, or meeting fast (redoPoses)
     };
     /// A joint's rows in this solve (joints.cpp): a ball's three, through the 3 × 3 inverse
     /// of its effective mass; a distance's or rope's one, along the anchors' line.
@@ -196,7 +197,11 @@ struct ContactSolverScratch {
     std::vector<int> slideCount;
     std::vector<std::array<Vec3, 3>> slideNormals;
     std::vector<int> slideBlock;  // per body: its only block this solve, -1 none, -2 several
-    std::vector<BodyState> poses;  // per body: the poses the ledger measures a move from (keepPoses)
+    struct Pose {
+        Vec3 x;
+        Quat q;
+    };
+    std::vector<Pose> poses;  // per body: the poses the ledger measures a move from (keepPoses)
     // Islands at their fixed point (still_islands.h): per body, 1 for the bodies whose
     // contacts are taken as last solved (null: none); set by World around one solve.
     const std::vector<std::uint8_t>* still = nullptr;
