@@ -139,7 +139,9 @@ private slots:
         const double lost = kv["energy_lost_contacts"].toDouble() + kv["energy_lost_friction"].toDouble() +
                             kv["energy_lost_joints"].toDouble();
         const double correction = kv["energy_position_correction"].toDouble();
-        QVERIFY2(lost >= 0.0, qPrintable(r.out));
+        // (A resting stack books nothing but the rounding of its positions, 1e-15 of its
+        // weight times height a step: mass-ratio-stack -1e-11 J of 1e3 J in 3 s.)
+        QVERIFY2(lost >= -1e-11 * std::abs(start), qPrintable(r.out));
         // The ledger balances to 1e-6 of the energy that moved (the integrators' own error in
         // these scenes is far below that).
         const double scale = std::abs(start) + lost + std::abs(correction);
