@@ -41,7 +41,7 @@ void RunMetrics::frame(const World& world) {
         else if (!b.restingSince)
             b.restingSince = s.time;
     }
-    for (const collision::Manifold& c : world.contacts()) deepest_ = std::max(deepest_, c.maxDepth());
+    deepest_ = std::max(deepest_, world.deepestOverlap());
 }
 
 void RunMetrics::write(const std::filesystem::path& file, const World& world, long steps, double wall,

@@ -98,6 +98,11 @@ public:
 
     /// The contact manifolds at the end of the last step (bodyA < bodyB).
     const collision::ManifoldList& contacts() const;
+    /// The deepest overlap of two bodies as they stand now (m, 0 when none overlap), over
+    /// the pairs of contacts(): what a recorded frame shows. (The manifolds' own depths are
+    /// those found at the end of the free step, before the contact solver placed the bodies:
+    /// a box resting on the ground overlaps it there by g h² / 2.)
+    double deepestOverlap() const;
     /// The pairs that came into contact during the last step, with the time of first touch.
     const std::vector<collision::ImpactEvent>& impacts() const;
 
