@@ -195,18 +195,21 @@ double appliedPower(const Model& model, const State& state, double during, const
         const SolverBody& v = s.bodies[f.body];
         const Vec3 r = b.q * f.arm;
         switch (f.type) {
-        case ForceType::Force: {
-            const Vec3 F = f.frame == Frame::Body ? Vec3(b.q * f.vector) : f.vector;
-            power += F.dot(v.v + v.w.cross(r));
-            break;
-        }
-        case ForceType::Torque: power += (f.frame == Frame::Body ? Vec3(b.q * f.vector) : f.vector).dot(v.w); break;
-        case ForceType::Spring: {
-            const Vec3 d = b.x + r - f.anchor;
-            const double length = d.norm();
-            if (length > 1e-12) power -= f.stiffness * (length - f.restLength) * (d / length).dot(v.v + v.w.cross(r));
-            break;
-        }
+            case ForceType::Force: {
+                const Vec3 F = f.frame == Frame::Body ? Vec3(b.q * f.vector) : f.vector;
+                power += F.dot(v.v + v.w.cross(r));
+                break;
+            }
+            case ForceType::Torque:
+                power += (f.frame == Frame::Body ? Vec3(b.q * f.vector) : f.vector).dot(v.w);
+                break;
+            case ForceType::Spring: {
+                const Vec3 d = b.x + r - f.anchor;
+                const double length = d.norm();
+                if (length > 1e-12)
+                    power -= f.stiffness * (length - f.restLength) * (d / length).dot(v.v + v.w.cross(r));
+                break;
+            }
         }
     }
     return power;

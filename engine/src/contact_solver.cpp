@@ -487,16 +487,20 @@ void slidingBodies(double sliding, ContactSolverScratch& s) {
 // it went ½ |v0t| t* along û. Returns that move (tangential), or nothing when the body is
 // not such a body. (Placed with h v1 alone it stopped where it was at the step's start,
 // short by up to v0 h / 2: 8.5e-5 of a 4.2 m slide at 1/60 s.)
-std::optional<Vec3> stoppedSlide(const ContactSolverScratch& s, int i, const Vec3& v0, double sliding, double h) {
+std::optional<Vec3> stoppedSlide(const ContactSolverScratch& s, int i, const Vec3& v0, double sliding,
+                                 double h) {
     if (s.slideCount[i] >= 0 || s.slideBlock[i] < 0) return std::nullopt;
     const auto& block = s.blocks[s.slideBlock[i]];
     const Point& p = s.points[block.begin];
     const SolverBody& other = s.bodies[p.a == i ? p.b : p.a];
-    if (block.arriving || other.invMass != 0.0 || !other.v.isZero(0.0) || !other.w.isZero(0.0) || !(block.mu > 0.0)) return std::nullopt;
+    if (block.arriving || other.invMass != 0.0 || !other.v.isZero(0.0) || !other.w.isZero(0.0) ||
+        !(block.mu > 0.0))
+        return std::nullopt;
     const SolverBody& b = s.bodies[i];
     const Vec3 v0t = v0 - v0.dot(p.n) * p.n, v1t = b.v - b.v.dot(p.n) * p.n;
     const double speed = v0t.norm();
-    if (!(speed > sliding) || v1t.norm() > sliding || b.w.norm() * block.radius > sliding) return std::nullopt;
+    if (!(speed > sliding) || v1t.norm() > sliding || b.w.norm() * block.radius > sliding)
+        return std::nullopt;
     const Vec3 u = v0t / speed;
     const Eigen::Vector2d T = block.frictionApplied();
     const Vec3 J = (p.a == i ? 1.0 : -1.0) * (T[0] * block.t1 + T[1] * block.t2);
@@ -528,7 +532,8 @@ void redoPoses(const Model& model, State& state, const State& before, double sli
         const Vec3 v0 = model.bodies[i].invMass * before.bodies[i].P;
         if (s.slideCount[i] > 0) {
             Vec3 change = s.bodies[i].v - v0;
-            for (int k = 0; k < s.slideCount[i]; ++k) change -= change.dot(s.slideNormals[i][k]) * s.slideNormals[i][k];
+            for (int k = 0; k < s.slideCount[i]; ++k)
+                change -= change.dot(s.slideNormals[i][k]) * s.slideNormals[i][k];
             move -= 0.5 * h * change;
         } else if (const std::optional<Vec3> slid = stoppedSlide(s, i, v0, sliding, h)) {
             const Vec3& n = s.points[s.blocks[s.slideBlock[i]].begin].n;

@@ -31,7 +31,8 @@ double World::deepestOverlap() const {
         if (k > 0 && last[k - 1].bodyA == a && last[k - 1].bodyB == b) continue;  // (a pair's next manifold)
         const BodyModel &A = model_.bodies[a], &B = model_.bodies[b];
         found.clear();
-        collision::collide(A.collider, poseOf(A, state_.bodies[a]), B.collider, poseOf(B, state_.bodies[b]), 0.0, found);
+        collision::collide(A.collider, poseOf(A, state_.bodies[a]), B.collider, poseOf(B, state_.bodies[b]),
+                           0.0, found);
         for (const collision::Manifold& m : found) deepest = std::max(deepest, m.maxDepth());
     }
     return deepest;

@@ -33,8 +33,8 @@ inline double weightTimesHeight(const World& w) {
 /// kinematic body, no motor).
 inline double ledgerGap(const World& w, double start) {
     const EnergyLedger& l = w.ledger();
-    return energy(w.model(), w.state()).total() - start + l.lostInContacts + l.lostInFriction + l.lostInJoints -
-           l.positionCorrection;
+    return energy(w.model(), w.state()).total() - start + l.lostInContacts + l.lostInFriction +
+           l.lostInJoints - l.positionCorrection;
 }
 
 inline QString describeLedger(const World& w, double start) {

@@ -138,7 +138,8 @@ private slots:
         qInfo("stopped at %.9f m, v0^2/(2 mu g) = %.9f m: %.3g relative", moved.x(), d, rel);
         QVERIFY(velocityOf(w, 1).norm() < 1e-12);
         QVERIFY2(std::abs(rel) < 1e-12, qPrintable(QString::number(rel)));
-        QVERIFY2(std::hypot(moved.y(), moved.z()) < 1e-12, qPrintable(QString::number(std::hypot(moved.y(), moved.z()))));
+        QVERIFY2(std::hypot(moved.y(), moved.z()) < 1e-12,
+                 qPrintable(QString::number(std::hypot(moved.y(), moved.z()))));
     }
 
     // 3. A box on an incline (gravity tilted by θ over a flat ground, μ = 0.5). Below the
@@ -333,10 +334,12 @@ private slots:
         for (bool slope : {false, true})
             for (int rate : {30, 60, 240})
                 for (int seed : {0, 8, 9})
-                    for (const char* integrator : {"splitting", "splitting-4", "rk4", "symplectic-euler", "euler"}) {
+                    for (const char* integrator :
+                         {"splitting", "splitting-4", "rk4", "symplectic-euler", "euler"}) {
                         if (seed == 9 && std::string(integrator) != "splitting") continue;
                         QTest::addRow("%s at 1/%d s, %s, %s", slope ? "slope" : "push", rate,
-                                      seed ? qPrintable(QString("turned, seed %1").arg(seed)) : "upright", integrator)
+                                      seed ? qPrintable(QString("turned, seed %1").arg(seed)) : "upright",
+                                      integrator)
                             << slope << 1.0 / rate << seed << QString(integrator);
                     }
     }

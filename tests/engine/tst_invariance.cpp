@@ -74,7 +74,8 @@ SceneDesc jointScene(const QString& name) {
         // One rigid motion: v = (0, 4, 0) + ω × (x - c) about the pair's centre c = (0.25, 2, 0).
         add(boxBody("left", Vec3(0.5, 0.1, 0.2), 1.0), Vec3(-0.5, 2, 0), Vec3(0, 1.75, 0), Vec3(1, 0, 3));
         add(boxBody("right", Vec3(0.5, 0.2, 0.1), 3.0), Vec3(0.5, 2, 0), Vec3(0, 4.75, 0), Vec3(1, 0, 3));
-        s.joints.push_back(joint("weld", JointType::Fixed, "left", Vec3(0.5, 0, 0), "right", Vec3(-0.5, 0, 0)));
+        s.joints.push_back(
+            joint("weld", JointType::Fixed, "left", Vec3(0.5, 0, 0), "right", Vec3(-0.5, 0, 0)));
     } else if (name == "double pendulum of capsules") {  // issue 45's, let go level; the elbow tilted
         BodyDesc c;
         c.shape.type = ShapeType::Capsule;
@@ -89,7 +90,8 @@ SceneDesc jointScene(const QString& name) {
         add(c, Vec3(1.5, 2, 0));
         JointDesc top = joint("top", JointType::Hinge, "upper", Vec3(0, 0.5, 0), "", Vec3(0, 2, 0));
         top.axisA = level.conjugate() * Vec3::UnitZ();
-        JointDesc elbow = joint("elbow", JointType::Hinge, "lower", Vec3(0, 0.5, 0), "upper", Vec3(0, -0.5, 0));
+        JointDesc elbow =
+            joint("elbow", JointType::Hinge, "lower", Vec3(0, 0.5, 0), "upper", Vec3(0, -0.5, 0));
         elbow.axisA = level.conjugate() * Vec3(0, 0.2, 1).normalized();
         s.joints = {top, elbow};
     }
@@ -101,7 +103,8 @@ SceneDesc jointScene(const QString& name) {
 bool driven(const SceneDesc& s) {
     for (const BodyDesc& b : s.bodies) {
         if (b.linearDamping > 0 || b.angularDamping > 0) return true;
-        if (b.motion == Motion::Kinematic && !(b.velocity.isZero() && b.angularVelocity.isZero())) return true;
+        if (b.motion == Motion::Kinematic && !(b.velocity.isZero() && b.angularVelocity.isZero()))
+            return true;
         for (const ForceDesc& f : b.forces)
             if (f.type != ForceType::Spring || f.damping > 0) return true;
     }
@@ -121,8 +124,10 @@ SceneDesc randomCollisions(std::uint64_t seed, int n, bool elastic) {
         BodyDesc b;
         b.name = "b" + std::to_string(i);
         const int kind = static_cast<int>(rng.uniform(0, 4));
-        b.shape.type = kind == 0 ? ShapeType::Sphere : kind == 1 ? ShapeType::Box
-                     : kind == 2 ? ShapeType::Capsule : ShapeType::Cylinder;
+        b.shape.type = kind == 0   ? ShapeType::Sphere
+                       : kind == 1 ? ShapeType::Box
+                       : kind == 2 ? ShapeType::Capsule
+                                   : ShapeType::Cylinder;
         b.shape.radius = rng.uniform(0.1, 0.3);
         b.shape.halfHeight = rng.uniform(0.1, 0.3);
         b.shape.halfExtents = rng.vec(0.1, 0.3);
@@ -149,12 +154,18 @@ SceneDesc randomCollisions(std::uint64_t seed, int n, bool elastic) {
 
 // The sanitizer build (TUMBLE_TEST_SHORT, set by dev.sh) runs 15-30 times slower: there
 // each sweep keeps its first seed.
-bool shortRun() { return qEnvironmentVariableIsSet("TUMBLE_TEST_SHORT"); }
+bool shortRun() {
+    return qEnvironmentVariableIsSet("TUMBLE_TEST_SHORT");
+}
 
-double kinetic(const World& w) { return energy(w.model(), w.state()).kinetic; }
+double kinetic(const World& w) {
+    return energy(w.model(), w.state()).kinetic;
+}
 
 // The angle between two directions (well resolved near zero).
-double angleOf(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+double angleOf(const Vec3& a, const Vec3& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+}
 
 }  // namespace
 
@@ -176,7 +187,8 @@ private slots:
             for (double h : {1.0 / 60, 1.0 / 1000})
                 for (int axis = 0; axis < 3; ++axis)
                     for (int seed = 1; seed <= (shortRun() ? 1 : 6); ++seed)
-                        QTest::addRow("%s h=%g axis %d seed %d", name, h, axis, seed) << name << h << axis << seed;
+                        QTest::addRow("%s h=%g axis %d seed %d", name, h, axis, seed)
+                            << name << h << axis << seed;
     }
     void principalSpinInAnyPose() {
         QFETCH(QString, integrator);
@@ -277,14 +289,14 @@ private slots:
         if (file == "ragdoll.json") seconds = 1.0, bound = 2e-3;
         const WorldPose pose = randomWorldPose(seed);
         const SceneDesc turned = turnedScene(scene, pose);
-        const int frames = static_cast<int>(std::lround(std::min(seconds, scene.settings.duration) * scene.settings.frameRate));
+        const int frames = static_cast<int>(
+            std::lround(std::min(seconds, scene.settings.duration) * scene.settings.frameRate));
         const State a = turnedState(runFrames(scene, frames), pose);
         const State b = runFrames(turned, frames);
         const StateGap gap = stateGap(World(scene).model(), a, b);
         QVERIFY2(gap.worst() < bound, qPrintable(describe(gap) + "; the turned scene: " +
-                                                  keepFailedScene(turned, file.toStdString(), seed)));
+                                                 keepFailedScene(turned, file.toStdString(), seed)));
     }
-
 
     // Every kind of joint, limit and motor, in a world turned and shifted as a whole at
     // random: 3 s at 1/60 s (the joints' own step halving included) give the turned answer.
@@ -294,10 +306,10 @@ private slots:
         QTest::addColumn<QString>("scene");
         QTest::addColumn<QString>("integrator");
         QTest::addColumn<int>("seed");
-        for (const char* scene : {"hinged rod and tumbling box", "ball pendulum", "dumbbell on a distance joint",
-                                  "rope going slack", "limited door with a motor",
-                                  "slider with a limit and a motor, swinging", "welded pair tumbling",
-                                  "double pendulum of capsules"})
+        for (const char* scene :
+             {"hinged rod and tumbling box", "ball pendulum", "dumbbell on a distance joint",
+              "rope going slack", "limited door with a motor", "slider with a limit and a motor, swinging",
+              "welded pair tumbling", "double pendulum of capsules"})
             for (const char* integrator : {"splitting", "splitting-4", "rk4"})
                 for (int seed = 3; seed <= (shortRun() ? 3 : 4); ++seed)
                     QTest::addRow("%s, %s, seed %d", scene, integrator, seed) << scene << integrator << seed;
@@ -318,9 +330,12 @@ private slots:
         // rounding apart, and the two then differ by that step's error (the double pendulum
         // splits 2 of 3 steps at 1/60 s, and 472 against 473 left it 5e-5 m apart).
         const bool sameSplits = a.profile().jointSplits == b.profile().jointSplits;
-        QVERIFY2(gap.worst() < (sameSplits ? 1e-7 : 1e-2),
-                 qPrintable(describe(gap) + QString("; %1 and %2 steps split").arg(a.profile().jointSplits).arg(b.profile().jointSplits) +
-                            "; the turned scene: " + keepFailedScene(turned, "joints", seed)));
+        QVERIFY2(
+            gap.worst() < (sameSplits ? 1e-7 : 1e-2),
+            qPrintable(
+                describe(gap) +
+                QString("; %1 and %2 steps split").arg(a.profile().jointSplits).arg(b.profile().jointSplits) +
+                "; the turned scene: " + keepFailedScene(turned, "joints", seed)));
     }
 
     // A flywheel (a cylinder, r 0.3 m, half height 0.05 m, 2 kg) on a hinge whose axis is its
@@ -388,7 +403,8 @@ private slots:
         if (scene.isEmpty()) {
             BodyDesc box = material(boxBody("box", Vec3(0.3, 0.2, 0.3), 1.0), 0.0, 0.7);
             box.position = Vec3(0, 0.2, 0);
-            s = sceneOf({groundPlane(0.0, 0.7), box}, 9.81 * Vec3(std::sin(M_PI / 6), -std::cos(M_PI / 6), 0));
+            s = sceneOf({groundPlane(0.0, 0.7), box},
+                        9.81 * Vec3(std::sin(M_PI / 6), -std::cos(M_PI / 6), 0));
         } else {
             s = io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath(scene).toStdString());
         }
@@ -401,7 +417,8 @@ private slots:
         const double rounding = 1e-15 * steps * weightTimesHeight(w);
         const EnergyLedger& l = w.ledger();
         const QString what = describeLedger(w, start) + QString(" (rounding %1 J)").arg(rounding, 0, 'g', 3);
-        QVERIFY2(std::abs(l.lostInContacts) <= rounding && std::abs(l.lostInFriction) <= rounding, qPrintable(what));
+        QVERIFY2(std::abs(l.lostInContacts) <= rounding && std::abs(l.lostInFriction) <= rounding,
+                 qPrintable(what));
         QVERIFY2(l.positionCorrection == 0.0 && l.lostInJoints == 0.0, qPrintable(what));
     }
 
@@ -445,8 +462,10 @@ private slots:
         // before the step is taken again in halves (World::stepJointed): the chain's gave
         // 7e-3 J of 137 J for a while before they took 19-31 J (issue 45's losses).
         const double jointSlack = s.joints.empty() ? 0.0 : 1e-4 * scale;
-        QVERIFY2(worstLoss >= -rounding - jointSlack && worstJoints >= -jointSlack,
-                 qPrintable(describeLedger(w, start) + QString("; a loss reached %1 J, the joints' %2 J").arg(worstLoss).arg(worstJoints)));
+        QVERIFY2(
+            worstLoss >= -rounding - jointSlack && worstJoints >= -jointSlack,
+            qPrintable(describeLedger(w, start) +
+                       QString("; a loss reached %1 J, the joints' %2 J").arg(worstLoss).arg(worstJoints)));
         const double bound = s.joints.empty() ? 1e-9 * scale : 1e-3 * scale;
         QVERIFY2(std::abs(ledgerGap(w, start)) <= bound, qPrintable(describeLedger(w, start)));
     }
@@ -493,13 +512,18 @@ private slots:
             worstL = std::max(worstL, (L - L0).norm() / scale0);
             rise = std::max(rise, (energy(w.model(), w.state()).total() - start) / start);
         }
-        const QString what = QString("momentum off by %1, angular momentum %2, energy rose %3 of the start; %4; the scene: %5")
-                                 .arg(worstP, 0, 'g', 3).arg(worstL, 0, 'g', 3).arg(rise, 0, 'g', 3)
-                                 .arg(describeLedger(w, start))
-                                 .arg(keepFailedScene(s, elastic ? "elastic-collisions" : "random-collisions", seed));
+        const QString what =
+            QString("momentum off by %1, angular momentum %2, energy rose %3 of the start; %4; the scene: %5")
+                .arg(worstP, 0, 'g', 3)
+                .arg(worstL, 0, 'g', 3)
+                .arg(rise, 0, 'g', 3)
+                .arg(describeLedger(w, start))
+                .arg(keepFailedScene(s, elastic ? "elastic-collisions" : "random-collisions", seed));
         QVERIFY2(worstP < 1e-10 && worstL < (elastic ? 1e-12 : 1e-3), qPrintable(what));
         QVERIFY2(rise < 1e-12 && std::abs(ledgerGap(w, start)) < 1e-12 * start, qPrintable(what));
-        if (elastic) QVERIFY2(std::abs(energy(w.model(), w.state()).total() - start) < 1e-12 * start, qPrintable(what));
+        if (elastic)
+            QVERIFY2(std::abs(energy(w.model(), w.state()).total() - start) < 1e-12 * start,
+                     qPrintable(what));
     }
 };
 

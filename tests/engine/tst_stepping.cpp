@@ -81,7 +81,8 @@ private slots:
         const double a = 1.5, on = 1.27 - 0.51;
         QVERIFY(std::abs(velocityOf(w, 0).x() - a * on) < 1e-12);
         const double x = 0.5 * a * on * on + a * on * (2.0 - 1.27);
-        QVERIFY2(std::abs(w.state().bodies[0].x.x() - x) < 1e-12, qPrintable(QString::number(w.state().bodies[0].x.x() - x)));
+        QVERIFY2(std::abs(w.state().bodies[0].x.x() - x) < 1e-12,
+                 qPrintable(QString::number(w.state().bodies[0].x.x() - x)));
 
         BodyDesc late = sphereBody("ball", 0.1, 1.0);
         push.start = 1.0;
@@ -114,14 +115,20 @@ private slots:
                 const BodyState& b = w.state().bodies[1];
                 double lowest = HUGE_VAL;
                 for (int c = 0; c < 8; ++c) {
-                    const Vec3 corner((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(), (c & 4 ? 1 : -1) * half.z());
+                    const Vec3 corner((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(),
+                                      (c & 4 ? 1 : -1) * half.z());
                     lowest = std::min(lowest, (b.x + b.q * corner).y());
                 }
                 QVERIFY2(std::abs(w.deepestOverlap() - std::max(0.0, -lowest)) < 1e-12,
-                         qPrintable(QString("t %1: %2 against %3").arg(w.state().time).arg(w.deepestOverlap()).arg(-lowest)));
+                         qPrintable(QString("t %1: %2 against %3")
+                                        .arg(w.state().time)
+                                        .arg(w.deepestOverlap())
+                                        .arg(-lowest)));
                 for (const auto& m : w.contacts()) worstFound = std::max(worstFound, m.maxDepth());
             }
-            if (!tilted) QVERIFY2(std::abs(worstFound - 0.5 * 9.81 / 900) < 1e-9, qPrintable(QString::number(worstFound)));
+            if (!tilted)
+                QVERIFY2(std::abs(worstFound - 0.5 * 9.81 / 900) < 1e-9,
+                         qPrintable(QString::number(worstFound)));
         }
     }
 

@@ -1,8 +1,8 @@
 // One pose proves one pose: a scene turned and shifted as a whole (every body's pose and
 // velocities, which carry planes and meshes, the gravity, world-frame forces, spring
-// anchors and world-anchored joints) must move as the original does, turned and shifted the same way. These helpers
-// build the turned scene, turn a state the same way, and measure how far two states are
-// apart, for the tests that check an answer in both worlds.
+// anchors and world-anchored joints) must move as the original does, turned and shifted the same way. These
+// helpers build the turned scene, turn a state the same way, and measure how far two states are apart, for
+// the tests that check an answer in both worlds.
 #pragma once
 
 #include <tumble/io/scene_file.h>
@@ -11,8 +11,8 @@
 
 #include "test_random.h"
 
-#include <QString>
 #include <QDir>
+#include <QString>
 
 #include <algorithm>
 #include <cstdint>
@@ -112,7 +112,8 @@ inline QString describe(const StateGap& g) {
 /// Where a failing test leaves its scene for a person to run: the turned scene written to
 /// the system's temporary folder under `stem` and the seed, its path returned (to print).
 inline QString keepFailedScene(const SceneDesc& scene, const std::string& stem, std::uint64_t seed) {
-    const std::string path = QDir::tempPath().toStdString() + "/tumble-" + stem + "-seed" + std::to_string(seed) + ".json";
+    const std::string path =
+        QDir::tempPath().toStdString() + "/tumble-" + stem + "-seed" + std::to_string(seed) + ".json";
     try {
         io::writeSceneFile(scene, path);
     } catch (const std::exception& e) {

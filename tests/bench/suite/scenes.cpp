@@ -385,13 +385,14 @@ std::vector<AccuracyScene> accuracyScenes() {
                    boxOnGround(Vec3(0, -g, 0), Vec3(push, 0, 0), mu), 5.0,
                    [=] { return std::make_unique<ForcedSlide>(Vec3::UnitX(), push - mu * g, 1.0); }});
     const Vec3 tilted(g * std::sin(theta), -g * std::cos(theta), 0);
-    out.push_back({"slope-slide",
-                   "a 1 kg box let go on a 30 degree slope (mu 0.5), 3 s: slides g (sin 30 - mu cos 30) t^2 / 2 "
-                   "= 2.957 m",
-                   boxOnGround(tilted, Vec3::Zero(), mu), 3.0, [=] {
-                       return std::make_unique<ForcedSlide>(Vec3::UnitX(), g * (std::sin(theta) - mu * std::cos(theta)),
-                                                            0.0);
-                   }});
+    out.push_back(
+        {"slope-slide",
+         "a 1 kg box let go on a 30 degree slope (mu 0.5), 3 s: slides g (sin 30 - mu cos 30) t^2 / 2 "
+         "= 2.957 m",
+         boxOnGround(tilted, Vec3::Zero(), mu), 3.0, [=] {
+             return std::make_unique<ForcedSlide>(Vec3::UnitX(), g * (std::sin(theta) - mu * std::cos(theta)),
+                                                  0.0);
+         }});
     return out;
 }
 
