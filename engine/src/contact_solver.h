@@ -223,6 +223,9 @@ struct ContactSolverScratch {
     std::vector<int> springs;  // Model::forces' springs, by index (sizeContactSolver)
 };
 
+/// A body whose contacts this solve takes as last solved (still_islands.h).
+inline bool isStill(const ContactSolverScratch& s, int i) { return s.still && (*s.still)[i]; }
+
 struct ContactSolverSettings {
     int iterations = 20;  ///< velocity iterations
     int positionIterations = 4;

@@ -24,12 +24,15 @@ bool needsContacts(const Model& model) {
     return model.bodies.size() >= 2 && moving > 0;
 }
 
+Pose bodyPose(const BodyModel& body, const BodyState& s) {
+    Pose p;
+    p.R = s.q.toRotationMatrix();
+    p.p = s.x - p.R * body.centerOfMass;
+    return p;
+}
+
 void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
-    auto place = [&](size_t i) {
-        const BodyState& s = state.bodies[i];
-        out[i].R = s.q.toRotationMatrix();
-        out[i].p = s.x - out[i].R * model.bodies[i].centerOfMass;
-    };
+    auto place = [&](size_t i) { out[i] = bodyPose(model.bodies[i], state.bodies[i]); };
     if (out.size() != model.bodies.size()) {
         out.resize(model.bodies.size());
         for (size_t i = 0; i < out.size(); ++i) place(i);

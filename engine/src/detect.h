@@ -64,6 +64,8 @@ bool needsContacts(const Model& model);
 
 /// World pose of each body's frame. When `out` has a pose per body already, the static
 /// bodies' are kept: a World clears it when a state is set (World::setState).
+/// The pose of body `body` in state `s`: its frame (not its centre of mass) in the world.
+collision::Pose bodyPose(const BodyModel& body, const BodyState& s);
 void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out);
 
 /// Broadphase: pairs whose boxes, swept over the step and grown by `margin`, overlap. A

@@ -6,21 +6,11 @@
 #include <tumble/world.h>
 
 #include "collision/narrowphase.h"
+#include "detect.h"
 
 #include <algorithm>
 
 namespace tumble {
-
-namespace {
-
-collision::Pose poseOf(const BodyModel& body, const BodyState& s) {
-    collision::Pose p;
-    p.R = s.q.toRotationMatrix();
-    p.p = s.x - p.R * body.centerOfMass;
-    return p;
-}
-
-}  // namespace
 
 double World::deepestOverlap() const {
     double deepest = 0.0;
@@ -31,7 +21,7 @@ double World::deepestOverlap() const {
         if (k > 0 && last[k - 1].bodyA == a && last[k - 1].bodyB == b) continue;  // (a pair's next manifold)
         const BodyModel &A = model_.bodies[a], &B = model_.bodies[b];
         found.clear();
-        collision::collide(A.collider, poseOf(A, state_.bodies[a]), B.collider, poseOf(B, state_.bodies[b]),
+        collision::collide(A.collider, bodyPose(A, state_.bodies[a]), B.collider, bodyPose(B, state_.bodies[b]),
                            0.0, found);
         for (const collision::Manifold& m : found) deepest = std::max(deepest, m.maxDepth());
     }
