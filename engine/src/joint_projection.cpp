@@ -26,15 +26,20 @@ int root(std::vector<int>& parent, int i) {
     return i;
 }
 
-// A block of K: 3×3 at most (a ball joint's rows).
-using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+// A block of K: 6×6 at most (a fixed joint's rows).
+using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+// A joint's rows' Jacobian on one body: a column per row, (v, ω).
+using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
 
 // One joint of a group as the solve sees it at the present iterate.
 struct Rows {
     const JointModel* joint = nullptr;
-    int offset = 0, count = 0;           // its rows in the group's system: 3 (ball) or 1
-    Vec3 nowA, nowB, thenA, thenB;       // arms now, and where the impulse acts
+    int offset = 0, count = 0;      // its rows in the group's system: 3 (ball), 1, or a general joint's
+    Vec3 nowA, nowB, thenA, thenB;  // ball, distance: arms now, and where the impulse acts
     Eigen::Matrix<double, 3, Eigen::Dynamic> E, D;  // the rows' error and impulse directions
+    // Hinge, slider, fixed (joint_general.h): the rows now and where the impulse acts.
+    bool general = false;
+    ContactSolverScratch::GeneralRow now, then;
     Eigen::VectorXd C;
 };
 
@@ -47,6 +52,16 @@ double measure(const Model& /*model*/, const State& state, const State& at, std:
     for (Rows& r : rows) {
         const JointModel& j = *r.joint;
         const BodyState& a = state.bodies[j.a];
+        if (r.general) {
+            Vector6 error;
+            const BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
+            generalRows(j, a, b, r.now, &error, hingeNear(state, j));
+            if (&at == &state) r.then = r.now;  // (else made once: the start does not move)
+            r.C = error.head(r.count);
+            worst = std::max(worst, r.C.cwiseAbs().maxCoeff());
+            if (sum) *sum += r.C.squaredNorm();
+            continue;
+        }
         r.nowA = a.q * j.anchorA;
         r.nowB = j.b >= 0 ? Vec3(state.bodies[j.b].q * j.anchorB) : Vec3::Zero();
         r.thenA = at.bodies[j.a].q * j.anchorA;
@@ -108,11 +123,83 @@ Mat3 shared(const Model& model, const State& state, const ContactSolverScratch& 
     return M;
 }
 
+// A joint's Jacobian on `body` (its A or its B: B's columns carry the minus), as the error
+// moves (`now`) or as its impulse acts (the other).
+Jacobian jacobian(const Rows& r, int body, bool now) {
+    const JointModel& j = *r.joint;
+    const bool onA = body == j.a;
+    if (r.general) {
+        const ContactSolverScratch::GeneralRow& g = now ? r.now : r.then;
+        return (onA ? g.JA : g.JB).leftCols(r.count);
+    }
+    const Vec3& arm = onA ? (now ? r.nowA : r.thenA) : (now ? r.nowB : r.thenB);
+    const auto& dirs = now ? r.E : r.D;
+    Jacobian J(6, r.count);
+    for (int i = 0; i < r.count; ++i) J.col(i) << dirs.col(i), arm.cross(dirs.col(i));
+    return onA ? J : Jacobian(-J);
+}
+
 Small block(const Model& model, const State& state, const ContactSolverScratch& s, const Rows& rk,
             const Rows& rl) {
-    const Mat3 M = shared(model, state, s, rk, rl);
-    if (M.isZero(0.0)) return Small::Zero(rk.count, rl.count);
-    return rk.E.transpose() * M * rl.D;
+    if (!rk.general && !rl.general) {
+        const Mat3 M = shared(model, state, s, rk, rl);
+        if (M.isZero(0.0)) return Small::Zero(rk.count, rl.count);
+        return rk.E.transpose() * M * rl.D;
+    }
+    Small K = Small::Zero(rk.count, rl.count);
+    const JointModel &jk = *rk.joint, &jl = *rl.joint;
+    for (int body : {jk.a, jk.b}) {
+        if (body < 0 || !movable(model, state, body) || (body != jl.a && body != jl.b)) continue;
+        const SolverBody& B = s.bodies[body];
+        const Jacobian then = jacobian(rl, body, false);
+        Jacobian MJ(6, rl.count);
+        MJ.topRows<3>() = B.invMass * then.topRows<3>();
+        MJ.bottomRows<3>() = B.invI * then.bottomRows<3>();
+        K += jacobian(rk, body, true).transpose() * MJ;
+    }
+    return K;
+}
+
+// Moves joint r's bodies (poses) as its impulses `lambda` would in unit time.
+void moveRows(const Model& model, State& state, const ContactSolverScratch& s, const Rows& r,
+              const Eigen::VectorXd& lambda) {
+    const JointModel& j = *r.joint;
+    const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+    if (r.general) {
+        Vector6 l = Vector6::Zero();
+        l.head(r.count) = lambda;
+        const SolverBody still;
+        nudgeGeneral(r.then, moveA ? s.bodies[j.a] : still, state.bodies[j.a], moveA,
+                     moveB ? s.bodies[j.b] : still, j.b >= 0 ? &state.bodies[j.b] : nullptr, moveB, l);
+        return;
+    }
+    const Vec3 J = r.D * lambda;
+    if (moveA) nudge(s.bodies[j.a], state.bodies[j.a], r.thenA, J);
+    if (moveB) nudge(s.bodies[j.b], state.bodies[j.b], r.thenB, -J);
+}
+
+// Gives the velocities the impulses λ / h over the step that made that move (RATTLE), and
+// adds the impulse on A (and a general joint's couple) to the joint's projected force.
+void giveVelocity(const Model& model, const State& state, ContactSolverScratch& s, const Rows& r,
+                  const Eigen::VectorXd& lambda, double h) {
+    const JointModel& j = *r.joint;
+    const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+    const bool known = j.index < static_cast<int>(s.projectedImpulse.size());
+    if (r.general) {
+        Vector6 l = Vector6::Zero();
+        l.head(r.count) = lambda / h;
+        if (moveA) applyToBody(s.bodies[j.a], r.then.JA * l);
+        if (moveB) applyToBody(s.bodies[j.b], r.then.JB * l);
+        if (known) {
+            s.projectedImpulse[j.index] += r.then.lin.leftCols(r.then.nl) * l.head(r.then.nl);
+            s.projectedCouple[j.index] += r.then.ang.leftCols(r.then.na) * l.segment(r.then.nl, r.then.na);
+        }
+        return;
+    }
+    const Vec3 J = r.D * lambda;
+    if (moveA) applyImpulse(s.bodies[j.a], r.thenA, J / h);
+    if (known) s.projectedImpulse[j.index] += J / h;
+    if (moveB) applyImpulse(s.bodies[j.b], r.thenB, -J / h);
 }
 
 // The joints of a group in the order of a path, when the group is one (each joint shares
@@ -226,9 +313,9 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
     std::vector<int> members;
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
-        // Ropes (one-sided) and the joints that hold orientation (joint_general.h) are left
-        // to the Gauss-Seidel passes.
-        if (!active(model, state, j) || j.type == JointType::Rope || isGeneral(j.type)) continue;
+        // Ropes (one-sided) are left to the Gauss-Seidel passes; so are a hinge's or
+        // slider's limits (joints.cpp: after the group has closed the joint's other rows).
+        if (!active(model, state, j) || j.type == JointType::Rope) continue;
         members.push_back(k);
         if (movable(model, state, j.a) && movable(model, state, j.b)) parent[root(parent, j.a)] = root(parent, j.b);
     }
@@ -247,11 +334,20 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
         for (int k = 0; k < count; ++k) {
             rows[k].joint = &model.joints[members[first + k]];
             rows[k].offset = size;
-            rows[k].count = rows[k].joint->type == JointType::Ball ? 3 : 1;
+            const JointModel& j = *rows[k].joint;
+            rows[k].general = isGeneral(j.type);
+            if (rows[k].general) {  // (the start's rows, once: measure() makes those now)
+                generalRows(j, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, rows[k].then, nullptr,
+                            hingeNear(state, j));
+                rows[k].count = rows[k].then.m;
+            } else {
+                rows[k].count = j.type == JointType::Ball ? 3 : 1;
+            }
             size += rows[k].count;
         }
         const std::vector<std::pair<int, int>> pairs = sharingPairs(model, state, rows);
-        const bool balls = std::all_of(rows.begin(), rows.end(), [](const Rows& r) { return r.count == 3; });
+        const bool balls = std::all_of(rows.begin(), rows.end(),
+                                       [](const Rows& r) { return r.joint->type == JointType::Ball; });
         const std::vector<int> path =
             count > kMostGroupJoints && balls ? pathOrder(count, pairs) : std::vector<int>{};
         std::optional<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu;  // made when a large group needs it
@@ -290,12 +386,8 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
                     restore();
                     measure(model, state, at, rows);
                 }
-                for (const Rows& r : rows) {
-                    const JointModel& j = *r.joint;
-                    const Vec3 J = scale * (r.D * lambda.segment(r.offset, r.count));
-                    if (movable(model, state, j.a)) nudge(s.bodies[j.a], state.bodies[j.a], r.thenA, J);
-                    if (movable(model, state, j.b)) nudge(s.bodies[j.b], state.bodies[j.b], r.thenB, -J);
-                }
+                for (const Rows& r : rows)
+                    moveRows(model, state, s, r, scale * lambda.segment(r.offset, r.count));
                 next = measure(model, state, at, rows, &nextSquares);
                 lower = from ? nextSquares < 0.25 * squares : nextSquares < squares;
                 if (lower) break;
@@ -305,14 +397,11 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
                 measure(model, state, at, rows);
                 break;
             }
-            if (from && h != 0.0)  // the move as the impulse J / h over the step (RATTLE)
-                for (const Rows& r : rows) {
-                    const JointModel& j = *r.joint;
-                    const Vec3 J = scale * (r.D * lambda.segment(r.offset, r.count));
-                    if (movable(model, state, j.a)) applyImpulse(s.bodies[j.a], r.thenA, J / h);
-                    if (j.index < static_cast<int>(s.projectedImpulse.size())) s.projectedImpulse[j.index] += J / h;
-                    if (movable(model, state, j.b)) applyImpulse(s.bodies[j.b], r.thenB, -J / h);
-                }
+            if (from && h != 0.0) {  // the move as the impulse J / h over the step (RATTLE)
+                // (The poses are where the nudges put them; only the velocities are given.)
+                for (const Rows& r : rows)
+                    giveVelocity(model, state, s, r, scale * lambda.segment(r.offset, r.count), h);
+            }
             error = next;
             squares = nextSquares;
         }

@@ -89,16 +89,66 @@ void World::stepPiece(double h) {
         stepJointed(h, 0);
 }
 
-// A step whose joints it could not keep is taken again from its start as two halves, each
-// of which may split once more (at most four pieces). Not kept: a joint left open, its
-// projection (joints.h) not converged (a 50-link chain whipping at 1/30 s opened by 0.25 %
-// of its length, and held to 1e-13 m at 1/35 s and shorter); or, where joints can only take
-// energy out (no motor, no moving kinematic body), joints that gave the bodies more than a
-// thousandth of their kinetic energy and weight (the same chain at 1/20 s gained 41 % of
-// its energy in one step whose projection converged). "Open" is 1e-8 of the largest body's
-// size: the projection stops at 1e-13 m, and a pile of ragdolls whose passes run to their
-// cap ends near 1e-11 m.
-void World::stepJointed(double h, int splits) {
+double World::jointedKinetic() const {
+    double kinetic = 0.0;
+    for (int i : scratch_->jointedBodies) {
+        const BodyState& b = state_.bodies[i];
+        kinetic +=
+            0.5 * (b.P.squaredNorm() / model_.bodies[i].mass + b.L.dot(angularVelocity(model_.bodies[i], b)));
+    }
+    return kinetic;
+}
+
+// A step just taken (from s.jointRedo[splits].start, or composedRedo's) that its joints did
+// not keep, taken again from its start as two halves, each of which may split once more
+// (at most four pieces). Not kept: a joint left open (`held` false), its projection (joints.h)
+// not converged (a 50-link chain whipping at 1/30 s opened by 0.25 % of its length, and held
+// to 1e-13 m at 1/35 s and shorter); or, where joints can only take energy out (no motor,
+// no moving kinematic body), joints that gave the bodies more than a thousandth of their
+// kinetic energy and weight (`kinetic` at the start): the same chain at 1/20 s gained 41 % of
+// its energy in one step whose projection converged. A step split for its energy alone is
+// weighed against its halves: where they gave at least 0.4 of what a smooth error would
+// (two halves give a quarter of a second-order step's error, a sixteenth of a fourth-order
+// one's), its gain is the method's own, and the step is kept as first taken. RATTLE's energy error
+// oscillates: a double pendulum of capsules at 1/60 s swings through +0.6 % and back in a fast swing, and
+// taking only its gaining steps again, in halves, while keeping those that lost made that a drift (0.86 %
+// lost in 10 s; 9.4 % with splitting-4 when the composition's backward piece was split
+// alone: that piece gains what the others lose). Whether a split was made.
+bool World::splitFor(double h, int splits, bool composed, double gained, double kinetic, bool held) {
+    Scratch& s = *scratch_;
+    const bool gave = s.jointsPassive && gained > 1e-3 * (kinetic + s.jointedWeight);
+    if (held && !gave) return false;
+    Scratch::JointRedoPair& r = (composed ? s.composedRedo : s.jointRedo)[splits];
+    const double end = state_.time;
+    if (held) r.end = {state_, ledger_, s.energy};
+    state_ = r.start.state;
+    ledger_ = r.start.ledger;
+    s.energy = r.start.guard;
+    forgetStill(s.still);  // (what the step taken back found still)
+    ++profile_.jointSplits;
+    if (composed) {
+        stepComposed(0.5 * h, splits + 1);
+        stepComposed(end - state_.time, splits + 1);
+    } else {
+        const bool weigh = gained != 0.0;  // (not in a composed step's pieces)
+        stepJointed(0.5 * h, splits + 1, weigh);
+        stepJointed(end - state_.time, splits + 1, weigh);
+    }
+    state_.time = end;  // (the halves' sum may differ from h in its last bit)
+    if (!held) return true;
+    Scratch::JointRedoPair& again =
+        (composed ? s.composedRedo : s.jointRedo)[splits];  // (the halves may have grown it)
+    const double smooth = composed ? 1.0 / 16 : 1.0 / 4;  // what halves give of a step's error, by its order
+    if (again.start.ledger.lostInJoints - ledger_.lostInJoints > 0.4 * smooth * gained) {
+        state_ = again.end.state;
+        ledger_ = again.end.ledger;
+        s.energy = again.end.guard;
+        forgetStill(s.still);
+    }
+    return true;
+}
+
+void World::stepJointed(double h, int splits, bool weigh) {
     constexpr int kMostSplits = 2;
     Scratch& s = *scratch_;
     if (splits >= kMostSplits) {
@@ -106,45 +156,39 @@ void World::stepJointed(double h, int splits) {
         return;
     }
     if (static_cast<int>(s.jointRedo.size()) <= splits) s.jointRedo.resize(splits + 1);
-    Scratch::JointRedo& r = s.jointRedo[splits];
-    r.state = state_;
-    r.ledger = ledger_;
-    r.guard = s.energy;
-    double kinetic = 0.0;
-    for (int i : s.jointedBodies) {
-        const BodyState& b = state_.bodies[i];
-        kinetic += 0.5 * (b.P.squaredNorm() / model_.bodies[i].mass + b.L.dot(angularVelocity(model_.bodies[i], b)));
-    }
+    s.jointRedo[splits].start = {state_, ledger_, s.energy};
+    const double kinetic = weigh ? jointedKinetic() : 0.0;
     s.solver.stepJointsOpen = 0.0;
     stepWhole(h);
     const double open = 1e-3 * s.touchTolerance;  // (kTouchTolerance: 1e-5 of the largest size)
-    const double gained = r.ledger.lostInJoints - ledger_.lostInJoints;
-    const bool kept = !(s.solver.stepJointsOpen > open) &&
-                      !(s.jointsPassive && gained > 1e-3 * (kinetic + s.jointedWeight));
-    if (kept) return;
-    const double end = state_.time;
-    state_ = r.state;
-    ledger_ = r.ledger;
-    s.energy = r.guard;
-    forgetStill(s.still);  // (what the step taken back found still)
-    ++profile_.jointSplits;
-    stepJointed(0.5 * h, splits + 1);
-    stepJointed(end - state_.time, splits + 1);
-    state_.time = end;  // (the halves' sum may differ from h in its last bit)
+    const double gained = weigh ? s.jointRedo[splits].start.ledger.lostInJoints - ledger_.lostInJoints : 0.0;
+    splitFor(h, splits, false, gained, kinetic, !(s.solver.stepJointsOpen > open));
 }
 
 // Yoshida's triple jump: steps of g1 h, g0 h and g1 h (g0 = -2^(1/3) g1 < 0) make a
 // fourth-order step of any symmetric second-order one. The constrained step (RATTLE: the
 // free Strang step, the positions projected with impulses along the joints at the start,
 // the velocity rows at the end) is symmetric, so a pendulum's period error falls from
-// (ωh)²/24 to O(h⁴): 7.2e-6 -> see tst_joints pendulumPeriod.
-void World::stepComposed(double h) {
+// (ωh)²/24 to O(h⁴): 7.2e-6 -> see tst_joints pendulumPeriod. Its energy is weighed over
+// the three pieces together (splitFor), the backward one gaining what the others lose.
+void World::stepComposed(double h, int splits) {
+    constexpr int kMostSplits = 2;
+    Scratch& s = *scratch_;
+    const bool weigh = splits < kMostSplits;
+    if (weigh) {
+        if (static_cast<int>(s.composedRedo.size()) <= splits) s.composedRedo.resize(splits + 1);
+        s.composedRedo[splits].start = {state_, ledger_, s.energy};
+    }
+    const double kinetic = weigh ? jointedKinetic() : 0.0;
     const double c = std::cbrt(2.0), g1 = 1.0 / (2.0 - c), g0 = -c / (2.0 - c);
     const double end = state_.time + h;
-    stepJointed(g1 * h, 0);
-    stepJointed(g0 * h, 0);
-    stepJointed(end - state_.time, 0);
+    stepJointed(g1 * h, 0, false);
+    stepJointed(g0 * h, 0, false);
+    stepJointed(end - state_.time, 0, false);
     state_.time = end;
+    if (weigh)
+        splitFor(h, splits, true, s.composedRedo[splits].start.ledger.lostInJoints - ledger_.lostInJoints,
+                 kinetic, true);
 }
 
 }  // namespace tumble

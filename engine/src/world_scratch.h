@@ -66,7 +66,11 @@ struct World::Scratch {
         EnergyLedger ledger;
         EnergyGuard guard;
     };
-    std::vector<JointRedo> jointRedo;
+    // A step's start, and its end when it is weighed against its halves (World::stepJointed).
+    struct JointRedoPair {
+        JointRedo start, end;
+    };
+    std::vector<JointRedoPair> jointRedo, composedRedo;  // per depth of splitting
     std::vector<int> jointedBodies;  // dynamic bodies with a joint (the model never changes)
     double jointedWeight = 0.0;      // Σ m |g| r over them: the floor of the energy a split checks
     bool jointsPassive = true;       // no motor, no joint to a kinematic body that moves

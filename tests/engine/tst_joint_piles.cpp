@@ -95,10 +95,13 @@ private slots:
 
     // Issue 20's "stable at 1/60 and 1/30": the sample ragdoll (5 ball joints, 4 limited
     // hinges), sleeping off so that nothing is held still but its contacts and joints,
-    // dropped on the ground: after 10 s every part is slower than 1 cm/s (at 1/60 s a limb
-    // still creeps at 4 cm/s at 5 s, slowing by a third every half second, and is at rest to
-    // 1e-6 m/s from 8.5 s; at 1/30 s all of it by 4 s), its energy never rose above the
-    // start and the joints held.
+    // dropped on the ground: after 20 s every part is slower than 1 cm/s, its energy never
+    // rose above the start and the joints held. What is slow to stop is its head rolling on
+    // the ground about the line through its neck joint (neither friction nor the joint resists
+    // that; only the bodies' damping does): at 1/60 s it slows by a third a second, 4.7 cm/s
+    // at 10 s, 8e-3 m/s at 15 s. (Until issue 45 the hinges' projection took energy that it
+    // should not, and in this drop it happened to stop the roll at 9 s; dropped 1 cm higher
+    // the same code also rolled on past 14 s.)
     void ragdollSettles_data() {
         QTest::addColumn<double>("h");
         QTest::newRow("1/60 s") << 1.0 / 60.0;
@@ -111,7 +114,7 @@ private slots:
         World w(scene);
         const double e0 = energy(w);
         double most = e0, gap = 0.0;
-        while (w.state().time < 10.0) {
+        while (w.state().time < 20.0) {
             w.step(h);
             most = std::max(most, energy(w));
             for (size_t k = 0; k < w.model().joints.size(); ++k) gap = std::max(gap, anchorGap(w, int(k)));
@@ -123,8 +126,10 @@ private slots:
             const Derived d = derive(b, s);
             fastest = std::max(fastest, d.v.norm() + d.omega.norm() * boundingRadius(b.collider));
         }
-        qInfo("energy from %.1f J, at most %+.1e J above; after 10 s the fastest point %.1e m/s; joints held to %.1e m",
-              e0, most - e0, fastest, gap);
+        qInfo(
+            "energy from %.1f J, at most %+.1e J above; after 20 s the fastest point %.1e m/s; joints held "
+            "to %.1e m",
+            e0, most - e0, fastest, gap);
         QVERIFY2(most <= e0 * (1.0 + 1e-9), qPrintable(QString::number(most - e0)));
         QVERIFY2(fastest < 0.01, qPrintable(QString::number(fastest)));
         QVERIFY2(gap < 1e-9, qPrintable(QString::number(gap)));

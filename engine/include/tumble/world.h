@@ -109,8 +109,12 @@ public:
 private:
     void stepPiece(double h);                // step() between two force switch times
     void stepWhole(double h);                // one step of h, as step() describes
-    void stepJointed(double h, int splits);  // stepWhole, in halves while the joints stay open
-    void stepComposed(double h);             // a fourth-order composition of stepJointed
+    // stepWhole, in halves while the joints stay open or (`weigh`) gave energy
+    void stepJointed(double h, int splits, bool weigh = true);
+    void stepComposed(double h, int splits = 0);  // a fourth-order composition of stepJointed
+    double jointedKinetic() const;                // of the jointed bodies
+    bool splitFor(double h, int splits, bool composed, double gained, double kinetic,
+                  bool held);                // (stepJointed)
     void prepareJointedSteps();              // (the constructor: what those need of the model)
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
