@@ -614,7 +614,7 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
 void solveContacts(const Model& model, State& state, const State& before,
                    const ManifoldList& contacts, const std::vector<double>& sizes,
                    const ContactSolverSettings& cfg, ContactSolverScratch& s, EnergyLedger& ledger) {
-    s.jointsOpen = 0.0;  // (projectJoints sets it, the last call's standing)
+    s.jointsOpen = s.jointsOpenAll = 0.0;  // (projectJoints sets them, the last call's standing)
     s.stillBodies = 0;
     if (contacts.empty() && model.joints.empty()) {  // nothing to solve: only the memory of sleeping pairs is kept
         s.points.clear();

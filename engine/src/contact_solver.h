@@ -153,9 +153,12 @@ struct ContactSolverScratch {
     PageVector<PointGeometry> geometry;  // per point
     PageVector<Block> blocks;
     std::vector<JointRow> jointRows;
-    /// The largest joint error (m or rad) the solve's last projection left (projectJoints),
-    /// and the largest of those over the step's end-of-step solves (World::finishStep).
+    /// The largest joint error (m or rad) the solve's last projection left (projectJoints) in
+    /// groups of at most 64 joints, and the largest of those over the step's end-of-step
+    /// solves (World::finishStep); the same over every joint (`All`), and over the pieces of
+    /// a composed step (World::stepComposed).
     double jointsOpen = 0.0, stepJointsOpen = 0.0;
+    double jointsOpenAll = 0.0, stepJointsOpenAll = 0.0, composedJointsOpenAll = 0.0;
     // K's sub-inverses (pushingImpulses), for the blocks that have needed one (Block::subsets):
     // most blocks never let a point go, and an entry for every block was 288 bytes each.
     std::vector<SubsetInverses> subsets;

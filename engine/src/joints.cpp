@@ -485,6 +485,7 @@ void projectJoints(const Model& model, State& state, ContactSolverScratch& s, do
     for (int pass = 0; pass < kProjectionPasses && worst > kHeld; ++pass)
         worst = projectionPass(model, state, s, 0.0, nullptr, &s.jointChecks);
     s.jointsOpen = smallGroupsOpen(model, state, s);
+    s.jointsOpenAll = worst;
     if (start && h != 0.0)
         for (const JointModel& j : model.joints)
             for (int i : {j.a, j.b})

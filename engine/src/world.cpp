@@ -412,6 +412,8 @@ void World::finishStep(const State& before, const collision::ManifoldList& conta
                   solverSettings(model_, s.resting, s.touchTolerance, s.margin, h), s.solver, ledger_);
     s.solver.still = nullptr;
     s.solver.stepJointsOpen = std::max(s.solver.stepJointsOpen, s.solver.jointsOpen);
+    s.solver.stepJointsOpenAll = std::max(s.solver.stepJointsOpenAll, s.solver.jointsOpenAll);
+    s.solver.composedJointsOpenAll = std::max(s.solver.composedJointsOpenAll, s.solver.jointsOpenAll);
     if (skip) profile_.stillBodySteps += s.solver.stillBodies;
     checkFinite(model_, state_);
     profile_.solve += lap.next();

@@ -113,8 +113,8 @@ private:
     void stepJointed(double h, int splits, bool weigh = true);
     void stepComposed(double h, int splits = 0);  // a fourth-order composition of stepJointed
     double jointedKinetic() const;                // of the jointed bodies
-    bool splitFor(double h, int splits, bool composed, double gained, double kinetic,
-                  bool held);                // (stepJointed)
+    bool splitFor(double h, int splits, bool composed, double gained, double kinetic, bool held,
+                  bool allHeld);             // (stepJointed)
     void prepareJointedSteps();              // (the constructor: what those need of the model)
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
