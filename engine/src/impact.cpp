@@ -1,6 +1,7 @@
 #include "impact.h"
 
 #include "joints.h"
+#include "resting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,6 +110,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
     const Vec3& grav = model.settings.gravity;
     const double closing =
         n.dot((A.invMass > 0.0 ? grav : Vec3::Zero()) - (B.invMass > 0.0 ? grav : Vec3::Zero()));
+    const double settling = std::max(approachTol, restingSpeed * restingShare(grav, n));
     Vec3 rA[Manifold::kMaxPoints], rB[Manifold::kMaxPoints];
     double gain[Manifold::kMaxPoints];  // wanted change of the normal velocity
     int k = 0;
@@ -118,7 +120,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
         const double vn = n.dot(relativeVelocity(A, a, B, b));
         // Slower than the resting speed is settling, left to the contact solver (which
         // converges on it far faster than this loop, warm started).
-        if (vn >= -std::max(approachTol, restingSpeed)) continue;
+        if (vn >= -settling) continue;
         rA[k] = a;
         rB[k] = b;
         // Restitution of the speed at the touch: a point found overlapping by d (at the end of

@@ -188,7 +188,10 @@ private slots:
             aloneIntegrations += w.profile().awakeBodySteps - steps;  // more than once a step
         }
         const Profile& p = together.profile();
-        QVERIFY2(aloneCuts >= 9, "precondition: the balls bounce");
+        // (One moment a bounce: the three first ones and the lowest ball's second. While the
+        // time of impact swept the chord of a step, not the fall's parabola, the chord met
+        // the ground early and each bounce took three cuts to reach it: 12.)
+        QVERIFY2(aloneCuts >= 4, "precondition: the balls bounce");
         QCOMPARE(p.islandRestarts, 0L);
         QVERIFY(p.parkedBodySteps > 0);
         // Integrations beyond one per ball and step: only the cut ball's, as alone (cutting
