@@ -180,22 +180,16 @@ void moveRows(const Model& model, State& state, const ContactSolverScratch& s, c
 
 // Gives the velocities the impulses λ / h over the step that made that move (RATTLE), and
 // adds the impulse on A (and a general joint's couple) to the joint's projected force.
-void giveVelocity(const Model& model, const State& state, const State& at, ContactSolverScratch& s,
-                  const Rows& r, const Eigen::VectorXd& lambda, double h) {
+void giveVelocity(const Model& model, const State& state, ContactSolverScratch& s, const Rows& r,
+                  const Eigen::VectorXd& lambda, double h) {
     const JointModel& j = *r.joint;
     const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
     const bool known = j.index < static_cast<int>(s.projectedImpulse.size());
     if (r.general) {
         Vector6 l = Vector6::Zero();
         l.head(r.count) = lambda / h;
-        if (moveA) {
-            const Vector6 p = r.then.JA * l;
-            giveStartImpulse(s.bodies[j.a], model.bodies[j.a], at.bodies[j.a].q, p.head<3>(), p.tail<3>());
-        }
-        if (moveB) {
-            const Vector6 p = r.then.JB * l;
-            giveStartImpulse(s.bodies[j.b], model.bodies[j.b], at.bodies[j.b].q, p.head<3>(), p.tail<3>());
-        }
+        if (moveA) applyToBody(s.bodies[j.a], r.then.JA * l);
+        if (moveB) applyToBody(s.bodies[j.b], r.then.JB * l);
         if (known) {
             s.projectedImpulse[j.index] += r.then.lin.leftCols(r.then.nl) * l.head(r.then.nl);
             s.projectedCouple[j.index] += r.then.ang.leftCols(r.then.na) * l.segment(r.then.nl, r.then.na);
@@ -203,11 +197,9 @@ void giveVelocity(const Model& model, const State& state, const State& at, Conta
         return;
     }
     const Vec3 J = r.D * lambda;
-    if (moveA)
-        giveStartImpulse(s.bodies[j.a], model.bodies[j.a], at.bodies[j.a].q, J / h, r.thenA.cross(J / h));
+    if (moveA) applyImpulse(s.bodies[j.a], r.thenA, J / h);
     if (known) s.projectedImpulse[j.index] += J / h;
-    if (moveB)
-        giveStartImpulse(s.bodies[j.b], model.bodies[j.b], at.bodies[j.b].q, -J / h, r.thenB.cross(-J / h));
+    if (moveB) applyImpulse(s.bodies[j.b], r.thenB, -J / h);
 }
 
 // The joints of a group in the order of a path, when the group is one (each joint shares
@@ -408,7 +400,7 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
             if (from && h != 0.0) {  // the move as the impulse J / h over the step (RATTLE)
                 // (The poses are where the nudges put them; only the velocities are given.)
                 for (const Rows& r : rows)
-                    giveVelocity(model, state, at, s, r, scale * lambda.segment(r.offset, r.count), h);
+                    giveVelocity(model, state, s, r, scale * lambda.segment(r.offset, r.count), h);
             }
             error = next;
             squares = nextSquares;

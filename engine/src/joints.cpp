@@ -330,7 +330,7 @@ double projectLimit(const JointModel& j, BodyState& a, BodyState* b, bool moveA,
 
 // A Newton step on a hinge's, slider's or fixed joint's rows (as projectionPass's for the
 // others); returns the error it found.
-double projectGeneral(const Model& model, State& state, ContactSolverScratch& s, double h, const State* from,
+double projectGeneral(State& state, ContactSolverScratch& s, double h, const State* from,
                       const State& at, const JointModel& j, bool moveA, bool moveB, const SolverBody& A,
                       const SolverBody& B) {
     BodyState& a = state.bodies[j.a];
@@ -360,14 +360,8 @@ double projectGeneral(const Model& model, State& state, ContactSolverScratch& s,
     if (from && h != 0.0) {  // the move was made by the impulse λ / h over the step
         s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * lambda.head(then.nl) / h;
         s.projectedCouple[j.index] += then.ang.leftCols(then.na) * lambda.segment(then.nl, then.na) / h;
-        if (moveA) {
-            const Vector6 p = then.JA * (lambda / h);
-            giveStartImpulse(s.bodies[j.a], model.bodies[j.a], at.bodies[j.a].q, p.head<3>(), p.tail<3>());
-        }
-        if (moveB) {
-            const Vector6 p = then.JB * (lambda / h);
-            giveStartImpulse(s.bodies[j.b], model.bodies[j.b], at.bodies[j.b].q, p.head<3>(), p.tail<3>());
-        }
+        if (moveA) applyToBody(s.bodies[j.a], then.JA * (lambda / h));
+        if (moveB) applyToBody(s.bodies[j.b], then.JB * (lambda / h));
     }
     return std::max(error, past);
 }
@@ -385,7 +379,7 @@ double projectOne(const Model& model, State& state, ContactSolverScratch& s, dou
     const Vec3 pA = a.x + rA;
     const Vec3 pB = j.b >= 0 ? Vec3(state.bodies[j.b].x + rB) : j.anchorB;
     const State& at = from ? *from : state;
-    if (isGeneral(j.type)) return projectGeneral(model, state, s, h, from, at, j, moveA, moveB, A, B);
+    if (isGeneral(j.type)) return projectGeneral(state, s, h, from, at, j, moveA, moveB, A, B);
     const Vec3 arA = at.bodies[j.a].q * j.anchorA;  // the arms the impulse acts at
     const Vec3 arB = j.b >= 0 ? Vec3(at.bodies[j.b].q * j.anchorB) : Vec3::Zero();
     // A body that turned far in the step (a whipping chain's end at 1/30 s): the start's
@@ -418,10 +412,8 @@ double projectOne(const Model& model, State& state, ContactSolverScratch& s, dou
     if (moveA) nudge(A, a, arA, J);
     if (moveB) nudge(B, state.bodies[j.b], arB, -J);
     if (from && h != 0.0) {  // the move was made by the impulse J / h over the step
-        if (moveA)
-            giveStartImpulse(s.bodies[j.a], model.bodies[j.a], at.bodies[j.a].q, J / h, arA.cross(J / h));
-        if (moveB)
-            giveStartImpulse(s.bodies[j.b], model.bodies[j.b], at.bodies[j.b].q, -J / h, arB.cross(-J / h));
+        if (moveA) applyImpulse(s.bodies[j.a], arA, J / h);
+        if (moveB) applyImpulse(s.bodies[j.b], arB, -J / h);
         s.projectedImpulse[j.index] += J / h;
     }
     return error;
