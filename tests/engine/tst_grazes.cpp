@@ -4,6 +4,7 @@
 // the box's corner: its approach there (0.57 m/s) was under the resting speed (2 g h =
 // 0.65 m/s, though gravity presses nothing together across a level normal), and the time of
 // impact swept the chord of the step rather than the fall's parabola (1.4 mm off at 1/30 s).
+#include "collision/reference.h"
 #include "scene_builders.h"
 #include "turned_world.h"
 
@@ -77,33 +78,11 @@ Vec3 nearestOnBox(const Vec3& p, const Vec3& c, const Quat& R, const Vec3& h) {
     return c + R * local.cwiseMax(-h).cwiseMin(h);
 }
 
-// The nearest point of the triangle (a, b, c) to p (Ericson's regions).
-Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // The nearest point of a closed convex triangle mesh (world vertices) to p outside it.
 Vec3 nearestOnMesh(const Vec3& p, const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris) {
     Vec3 best = v[0];
     for (const auto& t : tris) {
-        const Vec3 q = nearestOnTriangle(p, v[t[0]], v[t[1]], v[t[2]]);
+        const Vec3 q = collision::reference::closestPointOnTriangle(p, v[t[0]], v[t[1]], v[t[2]]);
         if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
     }
     return best;
