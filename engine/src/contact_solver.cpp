@@ -23,7 +23,6 @@ using Point = ContactSolverScratch::Point;
 
 namespace {
 
-constexpr double kSlop = 0.005;  // overlap left alone, × the smaller body's size
 constexpr double kMatch = 0.1;   // a remembered point is the same within this × size
 constexpr int kShockPasses = 4;  // passes per level of the last sweep (shock_propagation.cpp)
 constexpr double kStillSpeed = 1e-8;  // × the resting speed: slower is the passes' rounding (stopRoundingMotion)
@@ -179,7 +178,7 @@ void prepare(const Model& model, const State& state, const State& before,
             // landing's, not that of forces acting all through it (redoPoses).
             block.arriving = block.arriving || gap0 > cfg.touchTolerance || vn0 < -cfg.restingSpeed;
             g.size = std::min(sizes[m.bodyA], sizes[m.bodyB]);
-            g.slop = kSlop * g.size;
+            g.slop = kContactSlop * g.size;
             g.feature = c.feature;
             g.position = c.position;
             s.points.push_back(p);

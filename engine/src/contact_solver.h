@@ -32,6 +32,10 @@
 
 namespace tumble {
 
+/// Overlap the contact solver leaves alone at a point, × the smaller body's size (its
+/// bounding radius).
+inline constexpr double kContactSlop = 0.005;
+
 struct ContactSolverScratch {
     /// What the iterations read and write of a point; the rest is in PointGeometry, so that
     /// the passes over the rows stream as little memory as they can (the iterations of a

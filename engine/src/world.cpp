@@ -32,7 +32,7 @@ namespace tumble {
 
 namespace {
 
-constexpr int kMaxCuts = 8;                // moments of impact handled exactly per step
+constexpr int kMaxCuts = 64;               // moments of impact handled exactly per step
 constexpr double kImpactTolerance = 1e-6;  // of the smaller body's size: how near "touching" is
 constexpr double kTouchTolerance = 1e-5;   // of the largest body's size: contacts this far apart count
 
@@ -352,6 +352,8 @@ void World::stepWhole(double h) {
         finishStep(s.stepStart, s.parkedContacts);
         unpark(false);
     }
+    if (model_.settings.impacts == ImpactTiming::Exact)
+        settle();  // (end-of-step: overlap as the step closed it)
 
     if (model_.settings.sleeping) {
         const auto t = stage_clock::now();
@@ -365,6 +367,17 @@ void World::stepWhole(double h) {
     for (const auto& m : d.contacts) profile_.contactPoints += m.count;
     profile_.impacts += static_cast<long>(s.impacts.size());
     guardEnergy(model_, state_, s.energy);
+}
+
+// Overlap beyond the margin that the contact solver left (settle_overlap.h), moved out
+// before the step's poses are shown.
+void World::settle() {
+    Scratch& s = *scratch_;
+    const auto t = stage_clock::now();
+    const SettleResult r = settleOverlap(model_, state_, s.detect.end, s.sizes, s.detect.broadphase,
+                                         s.detect.jointPairs, s.jointedBodies, s.margin, s.settle, ledger_);
+    profile_.settledBodies += r.moved;
+    profile_.solve += since(t);
 }
 
 void World::impactsAtStart() {

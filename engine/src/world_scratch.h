@@ -10,9 +10,10 @@
 #include "impact.h"
 #include "integrate.h"
 #include "islands.h"
+#include "settle_overlap.h"
 #include "sleep.h"
-#include "still_islands.h"
 #include "stage_clock.h"
+#include "still_islands.h"
 #include "workers.h"
 
 #include <cstdint>
@@ -27,6 +28,7 @@ struct World::Scratch {
     DetectScratch detect;
     ImpactScratch impact;
     ContactSolverScratch solver;
+    SettleScratch settle;
     SleepScratch sleep;
     StillScratch still;
     EnergyGuard energy;

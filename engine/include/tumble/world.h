@@ -34,6 +34,8 @@ struct Profile {
     long parkedBodySteps = 0;   ///< bodies of islands without an impact kept out of the cuts, summed
     long islandRestarts = 0;    ///< steps taken again with every body cut (a cut body met a parked one)
     long stillBodySteps = 0;    ///< bodies whose contacts were taken as last solved (at their fixed point), summed
+    long settledBodies =
+        0;  ///< bodies pushed out of overlap deeper than the margin after the solve (settle_overlap.h)
     long jointSplits = 0;       ///< steps taken again in two halves: their joints did not hold (World::step)
 };
 
@@ -119,6 +121,7 @@ private:
     void advance(double h);            // integrate the awake bodies by h
     void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
     void impactsAtStart();             // touching bodies that approach as a run starts
+    void settle();                     // overlap beyond the margin left by the solve
     void impactAt(double t0);          // cut the step at the first impact and resolve it
     void finishStep(const State& before, const collision::ManifoldList& contacts);
     void park();                       // the islands without an impact keep their free step

@@ -65,6 +65,16 @@ public:
     /// Sorted ascending by (i, j), no duplicates: deterministic whatever the input history.
     const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
 
+    /// Calls visit(j) for every body j whose box in the trees (as of the last update: swept
+    /// and fattened; a sleeping body's with the static ones) overlaps `box`, and for every
+    /// unbounded body (a plane).
+    template <class Visit>
+    void query(const Aabb& box, Visit&& visit) const {
+        movingTree_.query(box, visit);
+        staticTree_.query(box, visit);
+        for (int u : unbounded_) visit(u);
+    }
+
     /// Moving and static bodies (re-)inserted into a tree by the last update, and whether
     /// it rebuilt a tree; for benchmarks.
     int reinserted() const { return reinserted_; }

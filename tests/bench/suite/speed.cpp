@@ -132,7 +132,8 @@ int childMain(int argc, char** argv) {
         }
         const int steps = quick ? sc.quickSteps : sc.steps;
         memoryReport("loaded", base);
-        double total = 0, worst = 0, contacts = 0, gap = 0;
+        double total = 0, worst = 0, contacts = 0, gap = 0, deepest = 0;
+        auto* tumble = dynamic_cast<TumbleAdapter*>(engine.get());
         try {
             for (int i = 0; i < steps; ++i) {
                 const double t0 = wallNow();
@@ -143,6 +144,8 @@ int childMain(int argc, char** argv) {
                 contacts += engine->contactCount();
                 // The joints' largest gap over the run (outside the timing).
                 for (const JointModel& j : jointed.joints) gap = std::max(gap, jointGap(j, *engine));
+                // Tumble's deepest overlap in a step's poses, what a recorded frame would show.
+                if (tumble) deepest = std::max(deepest, tumble->world().deepestOverlap());
             }
         } catch (const std::exception& e) {
             std::printf("FAIL %s\n", e.what());
@@ -163,7 +166,7 @@ int childMain(int argc, char** argv) {
                     engine->bodyCount(), steps, 1e3 * total / steps, 1e3 * worst, contacts / steps,
                     vmKB("VmHWM:") / 1024, base / 1024, stillMoving, fellThrough);
         if (!jointed.joints.empty()) std::printf(" gap=%.6g", gap);
-        if (auto* t = dynamic_cast<TumbleAdapter*>(engine.get())) {
+        if (auto* t = tumble) {
             const Profile& p = t->world().profile();
             const double k = 1e3 / steps;
             std::printf(
@@ -177,6 +180,7 @@ int childMain(int argc, char** argv) {
             // The end state's hash: a change meant to leave the results bit for bit as they
             // were shows it here (the parent reads numbers only and skips it).
             if (!jointed.joints.empty()) std::printf(" splits=%.6g", double(p.jointSplits) / steps);
+            std::printf(" deep=%.6g settled=%.6g", deepest, double(p.settledBodies) / steps);
             std::printf(" state=%016llx", static_cast<unsigned long long>(hashState(t->world().state())));
         }
         std::printf("\n");
