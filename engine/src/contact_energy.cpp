@@ -13,7 +13,6 @@ namespace {
 
 constexpr double kBaumgarte = 0.2;      // share of the overlap beyond the slop removed per pass
 constexpr double kMaxCorrection = 0.1;  // largest move per pass, × size
-constexpr double kFreeOverlap = 10.0;   // × the slop: deeper overlap is removed whatever it costs
 // × the slop: overlap beyond the slop by less is left as it is. The passes remove a fixed
 // share of the excess, so without this an excess never reaches zero: it shrinks by 0.8 a
 // pass for ever and ends as rounding (hull-rain at rest: a quarter of the last steps'

@@ -78,12 +78,6 @@ const ContactMemory* remembered(const State& state, ContactSolverScratch& s, con
     return &state.contacts[k];
 }
 
-// The radius by which a shape's surface is its core grown (a sphere's centre, a capsule's
-// segment); 0 for shapes whose contact points are points of the body.
-double roundness(const collision::Shape& shape) {
-    return shape.kind == collision::Kind::Sphere || shape.kind == collision::Kind::Capsule ? shape.radius : 0.0;
-}
-
 void prepare(const Model& model, const State& state, const State& before,
              const ManifoldList& contacts, const std::vector<double>& sizes,
              const ContactSolverSettings& cfg, ContactSolverScratch& s) {

@@ -18,10 +18,15 @@ namespace tumble {
 namespace {
 
 constexpr double kKeep = 0.5;  // × the margin: overlap left to the contact solver's own pass
-constexpr int kRounds = 4;     // tests at the poses as they stand, each followed by passes
+constexpr int kRounds = 8;     // tests at the poses as they stand, each followed by passes
 constexpr int kPasses = 16;    // position passes a round at most
 constexpr double kClose =
     0.01;  // × the margin: overlap beyond `keep` by less is left (a push's turn leaves some)
+// × the margin: a point the solver had is looked at if its depth, foreseen from its
+// features' places in the bodies, comes this near what is allowed (the deepest feature may
+// have passed to the next one: a box's corner to its edge).
+constexpr double kForesight = 0.1;
+constexpr double kMoving = 1e-3;  // × the resting speed: a body slower is at rest here
 
 // How far a surface point of body i can have moved from the free step's end: the frame's
 // shift and, turned by θ, at most θ r more (r its bounding radius; 2 sin(θ/2) r exactly).
@@ -29,6 +34,15 @@ double moveFromFreeEnd(const collision::Pose& now, const collision::Pose& end, d
     // trace(R Rₑᵀ) = 1 + 2 cos θ, the sum of the two matrices' products entry by entry.
     const double c = std::clamp(0.5 * ((now.R.array() * end.R.array()).sum() - 1.0), -1.0, 1.0);
     return (now.p - end.p).norm() + std::acos(c) * r;
+}
+
+// Whether a point of body i moves faster than `speed`, by a bound: |v| + |ω| r.
+bool movingFaster(const Model& model, const State& state, int i, double r, double speed) {
+    const BodyModel& b = model.bodies[i];
+    const BodyState& s = state.bodies[i];
+    if (b.motion != Motion::Dynamic) return false;
+    const Vec3 w = s.q * (b.invInertia * (s.q.conjugate() * s.L));
+    return b.invMass * s.P.norm() + w.norm() * r > speed;
 }
 
 double motionEnergy(const Model& model, const State& state, int i) {
@@ -39,21 +53,25 @@ double motionEnergy(const Model& model, const State& state, int i) {
 }
 
 // Appends the points of `found` (a against b); returns the deepest's overlap beyond what
-// is allowed: the margin, or the solver's slop where that is more (a resting contact's).
+// is allowed: the margin, and the slop the solver leaves a resting contact.
 double addPoints(int a, int b, const BodyState& A, const BodyState& B, const collision::ManifoldList& found,
-                 double margin, double slop, std::vector<SettleScratch::Point>& out) {
+                 double margin, double slop, double reach, std::vector<SettleScratch::Point>& out) {
     double excess = -std::numeric_limits<double>::infinity();
     const Mat3 RA = A.q.toRotationMatrix(), RB = B.q.toRotationMatrix();
     for (const collision::Manifold& m : found) {
         for (int k = 0; k < m.count; ++k) {
             const collision::ContactPoint& c = m.points[k];
-            excess = std::max(excess, c.depth - std::max(margin, slop));
+            // Deeper than the smaller body reaches from its centre, its centre is inside the
+            // other and the way out is not known: left to the solver and the energy guard (a
+            // stiff spring's runaway, not a landing).
+            if (c.depth > reach) continue;
+            excess = std::max(excess, c.depth - margin - slop);
             // As the contact solver takes them: A's deepest point half the depth below the
             // point, B's half above; the normal points out of B towards A.
             SettleScratch::Point p;
             p.a = a;
             p.b = b;
-            p.keep = std::max(kKeep * margin, slop);
+            p.keep = kKeep * margin + slop;
             p.localA = RA.transpose() * (c.position - 0.5 * c.depth * m.normal - A.x);
             p.localB = RB.transpose() * (c.position + 0.5 * c.depth * m.normal - B.x);
             p.localN = RB.transpose() * m.normal;
@@ -160,24 +178,66 @@ void pushOut(const Model& model, State& state, double margin, SettleScratch& s) 
 }  // namespace
 
 SettleResult settleOverlap(const Model& model, State& state, const std::vector<collision::Pose>& freeEnd,
-                           const std::vector<double>& sizes, const collision::Broadphase& broadphase,
+                           const collision::ManifoldList& contacts, const std::vector<double>& sizes,
+                           const collision::Broadphase& broadphase, double resting,
                            const std::vector<std::uint64_t>& jointPairs, const std::vector<int>& jointed,
                            double margin, SettleScratch& s, EnergyLedger& ledger) {
     SettleResult result;
     const int n = static_cast<int>(model.bodies.size());
     s.pending.assign(n, 0);
     s.toTest.clear();
+    auto slopOf = [&](int a, int b) { return kContactSlop * std::min(sizes[a], sizes[b]); };
     auto mark = [&](int i) {
         if (!s.pending[i] && model.bodies[i].motion == Motion::Dynamic && !state.isAsleep(i)) {
             s.pending[i] = 1;
             s.toTest.push_back(i);
         }
     };
-    auto slopOf = [&](int a, int b) { return kContactSlop * std::min(sizes[a], sizes[b]); };
+    s.pose.resize(n);
     for (int i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
-        if (b.motion != Motion::Dynamic || state.isAsleep(i) || s.pending[i]) continue;
-        if (moveFromFreeEnd(bodyPose(b, state.bodies[i]), freeEnd[i], sizes[i]) > margin) mark(i);
+        s.pose[i] = bodyPose(b, state.bodies[i]);
+        if (b.motion != Motion::Dynamic || state.isAsleep(i)) continue;
+        if (moveFromFreeEnd(s.pose[i], freeEnd[i], sizes[i]) > margin) mark(i);
+    }
+    // And the bodies of a point the solver had that it leaves deeper than is allowed (its
+    // depth where the bodies stand, from its features' places in each body at the free
+    // step's end), if one of them moves or the point is past what the solver's own pass
+    // removes whatever it costs (kFreeOverlap). A body at rest less deep is the solver's to
+    // lift as its energy budget allows: lifting it here would make the energy.
+    const double moving = kMoving * resting;
+    for (const collision::Manifold& m : contacts) {
+        const int a = m.bodyA, b = m.bodyB;
+        if (s.pending[a] && s.pending[b]) continue;
+        const double slop = slopOf(a, b);
+        // (A round surface is its core grown by a radius: the core moves with the body, the
+        // surface point slides over it as it rolls; as in the solver's gap.)
+        const double roundA = roundness(model.bodies[a].collider),
+                     roundB = roundness(model.bodies[b].collider);
+        const Vec3 n = s.pose[b].directionToWorld(freeEnd[b].directionToLocal(m.normal));
+        double deepest = 0.0;
+        for (int k = 0; k < m.count; ++k) {
+            const collision::ContactPoint& c = m.points[k];
+            const Vec3 coreA = c.position - (0.5 * c.depth - roundA) * m.normal;
+            const Vec3 coreB = c.position + (0.5 * c.depth - roundB) * m.normal;
+            const Vec3 sA = s.pose[a].toWorld(freeEnd[a].toLocal(coreA)) - roundA * n;
+            const Vec3 sB = s.pose[b].toWorld(freeEnd[b].toLocal(coreB)) + roundB * n;
+            deepest = std::max(deepest, n.dot(sB - sA));
+        }
+        // A capsule's core point slides along its segment as it turns: near the allowance,
+        // the pair as it stands.
+        const bool capsule = model.bodies[a].collider.kind == collision::Kind::Capsule ||
+                             model.bodies[b].collider.kind == collision::Kind::Capsule;
+        if (capsule && deepest > kKeep * margin) {
+            s.found.clear();
+            collision::collide(model.bodies[a].collider, s.pose[a], model.bodies[b].collider, s.pose[b], 0.0,
+                               s.found);
+            for (const collision::Manifold& f : s.found) deepest = std::max(deepest, f.maxDepth());
+        }
+        if (deepest <= (1.0 - kForesight) * margin + slop) continue;
+        const bool anyway = deepest > margin + kFreeOverlap * slop;
+        for (int i : {a, b})
+            if (anyway || movingFaster(model, state, i, sizes[i], moving)) mark(i);
     }
     if (s.toTest.empty()) return result;
 
@@ -194,17 +254,25 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
     s.body.resize(n);
     s.rotation.resize(n);
 
-    for (int round = 0; round < kRounds && !s.toTest.empty(); ++round) {
-        // The bodies to test against every body the broadphase holds near them (by the
-        // boxes of its last update, swept over the step); each pair once.
-        double worstExcess = -std::numeric_limits<double>::infinity();
+    s.tested.clear();
+    for (int round = 0; round < kRounds; ++round) {
+        // Every body tested so far and the ones pushes reached since, against every body
+        // the broadphase holds near them (by the boxes of its last update, swept over the
+        // step); each pair once. Tested again each round: a push turns a body about its
+        // point, and its other points move as the local points did not foresee.
         for (int i : s.toTest) {
             s.pending[i] = 0;
-            s.looked[i] = 1;
+            s.tested.push_back(i);
             ++result.looked;
+        }
+        s.toTest.clear();
+        s.points.clear();
+        for (int i : s.tested) s.looked[i] = 0;
+        double worstExcess = -std::numeric_limits<double>::infinity();
+        for (int i : s.tested) {
+            s.looked[i] = 1;
             const BodyModel& bi = model.bodies[i];
-            const collision::Pose pi = bodyPose(bi, state.bodies[i]);
-            const collision::Aabb box = bounds(bi.collider, pi).inflated(margin);
+            const collision::Aabb box = bounds(bi.collider, bodyPose(bi, state.bodies[i])).inflated(margin);
             broadphase.query(box, [&](int j) {
                 if (j == i || s.looked[j] == 1) return;  // (a body looked at was tested with i)
                 const int a = std::min(i, j), b = std::max(i, j);
@@ -214,13 +282,12 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
                 const BodyModel &A = model.bodies[a], &B = model.bodies[b];
                 collision::collide(A.collider, bodyPose(A, state.bodies[a]), B.collider,
                                    bodyPose(B, state.bodies[b]), margin, s.found);
-                worstExcess = std::max(worstExcess, addPoints(a, b, state.bodies[a], state.bodies[b], s.found,
-                                                              margin, slopOf(a, b), s.points));
+                worstExcess =
+                    std::max(worstExcess, addPoints(a, b, state.bodies[a], state.bodies[b], s.found, margin,
+                                                    slopOf(a, b), std::min(sizes[a], sizes[b]), s.points));
             });
         }
-        s.toTest.clear();
-        if (round == 0 && worstExcess <= 0.0) return result;  // (what the solver left is allowed)
-
+        if (worstExcess <= 0.0) break;  // (what the solver or the last pushes left is allowed)
         pushOut(model, state, margin, s);
     }
     result.moved = static_cast<int>(s.moved.size());

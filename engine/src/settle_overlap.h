@@ -45,11 +45,12 @@ struct SettleScratch {
     std::vector<std::uint8_t> looked;   // per body: tested in this call
     std::vector<std::uint8_t> pending;  // per body: to be tested
     std::vector<std::uint8_t> movable;  // per body: may be pushed (dynamic, awake, no joint)
-    std::vector<int> toTest, moved;
+    std::vector<int> toTest, tested, moved;
     std::vector<std::uint8_t> wasMoved;                         // per body: pushed in this call
     std::vector<int> level, queue, firstPoint, pointsOf, fill;  // levelPoints
     std::vector<SolverBody> body;                               // per body: masses as pushes left them
     std::vector<Mat3> rotation;
+    std::vector<collision::Pose> pose;  // per body: as it stands after the solve
     std::vector<Vec3> startX;    // per moved body: centre of mass before the stage
     std::vector<Vec3> bodySpin;  // ... and its angular velocity in body axes
     collision::ManifoldList found;
@@ -62,11 +63,13 @@ struct SettleResult {
 };
 
 /// `freeEnd`: each body's pose at the end of its free step (the contacts' poses);
-/// `broadphase`: as the step's last detection left it; `sizes`: bounding radii; `jointPairs`: sorted keys
-/// of the joined pairs (they do not collide); `jointed`: bodies with a joint (left where the
-/// joints hold them).
+/// `contacts`: the manifolds found there; `broadphase`: as the step's last detection left
+/// it; `resting`: the resting speed (a body slower is at rest); `sizes`: bounding radii; `jointPairs`: sorted
+/// keys of the joined pairs (they do not collide); `jointed`: bodies with a joint (left where the joints hold
+/// them).
 SettleResult settleOverlap(const Model& model, State& state, const std::vector<collision::Pose>& freeEnd,
-                           const std::vector<double>& sizes, const collision::Broadphase& broadphase,
+                           const collision::ManifoldList& contacts, const std::vector<double>& sizes,
+                           const collision::Broadphase& broadphase, double resting,
                            const std::vector<std::uint64_t>& jointPairs, const std::vector<int>& jointed,
                            double margin, SettleScratch& s, EnergyLedger& ledger);
 

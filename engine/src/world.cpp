@@ -4,8 +4,11 @@
 // If a pair that did not touch at the start came into contact within the step, the step
 // is cut at the first such moment: the bodies are integrated again from the start to that
 // moment, the impulses of the impact are applied there (impact.h), and the rest of the
-// step is taken the same way (at most kMaxCuts times a step; later impacts are left to the
-// contact solver). The step ends with the contact solver (contact_solver.h) and sleeping.
+// step is taken the same way (at most kMaxCuts times a step; later impacts are left to
+// the contact solver, but for those whose end of the step would be wrong, as end-of-step
+// mode finds them: a body through a thin one or past its middle, cut up to
+// kMaxUnsafeCuts). The step ends with the contact solver (contact_solver.h), the overlap it
+// left beyond the margin pushed out (settle_overlap.h; exact impacts only), and sleeping.
 // With settings.impacts = end-of-step, only pairs whose end of the step can be wrong cut
 // it (a fast body through a thin one, or past its middle: findImpacts); the others'
 // impacts are resolved at the end.
@@ -32,7 +35,8 @@ namespace tumble {
 
 namespace {
 
-constexpr int kMaxCuts = 64;               // moments of impact handled exactly per step
+constexpr int kMaxCuts = 8;         // moments of impact handled exactly per step
+constexpr int kMaxUnsafeCuts = 64;  // ... and then those whose end of the step would be wrong (see below)
 constexpr double kImpactTolerance = 1e-6;  // of the smaller body's size: how near "touching" is
 constexpr double kTouchTolerance = 1e-5;   // of the largest body's size: contacts this far apart count
 
@@ -171,7 +175,7 @@ void World::advance(double h) {
         static_cast<long>(s.integrate.awake ? s.awake.size() : model_.dynamicBodies.size());
 }
 
-void World::detect(double t0, double h) {
+void World::detect(double t0, double h, bool onlyUnsafe) {
     Scratch& s = *scratch_;
     DetectScratch& d = s.detect;
     Lap lap;
@@ -185,7 +189,7 @@ void World::detect(double t0, double h) {
     profile_.narrowphase += lap.next();
 
     findImpacts(model_, s.before, state_, t0, h, kImpactTolerance, s.resting, s.sizes,
-                model_.settings.impacts == ImpactTiming::EndOfStep ? &s.thickness : nullptr, d);
+                model_.settings.impacts == ImpactTiming::EndOfStep || onlyUnsafe ? &s.thickness : nullptr, d);
     profile_.timeOfImpact += lap.next();
 
     // An awake body touching a sleeping one wakes it, and the contacts are found again
@@ -326,7 +330,7 @@ void World::stepWhole(double h) {
         const double t0 = state_.time;
         advance(t0 == s.stepStart0 ? h : tEnd - t0);  // (h itself for the whole step: see finishStep)
         state_.time = tEnd;
-        detect(t0, tEnd - t0);
+        detect(t0, tEnd - t0, cut >= kMaxCuts);
         if (cut == 0 && mayPark && !d.impacts.empty()) park();
         if (s.parkedCount > 0 && cut > 0 && !leaveParked()) {
             // A cut body's new path meets a parked one: the whole step again, every body cut.
@@ -336,8 +340,8 @@ void World::stepWhole(double h) {
             cut = -1;
             continue;
         }
-        if (cut == kMaxCuts) s.impacts.insert(s.impacts.end(), d.impacts.begin(), d.impacts.end());
-        if (d.impacts.empty() || cut == kMaxCuts) break;
+        if (cut == kMaxUnsafeCuts) s.impacts.insert(s.impacts.end(), d.impacts.begin(), d.impacts.end());
+        if (d.impacts.empty() || cut == kMaxUnsafeCuts) break;
         impactAt(t0);
     }
 
@@ -374,8 +378,9 @@ void World::stepWhole(double h) {
 void World::settle() {
     Scratch& s = *scratch_;
     const auto t = stage_clock::now();
-    const SettleResult r = settleOverlap(model_, state_, s.detect.end, s.sizes, s.detect.broadphase,
-                                         s.detect.jointPairs, s.jointedBodies, s.margin, s.settle, ledger_);
+    const SettleResult r =
+        settleOverlap(model_, state_, s.detect.end, s.detect.contacts, s.sizes, s.detect.broadphase,
+                      s.resting, s.detect.jointPairs, s.jointedBodies, s.margin, s.settle, ledger_);
     profile_.settledBodies += r.moved;
     profile_.solve += since(t);
 }

@@ -119,7 +119,7 @@ private:
                   bool allHeld);             // (stepJointed)
     void prepareJointedSteps();              // (the constructor: what those need of the model)
     void advance(double h);            // integrate the awake bodies by h
-    void detect(double t0, double h);  // broadphase, narrowphase, time of impact, waking
+    void detect(double t0, double h, bool onlyUnsafe);  // broadphase, narrowphase, time of impact, waking
     void impactsAtStart();             // touching bodies that approach as a run starts
     void settle();                     // overlap beyond the margin left by the solve
     void impactAt(double t0);          // cut the step at the first impact and resolve it
