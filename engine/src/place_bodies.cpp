@@ -105,17 +105,13 @@ std::optional<Vec3> stoppedSlide(const ContactSolverScratch& s, int i, const Vec
 void redoPoses(const Model& model, State& state, const State& before, double sliding, ContactSolverScratch& s) {
     const double h = state.time - before.time;
     slidingBodies(sliding, s);
-    // A jointed body is placed by the joints' projection, unless a contact holds it.
-    const bool jointed = !model.jointed.empty();
-    if (jointed)
-        for (const ContactSolverScratch::Point& p : s.points) s.seen[p.a] = s.seen[p.b] = 1;
     for (int i : s.involved) {
         if (isStill(s, i)) {  // ends where it started, as the solve would place it (still_islands.h)
             state.bodies[i] = before.bodies[i];
             continue;
         }
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;
-        if (jointed && model.jointed[i] && !s.seen[i]) continue;
+        if (!model.jointed.empty() && model.jointed[i]) continue;  // placed by the joints' projection
         BodyState& b = state.bodies[i];
         Vec3 move = h * s.bodies[i].v;
         const Vec3 v0 = model.bodies[i].invMass * before.bodies[i].P;
@@ -134,8 +130,6 @@ void redoPoses(const Model& model, State& state, const State& before, double sli
         b.q = angle > 0.0 ? (Quat(Eigen::AngleAxisd(angle, turn / angle)) * before.bodies[i].q).normalized()
                           : before.bodies[i].q;
     }
-    if (jointed)
-        for (const ContactSolverScratch::Point& p : s.points) s.seen[p.a] = s.seen[p.b] = 0;
 }
 
 }  // namespace tumble
