@@ -187,8 +187,13 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
     s.pending.assign(n, 0);
     s.toTest.clear();
     auto slopOf = [&](int a, int b) { return kContactSlop * std::min(sizes[a], sizes[b]); };
+    // The bodies a push may move: dynamic, awake, without a joint (the joints hold those).
+    s.movable.assign(n, 0);
+    for (int i = 0; i < n; ++i)
+        s.movable[i] = model.bodies[i].motion == Motion::Dynamic && !state.isAsleep(i) ? 1 : 0;
+    for (int i : jointed) s.movable[i] = 0;
     auto mark = [&](int i) {
-        if (!s.pending[i] && model.bodies[i].motion == Motion::Dynamic && !state.isAsleep(i)) {
+        if (!s.pending[i] && s.movable[i]) {
             s.pending[i] = 1;
             s.toTest.push_back(i);
         }
@@ -197,7 +202,7 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
     for (int i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
         s.pose[i] = bodyPose(b, state.bodies[i]);
-        if (b.motion != Motion::Dynamic || state.isAsleep(i)) continue;
+        if (!s.movable[i]) continue;
         if (moveFromFreeEnd(s.pose[i], freeEnd[i], sizes[i]) > margin) mark(i);
     }
     // And the bodies of a point the solver had that it leaves deeper than is allowed (its
@@ -208,7 +213,7 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
     const double moving = kMoving * resting;
     for (const collision::Manifold& m : contacts) {
         const int a = m.bodyA, b = m.bodyB;
-        if (s.pending[a] && s.pending[b]) continue;
+        if ((s.pending[a] || !s.movable[a]) && (s.pending[b] || !s.movable[b])) continue;
         const double slop = slopOf(a, b);
         // (A round surface is its core grown by a radius: the core moves with the body, the
         // surface point slides over it as it rolls; as in the solver's gap.)
@@ -241,10 +246,6 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
     }
     if (s.toTest.empty()) return result;
 
-    s.movable.assign(n, 0);
-    for (int i = 0; i < n; ++i)
-        s.movable[i] = model.bodies[i].motion == Motion::Dynamic && !state.isAsleep(i) ? 1 : 0;
-    for (int i : jointed) s.movable[i] = 0;
     s.looked.assign(n, 0);
     s.moved.clear();
     s.startX.clear();
