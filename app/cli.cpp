@@ -342,6 +342,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             << "parked_body_steps: " << p.parkedBodySteps << "\n"
             << "island_restarts: " << p.islandRestarts << "\n"
             << "still_body_steps: " << p.stillBodySteps << "\n"
+            << "settled_bodies: " << p.settledBodies << "\n"
             << "threads: " << world->threads() << "\n"
             << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }

@@ -133,7 +133,7 @@ private slots:
         for (const char* key :
              {"energy_start", "energy_end", "energy_lost_contacts", "energy_lost_friction",
               "energy_position_correction", "energy_lost_joints", "impact_moments", "solve_seconds", "awake_body_steps",
-              "parked_body_steps", "island_restarts", "still_body_steps"})
+              "parked_body_steps", "island_restarts", "still_body_steps", "settled_bodies"})
             QVERIFY2(kv.contains(key), key);
         const double start = kv["energy_start"].toDouble(), end = kv["energy_end"].toDouble();
         const double lost = kv["energy_lost_contacts"].toDouble() + kv["energy_lost_friction"].toDouble() +
