@@ -31,6 +31,15 @@ inline BodyDesc boxBody(const std::string& name, const Vec3& halfExtents, double
     return b;
 }
 
+/// A static box (no mass) of `halfExtents` at `position`.
+inline BodyDesc staticBoxBody(const std::string& name, const Vec3& halfExtents, const Vec3& position) {
+    BodyDesc b = boxBody(name, halfExtents, 1.0);
+    b.motion = Motion::Static;
+    b.mass.reset();
+    b.position = position;
+    return b;
+}
+
 inline SceneDesc sceneOf(std::vector<BodyDesc> bodies, const Vec3& gravity = Vec3(0, -9.81, 0),
                          const std::string& integrator = {}) {
     SceneDesc s;

@@ -22,11 +22,7 @@ BodyDesc ground() {
 }
 
 BodyDesc plate(const std::string& name, const Vec3& position, const Vec3& halfExtents) {
-    BodyDesc b = boxBody(name, halfExtents, 1.0);
-    b.motion = Motion::Static;
-    b.mass.reset();
-    b.position = position;
-    return b;
+    return staticBoxBody(name, halfExtents, position);
 }
 
 }  // namespace

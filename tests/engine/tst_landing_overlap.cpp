@@ -70,25 +70,17 @@ double marginOf(const World& w, double h) {
     return 1e-5 * largest + w.model().settings.gravity.norm() * h * h;
 }
 
-BodyDesc staticBox(const std::string& name, const Vec3& half, const Vec3& at) {
-    BodyDesc b = boxBody(name, half, 1.0);
-    b.motion = Motion::Static;
-    b.mass.reset();
-    b.position = at;
-    return b;
-}
-
 // The bin: a floor 2 m square and four walls (static boxes), and 50 bodies cycling a
 // ball (r 0.1 m), a box (0.1, 0.08, 0.12) and a capsule (r 0.05, half height 0.12), 1 kg,
 // turned at random, dropped from 0.5 m up to 12.75 m over the floor's middle (walls 3 m
 // high: a body knocked off the heap can fly 2 m up).
 SceneDesc bin(std::uint64_t seed) {
     std::vector<BodyDesc> bodies;
-    bodies.push_back(staticBox("floor", Vec3(1, 0.1, 1), Vec3(0, -0.1, 0)));
-    bodies.push_back(staticBox("wall0", Vec3(0.1, 1.5, 1.2), Vec3(1.1, 1.5, 0)));
-    bodies.push_back(staticBox("wall1", Vec3(0.1, 1.5, 1.2), Vec3(-1.1, 1.5, 0)));
-    bodies.push_back(staticBox("wall2", Vec3(1.2, 1.5, 0.1), Vec3(0, 1.5, 1.1)));
-    bodies.push_back(staticBox("wall3", Vec3(1.2, 1.5, 0.1), Vec3(0, 1.5, -1.1)));
+    bodies.push_back(staticBoxBody("floor", Vec3(1, 0.1, 1), Vec3(0, -0.1, 0)));
+    bodies.push_back(staticBoxBody("wall0", Vec3(0.1, 1.5, 1.2), Vec3(1.1, 1.5, 0)));
+    bodies.push_back(staticBoxBody("wall1", Vec3(0.1, 1.5, 1.2), Vec3(-1.1, 1.5, 0)));
+    bodies.push_back(staticBoxBody("wall2", Vec3(1.2, 1.5, 0.1), Vec3(0, 1.5, 1.1)));
+    bodies.push_back(staticBoxBody("wall3", Vec3(1.2, 1.5, 0.1), Vec3(0, 1.5, -1.1)));
     Rng rng{seed};
     for (int i = 0; i < 50; ++i) {
         const std::string name = "b" + std::to_string(i);
@@ -139,7 +131,8 @@ private slots:
             box.orientation = Quat(rng.rotation());
             const double wx = rng.uniform(-3, 3), wy = rng.uniform(-3, 3), wz = rng.uniform(-3, 3);
             box.angularVelocity = Vec3(wx, wy, wz);
-            World w(turnedScene(sceneOf({staticBox("floor", Vec3(1, 0.1, 1), Vec3(0, -0.1, 0)), box}), turn));
+            World w(
+                turnedScene(sceneOf({staticBoxBody("floor", Vec3(1, 0.1, 1), Vec3(0, -0.1, 0)), box}), turn));
             const double margin = marginOf(w, h), e0 = energy(w.model(), w.state()).total();
             for (int n = 0; n < static_cast<int>(std::lround(1.5 / h)); ++n) {
                 w.step(h);
