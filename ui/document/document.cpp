@@ -228,6 +228,11 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
     return true;
 }
 
+void Document::setFilePath(const QString& path) {
+    path_ = path;
+    emit fileStateChanged();
+}
+
 QString Document::displayName() const {
     return path_.isEmpty() ? tr("untitled") : QFileInfo(path_).fileName();
 }

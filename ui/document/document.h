@@ -53,6 +53,9 @@ public:
     bool saveWithMeshes(const QString& path, QString* error);
     /// The scene file, empty when the scene has never been saved (new or a sample).
     const QString& filePath() const { return path_; }
+    /// Makes `path` the document's file without reading or writing it (a recovered scene
+    /// whose file is gone: Save writes it there again).
+    void setFilePath(const QString& path);
     /// A name for the title bar: the file name, or "untitled".
     QString displayName() const;
     /// Changed since it was opened or saved (the undo stack is not at its clean index).

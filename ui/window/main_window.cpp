@@ -11,6 +11,7 @@
 #include "timeline/timeline.h"
 #include "timeline/timeline_dock.h"
 #include "viewport/viewport.h"
+#include "window/autosave.h"
 #include "window/shortcuts_dialog.h"
 #include "window/sticky_menu.h"
 
@@ -18,6 +19,7 @@
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 
+#include <QAbstractButton>
 #include <QAction>
 #include <QActionGroup>
 #include <QApplication>
@@ -29,10 +31,13 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QLocale>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMetaEnum>
 #include <QMimeData>
+#include <QProcess>
+#include <QPushButton>
 #include <QSettings>
 #include <QStandardPaths>
 #include <QStatusBar>
@@ -99,6 +104,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
     connect(doc_, &Document::fileStateChanged, this, &MainWindow::updateTitle);
     statusBar();
 
+    autosave_ = std::make_unique<Autosave>();
+    startEditor = [](const QStringList& args) {
+        return QProcess::startDetached(QCoreApplication::applicationFilePath(), args);
+    };
     autosaveTimer_ = new QTimer(this);
     autosaveTimer_->setInterval(60 * 1000);
     connect(autosaveTimer_, &QTimer::timeout, this, &MainWindow::autosave);
@@ -322,7 +331,7 @@ bool MainWindow::save() {
         QMessageBox::warning(this, tr("Save"), error);
         return false;
     }
-    QFile::remove(autosavePath());
+    autosave_->remove();
     statusBar()->showMessage(tr("Saved %1").arg(doc_->filePath()), 3000);
     return true;
 }
@@ -347,7 +356,7 @@ bool MainWindow::saveAsDialog() {
     }
     source_ = path;
     addRecent(path);
-    QFile::remove(autosavePath());
+    autosave_->remove();
     updateTitle();
     return true;
 }
@@ -377,52 +386,95 @@ void MainWindow::fillRecentMenu() {
     recentMenu_->setEnabled(!recent.isEmpty());
 }
 
-QString MainWindow::autosavePath() {
-    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/autosave.json";
+QString MainWindow::autosavePath() const {
+    return autosave_->file();
 }
 
 void MainWindow::autosave() {
-    const QString path = autosavePath();
     if (!doc_->isModified()) {
-        QFile::remove(path);
+        autosave_->remove();
         return;
     }
-    QDir().mkpath(QFileInfo(path).absolutePath());
-    try {  // whole or not at all (io::AtomicFile); a failed autosave keeps the previous one
-        io::writeFileAtomically(QFile::encodeName(path).toStdString(), io::sceneToJson(doc_->scene()));
-    } catch (const std::exception&) {
-    }
+    autosave_->write(doc_->scene(), doc_->filePath());  // a failed write keeps the previous one
 }
 
 void MainWindow::offerRecovery() {
-    if (!QFileInfo::exists(autosavePath())) return;
-    const auto answer = QMessageBox::question(
-        this, tr("Recover"), tr("Tumble did not close cleanly last time. Recover the unsaved scene?"),
-        QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes);
-    QString error;
-    if (answer == QMessageBox::Yes && !recoverAutosave(&error))
-        QMessageBox::warning(this, tr("Recover"), error);
-    QFile::remove(autosavePath());
+    for (const AutosaveLeftover& l : Autosave::leftovers()) {
+        const QString when = QLocale().toString(l.savedAt, QLocale::ShortFormat);
+        const QString what =
+            l.scenePath.isEmpty()
+                ? tr("Tumble did not close cleanly. Unsaved changes to an untitled scene were autosaved on "
+                     "%1.")
+                      .arg(when)
+                : tr("Tumble did not close cleanly. Unsaved changes to %1 (in %2) were autosaved on %3.")
+                      .arg(QFileInfo(l.scenePath).fileName(),
+                           QDir::toNativeSeparators(QFileInfo(l.scenePath).absolutePath()), when);
+        QMessageBox box(QMessageBox::Question, tr("Recover"), what, QMessageBox::NoButton, this);
+        box.setInformativeText(
+            tr("Recover opens them as that scene, unsaved (in a new window if this one holds another scene). "
+               "Discard deletes them. Later keeps them and asks again at the next start."));
+        QAbstractButton* recoverButton = box.addButton(tr("Recover"), QMessageBox::AcceptRole);
+        QAbstractButton* discardButton = box.addButton(tr("Discard"), QMessageBox::DestructiveRole);
+        box.addButton(tr("Later"), QMessageBox::RejectRole);
+        box.setDefaultButton(qobject_cast<QPushButton*>(recoverButton));
+        box.exec();
+        QString error;
+        if (box.clickedButton() == recoverButton && !recover(l, &error))
+            QMessageBox::warning(this, tr("Recover"), error);
+        else if (box.clickedButton() == discardButton)
+            Autosave::discard(l);
+    }
+}
+
+namespace {
+
+bool sameFile(const QString& a, const QString& b) {
+    return !a.isEmpty() && !b.isEmpty() && QFileInfo(a).absoluteFilePath() == QFileInfo(b).absoluteFilePath();
+}
+
+}  // namespace
+
+bool MainWindow::recover(const AutosaveLeftover& leftover, QString* error) {
+    const bool here =
+        !doc_->isModified() && (doc_->filePath().isEmpty() || sameFile(doc_->filePath(), leftover.scenePath));
+    if (here) return recoverHere(leftover, error);
+    if (!startEditor({QStringLiteral("--recover"), leftover.file})) {
+        if (error) *error = tr("%1: another editor could not be started to recover it").arg(leftover.file);
+        return false;
+    }
+    return true;  // that editor takes the leftover (and removes it once it holds it)
+}
+
+bool MainWindow::recoverHere(const AutosaveLeftover& leftover, QString* error) {
+    SceneDesc scene;
+    if (!Autosave::read(leftover, &scene, error)) return false;
+    // The file as it is on disk first, so that undo goes back to it; untitled, or that path
+    // without its content if the file is gone.
+    QString ignored;
+    if (leftover.scenePath.isEmpty() || !doc_->open(leftover.scenePath, &ignored)) {
+        doc_->newScene();
+        doc_->setFilePath(leftover.scenePath);
+    }
+    source_ = leftover.scenePath;
+    doc_->replaceScene(scene, tr("Recover unsaved scene"), true);
+    updateTitle();
+    autosave();  // this editor's own autosave holds it now
+    Autosave::discard(leftover);
+    return true;
 }
 
 bool MainWindow::recoverAutosave(QString* error) {
-    const QString path = autosavePath();
-    QFile file(path);
-    if (!file.open(QIODevice::ReadOnly)) {
-        if (error) *error = tr("%1: cannot be read (%2)").arg(path, file.errorString());
+    const QList<AutosaveLeftover> all = Autosave::leftovers();
+    if (all.isEmpty()) {
+        if (error) *error = tr("No autosave to recover");
         return false;
     }
-    try {
-        const QByteArray text = file.readAll();
-        const SceneDesc scene =
-            io::parseScene(std::string_view(text.constData(), static_cast<size_t>(text.size())),
-                           path.toStdString(), std::filesystem::path("."));
-        doc_->replaceScene(scene, tr("Recover unsaved scene"), true);
-    } catch (const std::exception& e) {
-        if (error) *error = QString::fromStdString(e.what());
-        return false;
-    }
-    return true;
+    return recover(all.first(), error);
+}
+
+bool MainWindow::recoverFile(const QString& file, QString* error) {
+    AutosaveLeftover leftover;
+    return Autosave::describe(file, &leftover, error) && recoverHere(leftover, error);
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
@@ -430,7 +482,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         event->ignore();
         return;
     }
-    QFile::remove(autosavePath());  // a clean end: nothing to recover
+    autosave_->remove();  // a clean end: nothing to recover
     QSettings s;
     s.setValue("window/geometry", saveGeometry());
     s.setValue("window/state", saveState());
@@ -482,10 +534,18 @@ int runEditor(int argc, char** argv) {
     MainWindow window;
     const QStringList args = QApplication::arguments();
     QString error;
-    const QString path = args.size() > 1 ? args[1] : MainWindow::defaultScenePath();
-    if (!window.openScene(path, &error)) {
-        QMessageBox::critical(nullptr, QObject::tr("Tumble"), error);
-        if (!window.openScene(MainWindow::defaultScenePath(), &error)) return 1;
+    if (args.size() > 2 && args[1] == QStringLiteral("--recover")) {
+        // Another editor's Recover: the autosave opens here as the scene it was.
+        if (!window.recoverFile(args[2], &error)) {
+            QMessageBox::critical(nullptr, QObject::tr("Tumble"), error);
+            if (!window.openScene(MainWindow::defaultScenePath(), &error)) return 1;
+        }
+    } else {
+        const QString path = args.size() > 1 ? args[1] : MainWindow::defaultScenePath();
+        if (!window.openScene(path, &error)) {
+            QMessageBox::critical(nullptr, QObject::tr("Tumble"), error);
+            if (!window.openScene(MainWindow::defaultScenePath(), &error)) return 1;
+        }
     }
     window.show();
     window.offerRecovery();

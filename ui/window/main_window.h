@@ -13,12 +13,18 @@
 #include <QMainWindow>
 #include <QSize>
 #include <QString>
+#include <QStringList>
+
+#include <functional>
+#include <memory>
 
 class QMenu;
 class QTimer;
 
 namespace tumble::ui {
 
+class Autosave;
+struct AutosaveLeftover;
 class Document;
 class ImageExporter;
 class MeshImportJob;
@@ -74,16 +80,25 @@ public:
     bool isExporting() const;
     void cancelExport();
 
-    /// Writes the autosave file now if the scene has unsaved changes (the timer calls it
-    /// every minute); removes it when there is nothing unsaved.
+    /// Writes this editor's autosave now if the scene has unsaved changes (the timer calls
+    /// it every minute); removes it when there is nothing unsaved.
     void autosave();
-    /// Where the autosave goes: the standard app-data location.
-    static QString autosavePath();
-    /// If an autosave from a session that did not end cleanly exists, offers to recover it.
+    /// This editor's own autosave file: each running editor has one (window/autosave.h).
+    QString autosavePath() const;
+    /// Offers every autosave that an editor which did not end cleanly left, naming its
+    /// scene, folder and time: Recover, Discard, or Later (kept, offered again next start).
     void offerRecovery();
-    /// Loads the autosave as one undoable step (the scene shows as modified); false with
-    /// the reason when it cannot be read.
+    /// Recovers `leftover` as what it was: its own file (undo goes back to the file as on
+    /// disk) or untitled, unsaved. In this window only if nothing here would be lost or
+    /// mixed (no unsaved work, and untitled or that very file); else in a new editor
+    /// (startEditor with --recover). False with the reason when it cannot.
+    bool recover(const AutosaveLeftover& leftover, QString* error);
+    /// recover() of the newest leftover; false when there is none or it cannot be read.
     bool recoverAutosave(QString* error);
+    /// Opens the autosave `file` in this window as what it was (`tumble --recover FILE`).
+    bool recoverFile(const QString& file, QString* error);
+    /// Starts another editor with these arguments (tests replace it).
+    std::function<bool(const QStringList&)> startEditor;
 
     /// The sample scene opened when no scene is given.
     static QString defaultScenePath();
@@ -131,6 +146,8 @@ private:
     QString source_;
     QMenu* recentMenu_ = nullptr;
     QTimer* autosaveTimer_ = nullptr;
+    std::unique_ptr<Autosave> autosave_;
+    bool recoverHere(const AutosaveLeftover& leftover, QString* error);
     TrajectoryExport* trajectoryExport_ = nullptr;
     ImageExporter* imageExport_ = nullptr;
     MeshImportJob* importJob_ = nullptr;

@@ -5,9 +5,11 @@
 #include "export/export_dialog.h"
 #include "export/image_exporter.h"
 #include "window/main_window.h"
-#include "timeline/timeline.h"
+
 #include "export/trajectory_export.h"
+#include "timeline/timeline.h"
 #include "viewport/viewport.h"
+#include "window/autosave.h"
 
 #include <QFileDialog>
 #include <QFileInfo>
@@ -128,7 +130,7 @@ bool MainWindow::saveWithMeshesDialog() {
     }
     source_ = path;
     addRecent(path);
-    QFile::remove(autosavePath());
+    autosave_->remove();
     updateTitle();
     statusBar()->showMessage(
         tr("Saved %1 with its meshes in %2-meshes/").arg(path, QFileInfo(path).completeBaseName()), 5000);

@@ -2,6 +2,7 @@
 // moment leaves the previous file whole, what the killed saves left beside it is removed by
 // the next save, and an autosave survives the killed editor and is recovered by the next one.
 #include "document/document.h"
+#include "window/autosave.h"
 #include "window/main_window.h"
 
 #include <tumble/io/atomic_file.h>
@@ -14,6 +15,7 @@
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QThread>
+#include <QUndoStack>
 #include <QtTest>
 
 #include <fcntl.h>
@@ -147,7 +149,10 @@ private slots:
         qputenv("XDG_CONFIG_HOME", home.filePath("config").toLocal8Bit());
         QCoreApplication::setApplicationName("Tumble");
         QCoreApplication::setOrganizationName("Tumble");
-        QVERIFY2(QFile::exists(MainWindow::autosavePath()), qPrintable(MainWindow::autosavePath()));
+        const QList<AutosaveLeftover> left = Autosave::leftovers();
+        QCOMPARE(left.size(), 1);
+        QVERIFY(left.first().scenePath.isEmpty());  // a sample: untitled
+        QVERIFY(left.first().savedAt.secsTo(QDateTime::currentDateTime()) < 120);
         MainWindow w;
         QString error;
         QVERIFY(w.openScene(":/scenes/bouncing-ball.json", &error));
@@ -155,6 +160,81 @@ private slots:
         QVERIFY2(w.recoverAutosave(&error), qPrintable(error));
         QCOMPARE(w.document()->body(1).restitution, 0.123);
         QVERIFY(w.isWindowModified());
+    }
+
+    // Issue 46: unsaved work on a.json, the editor killed; the next editor is started on
+    // b.json and Recover is chosen. The recovered scene opens as a.json in another editor,
+    // never into b.json's document; saving it writes a.json and b.json stays as it was.
+    void recoveryNeverWritesIntoAnotherFile() {
+        QTemporaryDir home, dir;
+        const QString a = dir.filePath("a.json"), b = dir.filePath("b.json");
+        {
+            Document doc;
+            QString error;
+            QVERIFY(doc.open(":/scenes/bouncing-ball.json", &error));
+            QVERIFY2(doc.saveAs(a, &error), qPrintable(error));
+            QVERIFY2(doc.saveAs(b, &error), qPrintable(error));
+        }
+        auto bytesOf = [](const QString& path) {
+            QFile f(path);
+            return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+        };
+        const QByteArray bBefore = bytesOf(b), aBefore = bytesOf(a);
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("XDG_DATA_HOME", home.filePath("data"));
+        env.insert("XDG_CONFIG_HOME", home.filePath("config"));
+        QProcess child;
+        child.setProcessEnvironment(env);
+        child.start(TUMBLE_CRASH_CHILD, {"autosave", a});
+        QVERIFY(child.waitForStarted(10000));
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                return child.readAllStandardOutput().contains("autosaved") ||
+                       child.state() != QProcess::Running;
+            },
+            60000));
+        QCOMPARE(child.state(), QProcess::Running);
+        child.kill();
+        QVERIFY(child.waitForFinished(10000));
+
+        qputenv("XDG_DATA_HOME", home.filePath("data").toLocal8Bit());
+        qputenv("XDG_CONFIG_HOME", home.filePath("config").toLocal8Bit());
+        QCoreApplication::setApplicationName("Tumble");
+        QCoreApplication::setOrganizationName("Tumble");
+        const QList<AutosaveLeftover> left = Autosave::leftovers();
+        QCOMPARE(left.size(), 1);
+        QCOMPARE(QFileInfo(left.first().scenePath).absoluteFilePath(), QFileInfo(a).absoluteFilePath());
+
+        // The editor of b.json: Recover starts another editor with the autosave.
+        MainWindow w;
+        QString error;
+        QVERIFY(w.openScene(b, &error));
+        QStringList started;
+        w.startEditor = [&](const QStringList& args) {
+            started = args;
+            return true;
+        };
+        QVERIFY2(w.recover(left.first(), &error), qPrintable(error));
+        QCOMPARE(started, QStringList({"--recover", left.first().file}));
+        QCOMPARE(w.document()->filePath(), b);
+        QVERIFY(!w.isWindowModified());
+        QCOMPARE(w.document()->body(1).restitution, io::readSceneFile(b.toStdString()).bodies[1].restitution);
+
+        // That editor (tumble --recover FILE): a.json, unsaved, with the killed editor's edit.
+        MainWindow other;
+        QVERIFY2(other.recoverFile(left.first().file, &error), qPrintable(error));
+        QCOMPARE(QFileInfo(other.document()->filePath()).absoluteFilePath(), QFileInfo(a).absoluteFilePath());
+        QVERIFY(other.isWindowModified());
+        QVERIFY(other.windowTitle().contains("a.json"));
+        QCOMPARE(other.document()->body(1).restitution, 0.123);
+        QVERIFY(Autosave::leftovers().isEmpty());  // taken over by that editor
+        QCOMPARE(bytesOf(a), aBefore);             // nothing written until the user saves
+        other.document()->undoStack()->undo();     // back to a.json as it is on disk
+        QVERIFY(other.document()->body(1).restitution != 0.123);
+        other.document()->undoStack()->redo();
+        QVERIFY2(other.document()->saveAs(other.document()->filePath(), &error), qPrintable(error));
+        QCOMPARE(io::readSceneFile(a.toStdString()).bodies[1].restitution, 0.123);
+        QCOMPARE(bytesOf(b), bBefore);  // b.json untouched throughout
     }
 };
 

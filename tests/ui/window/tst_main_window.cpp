@@ -5,11 +5,12 @@
 #include "document/body_presets.h"
 #include "document/document.h"
 #include "import/import_options_dialog.h"
-#include "window/main_window.h"
-#include "window/shortcuts_dialog.h"
 #include "import/mesh_import_job.h"
 #include "timeline/timeline.h"
 #include "viewport/viewport.h"
+#include "window/autosave.h"
+#include "window/main_window.h"
+#include "window/shortcuts_dialog.h"
 
 #include <tumble/mass.h>
 
@@ -431,30 +432,63 @@ private slots:
     }
 
     void autosaveAndRecovery() {
-        QFile::remove(MainWindow::autosavePath());
+        for (const AutosaveLeftover& l : Autosave::leftovers()) Autosave::discard(l);
         SceneDesc edited;
+        QString file;
         {
             MainWindow w;
+            file = w.autosavePath();
             w.autosave();  // nothing unsaved: no file
-            QVERIFY(!QFile::exists(MainWindow::autosavePath()));
+            QVERIFY(!QFile::exists(file));
             BodyDesc ball;
             ball.name = "ball";
             ball.mass = 2.0;
             ball.position = Vec3(0, 3, 0);
             w.document()->addBody(ball);
             w.autosave();
-            QVERIFY(QFile::exists(MainWindow::autosavePath()));
+            QVERIFY(QFile::exists(file));
+            QVERIFY(Autosave::leftovers().isEmpty());  // its editor runs: not a leftover
             edited = w.scene();
             // The window is destroyed without closing: as after a crash, the file stays.
         }
+        const QList<AutosaveLeftover> left = Autosave::leftovers();
+        QCOMPARE(left.size(), 1);
+        QCOMPARE(left.first().file, file);
+        QVERIFY(left.first().scenePath.isEmpty());  // untitled
         MainWindow next;
         QString error;
         QVERIFY2(next.recoverAutosave(&error), qPrintable(error));
         QCOMPARE(next.scene(), edited);
         QVERIFY(next.isWindowModified());  // recovered work is unsaved work
+        QVERIFY(next.document()->filePath().isEmpty());
+        QVERIFY(!QFile::exists(file));  // taken over: the next editor's own autosave holds it
+        QVERIFY(QFile::exists(next.autosavePath()));
         next.document()->undoStack()->undo();
         QCOMPARE(next.document()->bodyCount(), 1);  // back to the new scene
-        QFile::remove(MainWindow::autosavePath());
+        next.autosave();
+        QVERIFY(!QFile::exists(next.autosavePath()));
+    }
+
+    void twoEditorsKeepTheirOwnAutosaves() {
+        for (const AutosaveLeftover& l : Autosave::leftovers()) Autosave::discard(l);
+        MainWindow a, b;
+        QVERIFY(a.autosavePath() != b.autosavePath());
+        BodyDesc ball;
+        ball.name = "ball";
+        a.document()->addBody(ball);
+        b.document()->addBody(ball);
+        b.document()->addBody(ball);
+        a.autosave();
+        b.autosave();
+        QVERIFY(QFile::exists(a.autosavePath()) && QFile::exists(b.autosavePath()));
+        QVERIFY(Autosave::leftovers().isEmpty());  // both editors run
+        a.document()->undoStack()->undo();
+        a.autosave();  // a has nothing unsaved: its file goes, b's stays
+        QVERIFY(!QFile::exists(a.autosavePath()));
+        QVERIFY(QFile::exists(b.autosavePath()));
+        b.document()->undoStack()->undo();
+        b.document()->undoStack()->undo();
+        b.autosave();
     }
 
     void closingWithUnsavedChangesAsks() {
