@@ -153,21 +153,27 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     anchorA_->setToolTip(tr("In body A's frame"));
     addRow(tr("Anchor A"), "anchor_a", anchorA_);
     connect(anchorA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
-        apply("anchor_a", tr("Move joint anchor"), [&](JointDesc& j) { j.anchorA[k] = v; });
+        editVector(
+            "anchor_a", tr("Move joint anchor"), anchorA_, k, v,
+            [](const JointDesc& j) { return std::optional<Vec3>(j.anchorA); },
+            [](JointDesc& j, const Vec3& a) { j.anchorA = a; });
     });
     anchorB_ = vector("joint.anchor_b", " m");
     addRow(tr("Anchor B"), "anchor_b", anchorB_);
     connect(anchorB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
-        apply("anchor_b", tr("Move joint anchor"), [&](JointDesc& j) { j.anchorB[k] = v; });
+        editVector(
+            "anchor_b", tr("Move joint anchor"), anchorB_, k, v,
+            [](const JointDesc& j) { return std::optional<Vec3>(j.anchorB); },
+            [](JointDesc& j, const Vec3& a) { j.anchorB = a; });
     });
 
     axisA_ = vector("joint.axis_a", QString());
     axisA_->setToolTip(tr("In body A's frame, any length but zero"));
     addRow(tr("Axis"), "axis_a", axisA_);
     connect(axisA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
-        apply("axis_a", tr("Turn joint axis"), [&](JointDesc& j) {
-            if (j.axisA) (*j.axisA)[k] = v;
-        });
+        editVector(
+            "axis_a", tr("Turn joint axis"), axisA_, k, v, [](const JointDesc& j) { return j.axisA; },
+            [](JointDesc& j, const Vec3& a) { j.axisA = a; });
     });
     hasAxisB_ = new QCheckBox(tr("own"));
     hasAxisB_->setObjectName("joint.axis_b.on");
@@ -189,9 +195,9 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             false);
     });
     connect(axisB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
-        apply("axis_b", tr("Turn joint axis"), [&](JointDesc& j) {
-            if (j.axisB) (*j.axisB)[k] = v;
-        });
+        editVector(
+            "axis_b", tr("Turn joint axis"), axisB_, k, v, [](const JointDesc& j) { return j.axisB; },
+            [](JointDesc& j, const Vec3& a) { j.axisB = a; });
     });
 
     asPlaced_ = new QCheckBox(tr("as placed"));
@@ -301,9 +307,16 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     connect(doc_, &Document::bodyRemoved, this, &JointPanel::refresh);
     connect(doc_, &Document::selectionChanged, this, [this] {
         ++generation_;
+        dropHeld();
         clearErrors();
         refresh();
     });
+    for (VectorEdit* field : {anchorA_, anchorB_, axisA_, axisB_})
+        connect(field, &VectorEdit::cancelled, this, [this] {
+            dropHeld();
+            clearErrors();
+            refresh();
+        });
     refresh();
 }
 
@@ -324,7 +337,9 @@ QWidget* JointPanel::withError(QWidget* editor, const QString& key) {
     error->hide();
     layout->addWidget(error);
     errors_.insert(key, error);
-    whenFieldLeft(editor, [error] { error->hide(); });
+    whenFieldLeft(editor, [this, error, key] {
+        if (!held_.contains(key)) error->hide();  // a held value keeps its reason in view
+    });
     return box;
 }
 
@@ -363,6 +378,52 @@ void JointPanel::apply(const QString& key, const QString& text, const Edit& edit
     doc_->setJoint(i, j, text, mergeId);
 }
 
+namespace {
+
+// A refused value's reason as the panel says it: the field's own words where there are
+// some, else the message without the file's field path ("joints[0].axis_a: ").
+QString inPlainWords(const QString& key, const std::string& problem) {
+    const QString text = QString::fromStdString(problem);
+    if ((key == "axis_a" || key == "axis_b") && text.contains("zero vector"))
+        return JointPanel::tr("The axis cannot be zero: give it a direction.");
+    const int cut = text.indexOf(QStringLiteral(": "));
+    return cut >= 0 && text.left(cut).contains('[') ? text.mid(cut + 2) : text;
+}
+
+}  // namespace
+
+void JointPanel::editVector(const QString& key, const QString& text, VectorEdit* field, int k, double v,
+                            const VectorOf& get, const SetVector& set) {
+    const int i = jointIndex();
+    if (i < 0) return;
+    const std::optional<Vec3> current = get(doc_->joint(i));
+    if (!current) return;
+    Vec3 value = held_.contains(key) ? held_.value(key) : *current;
+    value[k] = v;
+    JointDesc j = doc_->joint(i);
+    set(j, value);
+    SceneDesc scene = doc_->scene();
+    scene.joints[static_cast<size_t>(i)] = j;
+    const auto problem = problemOf(scene);
+    if (problem && problem != problemOf(doc_->scene())) {
+        held_.insert(key, value);
+        field->setHeld(true);
+        clearErrors();
+        QLabel* error = errors_.value(key);
+        error->setText(inPlainWords(key, *problem) + ' ' + tr("(Esc: back to the last valid value)"));
+        error->show();
+        return;  // the components stay as typed
+    }
+    held_.remove(key);
+    field->setHeld(false);
+    apply(key, text, [&](JointDesc& jj) { set(jj, value); });
+}
+
+void JointPanel::dropHeld() {
+    held_.clear();
+    for (VectorEdit* field : {anchorA_, anchorB_, axisA_, axisB_}) field->setHeld(false);
+}
+
 void JointPanel::refresh() {
     const int i = jointIndex();
     if (i < 0) return;
@@ -384,8 +445,8 @@ void JointPanel::refresh() {
             combo->addItem(QString::fromStdString(body.name), QString::fromStdString(body.name));
         combo->setCurrentIndex(combo->findData(QString::fromStdString(combo == bodyA_ ? j.bodyA : j.bodyB)));
     }
-    anchorA_->showValue(j.anchorA);
-    anchorB_->showValue(j.anchorB);
+    anchorA_->showValue(held_.value("anchor_a", j.anchorA));
+    anchorB_->showValue(held_.value("anchor_b", j.anchorB));
     anchorB_->setToolTip(j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
     const bool ax = axial(j.type);
     form_->setRowVisible(rows_["axis_a"], ax);
@@ -393,13 +454,13 @@ void JointPanel::refresh() {
     form_->setRowVisible(rows_["limits"], ax);
     form_->setRowVisible(rows_["motor"], ax);
     form_->setRowVisible(rows_["length"], line(j.type));
-    if (j.axisA) axisA_->showValue(*j.axisA);
+    if (j.axisA) axisA_->showValue(held_.value("axis_a", *j.axisA));
     {
         const QSignalBlocker b(hasAxisB_);
         hasAxisB_->setChecked(j.axisB.has_value());
     }
     axisB_->setEnabled(j.axisB.has_value());
-    if (j.axisB) axisB_->showValue(*j.axisB);
+    if (j.axisB) axisB_->showValue(held_.value("axis_b", *j.axisB));
     {
         const QSignalBlocker b(asPlaced_);
         asPlaced_->setChecked(j.length < 0.0);

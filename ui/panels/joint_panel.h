@@ -40,6 +40,15 @@ private:
     /// Applies `edit` to a copy of the selected joint; validates the scene with it; hands it
     /// to the document (merging with the last edit of the same field while it is scrubbed).
     void apply(const QString& key, const QString& text, const Edit& edit, bool merge = true);
+    /// A vector field edited a component at a time is one value: a component that makes the
+    /// joint refused is held (the typed values stay, the field is marked, the panel says why
+    /// in plain words) until the vector is valid, or Esc shows the last valid value again;
+    /// never a mix of typed and old components (issue 46).
+    using VectorOf = std::function<std::optional<Vec3>(const JointDesc&)>;
+    using SetVector = std::function<void(JointDesc&, const Vec3&)>;
+    void editVector(const QString& key, const QString& text, VectorEdit* field, int k, double v,
+                    const VectorOf& get, const SetVector& set);
+    void dropHeld();
     QWidget* withError(QWidget* editor, const QString& key);
     void clearErrors();
     int jointIndex() const;
@@ -49,6 +58,7 @@ private:
     QMap<QString, QLabel*> errors_;
     QMap<QString, QWidget*> rows_;
     int generation_ = 1;
+    QMap<QString, Vec3> held_;  // refused vector values being typed, by field key
 
     QLineEdit* name_ = nullptr;
     QComboBox* type_ = nullptr;

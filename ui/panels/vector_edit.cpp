@@ -2,7 +2,9 @@
 
 #include "panels/property_spin_box.h"
 
+#include <QEvent>
 #include <QHBoxLayout>
+#include <QKeyEvent>
 
 namespace tumble::ui {
 
@@ -23,7 +25,24 @@ VectorEdit::VectorEdit(const QString& name, const QString& suffix, QWidget* pare
         connect(spin, &PropertySpinBox::valueChanged, this,
                 [this, k](double v) { emit componentEdited(k, v); });
         connect(spin, &PropertySpinBox::editingFinished, this, &VectorEdit::editingFinished);
+        spin->installEventFilter(this);
     }
+}
+
+bool VectorEdit::eventFilter(QObject* watched, QEvent* event) {
+    if (event->type() == QEvent::KeyPress && static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape &&
+        held_) {
+        emit cancelled();
+        return true;
+    }
+    return QWidget::eventFilter(watched, event);
+}
+
+void VectorEdit::setHeld(bool held) {
+    held_ = held;
+    for (auto* s : spins_)
+        s->setStyleSheet(held ? QStringLiteral("QAbstractSpinBox { border: 1px solid #c62828; }")
+                              : QString());
 }
 
 void VectorEdit::showValue(const std::array<std::optional<double>, 3>& v, const Vec3& base) {

@@ -30,13 +30,23 @@ public:
     void setSingleStep(double step);
     PropertySpinBox* component(int k) const { return spins_[static_cast<size_t>(k)]; }
     Vec3 value() const;
+    /// Marks the field as holding a value the document refused (a red frame), or not.
+    void setHeld(bool held);
+    bool isHeld() const { return held_; }
 
 signals:
     void componentEdited(int k, double value);
     void editingFinished();
+    /// Esc in one of the components: the edit is given up (the panel shows the last valid
+    /// value again).
+    void cancelled();
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
     std::array<PropertySpinBox*, 3> spins_{};
+    bool held_ = false;
 };
 
 }  // namespace tumble::ui
