@@ -52,6 +52,35 @@ bool age(const QString& path, int seconds) {
     return utimensat(AT_FDCWD, QFile::encodeName(path).constData(), times, 0) == 0;
 }
 
+// An editor process (the crash child) with its data under `home` opens `scene`, makes an
+// edit, autosaves and is killed with SIGKILL; then this process takes the same home, as the
+// next editor of the same user. False (with a message) if the child did not get that far.
+bool killAfterAutosave(const QTemporaryDir& home, const QString& scene) {
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("XDG_DATA_HOME", home.filePath("data"));
+    env.insert("XDG_CONFIG_HOME", home.filePath("config"));
+    QProcess child;
+    child.setProcessEnvironment(env);
+    child.start(TUMBLE_CRASH_CHILD, {"autosave", scene});
+    if (!child.waitForStarted(10000)) return false;
+    const bool autosaved = QTest::qWaitFor(
+        [&] {
+            return child.readAllStandardOutput().contains("autosaved") || child.state() != QProcess::Running;
+        },
+        60000);
+    if (!autosaved || child.state() != QProcess::Running) {
+        qWarning("the crash child did not autosave: %s", child.readAllStandardError().constData());
+        return false;
+    }
+    child.kill();
+    child.waitForFinished(10000);
+    qputenv("XDG_DATA_HOME", home.filePath("data").toLocal8Bit());
+    qputenv("XDG_CONFIG_HOME", home.filePath("config").toLocal8Bit());
+    QCoreApplication::setApplicationName("Tumble");
+    QCoreApplication::setOrganizationName("Tumble");
+    return true;
+}
+
 }  // namespace
 
 class TestCrashSafety : public QObject {
@@ -127,28 +156,8 @@ private slots:
 
     void anAutosaveSurvivesAKilledEditor() {
         QTemporaryDir home;
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert("XDG_DATA_HOME", home.filePath("data"));
-        env.insert("XDG_CONFIG_HOME", home.filePath("config"));
-        QProcess child;
-        child.setProcessEnvironment(env);
-        child.start(TUMBLE_CRASH_CHILD, {"autosave", ":/scenes/bouncing-ball.json"});
-        QVERIFY(child.waitForStarted(10000));
-        QVERIFY(QTest::qWaitFor(
-            [&] {
-                return child.readAllStandardOutput().contains("autosaved") ||
-                       child.state() != QProcess::Running;
-            },
-            60000));
-        QCOMPARE(child.state(), QProcess::Running);
-        child.kill();
-        QVERIFY(child.waitForFinished(10000));
-
+        QVERIFY(killAfterAutosave(home, ":/scenes/bouncing-ball.json"));
         // The next editor, same user: the autosave is there and comes back as one undo step.
-        qputenv("XDG_DATA_HOME", home.filePath("data").toLocal8Bit());
-        qputenv("XDG_CONFIG_HOME", home.filePath("config").toLocal8Bit());
-        QCoreApplication::setApplicationName("Tumble");
-        QCoreApplication::setOrganizationName("Tumble");
         const QList<AutosaveLeftover> left = Autosave::leftovers();
         QCOMPARE(left.size(), 1);
         QVERIFY(left.first().scenePath.isEmpty());  // a sample: untitled
@@ -180,27 +189,7 @@ private slots:
             return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
         };
         const QByteArray bBefore = bytesOf(b), aBefore = bytesOf(a);
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert("XDG_DATA_HOME", home.filePath("data"));
-        env.insert("XDG_CONFIG_HOME", home.filePath("config"));
-        QProcess child;
-        child.setProcessEnvironment(env);
-        child.start(TUMBLE_CRASH_CHILD, {"autosave", a});
-        QVERIFY(child.waitForStarted(10000));
-        QVERIFY(QTest::qWaitFor(
-            [&] {
-                return child.readAllStandardOutput().contains("autosaved") ||
-                       child.state() != QProcess::Running;
-            },
-            60000));
-        QCOMPARE(child.state(), QProcess::Running);
-        child.kill();
-        QVERIFY(child.waitForFinished(10000));
-
-        qputenv("XDG_DATA_HOME", home.filePath("data").toLocal8Bit());
-        qputenv("XDG_CONFIG_HOME", home.filePath("config").toLocal8Bit());
-        QCoreApplication::setApplicationName("Tumble");
-        QCoreApplication::setOrganizationName("Tumble");
+        QVERIFY(killAfterAutosave(home, a));
         const QList<AutosaveLeftover> left = Autosave::leftovers();
         QCOMPARE(left.size(), 1);
         QCOMPARE(QFileInfo(left.first().scenePath).absoluteFilePath(), QFileInfo(a).absoluteFilePath());
