@@ -51,14 +51,14 @@ using namespace tumble::ui;
 
 namespace {
 
-// Answers the next modal message box with `button` once it is up (polling, since it opens
-// inside the call under test), and records its text.
-void answerNextMessageBox(QMessageBox::StandardButton button, QString* text) {
+// Answers the next modal message box with the button `pick` chooses once it is up
+// (polling, since it opens inside the call under test), and records its text.
+void answerNextMessageBox(std::function<QAbstractButton*(QMessageBox*)> pick, QString* text) {
     auto attempt = std::make_shared<std::function<void(int)>>();
-    *attempt = [button, text, attempt](int left) {
+    *attempt = [pick, text, attempt](int left) {
         if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
             if (text) *text = box->text();
-            if (QAbstractButton* b = box->button(button)) QTest::mouseClick(b, Qt::LeftButton);
+            if (QAbstractButton* b = pick(box)) QTest::mouseClick(b, Qt::LeftButton);
             *attempt = nullptr;  // break the cycle
             return;
         }
@@ -73,6 +73,21 @@ void answerNextMessageBox(QMessageBox::StandardButton button, QString* text) {
     QTimer::singleShot(0, [attempt] {
         if (*attempt) (*attempt)(250);
     });  // up to 5 s
+}
+
+void answerNextMessageBox(QMessageBox::StandardButton button, QString* text) {
+    answerNextMessageBox([button](QMessageBox* box) { return box->button(button); }, text);
+}
+
+// ... with the button labelled `label` (the recovery prompt's Recover, Discard, Later).
+void answerNextMessageBox(const QString& label, QString* text) {
+    answerNextMessageBox(
+        [label](QMessageBox* box) -> QAbstractButton* {
+            for (QAbstractButton* b : box->buttons())
+                if (b->text() == label) return b;
+            return nullptr;
+        },
+        text);
 }
 
 // A drop on the window, as a file manager makes it; whether the drag's enter was accepted.
@@ -467,6 +482,50 @@ private slots:
         QCOMPARE(next.document()->bodyCount(), 1);  // back to the new scene
         next.autosave();
         QVERIFY(!QFile::exists(next.autosavePath()));
+    }
+
+    // Issue 46: Later keeps a leftover for the next start, which offers it again with its
+    // time; Recover there brings it back; Discard deletes it.
+    void laterThenRecoverThenDiscard() {
+        for (const AutosaveLeftover& l : Autosave::leftovers()) Autosave::discard(l);
+        auto leaveOne = [](double y) {
+            MainWindow w;  // destroyed without closing, as after a crash
+            BodyDesc ball;
+            ball.name = "ball";
+            ball.mass = 1.0;
+            ball.position = Vec3(0, y, 0);
+            w.document()->addBody(ball);
+            w.autosave();
+        };
+        leaveOne(3.0);
+        QString asked;
+        {
+            MainWindow w;
+            answerNextMessageBox(QStringLiteral("Later"), &asked);
+            w.offerRecovery();
+            QVERIFY2(asked.contains("untitled scene") && asked.contains("autosaved"), qPrintable(asked));
+            QCOMPARE(w.document()->bodyCount(), 1);     // nothing recovered
+            QCOMPARE(Autosave::leftovers().size(), 1);  // kept
+        }
+        {
+            MainWindow w;
+            answerNextMessageBox(QStringLiteral("Recover"), &asked);
+            w.offerRecovery();
+            QCOMPARE(w.document()->bodyCount(), 2);
+            QCOMPARE(w.document()->body(1).position.y(), 3.0);
+            QVERIFY(w.isWindowModified());
+            QVERIFY(Autosave::leftovers().isEmpty());  // this editor holds it now
+            w.document()->undoStack()->undo();
+            w.autosave();
+        }
+        leaveOne(4.0);
+        {
+            MainWindow w;
+            answerNextMessageBox(QStringLiteral("Discard"), &asked);
+            w.offerRecovery();
+            QCOMPARE(w.document()->bodyCount(), 1);
+            QVERIFY(Autosave::leftovers().isEmpty());
+        }
     }
 
     void twoEditorsKeepTheirOwnAutosaves() {
