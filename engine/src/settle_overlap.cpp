@@ -40,16 +40,16 @@ double moveFromFreeEnd(const collision::Pose& now, const collision::Pose& end, d
 bool movingFaster(const Model& model, const State& state, int i, double r, double speed) {
     const BodyModel& b = model.bodies[i];
     const BodyState& s = state.bodies[i];
-    if (b.motion != Motion::Dynamic) return false;
-    const Vec3 w = s.q * (b.invInertia * (s.q.conjugate() * s.L));
-    return b.invMass * s.P.norm() + w.norm() * r > speed;
+    return b.invMass * s.P.norm() + angularVelocity(b, s).norm() * r > speed;
 }
 
 double motionEnergy(const Model& model, const State& state, int i) {
     const BodyModel& b = model.bodies[i];
     const BodyState& s = state.bodies[i];
-    const Vec3 Lb = s.q.conjugate() * s.L;
-    return 0.5 * b.invMass * s.P.squaredNorm() + 0.5 * Lb.dot(b.invInertia * Lb);
+    BodyVelocity u;
+    u.v = b.invMass * s.P;
+    u.w = angularVelocity(b, s);
+    return kineticOf(b, s.q, u);
 }
 
 // Appends the points of `found` (a against b); returns the deepest's overlap beyond what
@@ -156,20 +156,14 @@ void pushOut(const Model& model, State& state, double margin, SettleScratch& s) 
             const double k = inverseEffectiveMass(A, rA, B, rB, nrm);
             if (k <= 0.0) continue;
             const Vec3 J = (excess / k) * nrm;
-            if (moveA) {
-                firstPush(model, state, p.a, s);
-                nudge(A, a, rA, J);
-                s.rotation[p.a] = a.q.toRotationMatrix();
-                s.body[p.a].invI =
-                    s.rotation[p.a] * model.bodies[p.a].invInertia * s.rotation[p.a].transpose();
-            }
-            if (moveB) {
-                firstPush(model, state, p.b, s);
-                nudge(B, b, rB, -J);
-                s.rotation[p.b] = b.q.toRotationMatrix();
-                s.body[p.b].invI =
-                    s.rotation[p.b] * model.bodies[p.b].invInertia * s.rotation[p.b].transpose();
-            }
+            auto push = [&](int i, const SolverBody& body, BodyState& st, const Vec3& r, const Vec3& impulse) {
+                firstPush(model, state, i, s);
+                nudge(body, st, r, impulse);
+                s.rotation[i] = st.q.toRotationMatrix();
+                s.body[i].invI = s.rotation[i] * model.bodies[i].invInertia * s.rotation[i].transpose();
+            };
+            if (moveA) push(p.a, A, a, rA, J);
+            if (moveB) push(p.b, B, b, rB, -J);
         }
         if (worst <= kClose * margin) break;
     }
@@ -201,7 +195,7 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
     s.pose.resize(n);
     for (int i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
-        s.pose[i] = bodyPose(b, state.bodies[i]);
+        s.pose[i] = b.standsStill() ? freeEnd[i] : bodyPose(b, state.bodies[i]);  // (nothing moved those)
         if (!s.movable[i]) continue;
         if (moveFromFreeEnd(s.pose[i], freeEnd[i], sizes[i]) > margin) mark(i);
     }
