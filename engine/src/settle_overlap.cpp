@@ -156,7 +156,8 @@ void pushOut(const Model& model, State& state, double margin, SettleScratch& s) 
             const double k = inverseEffectiveMass(A, rA, B, rB, nrm);
             if (k <= 0.0) continue;
             const Vec3 J = (excess / k) * nrm;
-            auto push = [&](int i, const SolverBody& body, BodyState& st, const Vec3& r, const Vec3& impulse) {
+            auto push = [&](int i, const SolverBody& body, BodyState& st, const Vec3& r,
+                            const Vec3& impulse) {
                 firstPush(model, state, i, s);
                 nudge(body, st, r, impulse);
                 s.rotation[i] = st.q.toRotationMatrix();
