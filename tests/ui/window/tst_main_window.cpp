@@ -1,14 +1,14 @@
 // The editor window, as a user sees it: it opens the samples, refuses a bad scene without
-// losing the open one, imports meshes as undoable bodies, autosaves and recovers, asks
+// losing the open one, imports meshes as undoable bodies (recovery: tst_recovery.cpp), asks
 // before closing over unsaved changes, opens a dropped scene and imports a dropped mesh, and
 // its viewport shows one entity per body.
 #include "document/body_presets.h"
 #include "document/document.h"
 #include "import/import_options_dialog.h"
 #include "import/mesh_import_job.h"
+#include "message_box_answer.h"
 #include "timeline/timeline.h"
 #include "viewport/viewport.h"
-#include "window/autosave.h"
 #include "window/main_window.h"
 #include "window/shortcuts_dialog.h"
 
@@ -48,47 +48,9 @@
 
 using namespace tumble;
 using namespace tumble::ui;
+using tumble::ui::test::answerNextMessageBox;
 
 namespace {
-
-// Answers the next modal message box with the button `pick` chooses once it is up
-// (polling, since it opens inside the call under test), and records its text.
-void answerNextMessageBox(std::function<QAbstractButton*(QMessageBox*)> pick, QString* text) {
-    auto attempt = std::make_shared<std::function<void(int)>>();
-    *attempt = [pick, text, attempt](int left) {
-        if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
-            if (text) *text = box->text();
-            if (QAbstractButton* b = pick(box)) QTest::mouseClick(b, Qt::LeftButton);
-            *attempt = nullptr;  // break the cycle
-            return;
-        }
-        if (left > 0) {
-            QTimer::singleShot(20, [attempt, left] {
-                if (*attempt) (*attempt)(left - 1);
-            });
-        } else {
-            *attempt = nullptr;
-        }
-    };
-    QTimer::singleShot(0, [attempt] {
-        if (*attempt) (*attempt)(250);
-    });  // up to 5 s
-}
-
-void answerNextMessageBox(QMessageBox::StandardButton button, QString* text) {
-    answerNextMessageBox([button](QMessageBox* box) { return box->button(button); }, text);
-}
-
-// ... with the button labelled `label` (the recovery prompt's Recover, Discard, Later).
-void answerNextMessageBox(const QString& label, QString* text) {
-    answerNextMessageBox(
-        [label](QMessageBox* box) -> QAbstractButton* {
-            for (QAbstractButton* b : box->buttons())
-                if (b->text() == label) return b;
-            return nullptr;
-        },
-        text);
-}
 
 // A drop on the window, as a file manager makes it; whether the drag's enter was accepted.
 bool drop(QWidget* target, const QMimeData& mime) {
@@ -444,110 +406,6 @@ private slots:
         QCOMPARE(w.document()->undoStack()->count(), steps + 1);
         w.document()->undoStack()->undo();
         QCOMPARE(w.document()->bodyCount(), bodies);
-    }
-
-    void autosaveAndRecovery() {
-        for (const AutosaveLeftover& l : Autosave::leftovers()) Autosave::discard(l);
-        SceneDesc edited;
-        QString file;
-        {
-            MainWindow w;
-            file = w.autosavePath();
-            w.autosave();  // nothing unsaved: no file
-            QVERIFY(!QFile::exists(file));
-            BodyDesc ball;
-            ball.name = "ball";
-            ball.mass = 2.0;
-            ball.position = Vec3(0, 3, 0);
-            w.document()->addBody(ball);
-            w.autosave();
-            QVERIFY(QFile::exists(file));
-            QVERIFY(Autosave::leftovers().isEmpty());  // its editor runs: not a leftover
-            edited = w.scene();
-            // The window is destroyed without closing: as after a crash, the file stays.
-        }
-        const QList<AutosaveLeftover> left = Autosave::leftovers();
-        QCOMPARE(left.size(), 1);
-        QCOMPARE(left.first().file, file);
-        QVERIFY(left.first().scenePath.isEmpty());  // untitled
-        MainWindow next;
-        QString error;
-        QVERIFY2(next.recoverAutosave(&error), qPrintable(error));
-        QCOMPARE(next.scene(), edited);
-        QVERIFY(next.isWindowModified());  // recovered work is unsaved work
-        QVERIFY(next.document()->filePath().isEmpty());
-        QVERIFY(!QFile::exists(file));  // taken over: the next editor's own autosave holds it
-        QVERIFY(QFile::exists(next.autosavePath()));
-        next.document()->undoStack()->undo();
-        QCOMPARE(next.document()->bodyCount(), 1);  // back to the new scene
-        next.autosave();
-        QVERIFY(!QFile::exists(next.autosavePath()));
-    }
-
-    // Issue 46: Later keeps a leftover for the next start, which offers it again with its
-    // time; Recover there brings it back; Discard deletes it.
-    void laterThenRecoverThenDiscard() {
-        for (const AutosaveLeftover& l : Autosave::leftovers()) Autosave::discard(l);
-        auto leaveOne = [](double y) {
-            MainWindow w;  // destroyed without closing, as after a crash
-            BodyDesc ball;
-            ball.name = "ball";
-            ball.mass = 1.0;
-            ball.position = Vec3(0, y, 0);
-            w.document()->addBody(ball);
-            w.autosave();
-        };
-        leaveOne(3.0);
-        QString asked;
-        {
-            MainWindow w;
-            answerNextMessageBox(QStringLiteral("Later"), &asked);
-            w.offerRecovery();
-            QVERIFY2(asked.contains("untitled scene") && asked.contains("autosaved"), qPrintable(asked));
-            QCOMPARE(w.document()->bodyCount(), 1);     // nothing recovered
-            QCOMPARE(Autosave::leftovers().size(), 1);  // kept
-        }
-        {
-            MainWindow w;
-            answerNextMessageBox(QStringLiteral("Recover"), &asked);
-            w.offerRecovery();
-            QCOMPARE(w.document()->bodyCount(), 2);
-            QCOMPARE(w.document()->body(1).position.y(), 3.0);
-            QVERIFY(w.isWindowModified());
-            QVERIFY(Autosave::leftovers().isEmpty());  // this editor holds it now
-            w.document()->undoStack()->undo();
-            w.autosave();
-        }
-        leaveOne(4.0);
-        {
-            MainWindow w;
-            answerNextMessageBox(QStringLiteral("Discard"), &asked);
-            w.offerRecovery();
-            QCOMPARE(w.document()->bodyCount(), 1);
-            QVERIFY(Autosave::leftovers().isEmpty());
-        }
-    }
-
-    void twoEditorsKeepTheirOwnAutosaves() {
-        for (const AutosaveLeftover& l : Autosave::leftovers()) Autosave::discard(l);
-        MainWindow a, b;
-        QVERIFY(a.autosavePath() != b.autosavePath());
-        BodyDesc ball;
-        ball.name = "ball";
-        a.document()->addBody(ball);
-        b.document()->addBody(ball);
-        b.document()->addBody(ball);
-        a.autosave();
-        b.autosave();
-        QVERIFY(QFile::exists(a.autosavePath()) && QFile::exists(b.autosavePath()));
-        QVERIFY(Autosave::leftovers().isEmpty());  // both editors run
-        a.document()->undoStack()->undo();
-        a.autosave();  // a has nothing unsaved: its file goes, b's stays
-        QVERIFY(!QFile::exists(a.autosavePath()));
-        QVERIFY(QFile::exists(b.autosavePath()));
-        b.document()->undoStack()->undo();
-        b.document()->undoStack()->undo();
-        b.autosave();
     }
 
     void closingWithUnsavedChangesAsks() {
