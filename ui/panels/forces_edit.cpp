@@ -7,6 +7,7 @@
 #include <QComboBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
+#include <QLabel>
 #include <QListWidget>
 #include <QMenu>
 #include <QPushButton>
@@ -157,7 +158,7 @@ ForcesEdit::ForcesEdit(QWidget* parent) : QWidget(parent) {
         const QString text = tr("Set force %1 time").arg(field);
         connect(*on, &QCheckBox::clicked, this, [this, member, field, text, spin](bool checked) {
             const double v = (*spin)->value();
-            edit(field, text, [member, checked, v](ForceDesc& f) {
+            editWindow(field, text, [member, checked, v](ForceDesc& f) {
                 if (checked)
                     f.*member = v;
                 else
@@ -165,12 +166,22 @@ ForcesEdit::ForcesEdit(QWidget* parent) : QWidget(parent) {
             });
         });
         connect(*spin, &PropertySpinBox::valueChanged, this, [this, member, field, text](double v) {
-            edit(field, text, [member, v](ForceDesc& f) { f.*member = v; });
+            editWindow(field, text, [member, v](ForceDesc& f) { f.*member = v; });
         });
         connect(*spin, &PropertySpinBox::editingFinished, this, &ForcesEdit::editingFinished);
+        connect(*spin, &PropertySpinBox::heldCancelled, this, [this] {
+            heldWindow_.reset();
+            showCurrent();
+        });
     };
     optionalTime("start", tr("Start"), &ForceDesc::start, &startOn_, &start_, &startRow_);
     optionalTime("end", tr("End"), &ForceDesc::end, &endOn_, &end_, &endRow_);
+    windowError_ = new QLabel;
+    windowError_->setObjectName("forces.window.error");
+    windowError_->setStyleSheet("color: #c62828;");
+    windowError_->setWordWrap(true);
+    windowError_->setText(tr("The end must be later than the start. (Esc: back to the last valid times)"));
+    form_->addRow(QString(), windowError_);
     startOn_->setToolTip(tr("Off: from the beginning"));
     endOn_->setToolTip(tr("Off: to the end"));
 
@@ -251,13 +262,41 @@ void ForcesEdit::edit(const QString& field, const QString& text,
     emit forcesEdited(next, text, QStringLiteral("forces[%1].%2").arg(row).arg(field));
 }
 
+void ForcesEdit::editWindow(const QString& field, const QString& text,
+                            const std::function<void(ForceDesc&)>& change) {
+    const int row = currentIndex();
+    if (row < 0 || row >= static_cast<int>(forces_.size())) return;
+    ForceDesc f = forces_[static_cast<size_t>(row)];
+    if (heldWindow_ && heldWindow_->row == row) {
+        f.start = heldWindow_->start;
+        f.end = heldWindow_->end;
+    }
+    change(f);
+    if (f.start && f.end && !(*f.end > *f.start)) {
+        heldWindow_ = HeldWindow{row, f.start, f.end};
+        showCurrent();  // the times as typed, framed red, and why
+        return;
+    }
+    heldWindow_.reset();
+    edit(field, text, [&f](ForceDesc& g) {
+        g.start = f.start;
+        g.end = f.end;
+    });
+    showCurrent();
+}
+
 void ForcesEdit::showCurrent() {
     const int row = currentIndex();
     const bool has = row >= 0 && row < static_cast<int>(forces_.size());
     remove_->setEnabled(has);
     editor_->setVisible(has);
     if (!has) return;
-    const ForceDesc& f = forces_[static_cast<size_t>(row)];
+    if (heldWindow_ && heldWindow_->row != row) heldWindow_.reset();
+    ForceDesc f = forces_[static_cast<size_t>(row)];
+    if (heldWindow_) {
+        f.start = heldWindow_->start;
+        f.end = heldWindow_->end;
+    }
     const bool spring = f.type == ForceType::Spring;
     {
         const QSignalBlocker b1(type_), b2(frame_), b3(pointOn_), b4(startOn_), b5(endOn_);
@@ -279,6 +318,9 @@ void ForcesEdit::showCurrent() {
     start_->setEnabled(f.start.has_value());
     end_->showValue(f.end.value_or(0.0));
     end_->setEnabled(f.end.has_value());
+    start_->setHeld(heldWindow_.has_value());
+    end_->setHeld(heldWindow_.has_value());
+    form_->setRowVisible(windowError_, heldWindow_.has_value());
     form_->setRowVisible(frame_, !spring);
     form_->setRowVisible(vector_, !spring);
     form_->setRowVisible(pointRow_, f.type != ForceType::Torque);

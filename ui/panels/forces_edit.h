@@ -9,12 +9,14 @@
 #include <QWidget>
 
 #include <functional>
+#include <optional>
 
 #include <vector>
 
 class QCheckBox;
 class QComboBox;
 class QFormLayout;
+class QLabel;
 class QListWidget;
 class QPushButton;
 
@@ -47,6 +49,10 @@ signals:
 private:
     void showCurrent();
     void edit(const QString& field, const QString& text, const std::function<void(ForceDesc&)>& change);
+    // The start and end times are one value: a change that would put the end at or before
+    // the start is held (both fields framed red, a line saying why) and tried again with
+    // the next change of either, until the window is valid or Esc gives it up.
+    void editWindow(const QString& field, const QString& text, const std::function<void(ForceDesc&)>& change);
     static QString summary(const ForceDesc& f);
 
     std::vector<ForceDesc> forces_;
@@ -71,6 +77,12 @@ private:
     QWidget* pointRow_ = nullptr;
     QWidget* startRow_ = nullptr;
     QWidget* endRow_ = nullptr;
+    QLabel* windowError_ = nullptr;
+    struct HeldWindow {
+        int row = -1;
+        std::optional<double> start, end;
+    };
+    std::optional<HeldWindow> heldWindow_;
 };
 
 }  // namespace tumble::ui

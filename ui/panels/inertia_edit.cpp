@@ -30,9 +30,12 @@ InertiaEdit::InertiaEdit(const QString& name, QWidget* parent) : QWidget(parent)
             spin->setEnabled(false);
             cells_[static_cast<size_t>(3 * i + j)] = spin;
             grid->addWidget(spin, i, j);
-            connect(spin, &PropertySpinBox::valueChanged, this,
-                    [this, i, j](double v) { emit cellEdited(i, j, v); });
+            connect(spin, &PropertySpinBox::valueChanged, this, [this, i, j](double v) {
+                if (i != j) cell(j, i)->showValue(v);  // the tensor is symmetric
+                emit cellEdited(i, j, v);
+            });
             connect(spin, &PropertySpinBox::editingFinished, this, &InertiaEdit::editingFinished);
+            connect(spin, &PropertySpinBox::heldCancelled, this, &InertiaEdit::cancelled);
         }
     }
     connect(override_, &QCheckBox::clicked, this, [this](bool on) { emit overrideToggled(on); });
@@ -50,6 +53,14 @@ void InertiaEdit::showValue(const std::array<std::optional<double>, 9>& cells) {
 void InertiaEdit::showValue(const Mat3& m) {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) cell(i, j)->showValue(m(i, j));
+}
+
+void InertiaEdit::setHeld(bool held) {
+    for (auto* c : cells_) c->setHeld(held);
+}
+
+bool InertiaEdit::isHeld() const {
+    return cells_[0]->isHeld();
 }
 
 void InertiaEdit::showOverride(Qt::CheckState state) {

@@ -29,11 +29,16 @@ public:
     void showOverride(Qt::CheckState state);
     QCheckBox* overrideSwitch() const { return override_; }
     PropertySpinBox* cell(int i, int j) const { return cells_[static_cast<size_t>(3 * i + j)]; }
+    /// Marks the matrix as held back by the panel (a red frame on every cell), or not.
+    void setHeld(bool held);
+    bool isHeld() const;
 
 signals:
     void overrideToggled(bool on);
     void cellEdited(int i, int j, double value);
     void editingFinished();
+    /// Esc in a cell of a held matrix: the panel shows the last valid tensor again.
+    void cancelled();
 
 private:
     QCheckBox* override_ = nullptr;

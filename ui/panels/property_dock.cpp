@@ -12,6 +12,8 @@
 #include "panels/live_state_box.h"
 #include "panels/field_guard.h"
 
+#include <QApplication>
+
 namespace tumble::ui {
 
 void PropertyDock::Impl::build() {
@@ -219,6 +221,7 @@ PropertyDock::PropertyDock(Document* doc, QWidget* parent)
     auto selectionMoved = [this] {
         ++d_->generation;
         d_->lastMacro = {};
+        d_->dropHeld();
         d_->clearErrors();
         refresh();
     };
@@ -242,7 +245,12 @@ PropertyDock::PropertyDock(Document* doc, QWidget* parent)
     refresh();
 }
 
-PropertyDock::~PropertyDock() = default;
+PropertyDock::~PropertyDock() {
+    // A field with the keyboard focus is left when its window closes, and its
+    // editingFinished reaches the panel: let that happen while the panel is still whole
+    // (a dock closed on its own, as a test does, crashed in the name field's handler).
+    if (QWidget* w = QApplication::focusWidget(); w && isAncestorOf(w)) w->clearFocus();
+}
 
 void PropertyDock::refresh() {
     d_->refresh();

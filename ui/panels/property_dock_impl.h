@@ -141,6 +141,15 @@ struct PropertyDock::Impl {
     // Unit-density mass properties of meshes (compiling a mesh builds its hull: cache it).
     std::map<std::tuple<const void*, double, double, double, int>, std::optional<Computed>> meshCache;
 
+    // A vector or matrix whose edit would be refused part way (a plane normal turned from y
+    // to z passes through zero; an inertia tensor between two valid ones breaks the triangle
+    // inequality) is held: its fields keep what was typed, framed red, the message under them
+    // says why in the panel's words, and each further edit of the same value is tried
+    // together with the held parts, until the whole is valid (then it is applied as one edit)
+    // or Esc gives it up. By field key, then by part (a component or a cell) in edit order.
+    QHash<QString, std::vector<std::pair<int, Change>>> held;
+    QHash<QString, std::function<void(bool)>> markHeld;  // frames a held field red, or not
+
     // Euler angles last shown for a single selection, kept while they still describe the
     // body's quaternion (so 0/120/0 does not jump to its equivalent 180/60/180).
     Vec3 shownEuler = Vec3::Zero();
@@ -264,29 +273,14 @@ struct PropertyDock::Impl {
                1;
     }
 
-    // Applies `change` to every selected body, if the result is a valid scene. `key` names the
-    // field (its error label); `merge` makes consecutive edits of it one undo step.
-    bool apply(const QString& key, const QString& text, const Change& change, bool merge = true,
-               const QString& mergeKey = QString()) {
+    // Why the selected bodies, changed into `bodies`, would be refused ("" if they would
+    // not): the engine's message without the file's path, naming the body when several are
+    // selected. Only the changed bodies are checked: other bodies' problems are not this
+    // field's.
+    QString refusal(const QString& key, const std::vector<BodyDesc>& bodies) const {
         const QList<int> sel = doc->selection();
-        if (sel.isEmpty()) return false;
-        QUndoStack* stack = doc->undoStack();
-        const int mergeId = merge ? mergeIdFor(mergeKey.isEmpty() ? key : mergeKey) : 0;
-        bool undone = false;
-        if (sel.size() > 1 && mergeId && lastMacro.mergeId == mergeId && lastMacro.selection == sel &&
-            stack->index() == lastMacro.index && stack->index() > 0 && !stack->canRedo() &&
-            stack->command(stack->index() - 1) == lastMacro.command) {
-            stack->undo();  // the previous step of this scrub: replaced below
-            undone = true;
-        }
-        std::vector<BodyDesc> bodies;
-        SceneDesc check;  // the changed bodies alone: other bodies' problems are not this field's
-        for (int i : sel) {
-            BodyDesc b = doc->body(i);
-            change(b, i);
-            bodies.push_back(b);
-            check.bodies.push_back(b);
-        }
+        SceneDesc check;
+        check.bodies = bodies;
         QString error;
         try {
             validate(check);
@@ -306,15 +300,40 @@ struct PropertyDock::Impl {
             }
         }
         if (error.isEmpty() && key == "name") {
-            for (size_t n = 0; n < bodies.size(); ++n) {
+            for (const BodyDesc& b : bodies) {
                 for (int j = 0; j < doc->bodyCount(); ++j) {
-                    if (!sel.contains(j) && doc->body(j).name == bodies[n].name) {
+                    if (!sel.contains(j) && doc->body(j).name == b.name) {
                         error = QObject::tr("'%1' is already the name of another body")
-                                    .arg(QString::fromStdString(bodies[n].name));
+                                    .arg(QString::fromStdString(b.name));
                     }
                 }
             }
         }
+        return error;
+    }
+
+    // Applies `change` to every selected body, if the result is a valid scene. `key` names the
+    // field (its error label); `merge` makes consecutive edits of it one undo step.
+    bool apply(const QString& key, const QString& text, const Change& change, bool merge = true,
+               const QString& mergeKey = QString()) {
+        const QList<int> sel = doc->selection();
+        if (sel.isEmpty()) return false;
+        QUndoStack* stack = doc->undoStack();
+        const int mergeId = merge ? mergeIdFor(mergeKey.isEmpty() ? key : mergeKey) : 0;
+        bool undone = false;
+        if (sel.size() > 1 && mergeId && lastMacro.mergeId == mergeId && lastMacro.selection == sel &&
+            stack->index() == lastMacro.index && stack->index() > 0 && !stack->canRedo() &&
+            stack->command(stack->index() - 1) == lastMacro.command) {
+            stack->undo();  // the previous step of this scrub: replaced below
+            undone = true;
+        }
+        std::vector<BodyDesc> bodies;
+        for (int i : sel) {
+            BodyDesc b = doc->body(i);
+            change(b, i);
+            bodies.push_back(b);
+        }
+        const QString error = refusal(key, bodies);
         if (!error.isEmpty()) {
             if (undone) stack->redo();
             showError(key, error);
@@ -363,7 +382,9 @@ struct PropertyDock::Impl {
         QLabel* error = errorLabel(box, key);
         layout->addWidget(error);
         errors.insert(key, error);
-        whenFieldLeft(editor, [this, key] { showError(key, QString()); });
+        whenFieldLeft(editor, [this, key] {
+            if (!held.contains(key)) showError(key, QString());  // a held value keeps its reason
+        });
         return box;
     }
 
@@ -412,13 +433,19 @@ struct PropertyDock::Impl {
         QWidget* row = withError(edit, key);
         form->addRow(label, row);
         QObject::connect(edit, &VectorEdit::componentEdited, q, [this, key, text, set](int k, double v) {
-            apply(
-                key, text, [&](BodyDesc& b, int) { set(b, k, v); }, true, key + "." + QString::number(k));
+            applyPart(
+                key, k, text, [set, k, v](BodyDesc& b, int) { set(b, k, v); },
+                key + "." + QString::number(k));
         });
-        refreshers.push_back([form, row, edit, get](const std::vector<const BodyDesc*>& bodies) {
+        holdable(key, [edit](bool on) { edit->setHeld(on); });
+        QObject::connect(edit, &VectorEdit::cancelled, q, [this] {
+            dropHeld();
+            refresh();
+        });
+        refreshers.push_back([this, key, form, row, edit, get](const std::vector<const BodyDesc*>& bodies) {
             const Shared<Vec3> s = sharedOf<Vec3>(bodies, get);
             form->setRowVisible(row, s.applies);
-            if (s.applies)
+            if (s.applies && !held.contains(key))
                 edit->showValue(componentsOf(bodies, get), get(*bodies.front()).value_or(Vec3::Zero()));
         });
         return edit;
@@ -456,6 +483,12 @@ struct PropertyDock::Impl {
         if (box) *box = g;
         return form;
     }
+
+    // (property_dock_hold.cpp)
+    bool applyPart(const QString& key, int part, const QString& text, const Change& change,
+                   const QString& mergeKey);
+    void dropHeld();
+    void holdable(const QString& key, std::function<void(bool)> mark);
 
     void build();
     void buildMass(QVBoxLayout* layout);

@@ -127,16 +127,17 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             false);
     });
     QObject::connect(com, &VectorEdit::componentEdited, q, [this](int k, double value) {
-        apply(
-            "center_of_mass", QObject::tr("Set centre of mass"),
-            [&](BodyDesc& b, int) {
+        applyPart(
+            "center_of_mass", k, QObject::tr("Set centre of mass"),
+            [this, k, value](BodyDesc& b, int) {
                 const auto c = computed(b);
                 Vec3 p = b.centerOfMass.value_or(c ? c->centerOfMass : Vec3::Zero());
                 p[k] = value;
                 b.centerOfMass = p;
             },
-            true, QStringLiteral("center_of_mass.%1").arg(k));
+            QStringLiteral("center_of_mass.%1").arg(k));
     });
+    holdable("center_of_mass", [this](bool on) { com->setHeld(on); });
 
     inertia = new InertiaEdit("inertia");
     QWidget* inertiaRow = withError(inertia, "inertia");
@@ -158,14 +159,24 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             false);
     });
     QObject::connect(inertia, &InertiaEdit::cellEdited, q, [this, start](int i, int j, double value) {
-        apply(
-            "inertia", QObject::tr("Set inertia"),
-            [&](BodyDesc& b, int) {
+        const int a = std::min(i, j), c = std::max(i, j);
+        applyPart(
+            "inertia", 3 * a + c, QObject::tr("Set inertia"),
+            [start, a, c, value](BodyDesc& b, int) {
                 Mat3 m = start(b);
-                m(i, j) = m(j, i) = value;
+                m(a, c) = m(c, a) = value;
                 b.inertia = m;
             },
-            true, QStringLiteral("inertia.%1%2").arg(std::min(i, j)).arg(std::max(i, j)));
+            QStringLiteral("inertia.%1%2").arg(a).arg(c));
+    });
+    holdable("inertia", [this](bool on) { inertia->setHeld(on); });
+    QObject::connect(com, &VectorEdit::cancelled, q, [this] {
+        dropHeld();
+        refresh();
+    });
+    QObject::connect(inertia, &InertiaEdit::cancelled, q, [this] {
+        dropHeld();
+        refresh();
     });
 
     refreshers.push_back([this, form, comRow, inertiaRow](const std::vector<const BodyDesc*>& bodies) {
@@ -189,12 +200,14 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             comOverride->setCheckState(state(comGiven));
         }
         com->setEnabled(comGiven == n);
-        com->showValue(componentsOf(bodies, [this](const BodyDesc& b) -> std::optional<Vec3> {
-            if (b.centerOfMass) return b.centerOfMass;
-            const auto c = computed(b);
-            return c ? std::optional(c->centerOfMass) : std::nullopt;
-        }));
+        if (!held.contains("center_of_mass"))
+            com->showValue(componentsOf(bodies, [this](const BodyDesc& b) -> std::optional<Vec3> {
+                if (b.centerOfMass) return b.centerOfMass;
+                const auto c = computed(b);
+                return c ? std::optional(c->centerOfMass) : std::nullopt;
+            }));
         inertia->showOverride(state(inertiaGiven));
+        if (held.contains("inertia")) return;  // the cells keep what was typed
         std::array<std::optional<double>, 9> cells;
         for (int k = 0; k < 9; ++k) {
             cells[static_cast<size_t>(k)] =

@@ -2,12 +2,13 @@
 
 #include <QContextMenuEvent>
 #include <QFontMetrics>
+#include <QKeyEvent>
 #include <QLineEdit>
+#include <QLocale>
 #include <QMenu>
+#include <QSignalBlocker>
 #include <QStyle>
 #include <QStyleOptionSpinBox>
-#include <QLocale>
-#include <QSignalBlocker>
 
 #include <algorithm>
 #include <cmath>
@@ -49,6 +50,19 @@ void PropertySpinBox::showMixed(double base) {
     setValue(base);
     mixed_ = true;
     lineEdit()->setText(prefix() + mixedText() + suffix());
+}
+
+void PropertySpinBox::setHeld(bool held) {
+    held_ = held;
+    setStyleSheet(held ? QStringLiteral("QAbstractSpinBox { border: 1px solid #c62828; }") : QString());
+}
+
+void PropertySpinBox::keyPressEvent(QKeyEvent* event) {
+    if (held_ && event->key() == Qt::Key_Escape) {
+        emit heldCancelled();
+        return;
+    }
+    QDoubleSpinBox::keyPressEvent(event);
 }
 
 namespace {

@@ -41,19 +41,30 @@ public:
 
     static QString mixedText();
 
+    /// Marks the field as part of a value the panel holds back because it would be refused
+    /// (a red frame); Esc in a held field emits heldCancelled instead of reaching the panel.
+    void setHeld(bool held);
+    bool isHeld() const { return held_; }
+
     /// Adds "Sweep this value…" to the field's context menu, calling `sweep` (the panel
     /// sets it for the values a sweep can vary; `enabled` says whether it can now: one body
     /// selected, say).
     void setSweep(std::function<void()> sweep, std::function<bool()> enabled);
 
+signals:
+    /// Esc in a held field: the user gives the held value up.
+    void heldCancelled();
+
 protected:
     void contextMenuEvent(QContextMenuEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
 
 private:
     std::function<void()> sweep_;
     std::function<bool()> sweepEnabled_;
     QString stripped(const QString& text) const;
     bool mixed_ = false;
+    bool held_ = false;
     double softMinimum_ = -std::numeric_limits<double>::infinity();
 };
 

@@ -2,9 +2,7 @@
 
 #include "panels/property_spin_box.h"
 
-#include <QEvent>
 #include <QHBoxLayout>
-#include <QKeyEvent>
 
 namespace tumble::ui {
 
@@ -25,24 +23,16 @@ VectorEdit::VectorEdit(const QString& name, const QString& suffix, QWidget* pare
         connect(spin, &PropertySpinBox::valueChanged, this,
                 [this, k](double v) { emit componentEdited(k, v); });
         connect(spin, &PropertySpinBox::editingFinished, this, &VectorEdit::editingFinished);
-        spin->installEventFilter(this);
+        connect(spin, &PropertySpinBox::heldCancelled, this, &VectorEdit::cancelled);
     }
-}
-
-bool VectorEdit::eventFilter(QObject* watched, QEvent* event) {
-    if (event->type() == QEvent::KeyPress && static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape &&
-        held_) {
-        emit cancelled();
-        return true;
-    }
-    return QWidget::eventFilter(watched, event);
 }
 
 void VectorEdit::setHeld(bool held) {
-    held_ = held;
-    for (auto* s : spins_)
-        s->setStyleSheet(held ? QStringLiteral("QAbstractSpinBox { border: 1px solid #c62828; }")
-                              : QString());
+    for (auto* s : spins_) s->setHeld(held);
+}
+
+bool VectorEdit::isHeld() const {
+    return spins_[0]->isHeld();
 }
 
 void VectorEdit::showValue(const std::array<std::optional<double>, 3>& v, const Vec3& base) {

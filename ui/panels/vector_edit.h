@@ -32,7 +32,7 @@ public:
     Vec3 value() const;
     /// Marks the field as holding a value the document refused (a red frame), or not.
     void setHeld(bool held);
-    bool isHeld() const { return held_; }
+    bool isHeld() const;
 
 signals:
     void componentEdited(int k, double value);
@@ -41,12 +41,8 @@ signals:
     /// value again).
     void cancelled();
 
-protected:
-    bool eventFilter(QObject* watched, QEvent* event) override;
-
 private:
     std::array<PropertySpinBox*, 3> spins_{};
-    bool held_ = false;
 };
 
 }  // namespace tumble::ui

@@ -288,8 +288,14 @@ private slots:
         inertia->cell(2, 2)->setValue(5.0);
         QCOMPARE(f.doc.scene(), before);
         QCOMPARE(f.steps(), steps);
-        QVERIFY(f.dock.fieldError("inertia").contains("triangle"));
+        QVERIFY2(f.dock.fieldError("inertia").contains("sum of the other two"),
+                 qPrintable(f.dock.fieldError("inertia")));
+        QCOMPARE(inertia->cell(2, 2)->value(), 5.0);  // held as typed (tst_held_values.cpp)
+        QVERIFY(inertia->isHeld());
+        QTest::keyClick(inertia->cell(2, 2), Qt::Key_Escape);
+        QVERIFY(!inertia->isHeld());
         QCOMPARE(inertia->cell(2, 2)->value(), 1.0);
+        QVERIFY(f.dock.fieldError("inertia").isEmpty());
 
         // A physical one is taken; an off-diagonal cell sets its mirror too.
         inertia->cell(2, 2)->setValue(1.5);
