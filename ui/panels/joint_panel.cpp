@@ -154,7 +154,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     addRow(tr("Anchor A"), "anchor_a", anchorA_);
     connect(anchorA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
         editVector(
-            "anchor_a", tr("Move joint anchor"), anchorA_, k, v,
+            "anchor_a", tr("Move joint anchor"), k, v,
             [](const JointDesc& j) { return std::optional<Vec3>(j.anchorA); },
             [](JointDesc& j, const Vec3& a) { j.anchorA = a; });
     });
@@ -162,7 +162,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     addRow(tr("Anchor B"), "anchor_b", anchorB_);
     connect(anchorB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
         editVector(
-            "anchor_b", tr("Move joint anchor"), anchorB_, k, v,
+            "anchor_b", tr("Move joint anchor"), k, v,
             [](const JointDesc& j) { return std::optional<Vec3>(j.anchorB); },
             [](JointDesc& j, const Vec3& a) { j.anchorB = a; });
     });
@@ -172,7 +172,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     addRow(tr("Axis"), "axis_a", axisA_);
     connect(axisA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
         editVector(
-            "axis_a", tr("Turn joint axis"), axisA_, k, v, [](const JointDesc& j) { return j.axisA; },
+            "axis_a", tr("Turn joint axis"), k, v, [](const JointDesc& j) { return j.axisA; },
             [](JointDesc& j, const Vec3& a) { j.axisA = a; });
     });
     hasAxisB_ = new QCheckBox(tr("own"));
@@ -196,7 +196,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     });
     connect(axisB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
         editVector(
-            "axis_b", tr("Turn joint axis"), axisB_, k, v, [](const JointDesc& j) { return j.axisB; },
+            "axis_b", tr("Turn joint axis"), k, v, [](const JointDesc& j) { return j.axisB; },
             [](JointDesc& j, const Vec3& a) { j.axisB = a; });
     });
 
@@ -243,10 +243,18 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             false);
     });
     for (int k = 0; k < 2; ++k) {
+        // The two limits are one value (editVector): lower, upper and an unused 0.
         connect(k ? upper_ : lower_, &PropertySpinBox::valueChanged, this, [this, k, unit](double v) {
-            apply("limits", tr("Set joint limits"), [&](JointDesc& j) {
-                if (j.limits) (*j.limits)[static_cast<size_t>(k)] = v * unit(j);
-            });
+            const int i = jointIndex();
+            if (i < 0) return;
+            editVector(
+                "limits", tr("Set joint limits"), k, v * unit(doc_->joint(i)),
+                [](const JointDesc& j) {
+                    return j.limits ? std::optional(Vec3((*j.limits)[0], (*j.limits)[1], 0.0)) : std::nullopt;
+                },
+                [](JointDesc& j, const Vec3& l) {
+                    j.limits = std::array<double, 2>{l[0], l[1]};
+                });
         });
     }
 
@@ -311,12 +319,15 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         clearErrors();
         refresh();
     });
+    const auto cancel = [this] {
+        dropHeld();
+        clearErrors();
+        refresh();
+    };
     for (VectorEdit* field : {anchorA_, anchorB_, axisA_, axisB_})
-        connect(field, &VectorEdit::cancelled, this, [this] {
-            dropHeld();
-            clearErrors();
-            refresh();
-        });
+        connect(field, &VectorEdit::cancelled, this, cancel);
+    for (PropertySpinBox* limit : {lower_, upper_})
+        connect(limit, &PropertySpinBox::heldCancelled, this, cancel);
     refresh();
 }
 
@@ -386,14 +397,27 @@ QString inPlainWords(const QString& key, const std::string& problem) {
     const QString text = QString::fromStdString(problem);
     if ((key == "axis_a" || key == "axis_b") && text.contains("zero vector"))
         return JointPanel::tr("The axis cannot be zero: give it a direction.");
+    if (key == "limits" && text.contains("above the upper"))
+        return JointPanel::tr("The lower limit cannot be above the upper one.");
     const int cut = text.indexOf(QStringLiteral(": "));
     return cut >= 0 && text.left(cut).contains('[') ? text.mid(cut + 2) : text;
 }
 
 }  // namespace
 
-void JointPanel::editVector(const QString& key, const QString& text, VectorEdit* field, int k, double v,
-                            const VectorOf& get, const SetVector& set) {
+void JointPanel::markHeld(const QString& key, bool held) {
+    if (key == "limits") {
+        lower_->setHeld(held);
+        upper_->setHeld(held);
+        return;
+    }
+    const QMap<QString, VectorEdit*> fields{
+        {"anchor_a", anchorA_}, {"anchor_b", anchorB_}, {"axis_a", axisA_}, {"axis_b", axisB_}};
+    if (VectorEdit* field = fields.value(key)) field->setHeld(held);
+}
+
+void JointPanel::editVector(const QString& key, const QString& text, int k, double v, const VectorOf& get,
+                            const SetVector& set) {
     const int i = jointIndex();
     if (i < 0) return;
     const std::optional<Vec3> current = get(doc_->joint(i));
@@ -407,7 +431,7 @@ void JointPanel::editVector(const QString& key, const QString& text, VectorEdit*
     const auto problem = problemOf(scene);
     if (problem && problem != problemOf(doc_->scene())) {
         held_.insert(key, value);
-        field->setHeld(true);
+        markHeld(key, true);
         clearErrors();
         QLabel* error = errors_.value(key);
         error->setText(inPlainWords(key, *problem) + ' ' + tr("(Esc: back to the last valid value)"));
@@ -415,13 +439,13 @@ void JointPanel::editVector(const QString& key, const QString& text, VectorEdit*
         return;  // the components stay as typed
     }
     held_.remove(key);
-    field->setHeld(false);
+    markHeld(key, false);
     apply(key, text, [&](JointDesc& jj) { set(jj, value); });
 }
 
 void JointPanel::dropHeld() {
+    for (const QString& key : held_.keys()) markHeld(key, false);
     held_.clear();
-    for (VectorEdit* field : {anchorA_, anchorB_, axisA_, axisB_}) field->setHeld(false);
 }
 
 void JointPanel::refresh() {
@@ -477,8 +501,9 @@ void JointPanel::refresh() {
     lower_->setEnabled(j.limits.has_value());
     upper_->setEnabled(j.limits.has_value());
     if (j.limits) {
-        lower_->showValue((*j.limits)[0] / unit);
-        upper_->showValue((*j.limits)[1] / unit);
+        const Vec3 limits = held_.value("limits", Vec3((*j.limits)[0], (*j.limits)[1], 0.0));
+        lower_->showValue(limits[0] / unit);
+        upper_->showValue(limits[1] / unit);
     }
     motorSpeed_->setSuffix(hinge ? QStringLiteral(" rad/s") : QStringLiteral(" m/s"));
     motorMax_->setSuffix(hinge ? QStringLiteral(" N m") : QStringLiteral(" N"));

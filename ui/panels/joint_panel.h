@@ -46,8 +46,10 @@ private:
     /// never a mix of typed and old components (issue 46).
     using VectorOf = std::function<std::optional<Vec3>(const JointDesc&)>;
     using SetVector = std::function<void(JointDesc&, const Vec3&)>;
-    void editVector(const QString& key, const QString& text, VectorEdit* field, int k, double v,
-                    const VectorOf& get, const SetVector& set);
+    void editVector(const QString& key, const QString& text, int k, double v, const VectorOf& get,
+                    const SetVector& set);
+    /// Frames the fields of a held value (a vector, or the two limits) red, or not.
+    void markHeld(const QString& key, bool held);
     void dropHeld();
     QWidget* withError(QWidget* editor, const QString& key);
     void clearErrors();
@@ -58,7 +60,7 @@ private:
     QMap<QString, QLabel*> errors_;
     QMap<QString, QWidget*> rows_;
     int generation_ = 1;
-    QMap<QString, Vec3> held_;  // refused vector values being typed, by field key
+    QMap<QString, Vec3> held_;  // refused values being typed, by field key (limits: lower, upper, 0)
 
     QLineEdit* name_ = nullptr;
     QComboBox* type_ = nullptr;
