@@ -8,6 +8,8 @@
 #include "sweep_run.h"
 #include "sweep_summary.h"
 
+#include <tumble/io/atomic_file.h>
+
 #include <chrono>
 #include <cstdio>
 #include <ostream>
@@ -159,6 +161,10 @@ int finish(const Plan& plan, const fs::path& dir, const std::vector<std::string>
             << " variants have results: run the same command to resume\n";
         return kStopped;
     }
+    if (t.failed > 0)
+        err << "tumble sweep: " << t.failed << " of " << plan.count
+            << " variants failed (summary.csv says why); "
+            << "the first, " << t.firstFailure << "\n";
     return t.failed > 0 || t.notRun > 0 ? kFailed : kOk;
 }
 
@@ -170,7 +176,7 @@ int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
     std::error_code ec;
     fs::create_directories(dir / "results", ec);
     if (!ec && o.trajectories) fs::create_directories(dir / "trajectories", ec);
-    if (ec) throw SweepError{dir.string() + ": " + ec.message()};
+    if (ec) throw SweepError{dir.string() + ": cannot be made: " + io::plainReason(ec.value())};
 
     if (o.slurm) {
         const bool ended = runOnSlurm(plan, dir, o.slurmOptions, out, err);
@@ -185,14 +191,28 @@ int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
     }
     const int parallel = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     Progress progress(err, plan.count, plan.count - static_cast<int>(jobs.size()));
+    // A result that cannot be written (a full disk, the folder gone) stops the sweep: nothing
+    // more is started, and the same command resumes once there is room.
+    std::string writeFailure;
     const bool finished = runLocally(
         jobs, parallel,
         [&](const Outcome& outcome) {
-            recordOutcome(plan, dir, outcome);
+            try {
+                recordOutcome(plan, dir, outcome);
+            } catch (const std::exception& e) {
+                if (writeFailure.empty()) writeFailure = e.what();
+                return false;
+            }
             progress.finished(outcome.exitCode == 0, outcome.wall);
+            return writeFailure.empty();
         },
         [&](int running) { progress.show(running, parallel); });
     progress.show(0, parallel, true);
+    if (!writeFailure.empty()) {
+        err << "tumble sweep: " << writeFailure
+            << "; the sweep stopped (the results written are kept): run the same command to resume\n";
+        return kFailed;
+    }
     return finish(plan, dir, columns, !finished, out, err);
 }
 

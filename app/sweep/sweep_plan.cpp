@@ -292,7 +292,8 @@ void writeVariants(const Plan& plan, const fs::path& dir) {
                                                  "choose another --out, or remove the folder"};
     }
     fs::create_directories(dir / "variants", ec);
-    if (ec) throw SweepError{(dir / "variants").string() + ": " + ec.message()};
+    if (ec)
+        throw SweepError{(dir / "variants").string() + ": cannot be made: " + io::plainReason(ec.value())};
     const ojson base = normalisedScene(plan.scene);
     try {
         for (int k = 0; k < plan.count; ++k) {

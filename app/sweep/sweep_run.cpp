@@ -74,21 +74,22 @@ pid_t start(const Job& job) {
 
 }  // namespace
 
-bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<void(const Outcome&)>& done,
+bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<bool(const Outcome&)>& done,
                 const std::function<void(int running)>& tick) {
     StopSignals signals;
     std::vector<Running> running;
     std::size_t next = 0;
+    bool startMore = true;
     auto lastTick = std::chrono::steady_clock::now();
-    while (!stopAsked && (next < jobs.size() || !running.empty())) {
-        while (!stopAsked && next < jobs.size() && static_cast<int>(running.size()) < parallel) {
+    while (!stopAsked && ((startMore && next < jobs.size()) || !running.empty())) {
+        while (!stopAsked && startMore && next < jobs.size() && static_cast<int>(running.size()) < parallel) {
             const Job& job = jobs[next++];
             const auto t0 = std::chrono::steady_clock::now();
             const pid_t pid = start(job);
             if (pid == 0) {  // could not start: reported as a failure of its own
                 std::ofstream(job.log) << "tumble sweep: could not start " << job.argv[0] << ": " << std::strerror(errno)
                                        << "\n";
-                done({job.variant, 127, 0, 0.0});
+                startMore = done({job.variant, 127, 0, 0.0}) && startMore;
                 continue;
             }
             running.push_back({pid, job.variant, t0});
@@ -111,7 +112,7 @@ bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<
             // A variant stopped by the same Ctrl-C as this process (one process group) is
             // not a result.
             if (stopAsked && o.signal != 0) continue;
-            done(o);
+            startMore = done(o) && startMore;
         }
         const auto now = std::chrono::steady_clock::now();
         if (now - lastTick >= std::chrono::milliseconds(100)) {

@@ -27,9 +27,11 @@ struct Outcome {
 };
 
 /// Runs the jobs, at most `parallel` at once; `done` is called (on this thread) as each
-/// ends, `tick` about ten times a second with the number running. Returns false when
-/// stopped by SIGINT or SIGTERM (the stopped jobs are not reported).
-bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<void(const Outcome&)>& done,
+/// ends, and returns false to start no more (the running ones end and are reported: a
+/// result that could not be written); `tick` about ten times a second with the number
+/// running. Returns false when stopped by SIGINT or SIGTERM (the stopped jobs are not
+/// reported).
+bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<bool(const Outcome&)>& done,
                 const std::function<void(int running)>& tick);
 
 /// This program's own path (/proc/self/exe), to start the variants with.

@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -81,7 +82,7 @@ bool runOnSlurm(const Plan& plan, const fs::path& dir, const SlurmOptions& optio
     if (pending.empty()) return true;
     const fs::path abs = fs::absolute(dir).lexically_normal();
     fs::create_directories(abs / "slurm", ec);
-    if (ec) throw SweepError{(abs / "slurm").string() + ": " + ec.message()};
+    if (ec) throw SweepError{(abs / "slurm").string() + ": cannot be made: " + io::plainReason(ec.value())};
 
     // This submission's list (a job still running keeps reading its own).
     int n = 0;
@@ -204,7 +205,23 @@ int runTask(const fs::path& dir, const fs::path& list, int task) {
         if (!fs::exists(resultFile(plan, dir, variants[i]), ec))
             jobs.push_back(variantJob(plan, dir, variants[i], trajectories, exe));
     if (trajectories) fs::create_directories(dir / "trajectories", ec);
-    runLocally(jobs, 1, [&](const Outcome& o) { recordOutcome(plan, dir, o); }, [](int) {});
+    std::string writeFailure;
+    runLocally(
+        jobs, 1,
+        [&](const Outcome& o) {
+            try {
+                recordOutcome(plan, dir, o);
+                return true;
+            } catch (const std::exception& e) {
+                writeFailure = e.what();
+                return false;
+            }
+        },
+        [](int) {});
+    if (!writeFailure.empty()) {
+        std::cerr << "tumble sweep: " << writeFailure << "\n";
+        return 1;
+    }
     return 0;
 }
 

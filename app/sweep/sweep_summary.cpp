@@ -162,6 +162,8 @@ Tally writeSummary(const Plan& plan, const fs::path& dir, const std::vector<std:
         for (std::size_t i = 0; i < plan.vary.size(); ++i) csv << ',' << csvText(plan.vary[i].values[c[i]]);
         const std::string status = r.is_object() ? r.value("status", std::string("failed")) : "not run";
         (status == "ok" ? tally.ok : status == "not run" ? tally.notRun : tally.failed) += 1;
+        if (status != "ok" && status != "not run" && tally.firstFailure.empty())
+            tally.firstFailure = plan.name(k) + ": " + r.value("message", std::string("failed"));
         const ojson metrics = r.is_object() && r.contains("metrics") ? r["metrics"] : ojson(nullptr);
         const ojson run = metrics.is_object() && metrics.contains("run") ? metrics["run"] : ojson(nullptr);
         csv << ',' << status << ',' << (run.is_object() ? csvValue(run["state_hash"]) : "") << ','

@@ -37,6 +37,7 @@ std::vector<std::string> metricColumns(const Plan& plan, const std::vector<std::
 
 struct Tally {
     int ok = 0, failed = 0, notRun = 0;
+    std::string firstFailure;  // the first failed variant's name and message ("0003: ...")
 };
 
 /// Writes DIR/summary.csv (whole or not at all): `variant`, one column per varied path,

@@ -14,6 +14,9 @@
 #include <QUndoStack>
 
 #include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <vector>
 
 namespace tumble::ui {
 
@@ -185,28 +188,17 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
         copyOf.insert(source, name);
     }
     const QString folder = dir.filePath(folderName);
-    if (!copyOf.isEmpty() && !QDir().mkpath(folder)) {
-        if (error) *error = tr("%1: the folder cannot be made").arg(folder);
-        return false;
-    }
-    QStringList written;
-    auto undoCopies = [&] {
-        for (const QString& f : written) QFile::remove(f);
-    };
-    for (auto it = copyOf.cbegin(); it != copyOf.cend(); ++it) {
-        const QString to = QDir(folder).filePath(it.value());
-        if (QFileInfo(to).absoluteFilePath() == it.key()) continue;  // saved there already
-        QFile in(it.key());
-        if (!in.open(QIODevice::ReadOnly)) {
-            if (error) *error = tr("%1: cannot be read (%2)").arg(it.key(), in.errorString());
-            undoCopies();
+    const std::filesystem::path folderPath(QFile::encodeName(folder).toStdString());
+    const bool madeFolder = !copyOf.isEmpty() && !QFileInfo(folder).isDir();
+    if (madeFolder) {
+        std::error_code ec;
+        std::filesystem::create_directories(folderPath, ec);
+        if (ec) {
+            if (error)
+                *error = tr("%1: the folder cannot be made: %2")
+                             .arg(folder, QString::fromStdString(io::plainReason(ec.value())));
             return false;
         }
-        if (!writeWhole(to, in.readAll(), error)) {
-            undoCopies();
-            return false;
-        }
-        written << to;
     }
     SceneDesc moved = scene_;
     for (BodyDesc& b : moved.bodies) {
@@ -214,9 +206,30 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
         const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
         b.shape.file = QDir(folder).filePath(copyOf.value(source)).toStdString();
     }
-    const std::string text = io::sceneToJson(withMeshPathsRelativeTo(moved, dir.absolutePath()));
-    if (!writeWhole(path, QByteArray::fromStdString(text), error)) {
-        undoCopies();
+    // Every copy and the scene are written out before any replaces its old file (a full disk
+    // or a read-only one leaves the old save whole, copies included), then the copies first:
+    // the new scene never names a copy not yet there.
+    std::vector<std::unique_ptr<io::AtomicFile>> files;
+    try {
+        for (auto it = copyOf.cbegin(); it != copyOf.cend(); ++it) {
+            const QString to = QDir(folder).filePath(it.value());
+            if (QFileInfo(to).absoluteFilePath() == it.key()) continue;  // saved there already
+            QFile in(it.key());
+            if (!in.open(QIODevice::ReadOnly))
+                throw std::runtime_error(
+                    tr("%1: cannot be read (%2)").arg(it.key(), in.errorString()).toStdString());
+            const QByteArray bytes = in.readAll();
+            files.push_back(std::make_unique<io::AtomicFile>(QFile::encodeName(to).toStdString()));
+            files.back()->stream().write(bytes.constData(), bytes.size());
+        }
+        files.push_back(std::make_unique<io::AtomicFile>(QFile::encodeName(path).toStdString()));
+        files.back()->stream() << io::sceneToJson(withMeshPathsRelativeTo(moved, dir.absolutePath()));
+        for (auto& f : files) f->ready();
+        for (auto& f : files) f->commit();
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromLocal8Bit(e.what());
+        files.clear();  // their temporaries go
+        if (madeFolder) QDir().rmdir(folder);
         return false;
     }
     // The document now refers to the copies (the same meshes); not an edit to undo.

@@ -1,10 +1,13 @@
 #include "export/image_exporter.h"
 
+#include <tumble/io/atomic_file.h>
+
 #include "timeline/timeline.h"
 #include "viewport/viewport.h"
 
 #include <Qt3DRender/QRenderCapture>
 
+#include <QBuffer>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFile>
@@ -23,12 +26,26 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 #include <vector>
 
 namespace tumble::ui {
 
 namespace {
+
+// The system's (or ffmpeg's) words for the usual causes of a failed write, said plainly
+// first: "the disk is full (… No space left on device)".
+QString plainly(const QString& why) {
+    static const std::pair<const char*, int> known[] = {
+        {"No space left on device", ENOSPC}, {"Read-only file system", EROFS}, {"Permission denied", EACCES}};
+    for (const auto& [text, err] : known)
+        if (why.contains(QLatin1String(text)))
+            return QString::fromStdString(io::plainReason(err)) + QStringLiteral(" (") + why.trimmed() + ')';
+    return why;
+}
 
 // The process's umask, read from /proc (umask() reads it only by setting it, which the other
 // threads would see in between); 022 when it cannot be read.
@@ -222,15 +239,23 @@ void ImageExporter::start(const ImageExportOptions& options) {
         // The outermost folder that does not exist yet: removed again if the export fails.
         QString root = d.folder;
         while (!QFileInfo::exists(QFileInfo(root).path())) root = QFileInfo(root).path();
-        if (QFileInfo::exists(d.folder) || !QDir().mkpath(d.folder)) {
-            return refuse(tr("Cannot create the folder %1").arg(QDir::toNativeSeparators(d.folder)));
+        std::error_code ec;
+        if (QFileInfo::exists(d.folder))
+            ec = std::make_error_code(std::errc::not_a_directory);
+        else
+            std::filesystem::create_directories(QFile::encodeName(d.folder).toStdString(), ec);
+        if (ec) {
+            return refuse(tr("Cannot create the folder %1: %2")
+                              .arg(QDir::toNativeSeparators(d.folder),
+                                   QString::fromStdString(io::plainReason(ec.value()))));
         }
         d.createdRoot = root;
     }
     d.temp = std::make_unique<QTemporaryDir>(d.folder + QStringLiteral("/.tumble-export-XXXXXX"));
     if (!d.temp->isValid()) {
         const QString why = d.temp->errorString();
-        return refuse(tr("Cannot write to the folder %1: %2").arg(QDir::toNativeSeparators(d.folder), why));
+        return refuse(
+            tr("Cannot write to the folder %1: %2").arg(QDir::toNativeSeparators(d.folder), plainly(why)));
     }
     if (options.video) {
         // The video's temporary name, taken now so an unwritable place fails before any work.
@@ -239,9 +264,9 @@ void ImageExporter::start(const ImageExportOptions& options) {
             std::make_unique<QTemporaryFile>(target.absolutePath() + QStringLiteral("/.") +
                                              target.completeBaseName() + QStringLiteral("-XXXXXX.mp4"));
         if (!d.tempVideo->open()) {
-            return refuse(
-                tr("Cannot write the video %1: %2")
-                    .arg(QDir::toNativeSeparators(target.absoluteFilePath()), d.tempVideo->errorString()));
+            return refuse(tr("Cannot write the video %1: %2")
+                              .arg(QDir::toNativeSeparators(target.absoluteFilePath()),
+                                   plainly(d.tempVideo->errorString())));
         }
         d.tempVideo->close();
     }
@@ -377,8 +402,16 @@ void ImageExporter::onCaptured() {
         image = image.scaled(d.opt.size, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
     }
     const QString path = d.tempImage(d.next);
-    if (!image.save(path, "PNG")) {
-        return fail(tr("Cannot write the image %1").arg(QDir::toNativeSeparators(path)));
+    // Encoded in memory and written by AtomicFile, which checks every write: QImage::save
+    // into a file reported success on a full disk and left empty images.
+    QByteArray png;
+    QBuffer buffer(&png);
+    if (!buffer.open(QIODevice::WriteOnly) || !image.save(&buffer, "PNG"))
+        return fail(tr("Cannot encode the image of frame %1").arg(frame));
+    try {
+        io::writeFileAtomically(QFile::encodeName(path).toStdString(), png.toStdString());
+    } catch (const std::exception& e) {
+        return fail(tr("Cannot write the image %1").arg(QString::fromLocal8Bit(e.what())));
     }
     ++d.next;
     const int gen = d.generation;
@@ -493,6 +526,7 @@ void ImageExporter::onEncoded() {
     if (!ok) {
         why = p->error() == QProcess::FailedToStart ? p->errorString() : tail(p->readAll(), 6);
         if (why.isEmpty()) why = tr("exit code %1").arg(p->exitCode());
+        why = plainly(why);
     }
     p->deleteLater();
     const int n = int(d.frames.size());

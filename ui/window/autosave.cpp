@@ -59,7 +59,7 @@ Autosave::Autosave() {
 
 Autosave::~Autosave() = default;  // QLockFile unlocks and removes the lock
 
-bool Autosave::write(const SceneDesc& scene, const QString& scenePath) {
+bool Autosave::write(const SceneDesc& scene, const QString& scenePath, QString* error) {
     const QJsonDocument sceneJson =
         QJsonDocument::fromJson(QByteArray::fromStdString(io::sceneToJson(scene)));
     QJsonObject wrapper;
@@ -72,7 +72,8 @@ bool Autosave::write(const SceneDesc& scene, const QString& scenePath) {
         QDir().mkpath(folder());
         io::writeFileAtomically(QFile::encodeName(file_).toStdString(),
                                 QJsonDocument(wrapper).toJson(QJsonDocument::Indented).toStdString());
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromLocal8Bit(e.what());
         return false;
     }
     return true;

@@ -35,8 +35,9 @@ public:
     /// This editor's autosave file.
     const QString& file() const { return file_; }
     /// Writes `scene`, the unsaved work of `scenePath` (empty: untitled), whole or not at all
-    /// (a failed write keeps the previous autosave). False if it could not be written.
-    bool write(const SceneDesc& scene, const QString& scenePath);
+    /// (a failed write keeps the previous autosave). False, with `error` naming the file and
+    /// the reason, if it could not be written.
+    bool write(const SceneDesc& scene, const QString& scenePath, QString* error = nullptr);
     /// Removes this editor's autosave (saved, or closed cleanly).
     void remove();
 

@@ -395,7 +395,17 @@ void MainWindow::autosave() {
         autosave_->remove();
         return;
     }
-    autosave_->write(doc_->scene(), doc_->filePath());  // a failed write keeps the previous one
+    // A failed write keeps the previous autosave; the user is told, and the message stays
+    // until an autosave succeeds again (their work is not protected meanwhile).
+    QString error;
+    if (!autosave_->write(doc_->scene(), doc_->filePath(), &error)) {
+        autosaveFailure_ =
+            tr("Autosave failed: %1. Save your work: unsaved changes would be lost in a crash.").arg(error);
+        statusBar()->showMessage(autosaveFailure_);
+    } else if (!autosaveFailure_.isEmpty()) {
+        if (statusBar()->currentMessage() == autosaveFailure_) statusBar()->clearMessage();
+        autosaveFailure_.clear();
+    }
 }
 
 void MainWindow::offerRecovery() {

@@ -147,6 +147,7 @@ private:
     QMenu* recentMenu_ = nullptr;
     QTimer* autosaveTimer_ = nullptr;
     std::unique_ptr<Autosave> autosave_;
+    QString autosaveFailure_;  // the status bar's message while autosaves fail
     bool recoverHere(const AutosaveLeftover& leftover, QString* error);
     TrajectoryExport* trajectoryExport_ = nullptr;
     ImageExporter* imageExport_ = nullptr;

@@ -3,11 +3,13 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <stdexcept>
 
@@ -32,6 +34,32 @@ fs::path followLinks(fs::path p) {
         p = to.is_absolute() ? to : p.parent_path() / to;
     }
     return p;
+}
+
+}  // namespace
+
+std::string plainReason(int err) {
+    switch (err) {
+        case ENOENT: return "no such folder";
+        case ENOTDIR: return "a file stands where a folder of its path should be";
+        case EACCES:
+        case EPERM: return "no permission to write there";
+        case EROFS: return "the disk is read-only";
+        case ENOSPC: return "the disk is full";
+        case EDQUOT: return "the disk quota is used up";
+        case EFBIG: return "the file is larger than this system lets it be";
+        default: return std::strerror(err);
+    }
+}
+
+namespace {
+
+// Why a write into `folder` failed: `err` (errno) when the call that failed left one,
+// else a full disk when the folder's file system has no room left.
+std::string whyWriteFailed(int err, const fs::path& folder) {
+    struct statvfs room {};
+    if ((err == 0 || err == EIO) && ::statvfs(folder.c_str(), &room) == 0 && room.f_bavail == 0) err = ENOSPC;
+    return err ? plainReason(err) : std::string("the disk may be full");
 }
 
 fs::path folderOf(const fs::path& target) {
@@ -85,6 +113,65 @@ int removeStaleTemporaries(const fs::path& target, std::chrono::seconds minAge) 
     return removed;
 }
 
+// Writes with ::write and keeps the errno of the first write that failed (std::ofstream
+// loses it), so that a failed save says why: a full disk, a file size limit, an I/O error.
+class AtomicFile::Buffer : public std::streambuf {
+public:
+    explicit Buffer(int fd) : fd_(fd) { setp(data_, data_ + sizeof data_); }
+    ~Buffer() override {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    int fd() const { return fd_; }
+    int error() const { return error_; }
+    /// Writes what is buffered, then closes; false (error() says why) if anything failed.
+    bool close() {
+        const bool drained = drain();
+        if (::close(fd_) != 0 && error_ == 0) error_ = errno;
+        fd_ = -1;
+        return drained && error_ == 0;
+    }
+
+protected:
+    int_type overflow(int_type c) override {
+        if (!drain()) return traits_type::eof();
+        if (!traits_type::eq_int_type(c, traits_type::eof())) {
+            *pptr() = traits_type::to_char_type(c);
+            pbump(1);
+        }
+        return traits_type::not_eof(c);
+    }
+    int sync() override { return drain() ? 0 : -1; }
+    std::streamsize xsputn(const char* s, std::streamsize n) override {
+        if (n < static_cast<std::streamsize>(sizeof data_)) return std::streambuf::xsputn(s, n);
+        return drain() && writeAll(s, n) ? n : 0;  // a large block goes straight through
+    }
+
+private:
+    bool drain() {
+        const bool ok = writeAll(pbase(), pptr() - pbase());
+        setp(data_, data_ + sizeof data_);
+        return ok;
+    }
+    bool writeAll(const char* p, std::streamsize n) {
+        if (error_ != 0) return false;
+        while (n > 0) {
+            const ssize_t w = ::write(fd_, p, static_cast<size_t>(n));
+            if (w < 0) {
+                if (errno == EINTR) continue;
+                error_ = errno;
+                return false;
+            }
+            p += w;
+            n -= w;
+        }
+        return true;
+    }
+
+    int fd_ = -1;
+    int error_ = 0;
+    char data_[1 << 16];
+};
+
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)), final_(followLinks(target_)) {
     removeStaleTemporaries(final_);
     const std::string stem = final_.string() + kMark + std::to_string(::getpid()) + "-";
@@ -94,43 +181,54 @@ AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)), final_(fol
         fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd < 0 && errno != EEXIST) break;
     }
-    if (fd < 0)
-        throw std::runtime_error(target_.string() + ": cannot be written (no such folder, or no permission)");
-    ::close(fd);
-    out_.open(temp_, std::ios::binary | std::ios::trunc);
-    if (!out_) {
-        std::error_code ec;
-        fs::remove(temp_, ec);
-        throw std::runtime_error(target_.string() + ": cannot be written (no such folder, or no permission)");
-    }
+    if (fd < 0) throw std::runtime_error(target_.string() + ": cannot be written: " + plainReason(errno));
+    buf_ = std::make_unique<Buffer>(fd);
+    out_.rdbuf(buf_.get());
 }
 
 AtomicFile::~AtomicFile() {
     if (!committed_) {
-        out_.close();
+        out_.rdbuf(nullptr);
+        buf_.reset();
         std::error_code ec;
         fs::remove(temp_, ec);
     }
 }
 
-void AtomicFile::commit() {
+void AtomicFile::ready() {
+    if (ready_) return;
     out_.flush();
-    const bool ok = static_cast<bool>(out_);
-    out_.close();
-    if (!ok) throw std::runtime_error(target_.string() + ": writing failed (disk full?)");
-    // A file replaced keeps its permission bits (a new one gets the umask's).
-    struct stat old {};
-    if (::stat(final_.c_str(), &old) == 0 && S_ISREG(old.st_mode))
-        ::chmod(temp_.c_str(), old.st_mode & 07777);
-    // Make the data durable before the rename makes it visible.
-    const int fd = ::open(temp_.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd >= 0) {
-        ::fsync(fd);
-        ::close(fd);
+    bool ok = static_cast<bool>(out_) && buf_->error() == 0;
+    int err = buf_->error();
+    if (ok) {
+        // A file replaced keeps its permission bits (a new one gets the umask's).
+        struct stat old {};
+        if (::stat(final_.c_str(), &old) == 0 && S_ISREG(old.st_mode))
+            ::fchmod(buf_->fd(), old.st_mode & 07777);
+        // Durable before the rename makes it visible; a file system that allocates late
+        // (ext4, XFS, NFS) can report a full disk only here. (EINVAL: it cannot sync.)
+        if (::fsync(buf_->fd()) != 0 && errno != EINVAL) {
+            ok = false;
+            err = errno;
+        }
     }
+    if (!buf_->close() && ok) {
+        ok = false;
+        err = buf_->error();
+    }
+    out_.rdbuf(nullptr);
+    buf_.reset();
+    if (!ok)
+        throw std::runtime_error(target_.string() +
+                                 ": writing failed: " + whyWriteFailed(err, folderOf(temp_)));
+    ready_ = true;
+}
+
+void AtomicFile::commit() {
+    ready();
     std::error_code ec;
     fs::rename(temp_, final_, ec);
-    if (ec) throw std::runtime_error(target_.string() + ": cannot be replaced: " + ec.message());
+    if (ec) throw std::runtime_error(target_.string() + ": cannot be replaced: " + plainReason(ec.value()));
     committed_ = true;
     // And the new name durable: until the folder is synced a power cut can bring back the
     // old file (whole, never a mix). Best effort: a folder that cannot be opened keeps the

@@ -339,11 +339,16 @@ void GltfTrajectoryWriter::close() {
         doc.erase("extensionsUsed");
         mainText = doc.dump(2);
         outputs_->bin->stream() << bin->second;
-        outputs_->bin->commit();
     } else {
         mainText = withoutExtensionsUsed(main->second, file());
     }
     outputs_->main->stream() << mainText;
+    // Both written out before either replaces its old file: a full disk leaves the old pair.
+    // (Only a kill between the two renames, microseconds apart, can pair a new .bin with the
+    // old .gltf.)
+    if (outputs_->bin) outputs_->bin->ready();
+    outputs_->main->ready();
+    if (outputs_->bin) outputs_->bin->commit();
     outputs_->main->commit();
 }
 

@@ -275,15 +275,16 @@ private slots:
         doc.addBody(ball("another", 2.0));
         const QString missing = dir.filePath("nodir/scene.json");
         QVERIFY(!doc.saveAs(missing, &error));
-        QCOMPARE(error, missing + ": cannot be written (no such folder, or no permission)");
+        QCOMPARE(error, missing + ": cannot be written: no such folder");
         QFile file(dir.filePath("file"));
         QVERIFY(file.open(QIODevice::WriteOnly));
         file.close();
         const QString underAFile = dir.filePath("file/scene.json");
         QVERIFY(!doc.saveAs(underAFile, &error));
-        QCOMPARE(error, underAFile + ": cannot be written (no such folder, or no permission)");
+        QCOMPARE(error,
+                 underAFile + ": cannot be written: a file stands where a folder of its path should be");
         QVERIFY(!doc.saveWithMeshes(missing, &error));
-        QCOMPARE(error, missing + ": cannot be written (no such folder, or no permission)");
+        QCOMPARE(error, missing + ": cannot be written: no such folder");
         // A folder where the file should be: it cannot be replaced, and stays as it was.
         QVERIFY(QDir(dir.path()).mkpath("taken.json/inside"));
         QVERIFY(!doc.saveAs(dir.filePath("taken.json"), &error));

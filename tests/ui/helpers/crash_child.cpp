@@ -9,7 +9,13 @@
 //   crash_child hold OUT              starts a save of OUT (an io::AtomicFile, the editor's
 //                                     way), writes part of it, prints "holding", then waits
 //                                     to be killed before the commit.
+//   crash_child save-meshes-once SCENE OUT   File > Save with Meshes of SCENE to OUT.
+//   crash_child autosave-once SCENE   writes SCENE as this editor's autosave (its data folder
+//                                     from XDG_DATA_HOME) and prints the file's path.
+// A write that fails prints the editor's message on stderr and exits with status 1.
+// (tests/ui/window/tst_write_faults.cpp runs the last three under faults.)
 #include "document/document.h"
+#include "window/autosave.h"
 #include "window/main_window.h"
 
 #include <tumble/io/atomic_file.h>
@@ -71,6 +77,31 @@ int main(int argc, char** argv) {
         }
         return 0;
     }
+    if (argc == 4 && !std::strcmp(argv[1], "save-meshes-once")) {
+        Document doc;
+        QString error;
+        if (!doc.open(argv[2], &error) || !doc.saveWithMeshes(argv[3], &error)) {
+            std::fprintf(stderr, "%s\n", qPrintable(error));
+            return 1;
+        }
+        return 0;
+    }
+    if (argc == 3 && !std::strcmp(argv[1], "autosave-once")) {
+        Document doc;
+        QString error;
+        if (!doc.open(argv[2], &error)) {
+            std::fprintf(stderr, "%s\n", qPrintable(error));
+            return 2;
+        }
+        Autosave autosave;
+        std::printf("%s\n", qPrintable(autosave.file()));
+        std::fflush(stdout);
+        if (!autosave.write(doc.scene(), doc.filePath(), &error)) {
+            std::fprintf(stderr, "%s\n", qPrintable(error));
+            return 1;
+        }
+        return 0;
+    }
     if (argc == 3 && !std::strcmp(argv[1], "hold")) {
         io::AtomicFile file(argv[2]);
         file.stream() << R"({"format": "tumble-scene", "version": 1, "bodies": [)" << std::flush;
@@ -78,7 +109,8 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         for (;;) QThread::sleep(1);
     }
-    std::fprintf(
-        stderr, "usage: crash_child save-loop SCENE OUT | autosave SCENE | save-once SCENE OUT | hold OUT\n");
+    std::fprintf(stderr,
+                 "usage: crash_child save-loop SCENE OUT | autosave SCENE | save-once SCENE OUT | hold OUT | "
+                 "save-meshes-once SCENE OUT | autosave-once SCENE\n");
     return 2;
 }

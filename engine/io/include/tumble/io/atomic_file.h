@@ -11,7 +11,8 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
+#include <memory>
+#include <ostream>
 #include <string>
 
 namespace tumble::io {
@@ -21,14 +22,22 @@ public:
     /// Removes stale temporaries of `target`, then opens a new one. A target that is a
     /// symbolic link is written through: the file it points to is replaced, the link stays.
     /// A target that exists keeps its permission bits. Throws std::runtime_error naming the
-    /// target when the temporary cannot be made (no such folder, or no permission).
+    /// target when the temporary cannot be made, with the reason (no such folder, no permission,
+    /// a read-only or full disk).
     explicit AtomicFile(std::filesystem::path target);
     ~AtomicFile();
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
 
     std::ostream& stream() { return out_; }
-    void commit();  ///< throws std::runtime_error when the data could not be written
+    /// Writes the data out and makes it durable, without replacing the target yet; throws
+    /// std::runtime_error naming the target and the reason when it could not be written (a
+    /// full disk). Several files that belong together (a .gltf and its .bin) are each made
+    /// ready first, then committed: a failure leaves every one of them as it was.
+    void ready();
+    /// ready(), then the temporary replaces the target; throws as ready() does, or when the
+    /// target cannot be replaced.
+    void commit();
     /// The temporary being written (for tests and messages).
     const std::filesystem::path& temporaryPath() const { return temp_; }
 
@@ -36,9 +45,16 @@ private:
     std::filesystem::path target_;  // as given (messages name it)
     std::filesystem::path final_;   // the file replaced: target_, symbolic links followed
     std::filesystem::path temp_;
-    std::ofstream out_;
+    class Buffer;  // the temporary's stream buffer (atomic_file.cpp): it keeps why a write failed
+    std::unique_ptr<Buffer> buf_;
+    std::ostream out_{nullptr};
+    bool ready_ = false;
     bool committed_ = false;
 };
+
+/// Why a file could not be written, from its errno, as a user reads it: "no such folder",
+/// "no permission to write there", "the disk is read-only", "the disk is full", ...
+std::string plainReason(int err);
 
 /// Writes `contents` to `path` atomically.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
