@@ -1,14 +1,16 @@
 #include "sweep_run.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
-#include <fcntl.h>
 #include <fstream>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <sstream>
 #include <thread>
-#include <unistd.h>
 
 extern char** environ;
 
@@ -37,19 +39,48 @@ struct StopSignals {
     }
 };
 
+// A variant's stdout and stderr come through a pipe: this process writes them into its log
+// and keeps the last bytes, so that a variant's message is known even when its log cannot
+// be written (a full disk took the message of the variants it stopped).
 struct Running {
     pid_t pid = 0;
     int variant = 0;
     std::chrono::steady_clock::time_point start;
+    int out = -1;  // the pipe's read end (non-blocking)
+    std::ofstream log;
+    std::string tail;  // the last bytes it printed
 };
 
-// Starts a job with stdout and stderr into its log and stdin from /dev/null; 0 on failure.
-pid_t start(const Job& job) {
+// Moves what `r` printed so far into its log and its tail.
+void drain(Running& r) {
+    char buffer[4096];
+    for (;;) {
+        const ssize_t n = ::read(r.out, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return;
+        r.log.write(buffer, n);
+        r.log.flush();
+        r.tail.append(buffer, static_cast<size_t>(n));
+        if (r.tail.size() > 8192) r.tail.erase(0, r.tail.size() - 4096);
+    }
+}
+
+std::string lastLineOf(const std::string& text) {
+    std::istringstream in(text);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+    return last;
+}
+
+// Starts a job with stdout and stderr into the write end `out` of a pipe and stdin from
+// /dev/null; 0 on failure.
+pid_t start(const Job& job, int out) {
     posix_spawn_file_actions_t files;
     posix_spawn_file_actions_init(&files);
     posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&files, 1, job.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&files, 1, 2);
+    posix_spawn_file_actions_adddup2(&files, out, 1);
+    posix_spawn_file_actions_adddup2(&files, out, 2);
     // The child starts with default signal handling and nothing blocked, whatever this
     // process has set.
     posix_spawnattr_t attr;
@@ -85,17 +116,25 @@ bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<
         while (!stopAsked && startMore && next < jobs.size() && static_cast<int>(running.size()) < parallel) {
             const Job& job = jobs[next++];
             const auto t0 = std::chrono::steady_clock::now();
-            const pid_t pid = start(job);
+            int pipe[2] = {-1, -1};
+            const pid_t pid = ::pipe2(pipe, O_CLOEXEC) == 0 ? start(job, pipe[1]) : 0;
+            const int why = errno;
+            if (pipe[1] >= 0) ::close(pipe[1]);
             if (pid == 0) {  // could not start: reported as a failure of its own
-                std::ofstream(job.log) << "tumble sweep: could not start " << job.argv[0] << ": " << std::strerror(errno)
-                                       << "\n";
-                startMore = done({job.variant, 127, 0, 0.0}) && startMore;
+                if (pipe[0] >= 0) ::close(pipe[0]);
+                const std::string message =
+                    "tumble sweep: could not start " + job.argv[0] + ": " + std::strerror(why);
+                std::ofstream(job.log) << message << "\n";
+                startMore = done({job.variant, 127, 0, 0.0, message}) && startMore;
                 continue;
             }
-            running.push_back({pid, job.variant, t0});
+            ::fcntl(pipe[0], F_SETFL, O_NONBLOCK);
+            Running r{pid, job.variant, t0, pipe[0], std::ofstream(job.log, std::ios::trunc), {}};
+            running.push_back(std::move(r));
         }
         bool reaped = false;
         for (std::size_t k = 0; k < running.size();) {
+            drain(running[k]);
             int status = 0;
             const pid_t r = waitpid(running[k].pid, &status, WNOHANG);
             if (r != running[k].pid) {
@@ -107,6 +146,9 @@ bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<
             o.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - running[k].start).count();
             if (WIFEXITED(status)) o.exitCode = WEXITSTATUS(status);
             if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
+            drain(running[k]);  // what it printed last
+            ::close(running[k].out);
+            o.message = lastLineOf(running[k].tail);
             running.erase(running.begin() + static_cast<long>(k));
             reaped = true;
             // A variant stopped by the same Ctrl-C as this process (one process group) is
@@ -123,9 +165,11 @@ bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<
     }
     if (!stopAsked) return true;
     for (const Running& r : running) kill(r.pid, SIGTERM);
-    for (const Running& r : running) {
+    for (Running& r : running) {
         int status = 0;
         waitpid(r.pid, &status, 0);
+        drain(r);
+        ::close(r.out);
     }
     return false;
 }

@@ -24,6 +24,7 @@ struct Outcome {
     int exitCode = -1;  // -1: killed by `signal`
     int signal = 0;
     double wall = 0.0;  // s, from start to exit
+    std::string message;  // the last line it printed (also when its log could not be written)
 };
 
 /// Runs the jobs, at most `parallel` at once; `done` is called (on this thread) as each

@@ -90,9 +90,11 @@ void recordOutcome(const Plan& plan, const fs::path& dir, const Outcome& o) {
         r["status"] = "ok";
     } else {
         r["status"] = o.exitCode == 2 ? "invalid" : "failed";
-        std::string message = lastLine(logFile(plan, dir, o.variant));
+        std::string message = o.message.empty() ? lastLine(logFile(plan, dir, o.variant)) : o.message;
         if (o.signal != 0) message = "killed by signal " + std::to_string(o.signal);
         else if (o.exitCode == 0) message = "its measures were not written";
+        else if (message.empty())
+            message = "exit status " + std::to_string(o.exitCode) + ", it printed nothing";
         r["message"] = message;
     }
     r["exit"] = o.exitCode;
