@@ -41,6 +41,7 @@ Document::~Document() = default;
 void Document::newScene() {
     undo_->clear();
     scene_ = emptyScene();
+    meshStamps_.clear();
     path_.clear();
     selection_.clear();
     selectedJoint_ = -1;
@@ -142,6 +143,8 @@ bool Document::open(const QString& path, QString* error) {
     undo_->clear();
     scene_ = std::move(scene);
     openWarnings_ = warnings;
+    meshStamps_.clear();
+    stampMeshes();
     path_ = sample ? QString() : path;
     selection_.clear();
     selectedJoint_ = -1;
@@ -172,10 +175,21 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
         if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
         const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
         if (copyOf.contains(source)) continue;
+        const QString change = meshFileChange(b);
+        if (change == QLatin1String("changed")) {
+            if (error)
+                *error =
+                    tr("%1: body \"%2\": the mesh file changed on disk since it was loaded, so a copy would "
+                       "not be the mesh the scene shows; open the scene again to load it anew")
+                        .arg(source, QString::fromStdString(b.name));
+            return false;
+        }
         if (!QFileInfo(source).isReadable()) {
             if (error)
-                *error = tr("%1: body \"%2\": the mesh file cannot be read")
-                             .arg(source, QString::fromStdString(b.name));
+                *error = tr("%1: body \"%2\": the mesh file cannot be read%3")
+                             .arg(source, QString::fromStdString(b.name),
+                                  change == QLatin1String("removed") ? tr(" (removed since it was loaded)")
+                                                                     : QString());
             return false;
         }
         QString name = QFileInfo(source).fileName();
@@ -235,6 +249,7 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
     // The document now refers to the copies (the same meshes); not an edit to undo.
     for (std::size_t i = 0; i < scene_.bodies.size(); ++i)
         scene_.bodies[i].shape.file = moved.bodies[i].shape.file;
+    stampMeshes();
     path_ = path;
     undo_->setClean();
     emit fileStateChanged();
@@ -261,6 +276,7 @@ void Document::replaceScene(const SceneDesc& scene, const QString& text, bool un
         undo_->clear();
         applyScene(scene);
     }
+    stampMeshes();
 }
 
 void Document::setBody(int index, const BodyDesc& body, const QString& text, int mergeId) {
@@ -302,7 +318,42 @@ int Document::addBody(const BodyDesc& body, int index) {
     b.name = uniqueName(QString::fromStdString(body.name.empty() ? "body" : body.name)).toStdString();
     undo_->push(
         new InsertBodyCommand(this, index, b, false, tr("Add %1").arg(QString::fromStdString(b.name))));
+    stampMeshes();  // an imported mesh: as read just now
     return index;
+}
+
+Document::FileStamp Document::stampOf(const QString& file) {
+    const QFileInfo info(file);
+    if (!info.exists()) return {};
+    return {info.size(), info.lastModified()};
+}
+
+void Document::stampMeshes() {
+    for (const BodyDesc& b : scene_.bodies) {
+        if (b.shape.type != ShapeType::Mesh || !b.shape.meshData || b.shape.file.empty()) continue;
+        const QString file = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+        if (!meshStamps_.contains(file)) meshStamps_.insert(file, stampOf(file));
+    }
+}
+
+QString Document::meshFileChange(const BodyDesc& b) const {
+    if (b.shape.type != ShapeType::Mesh || !b.shape.meshData || b.shape.file.empty()) return {};
+    const QString file = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+    const auto it = meshStamps_.constFind(file);
+    if (it == meshStamps_.constEnd() || it->size < 0) return {};
+    const FileStamp now = stampOf(file);
+    if (now.size < 0) return QStringLiteral("removed");
+    return now == *it ? QString() : QStringLiteral("changed");
+}
+
+QStringList Document::meshFilesChangedOnDisk() const {
+    QStringList out;
+    for (const BodyDesc& b : scene_.bodies) {
+        const QString change = meshFileChange(b);
+        const QString line = QStringLiteral("%1 (%2)").arg(QString::fromStdString(b.shape.file), change);
+        if (!change.isEmpty() && !out.contains(line)) out << line;
+    }
+    return out;
 }
 
 void Document::removeBodies(QList<int> indices) {

@@ -9,6 +9,8 @@
 
 #include <tumble/scene.h>
 
+#include <QDateTime>
+#include <QHash>
 #include <QList>
 #include <QObject>
 #include <QString>
@@ -49,8 +51,15 @@ public:
     bool saveAs(const QString& path, QString* error);
     /// Saves like saveAs, and copies every mesh file the scene uses into a folder beside it
     /// (<scene name>-meshes/), the scene referring to the copies: the folder and the scene
-    /// travel together. Nothing is left half written: on failure the copies made are removed.
+    /// travel together. Nothing is left half written: every copy and the scene are written
+    /// out before any replaces its old file. Refused, naming the body and the file, when a
+    /// mesh file is gone or changed on disk since it was loaded (a copy would not be the
+    /// mesh the scene shows).
     bool saveWithMeshes(const QString& path, QString* error);
+    /// The mesh files the scene's bodies were loaded from that are gone or changed on disk
+    /// since (another size or modification time), each as "NAME (removed)" or "NAME
+    /// (changed)". The scene keeps the meshes as loaded; a save refers to the files.
+    QStringList meshFilesChangedOnDisk() const;
     /// The scene file, empty when the scene has never been saved (new or a sample).
     const QString& filePath() const { return path_; }
     /// Makes `path` the document's file without reading or writing it (a recovered scene
@@ -127,6 +136,17 @@ private:
     SceneDesc scene_;
     QString path_;
     QStringList openWarnings_;
+    // Each loaded mesh file's size and modification time when it was read (absolute path).
+    struct FileStamp {
+        qint64 size = -1;
+        QDateTime modified;
+        bool operator==(const FileStamp&) const = default;
+    };
+    QHash<QString, FileStamp> meshStamps_;
+    void stampMeshes();  // stamps the mesh files of bodies with a mesh not stamped yet
+    static FileStamp stampOf(const QString& file);
+    // "(removed)", "(changed)" or "" for the body's mesh file.
+    QString meshFileChange(const BodyDesc& body) const;
     QList<int> selection_;
     int selectedJoint_ = -1;
     QUndoStack* undo_ = nullptr;

@@ -146,7 +146,7 @@ void MainWindow::buildMenus() {
         samples->addAction(QString(name), this, [this, path] { openPath(path); });
     }
     file->addSeparator();
-    file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save);
+    file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save)->setObjectName("fileSave");
     file->addAction(tr("Save &As..."), QKeySequence::SaveAs, this, &MainWindow::saveAsDialog);
     file->addAction(tr("Save with &Meshes..."), this, &MainWindow::saveWithMeshesDialog);
     file->addAction(tr("Re&vert"), this, &MainWindow::revert);
@@ -333,7 +333,22 @@ bool MainWindow::save() {
     }
     autosave_->remove();
     statusBar()->showMessage(tr("Saved %1").arg(doc_->filePath()), 3000);
+    warnOfChangedMeshes();
     return true;
+}
+
+void MainWindow::warnOfChangedMeshes() {
+    const QStringList changed = doc_->meshFilesChangedOnDisk();
+    if (changed.isEmpty()) return;
+    QMessageBox::warning(
+        this, tr("Save"),
+        tr("%1 was saved, but these mesh files are gone or changed on disk since the scene read "
+           "them:\n\n%2\n\n"
+           "While it is open the scene keeps the meshes as it read them. The saved file refers to the files, "
+           "so opened again it reads them as they are now (a removed one will be missing). Put the files "
+           "back "
+           "to keep the meshes you see.")
+            .arg(QFileInfo(doc_->filePath()).fileName(), changed.join('\n')));
 }
 
 QString MainWindow::askSceneFile(const QString& title) {
@@ -358,6 +373,7 @@ bool MainWindow::saveAsDialog() {
     addRecent(path);
     autosave_->remove();
     updateTitle();
+    warnOfChangedMeshes();
     return true;
 }
 

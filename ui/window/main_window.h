@@ -125,6 +125,8 @@ private:
     void openDialog();
     bool save();
     bool saveAsDialog();
+    /// After a save: says which mesh files are gone or changed on disk since they were read.
+    void warnOfChangedMeshes();
     /// A scene file to save to, asked for (empty: cancelled); ".json" added when none is typed.
     QString askSceneFile(const QString& title);
     void revert();

@@ -420,6 +420,54 @@ private slots:
         QVERIFY(doc.openWarnings().isEmpty());
     }
 
+    // Issue 46 item 3: a mesh file removed or changed while its scene is open. The scene keeps
+    // the mesh as it read it; Save says so (meshFilesChangedOnDisk, which the window shows
+    // after a save) and keeps the reference; Save with Meshes refuses rather than copy a
+    // mesh that is not the one shown, and leaves nothing behind.
+    void aMeshFileRemovedOrChangedWhileOpen() {
+        QTemporaryDir root;
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", root.filePath("box.stl")));
+        QVERIFY(QFile::copy(kMeshes + "/l-prism.obj", root.filePath("prism.obj")));
+        writeMeshScene(root.filePath("scene.json"), {"box.stl", "prism.obj"});
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(root.filePath("scene.json"), &error), qPrintable(error));
+        QVERIFY(doc.meshFilesChangedOnDisk().isEmpty());
+        const auto loaded = doc.body(1).shape.meshData;
+        QVERIFY(loaded);
+
+        QVERIFY(QFile::remove(root.filePath("box.stl")));
+        {
+            QFile changed(root.filePath("prism.obj"));
+            QVERIFY(changed.open(QIODevice::Append));
+            changed.write("# changed\n");
+        }
+        const QStringList changes = doc.meshFilesChangedOnDisk();
+        QCOMPARE(changes.size(), 2);
+        QVERIFY2(changes[0].endsWith("box.stl (removed)") && changes[1].endsWith("prism.obj (changed)"),
+                 qPrintable(changes.join(", ")));
+        QCOMPARE(doc.body(1).shape.meshData, loaded);  // the scene keeps what it read
+
+        QVERIFY2(doc.saveAs(root.filePath("scene.json"), &error), qPrintable(error));
+        QVERIFY(readAll(root.filePath("scene.json")).contains("box.stl"));
+        QCOMPARE(doc.meshFilesChangedOnDisk(), changes);  // still so after the save
+
+        const QString copy = root.filePath("copy.json");
+        QVERIFY(!doc.saveWithMeshes(copy, &error));
+        QVERIFY2(error.contains("box.stl") && error.contains("removed since it was loaded"),
+                 qPrintable(error));
+        QVERIFY(QFile::copy(kMeshes + "/box.stl", root.filePath("box.stl")));  // back, but newer
+        QVERIFY(!doc.saveWithMeshes(copy, &error));
+        QVERIFY2(error.contains("changed on disk since it was loaded"), qPrintable(error));
+        QVERIFY(!QFileInfo::exists(copy));
+        QVERIFY(!QFileInfo::exists(root.filePath("copy-meshes")));
+
+        // Opened again, the scene reads the files as they are now: nothing changed since.
+        QVERIFY2(doc.open(root.filePath("scene.json"), &error), qPrintable(error));
+        QVERIFY(doc.meshFilesChangedOnDisk().isEmpty());
+        QVERIFY2(doc.saveWithMeshes(copy, &error), qPrintable(error));
+    }
+
 private:
     const QString kMeshes = QStringLiteral(TUMBLE_SCENES_DIR "/../meshes");
 
