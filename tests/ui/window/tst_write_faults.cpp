@@ -420,6 +420,7 @@ private slots:
             QVERIFY2(!r.crashed, qPrintable(r.out));
             QVERIFY2(r.code != 0, qPrintable(name + ": a write larger than the disk succeeded"));
             QVERIFY2(r.out.contains("disk is full") && namesTheFile(name, r.out), qPrintable(r.out));
+            qInfo("full: exit %d: %s", r.code, qPrintable(r.out.trimmed().split('\n').last()));
             const QString wrong = problems(name, dir, false, &*before);
             QVERIFY2(wrong.isEmpty(), qPrintable(wrong));
         }
@@ -434,6 +435,7 @@ private slots:
             QVERIFY2(!r.crashed, qPrintable(r.out));
             QVERIFY2(r.code != 0, qPrintable(name + ": a write to a read-only disk succeeded"));
             QVERIFY2(r.out.contains("read-only") && namesTheFile(name, r.out), qPrintable(r.out));
+            qInfo("read-only: exit %d: %s", r.code, qPrintable(r.out.trimmed().split('\n').last()));
             const QString wrong = problems(name, dir, false, &*before);
             QVERIFY2(wrong.isEmpty(), qPrintable(wrong));
         }
@@ -448,6 +450,8 @@ private slots:
                 w, dir, true, -1, [dir] { QDir(dir).removeRecursively(); }, at);
             QVERIFY2(!r.crashed && r.out != "hung", qPrintable(QStringLiteral("at %1 ms: ").arg(at) + r.out));
             if (r.code != 0) QVERIFY2(namesTheFile(name, r.out) || r.out.contains(dir), qPrintable(r.out));
+            qInfo("removed at %d ms: exit %d: %s", at, r.code,
+                  qPrintable(r.code ? r.out.trimmed().split('\n').last() : QStringLiteral("written")));
             const QString wrong = problems(name, dir, false, nullptr);
             QVERIFY2(wrong.isEmpty(), qPrintable(QStringLiteral("removed at %1 ms: ").arg(at) + wrong));
         }
