@@ -23,7 +23,7 @@ PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libassimp-dev libqhull-dev
   assimp-testmodels
   libbullet-dev libode-dev libmujoco-dev
-  xvfb xauth
+  xvfb xauth xdotool
   nodejs npm
   ffmpeg
   gnuplot-nox
@@ -37,6 +37,7 @@ PACKAGES=(
 # work-precision diagrams as PNGs (without it, only the .gp scripts are written). Blender
 # reads the glTF exports in the blender/roundtrip test (its importer needs numpy). slurm-wlm
 # and munge: cli/sweep_slurm starts a one-node Slurm cluster for `tumble sweep --slurm`.
+# xdotool answers the real editor's recovery prompt in ui/recovery_e2e.
 
 # The Khronos glTF validator for the export tests (tests/io/gltf_validator.h), from npm into
 # the build folder; its 2.x releases are all "2.0.0-dev.3.N", which npm's "@2" does not match.

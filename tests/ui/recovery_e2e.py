@@ -1,0 +1,241 @@
+#!/usr/bin/env python3
+"""Crash recovery with the real program, as a user meets it (issue 46 item 4).
+
+An editor (tests' crash child: the editor's main window) opens a scene, makes an edit,
+autosaves and is killed with SIGKILL. Then the real `tumble` is started the way a user
+starts it, and its recovery prompt is answered with the keyboard (xdotool, under the
+display ctest runs in):
+
+  a file on the command line   `tumble b.json` after a.json's editor was killed: Recover
+                               opens a.json, unsaved, in a second editor; b.json's editor
+                               keeps b.json; Ctrl+S there writes a.json; b.json's bytes never
+                               change.
+  no file                      `tumble` after an untitled editor was killed: Recover brings
+                               the work back into this window, untitled and unsaved.
+  Later, then Recover          Later keeps the autosave; the next start offers it again.
+  two editors                  a second editor started while the first runs offers nothing
+                               (the first's autosave is not a leftover) and each keeps its own.
+
+Usage: recovery_e2e.py TUMBLE CRASH_CHILD SCENE
+"""
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+TUMBLE, CHILD, SCENE = sys.argv[1:4]
+DEADLINE = 40.0
+
+
+def fail(message):
+    print("FAIL:", message)
+    sys.exit(1)
+
+
+def wait_for(what, check, timeout=DEADLINE, home=None):
+    end = time.time() + timeout
+    while time.time() < end:
+        value = check()
+        if value:
+            return value
+        time.sleep(0.1)
+    fail("timed out waiting for " + what + ("; windows: %s" % sorted(home.windows().values()) if home else ""))
+
+
+def xdotool(*args):
+    r = subprocess.run(["xdotool", *args], capture_output=True, text=True, timeout=30)
+    return r.stdout.split() if r.returncode == 0 else []
+
+
+def window_names(pids):
+    """The windows of the processes `pids` (other tests' windows on the same display are not
+    ours to look at), by id."""
+    names = {}
+    for pid in pids:
+        for w in xdotool("search", "--pid", str(pid), "--name", "."):
+            r = subprocess.run(["xdotool", "getwindowname", w], capture_output=True, text=True, timeout=30)
+            if r.returncode == 0:
+                names[w] = r.stdout.strip()
+    return names
+
+
+def press(window, keys):
+    if subprocess.run(["xdotool", "windowfocus", "--sync", window, "key", keys], timeout=30).returncode != 0:
+        fail("xdotool could not press " + keys)
+
+
+def digest(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+class Home:
+    """A user's home of its own: the editor's data (autosaves) and settings. Its editors are
+    the processes with its data folder in their environment (the ones it started, and the
+    ones those started: tumble --recover)."""
+
+    def __init__(self, root):
+        self.env = dict(os.environ)
+        self.data = os.path.join(root, "data")
+        self.env["XDG_DATA_HOME"] = self.data
+        self.env["XDG_CONFIG_HOME"] = os.path.join(root, "config")
+        self.autosaves = os.path.join(self.data, "Tumble", "Tumble", "autosave")
+
+    def leftovers(self):
+        if not os.path.isdir(self.autosaves):
+            return []
+        return sorted(f for f in os.listdir(self.autosaves) if f.endswith(".autosave.json"))
+
+    def pids(self):
+        mark = ("XDG_DATA_HOME=" + self.data).encode()
+        found = []
+        for entry in os.listdir("/proc"):
+            if not entry.isdigit():
+                continue
+            try:
+                with open("/proc/%s/environ" % entry, "rb") as f:
+                    if mark in f.read().split(b"\0"):
+                        found.append(int(entry))
+            except OSError:
+                pass
+        return found
+
+    def windows(self):
+        return window_names(self.pids())
+
+    def named(self, name):
+        return [w for w, n in self.windows().items() if n == name]
+
+    def editor_titles(self):
+        return sorted(n for n in self.windows().values() if n.endswith("- Tumble"))
+
+    def kill_after_autosave(self, scene):
+        child = subprocess.Popen([CHILD, "autosave", scene], env=self.env, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, text=True)
+        said = ""
+        for line in child.stdout:  # (Qt may warn first)
+            said += line
+            if line.strip() == "autosaved":
+                break
+        else:
+            child.kill()
+            fail("the crash child did not autosave: " + said)
+        child.send_signal(signal.SIGKILL)
+        child.wait()
+
+    def start(self, *args):
+        return subprocess.Popen([TUMBLE, *args], env=self.env, stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL)
+
+    def close_all(self):
+        for pid in self.pids():
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        wait_for("the editors to go", lambda: not self.pids())
+
+
+def prompt(home):
+    return wait_for("the recovery prompt", lambda: home.named("Recover"))[0]
+
+
+def a_file_on_the_command_line(root):
+    home = Home(os.path.join(root, "home1"))
+    a, b = os.path.join(root, "a.json"), os.path.join(root, "b.json")
+    shutil.copy(SCENE, a)
+    shutil.copy(SCENE, b)
+    a_before, b_before = digest(a), digest(b)
+    home.kill_after_autosave(a)
+    if len(home.leftovers()) != 1:
+        fail("one autosave expected, found %s" % home.leftovers())
+    home.start(b)
+    press(prompt(home), "Return")  # Recover is the default button
+    wait_for("a.json in a second editor", lambda: home.named("a.json* - Tumble"))
+    b_window = wait_for("b.json's editor", lambda: home.named("b.json - Tumble"))[0]
+    if digest(a) != a_before or digest(b) != b_before:
+        fail("a file changed before anything was saved")
+    # Save in the recovered editor: a.json gets the killed editor's edit; b.json stays.
+    press(home.named("a.json* - Tumble")[0], "ctrl+s")
+    wait_for("a.json saved", lambda: home.named("a.json - Tumble"))
+    with open(a) as f:
+        if json.load(f)["bodies"][1]["restitution"] != 0.123:
+            fail("a.json does not hold the recovered edit")
+    if digest(b) != b_before:
+        fail("b.json changed")
+    if home.named("b.json - Tumble") != [b_window]:
+        fail("b.json's editor changed its title")
+    home.close_all()
+    print("ok: a file on the command line")
+
+
+def no_file(root):
+    home = Home(os.path.join(root, "home2"))
+    home.kill_after_autosave(":/scenes/bouncing-ball.json")  # a sample: untitled
+    editor = home.start()
+    press(prompt(home), "Return")
+    wait_for("the recovered work in this window", lambda: home.named("untitled* - Tumble"), home=home)
+    time.sleep(1.0)  # no second editor comes
+    if home.editor_titles() != ["untitled* - Tumble"]:
+        fail("expected the one window, found %s" % home.editor_titles())
+    if editor.poll() is not None:
+        fail("the editor ended")
+    home.close_all()
+    print("ok: no file")
+
+
+def later_then_recover(root):
+    home = Home(os.path.join(root, "home3"))
+    a = os.path.join(root, "later.json")
+    shutil.copy(SCENE, a)
+    home.kill_after_autosave(a)
+    left = home.leftovers()
+    home.start()
+    press(prompt(home), "Escape")  # Later
+    wait_for("the editor", home.editor_titles)
+    if not set(left) <= set(home.leftovers()):
+        fail("Later did not keep the autosave")
+    home.close_all()
+    home.start(a)
+    press(prompt(home), "Return")  # offered again: Recover, into this window (the same file)
+    wait_for("later.json recovered", lambda: home.named("later.json* - Tumble"))
+    if home.editor_titles() != ["later.json* - Tumble"]:
+        fail("expected the one window, found %s" % home.editor_titles())
+    home.close_all()
+    print("ok: Later, then Recover")
+
+
+def two_editors(root):
+    home = Home(os.path.join(root, "home4"))
+    a, b = os.path.join(root, "one.json"), os.path.join(root, "two.json")
+    shutil.copy(SCENE, a)
+    shutil.copy(SCENE, b)
+    home.start(a)
+    wait_for("the first editor", lambda: home.named("one.json - Tumble"))
+    home.start(b)
+    wait_for("the second editor", lambda: home.named("two.json - Tumble"))
+    time.sleep(1.0)
+    if home.named("Recover"):
+        fail("a running editor's autosave was offered for recovery")
+    home.close_all()
+    print("ok: two editors")
+
+
+def main():
+    if not os.environ.get("DISPLAY"):
+        fail("needs a display (run under xvfb-run)")
+    if not shutil.which("xdotool"):
+        fail("needs xdotool (./dev.sh installs it)")
+    with tempfile.TemporaryDirectory(prefix="tumble-recovery-") as root:
+        for case in (a_file_on_the_command_line, no_file, later_then_recover, two_editors):
+            case(root)
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
