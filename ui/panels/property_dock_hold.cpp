@@ -38,12 +38,7 @@ bool PropertyDock::Impl::applyPart(const QString& key, int part, const QString& 
     const Change whole = [parts](BodyDesc& b, int index) {
         for (const auto& p : parts) p.second(b, index);
     };
-    std::vector<BodyDesc> bodies;
-    for (int i : sel) {
-        BodyDesc b = doc->body(i);
-        whole(b, i);
-        bodies.push_back(b);
-    }
+    const std::vector<BodyDesc> bodies = changedBodies(whole);
     const QString reason = refusal(key, bodies);
     const auto mark = markHeld.value(key);
     if (!reason.isEmpty()) {

@@ -273,6 +273,17 @@ struct PropertyDock::Impl {
                1;
     }
 
+    // The selected bodies with `change` made, in selection order.
+    std::vector<BodyDesc> changedBodies(const Change& change) const {
+        std::vector<BodyDesc> bodies;
+        for (int i : doc->selection()) {
+            BodyDesc b = doc->body(i);
+            change(b, i);
+            bodies.push_back(b);
+        }
+        return bodies;
+    }
+
     // Why the selected bodies, changed into `bodies`, would be refused ("" if they would
     // not): the engine's message without the file's path, naming the body when several are
     // selected. Only the changed bodies are checked: other bodies' problems are not this
@@ -327,12 +338,7 @@ struct PropertyDock::Impl {
             stack->undo();  // the previous step of this scrub: replaced below
             undone = true;
         }
-        std::vector<BodyDesc> bodies;
-        for (int i : sel) {
-            BodyDesc b = doc->body(i);
-            change(b, i);
-            bodies.push_back(b);
-        }
+        const std::vector<BodyDesc> bodies = changedBodies(change);
         const QString error = refusal(key, bodies);
         if (!error.isEmpty()) {
             if (undone) stack->redo();
