@@ -39,7 +39,10 @@ const char* kHelp =
 
 Options for --headless:
   --duration S        simulated seconds (overrides settings.duration)
-  --dt S              the step, seconds (overrides settings.dt)
+  --dt S              the longest step, seconds (overrides settings.dt); each frame
+                      (1/frame_rate) is taken in the fewest equal steps no longer than
+                      dt, so a dt longer than a frame steps once a frame (a note says
+                      so, and stdout's step: is the step used)
   --integrator NAME   overrides settings.integrator; see --list-integrators
   --impacts WHEN      exact or end-of-step (overrides settings.impacts): impacts at their
                       moment, or at the end of the step that finds them (faster for piles)
@@ -71,7 +74,8 @@ Exit status: 0 success; 2 invalid input (the message names the file and the fiel
 1 any other failure, such as a state that became non-finite (the message names the
 body and the time). On failure no output file is written.
 
-A successful run prints key: value lines: bodies, integrator, dt, frames, steps,
+A successful run prints key: value lines: bodies, integrator, dt, step (the step used
+between frames: see --dt), frames, steps,
 simulated_time, wall_seconds; energy_start and energy_end (kinetic + potential, J) and
 where energy went: energy_lost_contacts, energy_lost_friction (taken by impulses),
 energy_position_correction (potential energy of placing bodies in contact) and
@@ -239,7 +243,11 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kInvalid;
     }
     if (!o.quiet) {
-        for (const std::string& note : world->model().notes) err << "tumble: note: " << note << "\n";
+        for (std::string note : world->model().notes) {
+            if (o.dt && note.rfind("settings.dt ", 0) == 0)
+                note.replace(0, 11, "--dt");  // the flag that set it
+            err << "tumble: note: " << note << "\n";
+        }
     }
 
     std::unique_ptr<io::TrajectoryWriter> trajectory;
@@ -315,6 +323,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         out << "bodies: " << m.bodies.size() << "\n"
             << "integrator: " << m.integrator->name << "\n"
             << "dt: " << number(m.settings.dt) << "\n"
+            << "step: " << number(stepUsed(m.settings)) << "\n"
             << "frames: " << result.frames << "\n"
             << "steps: " << result.steps << "\n"
             << "simulated_time: " << number(world->state().time) << "\n"

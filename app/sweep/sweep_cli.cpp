@@ -9,12 +9,16 @@
 #include "sweep_summary.h"
 
 #include <tumble/io/atomic_file.h>
+#include <tumble/scene.h>
 
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <ostream>
 #include <thread>
-#include <unistd.h>
 
 namespace tumble::sweep {
 
@@ -168,6 +172,33 @@ int finish(const Plan& plan, const fs::path& dir, const std::vector<std::string>
     return t.failed > 0 || t.notRun > 0 ? kFailed : kOk;
 }
 
+// The variants whose step is not their dt (a dt longer than a frame steps once a frame:
+// varying dt past it changes nothing), a line each, before anything runs.
+void noteSteps(const Plan& plan, const fs::path& dir, std::ostream& err) {
+    int shown = 0, more = 0;
+    for (int k = 0; k < plan.count; ++k) {
+        Settings s;
+        try {
+            std::ifstream in(variantFile(plan, dir, k));
+            const auto settings = nlohmann::json::parse(in).value("settings", nlohmann::json::object());
+            s.dt = settings.value("dt", s.dt);
+            s.frameRate = settings.value("frame_rate", s.frameRate);
+        } catch (const std::exception&) {
+            continue;  // the variant's own run says what is wrong with it
+        }
+        if (!(s.dt > 0.0) || !(s.frameRate > 0.0)) continue;
+        const std::string note = stepNote(s);
+        if (note.empty()) continue;
+        if (shown < 5) {
+            err << "tumble sweep: note: " << plan.name(k) << ": " << note << "\n";
+            ++shown;
+        } else {
+            ++more;
+        }
+    }
+    if (more > 0) err << "tumble sweep: note: and " << more << " more variants whose step is not their dt\n";
+}
+
 int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
     const fs::path dir = o.out;
     const Plan plan = makePlan(o.scene, o.vary);
@@ -189,6 +220,7 @@ int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
         if (fs::exists(resultFile(plan, dir, k), ec)) continue;
         jobs.push_back(variantJob(plan, dir, k, o.trajectories, exe));
     }
+    noteSteps(plan, dir, err);
     const int parallel = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     Progress progress(err, plan.count, plan.count - static_cast<int>(jobs.size()));
     // A result that cannot be written (a full disk, the folder gone) stops the sweep: nothing

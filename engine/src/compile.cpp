@@ -357,6 +357,7 @@ Model compile(const SceneDesc& scene) {
 
     Model m;
     m.settings = scene.settings;
+    if (std::string note = stepNote(scene.settings); !note.empty()) m.notes.push_back(std::move(note));
     m.integrator =
         scene.settings.integrator.empty() ? &defaultIntegrator() : findIntegrator(scene.settings.integrator);
     m.bodies.reserve(scene.bodies.size());

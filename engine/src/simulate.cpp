@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace tumble {
 
@@ -14,12 +16,18 @@ int frameCount(const Settings& s) {
 
 namespace {
 
+// The fewest equal steps no longer than dt over `span`. The slack keeps a span that is a
+// whole number of dt up to a part in a billion at that number: a dt typed as 0.0083333333
+// (a frame of 1/60 s in 2) is 4e-10 short of 1/120 and took 3 steps with a slack of 1e-12.
+long stepsOver(double span, double dt) {
+    return std::max(1L, static_cast<long>(std::ceil(span / dt * (1.0 - 1e-9))));
+}
+
 // Steps from the world's time to `end` in n equal steps, n the fewest with h <= dt.
 long advanceTo(World& world, double end, double dt) {
     const double span = end - world.state().time;
     if (!(span > 0.0)) return 0;
-    // The small slack keeps a span that is a whole number of dt, up to rounding, at that number.
-    const long n = std::max(1L, static_cast<long>(std::ceil(span / dt * (1.0 - 1e-12))));
+    const long n = stepsOver(span, dt);
     const double start = world.state().time;
     for (long k = 1; k <= n; ++k) {
         world.step((start + span * static_cast<double>(k) / static_cast<double>(n)) -
@@ -30,6 +38,41 @@ long advanceTo(World& world, double end, double dt) {
 }
 
 }  // namespace
+
+long stepsPerFrame(const Settings& s) {
+    return stepsOver(1.0 / s.frameRate, s.dt);
+}
+
+double stepUsed(const Settings& s) {
+    return 1.0 / s.frameRate / static_cast<double>(stepsPerFrame(s));
+}
+
+namespace {
+
+std::string shortText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+}
+
+}  // namespace
+
+std::string stepNote(const Settings& s) {
+    const double h = stepUsed(s);
+    if (std::abs(h - s.dt) <= 1e-6 * s.dt) return {};  // (a dt typed to 6 digits is that dt)
+    const double frame = 1.0 / s.frameRate;
+    const std::string frameText =
+        "a frame (" + shortText(frame) + " s at frame_rate " + shortText(s.frameRate) + ")";
+    if (s.dt > frame) {
+        return "settings.dt " + shortText(s.dt) + " s is longer than " + frameText +
+               ": each frame is one step of " + shortText(h) + " s, not " + shortText(s.dt) +
+               "; for steps of " + shortText(s.dt) + " s set frame_rate to " + shortText(1.0 / s.dt) +
+               " or less";
+    }
+    const long n = stepsPerFrame(s);
+    return "settings.dt " + shortText(s.dt) + " s does not divide " + frameText + ": each frame is " +
+           std::to_string(n) + " equal steps of " + shortText(h) + " s, the fewest no longer than dt";
+}
 
 long advanceFrame(World& world, int frame) {
     const Settings& s = world.model().settings;

@@ -22,20 +22,26 @@ private slots:
         QTest::addColumn<int>("steps");
         QTest::addColumn<double>("time");
         QTest::addColumn<QString>("integrator");
+        QTest::addColumn<QString>("note");  // on stderr, when the step used is not dt
         const QString def = tumble::defaultIntegrator().name;
-        QTest::newRow("none") << QStringList() << 11 << 100 << 0.5 << def;
+        QTest::newRow("none") << QStringList() << 11 << 100 << 0.5 << def << "";
         QTest::newRow("duration 1, dt 0.01, frame rate 10")
             << QStringList({"--duration", "1", "--dt", "0.01", "--frame-rate", "10"}) << 11 << 100 << 1.0
-            << def;
-        QTest::newRow("duration 2") << QStringList({"--duration", "2"}) << 41 << 400 << 2.0 << def;
-        QTest::newRow("duration 0") << QStringList({"--duration", "0"}) << 1 << 0 << 0.0 << def;
-        // 0.05 s frame intervals need 3 steps of at most 0.02 s each.
-        QTest::newRow("dt 0.02") << QStringList({"--dt", "0.02"}) << 11 << 30 << 0.5 << def;
-        QTest::newRow("dt=0.01") << QStringList({"--dt=0.01"}) << 11 << 50 << 0.5 << def;
-        QTest::newRow("frame rate 4") << QStringList({"--frame-rate", "4"}) << 3 << 100 << 0.5 << def;
-        QTest::newRow("integrator rk4") << QStringList({"--integrator", "rk4"}) << 11 << 100 << 0.5 << "rk4";
+            << def << "";
+        QTest::newRow("duration 2") << QStringList({"--duration", "2"}) << 41 << 400 << 2.0 << def << "";
+        QTest::newRow("duration 0") << QStringList({"--duration", "0"}) << 1 << 0 << 0.0 << def << "";
+        // 0.05 s frame intervals need 3 steps of at most 0.02 s each: the note says so.
+        QTest::newRow("dt 0.02")
+            << QStringList({"--dt", "0.02"}) << 11 << 30 << 0.5 << def
+            << "tumble: note: --dt 0.02 s does not divide a frame (0.05 s at frame_rate 20): "
+               "each frame is 3 equal steps of 0.0166667 s, the fewest no longer than dt\n";
+        QTest::newRow("dt=0.01") << QStringList({"--dt=0.01"}) << 11 << 50 << 0.5 << def << "";
+        QTest::newRow("frame rate 4") << QStringList({"--frame-rate", "4"}) << 3 << 100 << 0.5 << def << "";
+        QTest::newRow("integrator rk4") << QStringList({"--integrator", "rk4"}) << 11 << 100 << 0.5 << "rk4"
+                                        << "";
         QTest::newRow("integrator euler, dt 0.05")
-            << QStringList({"--integrator", "euler", "--dt", "0.05"}) << 11 << 10 << 0.5 << "euler";
+            << QStringList({"--integrator", "euler", "--dt", "0.05"}) << 11 << 10 << 0.5 << "euler"
+            << "";
     }
 
     void overrides() {
@@ -44,15 +50,44 @@ private slots:
         QFETCH(int, steps);
         QFETCH(double, time);
         QFETCH(QString, integrator);
+        QFETCH(QString, note);
         RUN(r, QStringList({"--headless", "box.json", "--out", "traj.csv"}) + args);
         QCOMPARE(r.code, 0);
-        QCOMPARE(r.err, QString());
+        QCOMPARE(r.err, note);
         const QMap<QString, QString> kv = report(r.out);
         QCOMPARE(kv.value("steps"), QString::number(steps));
         QCOMPARE(kv.value("frames"), QString::number(frames));
         QCOMPARE(kv.value("simulated_time").toDouble(), time);
         QCOMPARE(kv.value("integrator"), integrator);
         QCOMPARE(lines(QString::fromUtf8(read("traj.csv"))).size(), 1 + 2 * frames);
+    }
+
+    // Issue 47 item 1: a dt longer than a frame steps once a frame. It did so without a word
+    // (stdout said dt: 0.0333 for a run at 1/60 s). Now one note names both, stdout's step:
+    // is the step used, and the run is the 1/60 s run; a frame rate that fits gives dt.
+    void theStepUsedIsTheStepSaid() {
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/bouncing-ball.json");  // 60 frames/s
+        RUN(capped, {"--headless", scene, "--duration", "1", "--dt", "0.0333"});
+        RUN(frame, {"--headless", scene, "--duration", "1", "--dt", "0.016666666666666666"});
+        RUN(fitting,
+            {"--headless", scene, "--duration", "1", "--dt", "0.033333333333333333", "--frame-rate", "30"});
+        QCOMPARE(capped.code, 0);
+        QCOMPARE(capped.err,
+                 QString("tumble: note: --dt 0.0333 s is longer than a frame (0.0166667 s at frame_rate "
+                         "60): each frame is one step of 0.0166667 s, not 0.0333; for steps of 0.0333 s "
+                         "set frame_rate to 30.03 or less\n"));
+        const auto c = report(capped.out), f = report(frame.out), fit = report(fitting.out);
+        QCOMPARE(c.value("dt"), QString("0.033300000000000003"));
+        QCOMPARE(c.value("step").toDouble(), 1.0 / 60.0);
+        QCOMPARE(c.value("steps"), QString("60"));
+        QCOMPARE(c.value("state_hash"), f.value("state_hash"));  // the same run as at 1/60 s
+        QCOMPARE(frame.err, QString());
+        QCOMPARE(fitting.err, QString());
+        QCOMPARE(fit.value("step").toDouble(), 1.0 / 30.0);
+        QVERIFY(fit.value("state_hash") != c.value("state_hash"));
+        // --quiet says nothing.
+        RUN(quiet, {"--headless", scene, "--duration", "1", "--dt", "0.0333", "--quiet"});
+        QCOMPARE(quiet.err, QString());
     }
 
     // Each integrator gives its own result, and the same one on every run.

@@ -54,6 +54,19 @@ private slots:
     }
     void cleanup() { dir_.reset(); }
 
+    // Issue 47 item 1: varying dt past a frame (1/240 s here) changes nothing, since each
+    // frame is one step; the sweep says so for each such variant before anything runs.
+    void aStepCappedByTheFrameRateIsNoted() {
+        RUN(r, {"sweep", "drop.json", "--vary", "settings.dt=0.001,0.01", "--out", "dt"});
+        QCOMPARE(r.code, 0);
+        QVERIFY2(r.err.contains(
+                     "tumble sweep: note: 0001: settings.dt 0.01 s is longer than a frame (0.00416667 s "
+                     "at frame_rate 240): each frame is one step of 0.00416667 s"),
+                 qPrintable(r.err));
+        QVERIFY2(r.err.contains("tumble sweep: note: 0000: settings.dt 0.001 s does not divide a frame"),
+                 qPrintable(r.err));
+    }
+
     // The ball's first rebound rises e² m (its bottom), e swept over five values: the
     // impact at its moment sends it back at e times its landing speed, and the step
     // (constant gravity, Strang splitting) is exact on the parabola. The apex is read from

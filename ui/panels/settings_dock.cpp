@@ -92,7 +92,15 @@ SettingsDock::SettingsDock(Document* doc, QWidget* parent)
     step_ = newSpin(QStringLiteral("step"), 0.0, 10.0, 6, 0.0001, QStringLiteral(" s"));
     step_->setToolTip(tr("The integration time step (s)"));
     stepMessage_ = newMessage(QStringLiteral("stepMessage"));
-    form->addRow(tr("&Step"), withMessage(step_, stepMessage_));
+    QWidget* stepRow = withMessage(step_, stepMessage_);
+    // What the step is when it is not dt (a dt longer than a frame steps once a frame).
+    stepNote_ = new QLabel;
+    stepNote_->setObjectName(QStringLiteral("step.note"));
+    stepNote_->setWordWrap(true);
+    stepNote_->setStyleSheet(QStringLiteral("color: palette(dark)"));
+    stepNote_->hide();
+    stepRow->layout()->addWidget(stepNote_);
+    form->addRow(tr("&Step"), stepRow);
 
     duration_ = newSpin(QStringLiteral("duration"), 0.0, 1e7, 3, 0.5, QStringLiteral(" s"));
     duration_->setToolTip(tr("How long the simulation runs (s)"));
@@ -292,6 +300,9 @@ void SettingsDock::refresh() {
         const QSignalBlocker block(step_);
         step_->setValue(s.dt);
     }
+    const std::string note = s.dt > 0.0 && s.frameRate > 0.0 ? stepNote(s) : std::string();
+    stepNote_->setText(QString::fromStdString(note));
+    stepNote_->setVisible(!note.empty());
     {
         const QSignalBlocker block(duration_);
         duration_->setValue(s.duration);

@@ -69,6 +69,7 @@ private:
     QComboBox* impacts_;
     QLabel* gravityMessage_;
     QLabel* stepMessage_;
+    QLabel* stepNote_;  // the step used, when it is not dt
     QLabel* durationMessage_;
     QLabel* integratorMessage_;
     QLabel* frameRateMessage_;

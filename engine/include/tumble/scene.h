@@ -110,6 +110,18 @@ struct Settings {
     bool operator==(const Settings&) const = default;
 };
 
+/// The step a run takes between two frames (where no force switches on or off): a frame,
+/// 1 / frame_rate, split into the fewest equal steps no longer than dt. It is dt when dt
+/// divides a frame, a little shorter otherwise, and a whole frame when dt is longer than
+/// one: the step is capped by the frame rate. (engine/src/simulate.cpp)
+double stepUsed(const Settings& settings);
+/// How many steps a frame takes (stepUsed's divisor).
+long stepsPerFrame(const Settings& settings);
+/// One line saying what the step is when it is not dt ("" when it is), for the command
+/// line's notes, a sweep and the editor's settings: "settings.dt 0.0333 s is longer than a
+/// frame (1/60 s): each frame is one step of 0.0166667 s; ...".
+std::string stepNote(const Settings& settings);
+
 /// A joint between two bodies, or a body and the world (issue 20; the design is in
 /// docs/architecture.md "Joints", the file's `joints` in docs/scene-format.md). Built so
 /// far: ball (the anchors held together), distance (a rigid rod between the anchors), rope

@@ -71,6 +71,25 @@ private slots:
         QVERIFY(!field<QSpinBox>(dock, "iterations")->suffix().isEmpty());
     }
 
+    // Issue 47 item 1: a dt longer than a frame steps once a frame; the dock says so under
+    // the step, with the step used, and says nothing when dt divides a frame.
+    void theStepUsedIsShownWhenItIsNotDt() {
+        Document doc;
+        SettingsDock dock(&doc, nullptr);
+        auto* note = field<QLabel>(dock, "step.note");
+        QVERIFY(note->isHidden());  // 1/240 s: four steps a frame at 60 frames a second
+        Settings s = doc.scene().settings;
+        s.dt = 1.0 / 30.0;
+        doc.setSettings(s, "step");
+        QVERIFY(!note->isHidden());
+        QVERIFY2(
+            note->text().contains("longer than a frame") && note->text().contains("one step of 0.0166667 s"),
+            qPrintable(note->text()));
+        s.frameRate = 30.0;
+        doc.setSettings(s, "frame rate");
+        QVERIFY(note->isHidden());
+    }
+
     void theIntegratorListIsTheEngines() {
         Document doc;
         SettingsDock dock(&doc, nullptr);
