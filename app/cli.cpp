@@ -1,5 +1,6 @@
 #include "cli.h"
 #include "arg_reader.h"
+#include "cli_options.h"
 #include "sweep/run_metrics.h"
 #include "sweep/sweep_cli.h"
 
@@ -9,8 +10,9 @@
 #include <tumble/io/trajectory_writer.h>
 #include <tumble/world.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -31,42 +33,69 @@ constexpr int kOk = 0;
 constexpr int kFailure = 1;
 constexpr int kInvalid = 2;
 
-const char* kHelp =
-    R"(Usage:
+// The options of --headless (the help's "Options for --headless" is written from it).
+const std::vector<OptionSpec>& headlessOptions() {
+    static const std::vector<OptionSpec> options = {
+        {"--duration", "S", "simulated seconds (overrides settings.duration)"},
+        {"--dt", "S",
+         "the longest step, seconds (overrides settings.dt); each frame\n"
+         "(1/frame_rate) is taken in the fewest equal steps no longer than\n"
+         "dt, so a dt longer than a frame steps once a frame (a note says\n"
+         "so, and stdout's step: is the step used)"},
+        {"--integrator", "NAME", "overrides settings.integrator; see --list-integrators"},
+        {"--impacts", "WHEN",
+         "exact or end-of-step (overrides settings.impacts): impacts at their\n"
+         "moment, or at the end of the step that finds them (faster for piles)"},
+        {"--frame-rate", "HZ", "recorded frames per second (overrides settings.frame_rate)"},
+        {"--threads", "N",
+         "threads to step with, 1 to 256 (default 1): the narrow phase, the\n"
+         "time of impact and the integrator's drift spread over them; the\n"
+         "result is the same bit for bit for any N"},
+        {"--out", "FILE",
+         "writes the trajectory; the format follows the extension:\n"
+         ".csv, .json (docs/export.md), .gltf (with FILE's .bin beside it) or\n"
+         ".glb (glTF 2.0: the bodies' meshes and their motion as an animation);\n"
+         "a folder ending in / gets a PNG per frame, FILE.mp4 a video (its\n"
+         "frames in FILE-frames/; needs ffmpeg): both drawn by the editor's\n"
+         "viewport, so they need a display (xvfb-run -a tumble --headless ...)"},
+        {"--joint-forces", "",
+         "with a .csv or .json --out: each joint's reaction too (the force\n"
+         "on body A at its anchor and the couple on A, world, over the last\n"
+         "step before each frame; a CSV gets them in FILE-joints.csv beside it)"},
+        {"--image-size", "WxH", "pixels of the images and video (default 1280x720)"},
+        {"--save-scene", "FILE", "writes the scene as run (options applied), normalised"},
+        {"--metrics", "FILE",
+         "writes the run's measures as JSON (what a sweep's summary holds,\n"
+         "docs/sweeps.md): per body its final position and speed, highest\n"
+         "point and the time it came to rest; the energy contacts and damping\n"
+         "took; the deepest overlap; the state hash"},
+        {"--quiet", "", "prints nothing but errors"},
+    };
+    return options;
+}
+
+// The flags of the command line itself, beside --headless's options.
+const std::vector<OptionSpec>& commandFlags() {
+    static const std::vector<OptionSpec> flags = {
+        {"--headless", "", ""}, {"--help", "", ""}, {"--version", "", ""}, {"--list-integrators", "", ""}};
+    return flags;
+}
+
+std::vector<OptionSpec> everyFlag() {
+    std::vector<OptionSpec> all = commandFlags();
+    all.insert(all.end(), headlessOptions().begin(), headlessOptions().end());
+    return all;
+}
+
+std::string helpText() {
+    return R"(Usage:
   tumble [SCENE]                      open the editor, with SCENE or the default sample scene
   tumble --headless SCENE [options]   simulate without a window
   tumble --help | --version | --list-integrators
 
 Options for --headless:
-  --duration S        simulated seconds (overrides settings.duration)
-  --dt S              the longest step, seconds (overrides settings.dt); each frame
-                      (1/frame_rate) is taken in the fewest equal steps no longer than
-                      dt, so a dt longer than a frame steps once a frame (a note says
-                      so, and stdout's step: is the step used)
-  --integrator NAME   overrides settings.integrator; see --list-integrators
-  --impacts WHEN      exact or end-of-step (overrides settings.impacts): impacts at their
-                      moment, or at the end of the step that finds them (faster for piles)
-  --frame-rate HZ     recorded frames per second (overrides settings.frame_rate)
-  --threads N         threads to step with, 1 to 256 (default 1): the narrow phase, the
-                      time of impact and the integrator's drift spread over them; the
-                      result is the same bit for bit for any N
-  --out FILE          writes the trajectory; the format follows the extension:
-                      .csv, .json (docs/export.md), .gltf (with FILE's .bin beside it) or
-                      .glb (glTF 2.0: the bodies' meshes and their motion as an animation);
-                      a folder ending in / gets a PNG per frame, FILE.mp4 a video (its
-                      frames in FILE-frames/; needs ffmpeg): both drawn by the editor's
-                      viewport, so they need a display (xvfb-run -a tumble --headless ...)
-  --joint-forces      with a .csv or .json --out: each joint's reaction too (the force
-                      on body A at its anchor and the couple on A, world, over the last
-                      step before each frame; a CSV gets them in FILE-joints.csv beside it)
-  --image-size WxH    pixels of the images and video (default 1280x720)
-  --save-scene FILE   writes the scene as run (options applied), normalised
-  --metrics FILE      writes the run's measures as JSON (what a sweep's summary holds,
-                      docs/sweeps.md): per body its final position and speed, highest
-                      point and the time it came to rest; the energy contacts and damping
-                      took; the deepest overlap; the state hash
-  --quiet             prints nothing but errors
-
+)" + optionsHelp(headlessOptions()) +
+           R"(
   tumble sweep SCENE --vary PATH=VALUES ... --out DIR [options]
                       runs variants of SCENE (tumble sweep --help)
 
@@ -90,6 +119,7 @@ step's cuts) and island_restarts (steps taken again with every body cut) summed 
 steps; threads; and state_hash (the same scene and options give the same hash,
 whatever --threads is).
 )";
+}
 
 struct Options {
     std::string scene;
@@ -133,12 +163,15 @@ double parseNumber(const std::string& flag, const std::string& text) {
 Options parse(const std::vector<std::string>& args) {
     Options o;
     ArgReader reader(args);
+    const std::vector<OptionSpec> known = everyFlag();
     while (reader.next()) {
         const std::string& a = reader.flag();
         auto next = [&]() -> std::string {
-            if (auto v = reader.value()) return *v;
+            if (auto v = reader.value(); v && !looksLikeFlag(*v)) return *v;
             throw UsageError{a + ": needs a value"};
         };
+        if (a.rfind("-", 0) == 0 && a.size() > 1 && !findOption(known, a))
+            throw UsageError{unknownOption(a, known, " (see --help)")};
         if (a == "--headless") continue;
         if (a == "--quiet") o.quiet = true;
         else if (a == "--joint-forces") o.jointForces = true;
@@ -362,21 +395,42 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
 
 void setImageRenderer(ImageRenderer renderer) { imageRenderer() = std::move(renderer); }
 
+namespace {
+
+// A scene the editor can be asked to open: a file there, or a name ending in .json (the
+// editor says when it is missing).
+bool namesAScene(const std::string& arg) {
+    if (arg.empty() || arg[0] == '-' || arg == "sweep") return false;
+    std::error_code ec;
+    if (std::filesystem::exists(arg, ec)) return true;
+    std::string ext = std::filesystem::path(arg).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".json";
+}
+
+// What a first argument that is neither a flag nor a scene was likely meant to be.
+std::string commandFor(const std::string& word) {
+    std::string bare = word;
+    while (!bare.empty() && bare[0] == '-') bare.erase(0, 1);
+    const std::string guess = nearest(bare, {"sweep", "help", "headless", "version", "list-integrators"});
+    if (guess.empty()) return {};
+    return guess == "sweep" ? "tumble sweep" : "tumble --" + guess;
+}
+
+}  // namespace
+
 bool wantsCommandLine(const std::vector<std::string>& args) {
-    if (!args.empty() && args.front() == "sweep") return true;
-    for (const std::string& a : args) {
-        if (a == "--headless" || a == "--help" || a == "-h" || a == "--version" || a == "--list-integrators") {
-            return true;
-        }
-    }
-    return false;
+    // The editor: no argument, one scene, or (from an editor's recovery) --recover FILE.
+    if (args.empty()) return false;
+    if (args.size() == 2 && args[0] == "--recover") return false;
+    return !(args.size() == 1 && namesAScene(args[0]));
 }
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     if (!args.empty() && args.front() == "sweep") return sweep::run({args.begin() + 1, args.end()}, out, err);
     for (const std::string& a : args) {
         if (a == "--help" || a == "-h") {
-            out << kHelp;
+            out << helpText();
             return kOk;
         }
         if (a == "--version") {
@@ -391,6 +445,20 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
             }
             return kOk;
         }
+    }
+    const bool headlessRun = std::find(args.begin(), args.end(), "--headless") != args.end();
+    if (!headlessRun && !args.empty() && !args[0].empty() && args[0][0] != '-') {
+        // A first word that is no command ("tumble help", "tumble swep ..."), or a scene
+        // with options but no --headless.
+        const std::string guess = commandFor(args[0]);
+        if (namesAScene(args[0]) && guess.empty()) {
+            err << "tumble: options run a scene without a window and need --headless: tumble --headless "
+                << args[0] << " ... (tumble " << args[0] << " alone opens it in the editor)\n";
+        } else {
+            err << "tumble: '" << args[0] << "' is neither a scene file nor a command"
+                << (guess.empty() ? std::string(" (see --help)") : "; did you mean " + guess + "?") << "\n";
+        }
+        return kInvalid;
     }
     try {
         return headless(parse(args), out, err);

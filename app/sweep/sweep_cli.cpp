@@ -1,6 +1,7 @@
 #include "sweep_cli.h"
 
 #include "arg_reader.h"
+#include "cli_options.h"
 
 #include "sweep_plan.h"
 #include "sweep_progress.h"
@@ -28,7 +29,49 @@ namespace {
 
 constexpr int kOk = 0, kFailed = 1, kInvalid = 2, kStopped = 130;
 
-const char* kHelp = R"(Usage:
+// The sweep's options on this machine and on Slurm (the help is written from them).
+const std::vector<cli::OptionSpec>& sweepOptions() {
+    static const std::vector<cli::OptionSpec> options = {
+        {"--vary", "PATH=VALUES",
+         "PATH names a value of the scene: settings.KEY, or a body's or a\n"
+         "joint's name then its keys and [index]es: ball.restitution,\n"
+         "ball.velocity[1], crate.friction, ball.shape.radius, settings.dt.\n"
+         "VALUES is a,b,c or start:stop:count (both ends included)"},
+        {"--out", "DIR", "the sweep's folder (made if missing)"},
+        {"--jobs", "N", "variants at once (default: the machine's cores)"},
+        {"--trajectories", "", "also a trajectory CSV per variant, DIR/trajectories/NNNN.csv"},
+        {"--metric", "NAME",
+         "the measures the summary keeps (repeat, or a,b; default all):\n"
+         "energy_lost_contacts, energy_lost_damping, deepest_overlap, and per\n"
+         "dynamic body final_x, final_y, final_z (final_position: the three),\n"
+         "final_speed, highest, rest_time; BODY.NAME for one body's"},
+        {"--merge", "DIR", "write DIR/summary.csv again from the results there"},
+        {"--quiet", "", "prints nothing but errors (no progress, notes or counts)"},
+    };
+    return options;
+}
+
+const std::vector<cli::OptionSpec>& slurmOptionSpecs() {
+    static const std::vector<cli::OptionSpec> options = {
+        {"--slurm", "",
+         "run the variants as a job array: writes DIR/sweep.sbatch (at most\n"
+         "1000 tasks; each runs its share of the variants), submits it with\n"
+         "sbatch, follows it with squeue and merges when it ends; Ctrl-C\n"
+         "cancels the job (scancel). The same command resumes what is missing"},
+        {"--sbatch", "OPTION", "one more #SBATCH line, e.g. --sbatch=--partition=short (repeat)"},
+        {"--max-running", "M", "at most M tasks at once (the array's %M)"},
+        {"--tasks", "T",
+         "at most T array tasks, each running its share of the variants one\n"
+         "after another (default: a task per variant, up to 1000): for\n"
+         "variants of a fraction of a second, which a task per variant would\n"
+         "spend mostly waiting for the scheduler"},
+        {"--no-wait", "", "submit and return; tumble sweep --merge DIR when the job has ended"},
+    };
+    return options;
+}
+
+std::string helpText() {
+    return R"(Usage:
   tumble sweep SCENE --vary PATH=VALUES [--vary PATH=VALUES ...] --out DIR [options]
   tumble sweep --merge DIR [--metric NAME ...]
 
@@ -42,35 +85,14 @@ A variant whose result is there is not run again: a stopped sweep resumes with t
 command. A variant that fails (a value the scene refuses, a run stopped by the energy
 guard) is a row with its status and message.
 
-  --vary PATH=VALUES  PATH names a value of the scene: settings.KEY, or a body's or a
-                      joint's name then its keys and [index]es: ball.restitution,
-                      ball.velocity[1], crate.friction, ball.shape.radius, settings.dt.
-                      VALUES is a,b,c or start:stop:count (both ends included)
-  --out DIR           the sweep's folder (made if missing)
-  --jobs N            variants at once (default: the machine's cores)
-  --trajectories      also a trajectory CSV per variant, DIR/trajectories/NNNN.csv
-  --metric NAME       the measures the summary keeps (repeat, or a,b; default all):
-                      energy_lost_contacts, energy_lost_damping, deepest_overlap, and per
-                      dynamic body final_x, final_y, final_z (final_position: the three),
-                      final_speed, highest, rest_time; BODY.NAME for one body's
-  --merge DIR         write DIR/summary.csv again from the results there
-
-On a Slurm cluster (DIR on a file system the nodes share):
-  --slurm             run the variants as a job array: writes DIR/sweep.sbatch (at most
-                      1000 tasks; each runs its share of the variants), submits it with
-                      sbatch, follows it with squeue and merges when it ends; Ctrl-C
-                      cancels the job (scancel). The same command resumes what is missing
-  --sbatch OPTION     one more #SBATCH line, e.g. --sbatch=--partition=short (repeat)
-  --max-running M     at most M tasks at once (the array's %M)
-  --tasks T           at most T array tasks, each running its share of the variants one
-                      after another (default: a task per variant, up to 1000): for
-                      variants of a fraction of a second, which a task per variant would
-                      spend mostly waiting for the scheduler
-  --no-wait           submit and return; tumble sweep --merge DIR when the job has ended
-
+)" + cli::optionsHelp(sweepOptions()) +
+           "\nOn a Slurm cluster (DIR on a file system the nodes share):\n" +
+           cli::optionsHelp(slurmOptionSpecs()) +
+           R"(
 Exit status: 0 every variant ran; 1 one or more failed; 2 bad input (an unknown PATH, an
 empty list: nothing is run); 130 stopped (Ctrl-C): run the same command to resume.
 )";
+}
 
 struct Options {
     std::string scene, out, merge;
@@ -79,6 +101,7 @@ struct Options {
     int jobs = 0;
     bool trajectories = false;
     bool slurm = false;
+    bool quiet = false;
     SlurmOptions slurmOptions;
 };
 
@@ -104,13 +127,19 @@ std::vector<std::string> splitList(const std::string& s) {
 Options parse(const std::vector<std::string>& args) {
     Options o;
     cli::ArgReader reader(args);
+    std::vector<cli::OptionSpec> known = sweepOptions();
+    known.insert(known.end(), slurmOptionSpecs().begin(), slurmOptionSpecs().end());
     while (reader.next()) {
         const std::string& a = reader.flag();
         auto next = [&]() -> std::string {
-            if (auto v = reader.value()) return *v;
+            if (auto v = reader.value(); v && (!cli::looksLikeFlag(*v) || a == "--sbatch")) return *v;
             throw SweepError{a + ": needs a value"};
         };
+        if (a.rfind("-", 0) == 0 && a.size() > 1 && !cli::findOption(known, a))
+            throw SweepError{"sweep: " + cli::unknownOption(a, known, " (see tumble sweep --help)")};
         if (a == "--vary") o.vary.push_back(parseVary(next()));
+        else if (a == "--quiet")
+            o.quiet = true;
         else if (a == "--out") o.out = next();
         else if (a == "--merge") o.merge = next();
         else if (a == "--trajectories") o.trajectories = true;
@@ -128,8 +157,6 @@ Options parse(const std::vector<std::string>& args) {
             o.slurmOptions.tasks = wholeNumber(a, next(), 1000);
         } else if (a == "--no-wait") {
             o.slurmOptions.wait = false;
-        } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
-            throw SweepError{"sweep: unknown option '" + a + "' (see tumble sweep --help)"};
         } else if (o.scene.empty()) {
             o.scene = a;
         } else {
@@ -199,7 +226,11 @@ void noteSteps(const Plan& plan, const fs::path& dir, std::ostream& err) {
     if (more > 0) err << "tumble sweep: note: and " << more << " more variants whose step is not their dt\n";
 }
 
-int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
+int sweepInFolder(const Options& o, std::ostream& realOut, std::ostream& err) {
+    // --quiet: no progress, notes or counts; errors still go to err.
+    std::ostream silent(nullptr);
+    std::ostream& out = o.quiet ? silent : realOut;
+    std::ostream& chatter = o.quiet ? silent : err;
     const fs::path dir = o.out;
     const Plan plan = makePlan(o.scene, o.vary);
     const std::vector<std::string> columns = metricColumns(plan, o.metrics);
@@ -210,7 +241,7 @@ int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
     if (ec) throw SweepError{dir.string() + ": cannot be made: " + io::plainReason(ec.value())};
 
     if (o.slurm) {
-        const bool ended = runOnSlurm(plan, dir, o.slurmOptions, out, err);
+        const bool ended = runOnSlurm(plan, dir, o.slurmOptions, out, chatter);
         if (!o.slurmOptions.wait) return kOk;
         return finish(plan, dir, columns, !ended, out, err);
     }
@@ -220,9 +251,9 @@ int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
         if (fs::exists(resultFile(plan, dir, k), ec)) continue;
         jobs.push_back(variantJob(plan, dir, k, o.trajectories, exe));
     }
-    noteSteps(plan, dir, err);
+    noteSteps(plan, dir, chatter);
     const int parallel = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    Progress progress(err, plan.count, plan.count - static_cast<int>(jobs.size()));
+    Progress progress(chatter, plan.count, plan.count - static_cast<int>(jobs.size()));
     // A result that cannot be written (a full disk, the folder gone) stops the sweep: nothing
     // more is started, and the same command resumes once there is room.
     std::string writeFailure;
@@ -253,7 +284,7 @@ int sweepInFolder(const Options& o, std::ostream& out, std::ostream& err) {
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     for (const std::string& a : args)
         if (a == "--help" || a == "-h") {
-            out << kHelp;
+            out << helpText();
             return kOk;
         }
     try {

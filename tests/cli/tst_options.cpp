@@ -143,6 +143,66 @@ private slots:
         QCOMPARE(r2.value("contact_points"), r1.value("contact_points"));
     }
 
+    // Issue 47 item 2: typos are refused with exit 2 and the nearest known word, never by
+    // opening the editor (without a display it aborted with status 134); the editor opens
+    // only for no argument or one scene. Run without a display, as a CI job would.
+    void typosAreRefusedWithTheNearestWord_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("--headles")
+            << QStringList({"--headles", "box.json"})
+            << "tumble: unknown option '--headles'; did you mean --headless? (see --help)";
+        QTest::newRow("--bogus") << QStringList({"--bogus"})
+                                 << "tumble: unknown option '--bogus' (see --help)";
+        QTest::newRow("help")
+            << QStringList({"help"})
+            << "tumble: 'help' is neither a scene file nor a command; did you mean tumble --help?";
+        QTest::newRow("swep")
+            << QStringList({"swep", "box.json", "--vary", "box.mass=1,2", "--out", "s"})
+            << "tumble: 'swep' is neither a scene file nor a command; did you mean tumble sweep?";
+        QTest::newRow("scene with options, no --headless")
+            << QStringList({"box.json", "--quiet"})
+            << "tumble: options run a scene without a window and need --headless: tumble --headless box.json "
+               "... "
+               "(tumble box.json alone opens it in the editor)";
+        QTest::newRow("--qiuet") << QStringList({"--headless", "box.json", "--qiuet"})
+                                 << "tumble: unknown option '--qiuet'; did you mean --quiet? (see --help)";
+        QTest::newRow("--dt swallowing a flag")
+            << QStringList({"--headless", "box.json", "--dt", "--quiet"}) << "tumble: --dt: needs a value";
+        QTest::newRow("sweep --vry")
+            << QStringList({"sweep", "box.json", "--vry", "box.mass=1,2", "--out", "s"})
+            << "tumble: sweep: unknown option '--vry'; did you mean --vary? (see tumble sweep --help)";
+    }
+
+    void typosAreRefusedWithTheNearestWord() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        const QByteArray display = qgetenv("DISPLAY");
+        qunsetenv("DISPLAY");
+        const Run r = run(args);
+        qputenv("DISPLAY", display);
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
+    }
+
+    // A negative number is a value, not a flag.
+    void aNegativeValueIsAValue() {
+        RUN(r, {"--headless", "box.json", "--dt", "-0.1"});
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.err, QString("tumble: --dt: must be greater than 0\n"));
+    }
+
+    // tumble sweep --quiet prints nothing on success (it was refused as unknown).
+    void sweepQuiet() {
+        RUN(r, {"sweep", "box.json", "--vary", "settings.duration=0.1,0.2", "--out", "s", "--quiet"});
+        QCOMPARE(r.code, 0);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, QString());
+        QVERIFY(QFile::exists(path("s/summary.csv")));
+    }
+
     void badOverride_data() {
         QTest::addColumn<QStringList>("args");
         QTest::addColumn<QString>("message");
