@@ -14,6 +14,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -101,7 +102,8 @@ Options for --headless:
 
 Exit status: 0 success; 2 invalid input (the message names the file and the field);
 1 any other failure, such as a state that became non-finite (the message names the
-body and the time). On failure no output file is written.
+body and the time); 130 or 143 stopped by SIGINT (Ctrl-C) or SIGTERM at the next frame.
+On failure or a stop no output file is written, nor any temporary left.
 
 A successful run prints key: value lines: bodies, integrator, dt, step (the step used
 between frames: see --dt), frames, steps,
@@ -151,6 +153,45 @@ bool isImageOutput(const std::string& out) {
 struct UsageError {
     std::string message;
 };
+
+// SIGINT (Ctrl-C) and SIGTERM during a run: the handler only notes the signal; the run
+// stops at the next frame by throwing Stopped, so that every output being written (each an
+// AtomicFile) is dropped with its temporary, and the exit status says which signal it was.
+volatile std::sig_atomic_t stopSignal = 0;
+
+void onStopSignal(int signal) {
+    stopSignal = signal;
+}
+
+struct Stopped {};
+
+class StopOnSignals {
+public:
+    StopOnSignals() {
+        stopSignal = 0;
+        struct sigaction sa {};
+        sa.sa_handler = onStopSignal;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, &oldInt_);
+        sigaction(SIGTERM, &sa, &oldTerm_);
+    }
+    ~StopOnSignals() {
+        sigaction(SIGINT, &oldInt_, nullptr);
+        sigaction(SIGTERM, &oldTerm_, nullptr);
+    }
+    StopOnSignals(const StopOnSignals&) = delete;
+    StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+private:
+    struct sigaction oldInt_ {
+    }, oldTerm_{};
+};
+
+std::string signalName(int signal) {
+    return signal == SIGINT    ? "SIGINT (Ctrl-C)"
+           : signal == SIGTERM ? "SIGTERM"
+                               : "signal " + std::to_string(signal);
+}
 
 double parseNumber(const std::string& flag, const std::string& text) {
     char* end = nullptr;
@@ -311,11 +352,24 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (!o.metrics.empty()) metrics.emplace(*world);
     const auto t0 = std::chrono::steady_clock::now();
     RunResult result;
+    const StopOnSignals stopOnSignals;
+    const int frames = frameCount(world->model().settings);
+    auto stoppedMessage = [&](int frame) {
+        err << "tumble: stopped by " << signalName(stopSignal) << " at t = " << number(world->state().time)
+            << " s (frame " << frame << " of " << frames << "); nothing was written\n";
+        return 128 + stopSignal;
+    };
+    int frameReached = 0;
     try {
         result = simulate(*world, [&](int k, const State& s) {
+            frameReached = k;  // the world is at this frame's time
+            if (stopSignal) throw Stopped{};
             if (trajectory) trajectory->frame(k, s);
             if (metrics) metrics->frame(*world);
         });
+        if (stopSignal) throw Stopped{};
+    } catch (const Stopped&) {
+        return stoppedMessage(frameReached);  // the outputs' temporaries go with their writers
     } catch (const SimulationError& e) {
         err << "tumble: " << o.scene << ": " << e.what() << "\n";
         return kFailure;
@@ -324,6 +378,29 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kFailure;
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    // Images first (they simulate again and may be stopped), then every other output is
+    // committed: a run stopped or failed before here leaves none of them.
+    if (images) {
+        // The editor's exporter simulates the scene again (the same frames: the engine is
+        // deterministic) and draws each one.
+        const bool video = o.out.back() != '/';
+        const std::filesystem::path out(o.out);
+        const std::string folder =
+            video ? (out.parent_path() / (out.stem().string() + "-frames")).string() : o.out;
+        const std::string message =
+            imageRenderer()(scene, folder, video ? o.out : std::string(), o.imageWidth, o.imageHeight,
+                            [] { return stopSignal != 0; });
+        if (stopSignal) {
+            err << "tumble: stopped by " << signalName(stopSignal)
+                << " while drawing the images; nothing was written\n";
+            return 128 + stopSignal;
+        }
+        if (!message.empty()) {
+            err << "tumble: --out: " << message << "\n";
+            return kFailure;
+        }
+    }
 
     try {
         if (savedScene) savedScene->stream() << io::sceneToJson(scene);
@@ -334,21 +411,6 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         err << "tumble: " << e.what() << "\n";
         return kFailure;
     }
-    if (images) {
-        // The editor's exporter simulates the scene again (the same frames: the engine is
-        // deterministic) and draws each one.
-        const bool video = o.out.back() != '/';
-        const std::filesystem::path out(o.out);
-        const std::string folder =
-            video ? (out.parent_path() / (out.stem().string() + "-frames")).string() : o.out;
-        const std::string message =
-            imageRenderer()(scene, folder, video ? o.out : std::string(), o.imageWidth, o.imageHeight);
-        if (!message.empty()) {
-            err << "tumble: --out: " << message << "\n";
-            return kFailure;
-        }
-    }
-
     if (!o.quiet) {
         const Model& m = world->model();
         const Energy after = energy(m, world->state());

@@ -19,9 +19,11 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
 
 /// Draws the frames of `scene` as PNGs into `folder` (and an MP4 `video` when not empty) at
 /// width × height; returns "" or the message. The editor's exporter, installed by main()
-/// when the editor is built: `--out DIR/` and `--out FILE.mp4` need it.
-using ImageRenderer = std::function<std::string(const SceneDesc& scene, const std::string& folder,
-                                                const std::string& video, int width, int height)>;
+/// when the editor is built: `--out DIR/` and `--out FILE.mp4` need it. `stop` is asked now
+/// and then: true (SIGINT or SIGTERM came) cancels the export, which leaves nothing.
+using ImageRenderer =
+    std::function<std::string(const SceneDesc& scene, const std::string& folder, const std::string& video,
+                              int width, int height, const std::function<bool()>& stop)>;
 void setImageRenderer(ImageRenderer renderer);
 
 }  // namespace tumble::cli

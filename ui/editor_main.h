@@ -3,6 +3,7 @@
 
 #include <tumble/scene.h>
 
+#include <functional>
 #include <string>
 
 namespace tumble::ui {
@@ -22,8 +23,9 @@ void keepFrameMemory();
 /// (settings overrides applied, meshes loaded) and writes a PNG per frame into `folder` at
 /// width × height (and, when `video` is not empty, an MP4 of them) with the editor's own
 /// viewport and exporter, the camera framing every body. Needs a display (xvfb-run).
-/// Returns an empty string on success, else the message.
+/// Returns an empty string on success, else the message. `stop` is asked every 50 ms: true
+/// cancels the run or the export (nothing is left) and the message says it was stopped.
 std::string renderImages(const SceneDesc& scene, const std::string& folder, const std::string& video,
-                         int width, int height);
+                         int width, int height, const std::function<bool()>& stop);
 
 }  // namespace tumble::ui

@@ -18,7 +18,7 @@
 namespace tumble::ui {
 
 std::string renderImages(const SceneDesc& scene, const std::string& folder, const std::string& video,
-                         int width, int height) {
+                         int width, int height, const std::function<bool()>& stop) {
     auto set = [](const char* name) {
         const char* v = std::getenv(name);
         return v && *v;
@@ -46,15 +46,36 @@ std::string renderImages(const SceneDesc& scene, const std::string& folder, cons
     view.frameAll();
 
     QEventLoop loop;
+    bool stopped = false;
+    QTimer watch;  // a signal (SIGINT, SIGTERM) asks the run or the export to stop
+    watch.setInterval(50);
     QObject::connect(&timeline, &Timeline::statusChanged, &loop, [&](Timeline::Status s) {
         if (s != Timeline::Status::Running) loop.quit();
     });
+    QObject::connect(&watch, &QTimer::timeout, &loop, [&] {
+        if (!stop || !stop()) return;
+        stopped = true;
+        watch.stop();
+        loop.quit();
+    });
+    watch.start();
     timeline.simulate();
     if (timeline.status() == Timeline::Status::Running) loop.exec();
+    if (stopped) {
+        timeline.cancel();
+        return "stopped";
+    }
     if (timeline.status() != Timeline::Status::Complete)
         return "the run failed: " + timeline.errorMessage().toStdString();
 
     ImageExporter exporter(&view, &timeline);
+    QObject::disconnect(&watch, nullptr, &loop, nullptr);
+    QObject::connect(&watch, &QTimer::timeout, &exporter, [&] {
+        if (!stop || !stop() || stopped) return;
+        stopped = true;
+        exporter.cancel();  // leaves no image, no video; finished() follows
+    });
+    watch.start();
     ImageExportOptions o;
     o.folder = QString::fromStdString(folder);
     o.size = QSize(width, height);
@@ -69,6 +90,7 @@ std::string renderImages(const SceneDesc& scene, const std::string& folder, cons
     });
     exporter.start(o);
     loop.exec();
+    if (stopped) return "stopped";
     return ok ? std::string() : message.toStdString();
 }
 

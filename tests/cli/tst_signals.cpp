@@ -1,0 +1,95 @@
+// Issue 47 item 3: Ctrl-C (SIGINT) or SIGTERM during a headless run stops it at the next
+// frame with one line saying so and an exit status of 128 + the signal; the outputs being
+// written are dropped with their temporaries (a 31 MB out.csv.tumble-tmp-... was left). A
+// sweep stopped so leaves no temporary of its variants either (tst_sweep resumes stopped
+// sweeps).
+#include <QDirIterator>
+#include <QElapsedTimer>
+#include <QtTest>
+
+#include "cli_harness.h"
+
+#include <csignal>
+
+using namespace tumble::clitest;
+
+namespace {
+
+// Every file under `dir` whose name holds an AtomicFile's temporary mark.
+QStringList temporariesUnder(const QString& dir) {
+    QStringList found;
+    QDirIterator it(dir, QDir::Files | QDir::Hidden, QDirIterator::Subdirectories);
+    while (it.hasNext()) {
+        const QString f = it.next();
+        if (f.contains(".tumble-tmp-")) found << f;
+    }
+    return found;
+}
+
+}  // namespace
+
+class TestSignals : public QObject, private Harness {
+    Q_OBJECT
+
+    // Starts `args` in the test's folder, waits until `ready` holds (or 20 s), sends `signal`.
+    Run interrupt(const QStringList& args, int signal, const std::function<bool()>& ready) {
+        QProcess p;
+        p.setWorkingDirectory(dir_->path());
+        p.start(TUMBLE_EXECUTABLE, args);
+        if (!p.waitForStarted(10000)) return {};
+        QElapsedTimer clock;
+        clock.start();
+        while (!ready() && clock.elapsed() < 20000 && p.state() == QProcess::Running) QTest::qWait(20);
+        ::kill(static_cast<pid_t>(p.processId()), signal);
+        p.waitForFinished(60000);
+        Run r;
+        r.out = QString::fromUtf8(p.readAllStandardOutput());
+        r.err = QString::fromUtf8(p.readAllStandardError());
+        r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+        return r;
+    }
+
+private slots:
+    void init() { makeFolder(); }
+    void cleanup() { dir_.reset(); }
+
+    void aStoppedRunLeavesNothing_data() {
+        QTest::addColumn<int>("signal");
+        QTest::addColumn<QString>("name");
+        QTest::newRow("SIGINT") << int(SIGINT) << "SIGINT (Ctrl-C)";
+        QTest::newRow("SIGTERM") << int(SIGTERM) << "SIGTERM";
+    }
+
+    void aStoppedRunLeavesNothing() {
+        QFETCH(int, signal);
+        QFETCH(QString, name);
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/pyramid-15.json");
+        // Long enough to be stopped half way; the CSV's temporary is there from the start.
+        const Run r = interrupt({"--headless", scene, "--duration", "60", "--out", "out.csv", "--save-scene",
+                                 "saved.json", "--metrics", "m.json"},
+                                signal, [&] { return !temporariesUnder(dir_->path()).isEmpty(); });
+        QCOMPARE(r.code, 128 + signal);
+        const QRegularExpression line(
+            "^tumble: stopped by " + QRegularExpression::escape(name) +
+            " at t = [0-9.e-]+ s \\(frame [1-9][0-9]* of 1801\\); nothing was written\\n$");
+        QVERIFY2(line.match(r.err).hasMatch(), qPrintable(r.err));
+        QCOMPARE(r.out, QString());
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // no output, no temporary
+    }
+
+    // A sweep stopped by Ctrl-C: its variants (stopped with SIGTERM) drop their trajectories'
+    // temporaries (trajectories/0000.csv.tumble-tmp-... was left, and resuming kept it).
+    void aStoppedSweepLeavesNoTemporaries() {
+        const QString scene = QStringLiteral(TUMBLE_SCENES_DIR "/pyramid-15.json");
+        const QStringList args{"sweep",          scene,    "--vary", "settings.duration=20,21", "--out", "s",
+                               "--trajectories", "--jobs", "2"};
+        const Run r = interrupt(args, SIGINT, [&] { return !temporariesUnder(path("s")).isEmpty(); });
+        QCOMPARE(r.code, 130);
+        QVERIFY2(r.err.contains("stopped"), qPrintable(r.err));
+        QCOMPARE(temporariesUnder(path("s")), QStringList());
+        QCOMPARE(QDir(path("s/trajectories")).entryList(QDir::Files), QStringList());
+    }
+};
+
+QTEST_GUILESS_MAIN(TestSignals)
+#include "tst_signals.moc"
