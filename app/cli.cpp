@@ -233,11 +233,14 @@ Options parse(const std::vector<std::string>& args) {
             if (std::sscanf(v.c_str(), "%d%c", &n, &extra) != 1 || n < 1 || n > 256)
                 throw UsageError{"--threads: '" + v + "' is not a whole number from 1 to 256"};
             o.threads = n;
-        }
-        else if (a == "--out") o.out = next();
-        else if (a == "--save-scene") o.saveScene = next();
-        else if (a == "--metrics") o.metrics = next();
-        else if (a == "--image-size") {
+        } else if (a == "--out" || a == "--save-scene" || a == "--metrics") {
+            // One file each: a second one silently replaced the first.
+            std::string& file = a == "--out" ? o.out : a == "--save-scene" ? o.saveScene : o.metrics;
+            const std::string given = next();
+            if (!file.empty())
+                throw UsageError{a + ": given twice ('" + file + "' and '" + given + "'); a run writes one"};
+            file = given;
+        } else if (a == "--image-size") {
             const std::string v = next();
             int w = 0, h = 0;
             char extra = 0;
@@ -245,8 +248,8 @@ Options parse(const std::vector<std::string>& args) {
                 throw UsageError{"--image-size: '" + v + "' is not WIDTHxHEIGHT in pixels (16 to 8192 each)"};
             o.imageWidth = w;
             o.imageHeight = h;
-        }
-        else if (a.rfind("-", 0) == 0 && a.size() > 1) throw UsageError{"unknown option '" + a + "' (see --help)"};
+        } else if (a.rfind("-", 0) == 0 && a.size() > 1)
+            throw UsageError{"unknown option '" + a + "' (see --help)"};
         else if (o.scene.empty()) o.scene = a;
         else throw UsageError{"more than one scene given: '" + o.scene + "' and '" + a + "'"};
     }
@@ -306,6 +309,11 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kInvalid;
     }
 
+    if (o.jointForces && scene.joints.empty()) {
+        err << "tumble: --joint-forces: " << o.scene << " has no joints (nothing to write)\n";
+        return kInvalid;
+    }
+
     std::unique_ptr<World> world;
     try {
         world = std::make_unique<World>(scene);
@@ -338,12 +346,18 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kFailure;
     }
     // Opened before the run so that an unwritable path fails at once, and committed with the
-    // trajectory so that a failed run leaves neither file behind.
-    std::unique_ptr<io::AtomicFile> savedScene;
+    // trajectory so that a failed run leaves none of the files behind.
+    std::unique_ptr<io::AtomicFile> savedScene, metricsFile;
     try {
         if (!o.saveScene.empty()) savedScene = std::make_unique<io::AtomicFile>(o.saveScene);
     } catch (const std::exception& e) {
         err << "tumble: --save-scene: " << e.what() << "\n";
+        return kFailure;
+    }
+    try {
+        if (!o.metrics.empty()) metricsFile = std::make_unique<io::AtomicFile>(o.metrics);
+    } catch (const std::exception& e) {
+        err << "tumble: --metrics: " << e.what() << "\n";
         return kFailure;
     }
 
@@ -403,10 +417,19 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     }
 
     try {
-        if (savedScene) savedScene->stream() << io::sceneToJson(scene);
+        // The small files written out first (a full disk fails them before anything is
+        // renamed), then the trajectory, then their renames.
+        if (savedScene) {
+            savedScene->stream() << io::sceneToJson(scene);
+            savedScene->ready();
+        }
+        if (metricsFile) {
+            metricsFile->stream() << metrics->json(*world, result.steps, wall, before.total());
+            metricsFile->ready();
+        }
         if (trajectory) trajectory->finish();
         if (savedScene) savedScene->commit();
-        if (metrics) metrics->write(o.metrics, *world, result.steps, wall, before.total());
+        if (metricsFile) metricsFile->commit();
     } catch (const std::exception& e) {
         err << "tumble: " << e.what() << "\n";
         return kFailure;

@@ -1,7 +1,6 @@
 #include "run_metrics.h"
 
 #include <tumble/collision.h>
-#include <tumble/io/atomic_file.h>
 
 #include <nlohmann/json.hpp>
 
@@ -44,8 +43,7 @@ void RunMetrics::frame(const World& world) {
     deepest_ = std::max(deepest_, world.deepestOverlap());
 }
 
-void RunMetrics::write(const std::filesystem::path& file, const World& world, long steps, double wall,
-                       double energyStart) const {
+std::string RunMetrics::json(const World& world, long steps, double wall, double energyStart) const {
     using ojson = nlohmann::ordered_json;
     const Model& m = world.model();
     const State& s = world.state();
@@ -75,7 +73,7 @@ void RunMetrics::write(const std::filesystem::path& file, const World& world, lo
         o["highest"] = b.highest;
         o["rest_time"] = b.restingSince ? ojson(*b.restingSince) : ojson(nullptr);
     }
-    io::writeFileAtomically(file, j.dump(2) + "\n");
+    return j.dump(2) + "\n";
 }
 
 }  // namespace tumble::cli

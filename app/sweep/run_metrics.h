@@ -27,7 +27,8 @@ public:
     void frame(const World& world);
     /// The file: JSON with the run's figures (`run`: state_hash, steps, simulated_time,
     /// wall_seconds), `scene` and `bodies` (by name); written whole or not at all.
-    void write(const std::filesystem::path& file, const World& world, long steps, double wall, double energyStart) const;
+    /// The measures as JSON text (what --metrics FILE holds).
+    std::string json(const World& world, long steps, double wall, double energyStart) const;
 
 private:
     struct Body {

@@ -409,6 +409,35 @@ private slots:
         QTest::newRow("save-scene")
             << QStringList({"--out", "traj.csv", "--save-scene", "nodir/saved.json"})
             << "tumble: --save-scene: nodir/saved.json: cannot be written: no such folder";
+        // Issue 47 item 4: --metrics was checked after the run, when the trajectory was
+        // already written.
+        QTest::newRow("metrics") << QStringList({"--out", "traj.csv", "--metrics", "nodir/m.json"})
+                                 << "tumble: --metrics: nodir/m.json: cannot be written: no such folder";
+    }
+
+    // Issue 47 item 4: a second --out (or --save-scene, --metrics) silently replaced the
+    // first; --joint-forces on a scene without joints wrote a header-only file.
+    void outputsGivenOnceAndForAReason_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("--out twice") << QStringList({"box.json", "--out", "a.csv", "--out", "b.csv"})
+                                     << "tumble: --out: given twice ('a.csv' and 'b.csv'); a run writes one";
+        QTest::newRow("--metrics twice")
+            << QStringList({"box.json", "--metrics", "a.json", "--metrics=b.json"})
+            << "tumble: --metrics: given twice ('a.json' and 'b.json'); a run writes one";
+        QTest::newRow("--joint-forces without joints")
+            << QStringList({"box.json", "--out", "a.csv", "--joint-forces"})
+            << "tumble: --joint-forces: box.json has no joints (nothing to write)";
+    }
+
+    void outputsGivenOnceAndForAReason() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        RUN(r, QStringList({"--headless"}) + args);
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.out, QString());
+        QCOMPARE(r.err, message + "\n");
+        QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));
     }
 
     void unwritableOutput() {

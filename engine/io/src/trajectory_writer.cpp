@@ -161,8 +161,10 @@ protected:
         }
     }
     void close() override {
-        // The joints' file first: if the trajectory's commit failed after it, a stale
-        // joints file beside an old trajectory is the lesser harm than the other way round.
+        // Both written out before either replaces its old file (a full disk leaves both
+        // old); then the joints' file first.
+        if (jointsOut_) jointsOut_->ready();
+        out_->ready();
         if (jointsOut_) jointsOut_->commit();
         out_->commit();
     }
