@@ -29,6 +29,7 @@ RunMetrics::RunMetrics(const World& world) {
 void RunMetrics::frame(const World& world) {
     const Model& m = world.model();
     const State& s = world.state();
+    trajectory_ = (trajectory_ ^ hashState(s)) * 0x100000001b3ull;
     for (Body& b : bodies_) {
         const BodyModel& model = m.bodies[b.index];
         const BodyState& state = s.bodies[b.index];
@@ -51,6 +52,7 @@ std::string RunMetrics::json(const World& world, long steps, double wall, double
     const double energyEnd = energy(m, s).total();
     ojson j;
     j["run"] = {{"state_hash", hashHex(hashState(s))},
+                {"trajectory_hash", hashHex(trajectory_)},
                 {"steps", steps},
                 {"simulated_time", s.time},
                 {"wall_seconds", wall}};

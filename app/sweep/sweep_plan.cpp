@@ -7,9 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -174,11 +175,24 @@ ojson normalisedScene(const fs::path& scene) {
     }
 }
 
+// FNV-1a, 64 bits, of the text, in hex: the scene's content as a sweep planned it.
+std::string contentHash(const std::string& text) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 0x100000001b3ull;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
 ojson planJson(const Plan& plan) {
     ojson j;
     j["format"] = "tumble-sweep";
     j["version"] = 1;
     j["scene"] = plan.scene.string();
+    if (!plan.sceneHash.empty()) j["scene_hash"] = plan.sceneHash;
     j["vary"] = ojson::array();
     for (const Vary& v : plan.vary) j["vary"].push_back({{"path", v.path}, {"values", v.values}});
     j["count"] = plan.count;
@@ -256,6 +270,7 @@ Plan makePlan(const fs::path& scene, const std::vector<Vary>& vary) {
     plan.scene = fs::absolute(scene).lexically_normal();
     plan.vary = vary;
     ojson json = normalisedScene(scene);
+    plan.sceneHash = contentHash(json.dump());
     double count = 1;
     for (std::size_t i = 0; i < vary.size(); ++i) {
         for (std::size_t k = 0; k < i; ++k)
@@ -287,24 +302,52 @@ void writeVariants(const Plan& plan, const fs::path& dir) {
         } catch (const std::exception&) {
             throw SweepError{manifest.string() + ": not a sweep's plan (it cannot be read); choose another --out"};
         }
-        if (theirs != mine)
+        ojson mineAsTheirs = mine;  // a plan kept before the scene's hash was: compared without it
+        if (!theirs.contains("scene_hash")) mineAsTheirs.erase("scene_hash");
+        if (theirs != mineAsTheirs) {
+            ojson theirsWithout = theirs, mineWithout = mine;
+            theirsWithout.erase("scene_hash");
+            mineWithout.erase("scene_hash");
+            if (theirsWithout == mineWithout)
+                throw SweepError{
+                    manifest.string() + ": " + plan.scene.string() +
+                    " changed since this sweep began: its variants so far are of the scene as it "
+                    "was; choose another --out for the scene as it is, or remove the folder"};
             throw SweepError{manifest.string() + ": this folder holds another sweep (another scene or other --vary); "
                                                  "choose another --out, or remove the folder"};
+        }
+    }
+    const ojson base = normalisedScene(plan.scene);
+    auto variant = [&](int k) {
+        ojson scene = base;
+        const std::vector<int> c = plan.choice(k);
+        for (std::size_t i = 0; i < plan.vary.size(); ++i) {
+            ojson& place = resolve(scene, plan.vary[i].path, plan.scene.string());
+            place = valueFor(place, plan.vary[i].values[c[i]], plan.vary[i].path);
+        }
+        return scene;
+    };
+    // Every variant checked before any is written or run: a value the scene format refuses
+    // was an `invalid` row found only when its turn came.
+    for (int k = 0; k < plan.count; ++k) {
+        try {
+            io::parseScene(variant(k).dump(), "variant " + plan.name(k));
+        } catch (const io::InputError& e) {
+            std::string values;
+            const std::vector<int> c = plan.choice(k);
+            for (std::size_t i = 0; i < plan.vary.size(); ++i)
+                values += (i ? ", " : "") + plan.vary[i].path + "=" + plan.vary[i].values[c[i]];
+            throw SweepError{std::string(e.what()) + " (" + values + "); nothing was run"};
+        }
     }
     fs::create_directories(dir / "variants", ec);
     if (ec)
         throw SweepError{(dir / "variants").string() + ": cannot be made: " + io::plainReason(ec.value())};
-    const ojson base = normalisedScene(plan.scene);
     try {
         for (int k = 0; k < plan.count; ++k) {
             const fs::path file = variantFile(plan, dir, k);
             if (fs::exists(file, ec)) continue;  // (a resumed sweep: the same plan made it)
-            ojson scene = base;
-            const std::vector<int> c = plan.choice(k);
-            for (std::size_t i = 0; i < plan.vary.size(); ++i) {
-                ojson& place = resolve(scene, plan.vary[i].path, plan.scene.string());
-                place = valueFor(place, plan.vary[i].values[c[i]], plan.vary[i].path);
-            }
+            ojson scene = variant(k);
             moveMeshPaths(scene, plan.scene.parent_path(), dir / "variants");
             io::writeFileAtomically(file, scene.dump(2) + "\n");
         }
@@ -327,6 +370,7 @@ Plan readPlan(const fs::path& dir) {
         for (const ojson& v : j.at("vary")) plan.vary.push_back({v.at("path"), v.at("values")});
         plan.count = j.at("count").get<int>();
         plan.bodies = j.at("bodies").get<std::vector<std::string>>();
+        plan.sceneHash = j.value("scene_hash", std::string());
         return plan;
     } catch (const nlohmann::json::exception& e) {
         throw SweepError{manifest.string() + ": cannot be read: " + e.what()};

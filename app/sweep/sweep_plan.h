@@ -37,6 +37,9 @@ struct Plan {
     std::vector<Vary> vary;
     int count = 0;
     std::vector<std::string> bodies;  // the scene's dynamic bodies, whose measures a run gives
+    /// A hash of the scene's content as planned (normalised): a resumed sweep whose scene
+    /// was edited since is refused. Empty in a plan of a sweep made before it was kept.
+    std::string sceneHash;
     /// The value index of each `--vary` in variant k.
     std::vector<int> choice(int k) const;
     /// Variant k's name: its number, zero-padded to 4 digits (or as many as the last needs).
@@ -49,8 +52,11 @@ struct Plan {
 Plan makePlan(const std::filesystem::path& scene, const std::vector<Vary>& vary);
 
 /// Writes DIR/sweep.json (the plan, so that `--merge DIR` and a resumed sweep know it) and
-/// DIR/variants/NAME.json for every variant, each written whole or not at all. A DIR that
-/// holds another sweep (its sweep.json differs) throws SweepError: nothing is overwritten.
+/// DIR/variants/NAME.json for every variant, each written whole or not at all. Every variant
+/// is read and checked first: one the scene format refuses (a restitution of 1.5, a dt of
+/// 0) throws SweepError naming it and the field, and nothing is written. A DIR that holds
+/// another sweep (its sweep.json differs), or this sweep of a scene edited since, throws
+/// SweepError: nothing is overwritten.
 void writeVariants(const Plan& plan, const std::filesystem::path& dir);
 
 /// The plan a sweep folder holds (its sweep.json). Throws SweepError when there is none or

@@ -153,7 +153,7 @@ Tally writeSummary(const Plan& plan, const fs::path& dir, const std::vector<std:
     std::ostringstream csv;
     csv << "variant";
     for (const Vary& v : plan.vary) csv << ',' << csvText(v.path);
-    csv << ",status,state_hash,wall_s";
+    csv << ",status,state_hash,trajectory_hash,wall_s";
     for (const std::string& c : columns) csv << ',' << csvText(c);
     csv << ",message\n";
     Tally tally;
@@ -169,7 +169,8 @@ Tally writeSummary(const Plan& plan, const fs::path& dir, const std::vector<std:
         const ojson metrics = r.is_object() && r.contains("metrics") ? r["metrics"] : ojson(nullptr);
         const ojson run = metrics.is_object() && metrics.contains("run") ? metrics["run"] : ojson(nullptr);
         csv << ',' << status << ',' << (run.is_object() ? csvValue(run["state_hash"]) : "") << ','
-            << (r.is_object() ? csvValue(r["wall_s"]) : "");
+            << (run.is_object() && run.contains("trajectory_hash") ? csvValue(run["trajectory_hash"]) : "")
+            << ',' << (r.is_object() ? csvValue(r["wall_s"]) : "");
         for (const std::string& col : columns) csv << ',' << csvValue(measure(metrics, col));
         csv << ',' << (r.is_object() && r.contains("message") ? csvValue(r["message"]) : "") << '\n';
     }

@@ -209,20 +209,52 @@ private slots:
 
     // A value the scene refuses and a run the energy guard stops are rows with their
     // status and message; the sweep goes on and exits 1.
+    // Issue 47 item 5: the summary's state_hash is of the final state only: two variants
+    // whose ball bounces differently and ends at rest in the same place share it. The
+    // trajectory_hash (every recorded frame's state) tells them apart.
+    void theTrajectoryHashTellsRunsApart() {
+        RUN(r, {"sweep", TUMBLE_SCENES_DIR "/bouncing-ball.json", "--vary", "ground.restitution=0.2,0.3",
+                "--vary", "ball.restitution=0.1", "--out", "sw", "--quiet"});
+        QCOMPARE(r.code, 0);
+        const auto rows = summaryRows(read("sw/summary.csv"));
+        QCOMPARE(rows.size(), 2);
+        QCOMPARE(rows[0].value("state_hash"), rows[1].value("state_hash"));  // both at rest, alike
+        QVERIFY(!rows[0].value("trajectory_hash").isEmpty());
+        QVERIFY(rows[0].value("trajectory_hash") != rows[1].value("trajectory_hash"));
+    }
+
+    // Issue 47 item 5: a sweep resumed after its scene was edited reused the old variants
+    // without a word; the plan keeps the scene's content hash and the resume is refused.
+    void aResumeOfAnEditedSceneIsRefused() {
+        const QStringList args{"sweep", "drop.json", "--vary", "ball.restitution=0.2,0.4",
+                               "--out", "sw",        "--quiet"};
+        RUN(first, args);
+        QCOMPARE(first.code, 0);
+        const QByteArray summary = read("sw/summary.csv");
+        write("drop.json", QByteArray(kDrop).replace("\"mass\": 0.2", "\"mass\": 0.3"));
+        RUN(again, args);
+        QCOMPARE(again.code, 2);
+        QVERIFY2(again.err.contains("drop.json changed since this sweep began"), qPrintable(again.err));
+        QCOMPARE(read("sw/summary.csv"), summary);
+        write("drop.json", kDrop);  // as it was: the resume finds everything done
+        RUN(back, args);
+        QCOMPARE(back.code, 0);
+    }
+
+    // A variant the scene format refuses is refused before anything runs (issue 47 item 5:
+    // it was an `invalid` row found when its turn came); one that fails while it runs (the
+    // energy guard) is a row with its status and message.
     void failedVariantsAreRows() {
         write("blowup.json", kBlowUp);
         RUN(r, {"sweep", "drop.json", "--vary", "ball.restitution=0.5,1.5", "--out", "sw"});
-        QCOMPARE(r.code, 1);
-        auto rows = summaryRows(read("sw/summary.csv"));
-        QCOMPARE(rows.size(), 2);
-        QCOMPARE(rows[0].value("status"), QString("ok"));
-        QCOMPARE(rows[1].value("status"), QString("invalid"));
-        QVERIFY2(rows[1].value("message").contains("bodies[1].restitution"), qPrintable(rows[1].value("message")));
-        QVERIFY(rows[1].value("state_hash").isEmpty());
+        QCOMPARE(r.code, 2);
+        QCOMPARE(r.err, QString("tumble: variant 0001: bodies[1].restitution: must be between 0 and 1 "
+                                "(ball.restitution=1.5); nothing was run\n"));
+        QVERIFY(!QFileInfo::exists(path("sw/variants")));
 
         RUN(b, {"sweep", "blowup.json", "--vary", "ball.forces[0].stiffness=10,1e12", "--out", "blow"});
         QCOMPARE(b.code, 1);
-        rows = summaryRows(read("blow/summary.csv"));
+        auto rows = summaryRows(read("blow/summary.csv"));
         QCOMPARE(rows[0].value("status"), QString("ok"));
         QCOMPARE(rows[1].value("status"), QString("failed"));
         QVERIFY2(rows[1].value("message").contains("energy"), qPrintable(rows[1].value("message")));
@@ -272,7 +304,8 @@ private slots:
         RUN(m, {"sweep", "--merge", "sw", "--metric", "ball.highest,rest_time"});
         QCOMPARE(m.code, 0);
         const QStringList l = lines(QString::fromUtf8(read("sw/summary.csv")));
-        QCOMPARE(l.first(), QString("variant,ball.restitution,status,state_hash,wall_s,ball.highest,ball.rest_time,message"));
+        QCOMPARE(l.first(), QString("variant,ball.restitution,status,state_hash,trajectory_hash,wall_s,ball."
+                                    "highest,ball.rest_time,message"));
         QCOMPARE(l.size(), 3);
         RUN(other, {"sweep", "drop.json", "--vary", "ball.mass=1,2", "--out", "sw"});
         QCOMPARE(other.code, 2);
