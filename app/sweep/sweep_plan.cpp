@@ -147,6 +147,31 @@ ojson& resolve(ojson& scene, const std::string& path, const std::string& sceneNa
     return *node;
 }
 
+// The values a path names: one, or with a wildcard for the body ("*.restitution",
+// "bodies[*].friction") the same key of every body that has it (a static body has no mass).
+std::vector<ojson*> resolveAll(ojson& scene, const std::string& path, const std::string& sceneName) {
+    std::string rest;
+    if (path.rfind("*.", 0) == 0)
+        rest = path.substr(1);
+    else if (path.rfind("bodies[*].", 0) == 0)
+        rest = path.substr(9);
+    if (rest.empty()) return {&resolve(scene, path, sceneName)};
+    std::vector<ojson*> places;
+    std::string firstProblem;
+    for (const ojson& b : scene["bodies"]) {
+        const std::string name = b.value("name", std::string());
+        try {
+            places.push_back(&resolve(scene, name + rest, sceneName));
+        } catch (const SweepError& e) {
+            if (firstProblem.empty()) firstProblem = e.message;
+        }
+    }
+    if (places.empty())
+        throw SweepError{"--vary " + path + ": no body has it" +
+                         (firstProblem.empty() ? "" : " (" + firstProblem + ")")};
+    return places;
+}
+
 // The JSON value of `text` for a place holding `current`; throws when it cannot hold it.
 ojson valueFor(const ojson& current, const std::string& text, const std::string& path) {
     const std::string where = "--vary " + path + ": '" + text + "' ";
@@ -275,8 +300,8 @@ Plan makePlan(const fs::path& scene, const std::vector<Vary>& vary) {
     for (std::size_t i = 0; i < vary.size(); ++i) {
         for (std::size_t k = 0; k < i; ++k)
             if (vary[k].path == vary[i].path) throw SweepError{"--vary " + vary[i].path + ": given twice"};
-        ojson& place = resolve(json, vary[i].path, scene.string());
-        for (const std::string& v : vary[i].values) valueFor(place, v, vary[i].path);
+        for (ojson* place : resolveAll(json, vary[i].path, scene.string()))
+            for (const std::string& v : vary[i].values) valueFor(*place, v, vary[i].path);
         count *= static_cast<double>(vary[i].values.size());
     }
     if (count > 1e6) throw SweepError{"sweep: " + shortest(count) + " variants: at most 1000000 in one sweep"};
@@ -321,10 +346,9 @@ void writeVariants(const Plan& plan, const fs::path& dir) {
     auto variant = [&](int k) {
         ojson scene = base;
         const std::vector<int> c = plan.choice(k);
-        for (std::size_t i = 0; i < plan.vary.size(); ++i) {
-            ojson& place = resolve(scene, plan.vary[i].path, plan.scene.string());
-            place = valueFor(place, plan.vary[i].values[c[i]], plan.vary[i].path);
-        }
+        for (std::size_t i = 0; i < plan.vary.size(); ++i)
+            for (ojson* place : resolveAll(scene, plan.vary[i].path, plan.scene.string()))
+                *place = valueFor(*place, plan.vary[i].values[c[i]], plan.vary[i].path);
         return scene;
     };
     // Every variant checked before any is written or run: a value the scene format refuses

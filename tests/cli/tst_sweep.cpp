@@ -2,6 +2,9 @@
 // own, their results merged into summary.csv. The physics of a swept value against its
 // closed form, a variant that runs alone to the same hash, resuming after a stop and after
 // a kill, failed variants as rows, and bad input refused before anything is written.
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QtTest>
 
 #include "cli_harness.h"
@@ -209,6 +212,25 @@ private slots:
 
     // A value the scene refuses and a run the energy guard stops are rows with their
     // status and message; the sweep goes on and exits 1.
+    // Issue 47 item 5: a wildcard sets one value on every body that has the key
+    // ("*.restitution", "bodies[*].friction"); it was refused.
+    void aWildcardSetsEveryBody() {
+        RUN(r, {"sweep", "drop.json", "--vary", "*.restitution=0.25", "--vary", "bodies[*].friction=0.75",
+                "--out", "sw", "--quiet"});
+        QCOMPARE(r.code, 0);
+        QFile variant(path("sw/variants/0000.json"));
+        QVERIFY(variant.open(QIODevice::ReadOnly));
+        const QJsonArray bodies = QJsonDocument::fromJson(variant.readAll()).object()["bodies"].toArray();
+        QCOMPARE(bodies.size(), 2);
+        for (const QJsonValue b : bodies) {
+            QCOMPARE(b.toObject()["restitution"].toDouble(), 0.25);
+            QCOMPARE(b.toObject()["friction"].toDouble(), 0.75);
+        }
+        RUN(bad, {"sweep", "drop.json", "--vary", "*.bounce=1", "--out", "bad"});
+        QCOMPARE(bad.code, 2);
+        QVERIFY2(bad.err.startsWith("tumble: --vary *.bounce: no body has it"), qPrintable(bad.err));
+    }
+
     // Issue 47 item 5: the summary's state_hash is of the final state only: two variants
     // whose ball bounces differently and ends at rest in the same place share it. The
     // trajectory_hash (every recorded frame's state) tells them apart.
