@@ -22,6 +22,8 @@
 #include <optional>
 #include <ostream>
 
+#include <unistd.h>
+
 #ifndef TUMBLE_VERSION
 #define TUMBLE_VERSION "unknown"
 #endif
@@ -71,6 +73,9 @@ const std::vector<OptionSpec>& headlessOptions() {
          "point and the time it came to rest; the energy contacts and damping\n"
          "took; the deepest overlap; the state hash"},
         {"--quiet", "", "prints nothing but errors"},
+        {"--progress", "",
+         "a progress line on stderr (frame, simulated time, time left) for a\n"
+         "run past two seconds; on by default when stderr is a terminal"},
     };
     return options;
 }
@@ -133,6 +138,7 @@ struct Options {
     int threads = 1;
     bool quiet = false;
     bool jointForces = false;
+    bool progress = false;  // --progress: even when stderr is not a terminal
 };
 
 ImageRenderer& imageRenderer() {
@@ -215,6 +221,8 @@ Options parse(const std::vector<std::string>& args) {
             throw UsageError{unknownOption(a, known, " (see --help)")};
         if (a == "--headless") continue;
         if (a == "--quiet") o.quiet = true;
+        else if (a == "--progress")
+            o.progress = true;
         else if (a == "--joint-forces") o.jointForces = true;
         else if (a == "--duration") o.duration = parseNumber(a, next());
         else if (a == "--dt") o.dt = parseNumber(a, next());
@@ -374,10 +382,29 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return 128 + stopSignal;
     };
     int frameReached = 0;
+    // A long run says how far it is: once past two seconds, about once a second (in place
+    // on a terminal), and its last line cleared at the end.
+    const bool tty = isatty(2) != 0;
+    const bool showProgress = !o.quiet && (o.progress || tty);
+    auto lastShown = t0;
+    bool shown = false;
+    auto progress = [&](int k) {
+        const auto now = std::chrono::steady_clock::now();
+        if (!showProgress || now - t0 < std::chrono::seconds(2) || now - lastShown < std::chrono::seconds(1))
+            return;
+        lastShown = now;
+        shown = true;
+        const double elapsed = std::chrono::duration<double>(now - t0).count();
+        char line[160];
+        std::snprintf(line, sizeof line, "frame %d of %d, t = %.3g s, about %.0f s left", k, frames,
+                      world->state().time, elapsed / std::max(k, 1) * (frames - 1 - k));
+        err << (tty ? "\r" : "") << "tumble: " << line << (tty ? "\x1b[K" : "\n") << std::flush;
+    };
     try {
         result = simulate(*world, [&](int k, const State& s) {
             frameReached = k;  // the world is at this frame's time
             if (stopSignal) throw Stopped{};
+            progress(k);
             if (trajectory) trajectory->frame(k, s);
             if (metrics) metrics->frame(*world);
         });
@@ -392,6 +419,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kFailure;
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (shown && tty) err << "\r\x1b[K" << std::flush;  // the progress line goes
 
     // Images first (they simulate again and may be stopped), then every other output is
     // committed: a run stopped or failed before here leaves none of them.

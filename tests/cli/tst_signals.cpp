@@ -77,6 +77,43 @@ private slots:
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // no output, no temporary
     }
 
+    // Issue 47 item 9: a long run said nothing until it ended (2 000 bodies: 52 s of
+    // silence). --progress (on by default on a terminal) gives a line about once a second
+    // after the first two: frame, simulated time, time left.
+    void aLongRunShowsItsProgress() {
+        QByteArray bodies =
+            R"({"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0]}})";
+#ifdef TUMBLE_TEST_SANITIZED
+        const int count = 100;  // a step costs thirty times as much there
+#else
+        const int count = 1000;
+#endif
+        for (int i = 0; i < count; ++i)
+            bodies += QStringLiteral(
+                          R"(, {"name": "b%1", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]},)"
+                          R"( "mass": 1, "position": [%2, %3, 0]})")
+                          .arg(i)
+                          .arg(0.3 * (i % 50))
+                          .arg(0.5 + 0.3 * (i / 50))
+                          .toUtf8();
+        write("many.json",
+              R"({"format": "tumble-scene", "version": 1, "settings": {"duration": 12, "sleeping": false},)"
+              R"( "bodies": [)" +
+                  bodies + "]}");
+        RUN(r, {"--headless", "many.json", "--progress"});
+        QCOMPARE(r.code, 0);
+        const double wall = report(r.out).value("wall_seconds").toDouble();
+        const QRegularExpression line("^tumble: frame [0-9]+ of 721, t = [0-9.e+-]+ s, about [0-9]+ s left$");
+        int shown = 0;
+        for (const QString& l : lines(r.err)) {
+            QVERIFY2(line.match(l).hasMatch(), qPrintable(l));
+            ++shown;
+        }
+        if (wall > 3.5) QVERIFY2(shown >= 1, qPrintable(QString::number(wall)));
+        if (wall < 1.9) QCOMPARE(shown, 0);
+        QVERIFY(shown <= wall);  // about once a second, after two
+    }
+
     // A sweep stopped by Ctrl-C: its variants (stopped with SIGTERM) drop their trajectories'
     // temporaries (trajectories/0000.csv.tumble-tmp-... was left, and resuming kept it).
     void aStoppedSweepLeavesNoTemporaries() {
