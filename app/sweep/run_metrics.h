@@ -3,12 +3,13 @@
 //
 // Per dynamic body: where its frame ends (final_x, final_y, final_z: the position the
 // trajectory CSV gives), how fast its centre of mass moves then (final_speed), its highest
-// point (its frame's height along -gravity; y without gravity) and when it came to rest (rest_time: the first frame from which its centre and
-// its fastest surface point stay below 1 cm/s to the end; empty if it is still moving).
-// For the scene: the energy contacts took (normal impulses and friction), the energy
-// damping took (what the start less the end leaves once contacts, joints and position
-// correction are booked: damping's, as long as no applied force or spring does work), and
-// the deepest overlap of two bodies seen at a frame.
+// point (its frame's height along -gravity; y without gravity) and when it came to rest (rest_time: the first
+// frame from which its centre and its fastest surface point stay below 1 cm/s to the end; empty if it is
+// still moving). For the scene, the energy ledger with stdout's names and meanings: what the normal impulses
+// took (energy_lost_contacts), friction (energy_lost_friction), the joints (energy_lost_joints), what placing
+// bodies in contact gave (energy_position_correction), and damping (energy_lost_damping: what the start less
+// the end leaves once those are booked; damping's, as long as no applied force or spring does work); and the
+// deepest overlap of two bodies seen at a frame.
 #pragma once
 
 #include <tumble/world.h>
