@@ -33,6 +33,39 @@ std::string shortNumber(double v) {
     return text;
 }
 
+// The largest energy, momentum or reach a body may start with: a run squares and sums them
+// (contact impulses, the energy guard), so 1e308 loaded and then stopped as "ran away ...
+// energy rose by -nan J"; refused here, naming the field, whatever the options.
+constexpr double kLargestHeld = 1e150;
+
+void requireHoldable(double v, const std::string& path, const std::string& what, const std::string& unit,
+                     const std::string& given = {}) {
+    if (!(std::abs(v) <= kLargestHeld)) {
+        throw SceneError(path, "gives " + what + " of " + shortNumber(v) + " " + unit + given +
+                                   ", more than a run can carry in double precision (at most 1e150)");
+    }
+}
+
+// A body's start within what double precision carries through a run: momentum, kinetic
+// and potential energy (over its reach in the run), or a kinematic body's travel.
+void requireHoldableStart(const BodyDesc& d, int i, double mass, const Mat3& inertia, const Settings& s) {
+    const double speed = d.velocity.stableNorm();
+    const double reach = d.position.stableNorm() + speed * s.duration;
+    if (d.motion == Motion::Kinematic) {
+        requireHoldable(reach, at(i) + ".velocity", "a travel over the run", "m");
+        return;
+    }
+    if (d.motion != Motion::Dynamic) return;
+    const std::string given = " (mass " + shortNumber(mass) + " kg)";
+    requireHoldable(mass * speed, at(i) + ".velocity", "a momentum", "kg m/s", given);
+    requireHoldable(0.5 * mass * speed * speed, at(i) + ".velocity", "a kinetic energy", "J", given);
+    const Vec3 w = d.orientation.normalized().conjugate() * d.angularVelocity;  // body axes
+    requireHoldable(0.5 * w.dot(inertia * w), at(i) + ".angular_velocity", "a kinetic energy of turning",
+                    "J");
+    requireHoldable(mass * s.gravity.stableNorm() * reach, at(i) + ".position",
+                    "a potential energy over the run", "J", given);
+}
+
 void requireFinite(double v, const std::string& path) {
     if (!std::isfinite(v)) throw SceneError(path, "must be a finite number");
 }
@@ -387,6 +420,7 @@ Model compile(const SceneDesc& scene) {
         switch (d.motion) {
             case Motion::Dynamic: {
                 const MassProperties mp = massPropertiesOf(d, index, prepared ? &*prepared : nullptr);
+                requireHoldableStart(d, index, mp.mass, mp.inertia, scene.settings);
                 b.mass = mp.mass;
                 b.invMass = 1.0 / mp.mass;
                 b.inertia = mp.inertia;
@@ -403,6 +437,7 @@ Model compile(const SceneDesc& scene) {
                 break;
             }
             case Motion::Kinematic:
+                requireHoldableStart(d, index, 0.0, Mat3::Zero(), scene.settings);
                 b.kinematicVelocity = d.velocity;
                 b.kinematicAngularVelocity = d.angularVelocity;
                 m.kinematicBodies.push_back(index);
