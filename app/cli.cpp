@@ -1,6 +1,7 @@
 #include "cli.h"
 #include "arg_reader.h"
 #include "cli_options.h"
+#include "stop_signals.h"
 #include "sweep/run_metrics.h"
 #include "sweep/sweep_cli.h"
 
@@ -160,38 +161,10 @@ struct UsageError {
     std::string message;
 };
 
-// SIGINT (Ctrl-C) and SIGTERM during a run: the handler only notes the signal; the run
-// stops at the next frame by throwing Stopped, so that every output being written (each an
-// AtomicFile) is dropped with its temporary, and the exit status says which signal it was.
-volatile std::sig_atomic_t stopSignal = 0;
-
-void onStopSignal(int signal) {
-    stopSignal = signal;
-}
-
+// SIGINT (Ctrl-C) and SIGTERM during a run (StopSignals): the run stops at the next frame
+// by throwing Stopped, so that every output being written (each an AtomicFile) is dropped
+// with its temporary, and the exit status says which signal it was.
 struct Stopped {};
-
-class StopOnSignals {
-public:
-    StopOnSignals() {
-        stopSignal = 0;
-        struct sigaction sa {};
-        sa.sa_handler = onStopSignal;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, &oldInt_);
-        sigaction(SIGTERM, &sa, &oldTerm_);
-    }
-    ~StopOnSignals() {
-        sigaction(SIGINT, &oldInt_, nullptr);
-        sigaction(SIGTERM, &oldTerm_, nullptr);
-    }
-    StopOnSignals(const StopOnSignals&) = delete;
-    StopOnSignals& operator=(const StopOnSignals&) = delete;
-
-private:
-    struct sigaction oldInt_ {
-    }, oldTerm_{};
-};
 
 std::string signalName(int signal) {
     return signal == SIGINT    ? "SIGINT (Ctrl-C)"
@@ -374,12 +347,13 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (!o.metrics.empty()) metrics.emplace(*world);
     const auto t0 = std::chrono::steady_clock::now();
     RunResult result;
-    const StopOnSignals stopOnSignals;
+    const StopSignals stopSignals;
     const int frames = frameCount(world->model().settings);
     auto stoppedMessage = [&](int frame) {
-        err << "tumble: stopped by " << signalName(stopSignal) << " at t = " << number(world->state().time)
-            << " s (frame " << frame << " of " << frames << "); nothing was written\n";
-        return 128 + stopSignal;
+        err << "tumble: stopped by " << signalName(StopSignals::received())
+            << " at t = " << number(world->state().time) << " s (frame " << frame << " of " << frames
+            << "); nothing was written\n";
+        return 128 + StopSignals::received();
     };
     int frameReached = 0;
     // A long run says how far it is: once past two seconds, about once a second (in place
@@ -403,12 +377,12 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     try {
         result = simulate(*world, [&](int k, const State& s) {
             frameReached = k;  // the world is at this frame's time
-            if (stopSignal) throw Stopped{};
+            if (StopSignals::received()) throw Stopped{};
             progress(k);
             if (trajectory) trajectory->frame(k, s);
             if (metrics) metrics->frame(*world);
         });
-        if (stopSignal) throw Stopped{};
+        if (StopSignals::received()) throw Stopped{};
     } catch (const Stopped&) {
         return stoppedMessage(frameReached);  // the outputs' temporaries go with their writers
     } catch (const SimulationError& e) {
@@ -432,11 +406,11 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
             video ? (out.parent_path() / (out.stem().string() + "-frames")).string() : o.out;
         const std::string message =
             imageRenderer()(scene, folder, video ? o.out : std::string(), o.imageWidth, o.imageHeight,
-                            [] { return stopSignal != 0; });
-        if (stopSignal) {
-            err << "tumble: stopped by " << signalName(stopSignal)
+                            [] { return StopSignals::received() != 0; });
+        if (StopSignals::received()) {
+            err << "tumble: stopped by " << signalName(StopSignals::received())
                 << " while drawing the images; nothing was written\n";
-            return 128 + stopSignal;
+            return 128 + StopSignals::received();
         }
         if (!message.empty()) {
             err << "tumble: --out: " << message << "\n";

@@ -1,5 +1,7 @@
 #include "sweep_run.h"
 
+#include "stop_signals.h"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -17,27 +19,6 @@ extern char** environ;
 namespace tumble::sweep {
 
 namespace {
-
-volatile std::sig_atomic_t stopAsked = 0;
-
-void onStop(int) { stopAsked = 1; }
-
-// SIGINT and SIGTERM set stopAsked while a run lasts; the old handlers come back after.
-struct StopSignals {
-    struct sigaction oldInt {}, oldTerm {};
-    StopSignals() {
-        stopAsked = 0;
-        struct sigaction sa {};
-        sa.sa_handler = onStop;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, &oldInt);
-        sigaction(SIGTERM, &sa, &oldTerm);
-    }
-    ~StopSignals() {
-        sigaction(SIGINT, &oldInt, nullptr);
-        sigaction(SIGTERM, &oldTerm, nullptr);
-    }
-};
 
 // A variant's stdout and stderr come through a pipe: this process writes them into its log
 // and keeps the last bytes, so that a variant's message is known even when its log cannot
@@ -107,13 +88,14 @@ pid_t start(const Job& job, int out) {
 
 bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<bool(const Outcome&)>& done,
                 const std::function<void(int running)>& tick) {
-    StopSignals signals;
+    const cli::StopSignals signals;
     std::vector<Running> running;
     std::size_t next = 0;
     bool startMore = true;
     auto lastTick = std::chrono::steady_clock::now();
-    while (!stopAsked && ((startMore && next < jobs.size()) || !running.empty())) {
-        while (!stopAsked && startMore && next < jobs.size() && static_cast<int>(running.size()) < parallel) {
+    while (!cli::StopSignals::received() && ((startMore && next < jobs.size()) || !running.empty())) {
+        while (!cli::StopSignals::received() && startMore && next < jobs.size() &&
+               static_cast<int>(running.size()) < parallel) {
             const Job& job = jobs[next++];
             const auto t0 = std::chrono::steady_clock::now();
             int pipe[2] = {-1, -1};
@@ -153,7 +135,7 @@ bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<
             reaped = true;
             // A variant stopped by the same Ctrl-C as this process (one process group) is
             // not a result.
-            if (stopAsked && o.signal != 0) continue;
+            if (cli::StopSignals::received() && o.signal != 0) continue;
             startMore = done(o) && startMore;
         }
         const auto now = std::chrono::steady_clock::now();
@@ -163,7 +145,7 @@ bool runLocally(const std::vector<Job>& jobs, int parallel, const std::function<
         }
         if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    if (!stopAsked) return true;
+    if (!cli::StopSignals::received()) return true;
     for (const Running& r : running) kill(r.pid, SIGTERM);
     for (Running& r : running) {
         int status = 0;

@@ -1,5 +1,6 @@
 #include "sweep_slurm.h"
 
+#include "stop_signals.h"
 #include "sweep_progress.h"
 #include "sweep_run.h"
 #include "sweep_summary.h"
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -26,9 +28,6 @@ using ojson = nlohmann::ordered_json;
 namespace {
 
 constexpr int kMostTasks = 1000;  // Slurm's default MaxArraySize is 1001 (indexes 0 to 1000)
-
-volatile std::sig_atomic_t stopAsked = 0;
-void onStop(int) { stopAsked = 1; }
 
 std::string quoted(const std::string& s) {
     std::string q = "'";
@@ -121,25 +120,18 @@ bool runOnSlurm(const Plan& plan, const fs::path& dir, const SlurmOptions& optio
         return true;
     }
 
-    stopAsked = 0;
-    struct sigaction sa {}, oldInt {}, oldTerm {};
-    sa.sa_handler = onStop;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &oldInt);
-    sigaction(SIGTERM, &sa, &oldTerm);
+    std::optional<cli::StopSignals> signals(std::in_place);  // (a throw below restores the handlers too)
     int done = 0, failed = 0;
     countResults(plan, dir, done, failed);
     Progress progress(err, plan.count, done);
     int misses = 0;
     bool ended = false;
-    while (!stopAsked && !ended) {
+    while (!cli::StopSignals::received() && !ended) {
         const Command q = shell("squeue -h -j " + job + " -o %T");
         if (q.status != 0) {
             // A just-submitted job can be missing for a moment; a controller that stays away
             // is an error (the job may still run: merge later).
             if (++misses > 5) {
-                sigaction(SIGINT, &oldInt, nullptr);
-                sigaction(SIGTERM, &oldTerm, nullptr);
                 throw SweepError{"squeue: " + firstLine(q.output) + " (job " + job +
                                  " may still run: tumble sweep --merge " + dir.string() + " when it ends)"};
             }
@@ -157,11 +149,12 @@ bool runOnSlurm(const Plan& plan, const fs::path& dir, const SlurmOptions& optio
             progress.show(running, 1);
             ended = queued == 0;
         }
-        for (int i = 0; i < 10 && !stopAsked && !ended; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        for (int i = 0; i < 10 && !cli::StopSignals::received() && !ended; ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
-    sigaction(SIGINT, &oldInt, nullptr);
-    sigaction(SIGTERM, &oldTerm, nullptr);
-    if (stopAsked) {
+    const bool stopped = cli::StopSignals::received() != 0;
+    signals.reset();  // the handlers before come back
+    if (stopped) {
         shell("scancel " + job);
         err << "tumble sweep: job " << job << " cancelled\n";
         return false;

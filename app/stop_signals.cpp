@@ -1,0 +1,33 @@
+#include "stop_signals.h"
+
+namespace tumble::cli {
+
+namespace {
+
+volatile std::sig_atomic_t noted = 0;
+
+void onSignal(int signal) {
+    noted = signal;
+}
+
+}  // namespace
+
+StopSignals::StopSignals() {
+    noted = 0;
+    struct sigaction sa {};
+    sa.sa_handler = onSignal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &oldInt_);
+    sigaction(SIGTERM, &sa, &oldTerm_);
+}
+
+StopSignals::~StopSignals() {
+    sigaction(SIGINT, &oldInt_, nullptr);
+    sigaction(SIGTERM, &oldTerm_, nullptr);
+}
+
+int StopSignals::received() {
+    return noted;
+}
+
+}  // namespace tumble::cli
