@@ -259,6 +259,9 @@ std::string number(double v) {
 }
 
 int headless(const Options& o, std::ostream& out, std::ostream& err) {
+    // From the start: a signal while the outputs are opened is noted too, and the run stops
+    // at its first frame with their temporaries removed.
+    const StopSignals stopSignals;
     SceneDesc scene;
     try {
         scene = io::readSceneFile(o.scene);
@@ -347,7 +350,6 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (!o.metrics.empty()) metrics.emplace(*world);
     const auto t0 = std::chrono::steady_clock::now();
     RunResult result;
-    const StopSignals stopSignals;
     const int frames = frameCount(world->model().settings);
     auto stoppedMessage = [&](int frame) {
         err << "tumble: stopped by " << signalName(StopSignals::received())
