@@ -40,7 +40,9 @@ constexpr int kInvalid = 2;
 // The options of --headless (the help's "Options for --headless" is written from it).
 const std::vector<OptionSpec>& headlessOptions() {
     static const std::vector<OptionSpec> options = {
-        {"--duration", "S", "simulated seconds (overrides settings.duration)"},
+        {"--duration", "S",
+         "simulated seconds (overrides settings.duration); numbers may be\n"
+         "written as fractions, as --dt 1/120"},
         {"--dt", "S",
          "the longest step, seconds (overrides settings.dt); each frame\n"
          "(1/frame_rate) is taken in the fewest equal steps no longer than\n"
@@ -172,7 +174,16 @@ std::string signalName(int signal) {
                                : "signal " + std::to_string(signal);
 }
 
+// A number, or a fraction of two ("--dt 1/60").
 double parseNumber(const std::string& flag, const std::string& text) {
+    const auto slash = text.find('/');
+    if (slash != std::string::npos && slash > 0) {
+        const double below = parseNumber(flag, text.substr(slash + 1));
+        if (below == 0.0) throw UsageError{flag + ": '" + text + "' divides by 0"};
+        const double v = parseNumber(flag, text.substr(0, slash)) / below;
+        if (!std::isfinite(v)) throw UsageError{flag + ": must be a finite number"};
+        return v;
+    }
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0') throw UsageError{flag + ": '" + text + "' is not a number"};

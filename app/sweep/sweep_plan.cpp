@@ -34,9 +34,18 @@ std::string shortest(double v) {
     return std::string(buf, r.ptr);
 }
 
+// A number, or a fraction of two ("1/60": a step is often thought of so).
 bool parseDouble(const std::string& text, double& v) {
     const std::string t = trim(text);
     if (t.empty()) return false;
+    const auto slash = t.find('/');
+    if (slash != std::string::npos) {
+        double a = 0.0, b = 0.0;
+        if (!parseDouble(t.substr(0, slash), a) || !parseDouble(t.substr(slash + 1), b) || b == 0.0)
+            return false;
+        v = a / b;
+        return std::isfinite(v);
+    }
     const char* end = t.data() + t.size();
     const auto r = std::from_chars(t.data(), end, v);
     return r.ec == std::errc() && r.ptr == end && std::isfinite(v);
