@@ -10,6 +10,7 @@
 #   ./dev.sh sanitize-ui   the editor's tests built with clang, ASan and UBSan, under Xvfb
 #                          (not part of `test`: its cold build is ~10 min; $BUILD_DIR-san-ui)
 #   ./dev.sh fuzz TARGET [SECONDS]   a long fuzz run of scene, mesh or meshdata (docs/reliability.md)
+#   ./dev.sh faults [KILLS]          every write under faults, KILLS (20) kills a write
 #
 # Each step is skipped when it has nothing to do, so a second run is quick. Set
 # BUILD_DIR to build elsewhere (default: build). Runs apt-get as root, or through sudo.
@@ -163,6 +164,15 @@ case "$cmd" in
     build_sanitized_ui
     run_sanitized_ui
     ;;
+  faults)
+    # Every write under faults with 20 kills a write (./dev.sh test runs 5): issue 46,
+    # docs/reliability.md "Every write under faults".
+    install_missing
+    build
+    run=(env TUMBLE_FAULT_KILLS="${1:-20}" "$BUILD_DIR/tests/tst_ui_write_faults")
+    [ -n "${DISPLAY:-}" ] || run=(xvfb-run -a -s "-screen 0 1280x1024x24" "${run[@]}")
+    exec "${run[@]}"
+    ;;
   sanitize-ui)
     install_missing
     build_sanitized_ui
@@ -180,7 +190,7 @@ case "$cmd" in
     build
     ;;
   *)
-    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build | sanitize [CTEST ARGS] | sanitize-ui [CTEST ARGS] | fuzz TARGET [SECONDS]" >&2
+    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build | sanitize [CTEST ARGS] | sanitize-ui [CTEST ARGS] | fuzz TARGET [SECONDS] | faults [KILLS]" >&2
     exit 2
     ;;
 esac
