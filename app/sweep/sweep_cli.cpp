@@ -10,14 +10,10 @@
 #include "sweep_summary.h"
 
 #include <tumble/io/atomic_file.h>
-#include <tumble/scene.h>
-
-#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <ostream>
 #include <thread>
 
@@ -199,31 +195,13 @@ int finish(const Plan& plan, const fs::path& dir, const std::vector<std::string>
     return t.failed > 0 || t.notRun > 0 ? kFailed : kOk;
 }
 
-// The variants whose step is not their dt (a dt longer than a frame steps once a frame:
-// varying dt past it changes nothing), a line each, before anything runs.
-void noteSteps(const Plan& plan, const fs::path& dir, std::ostream& err) {
-    int shown = 0, more = 0;
-    for (int k = 0; k < plan.count; ++k) {
-        Settings s;
-        try {
-            std::ifstream in(variantFile(plan, dir, k));
-            const auto settings = nlohmann::json::parse(in).value("settings", nlohmann::json::object());
-            s.dt = settings.value("dt", s.dt);
-            s.frameRate = settings.value("frame_rate", s.frameRate);
-        } catch (const std::exception&) {
-            continue;  // the variant's own run says what is wrong with it
-        }
-        if (!(s.dt > 0.0) || !(s.frameRate > 0.0)) continue;
-        const std::string note = stepNote(s);
-        if (note.empty()) continue;
-        if (shown < 5) {
-            err << "tumble sweep: note: " << plan.name(k) << ": " << note << "\n";
-            ++shown;
-        } else {
-            ++more;
-        }
-    }
-    if (more > 0) err << "tumble sweep: note: and " << more << " more variants whose step is not their dt\n";
+// The variants whose step is not their dt (writeVariants' notes), a line each up to five,
+// before anything runs.
+void noteSteps(const std::vector<std::string>& notes, std::ostream& err) {
+    for (std::size_t k = 0; k < notes.size() && k < 5; ++k) err << "tumble sweep: note: " << notes[k] << "\n";
+    if (notes.size() > 5)
+        err << "tumble sweep: note: and " << notes.size() - 5
+            << " more variants whose step is not their dt\n";
 }
 
 int sweepInFolder(const Options& o, std::ostream& realOut, std::ostream& err) {
@@ -234,7 +212,7 @@ int sweepInFolder(const Options& o, std::ostream& realOut, std::ostream& err) {
     const fs::path dir = o.out;
     const Plan plan = makePlan(o.scene, o.vary);
     const std::vector<std::string> columns = metricColumns(plan, o.metrics);
-    writeVariants(plan, dir);
+    const std::vector<std::string> stepNotes = writeVariants(plan, dir);
     std::error_code ec;
     fs::create_directories(dir / "results", ec);
     if (!ec && o.trajectories) fs::create_directories(dir / "trajectories", ec);
@@ -251,7 +229,7 @@ int sweepInFolder(const Options& o, std::ostream& realOut, std::ostream& err) {
         if (fs::exists(resultFile(plan, dir, k), ec)) continue;
         jobs.push_back(variantJob(plan, dir, k, o.trajectories, exe));
     }
-    noteSteps(plan, dir, chatter);
+    noteSteps(stepNotes, chatter);
     const int parallel = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     Progress progress(chatter, plan.count, plan.count - static_cast<int>(jobs.size()));
     // A result that cannot be written (a full disk, the folder gone) stops the sweep: nothing

@@ -1,8 +1,9 @@
 #include "sweep_plan.h"
 
-#include <tumble/io/atomic_file.h>
 #include <tumble/integrators.h>
+#include <tumble/io/atomic_file.h>
 #include <tumble/io/scene_file.h>
+#include <tumble/state.h>
 
 #include <nlohmann/json.hpp>
 
@@ -216,9 +217,7 @@ std::string contentHash(const std::string& text) {
         h ^= c;
         h *= 0x100000001b3ull;
     }
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    return hex;
+    return hashHex(h);
 }
 
 ojson planJson(const Plan& plan) {
@@ -324,7 +323,7 @@ fs::path variantFile(const Plan& plan, const fs::path& dir, int k) {
     return dir / "variants" / (plan.name(k) + ".json");
 }
 
-void writeVariants(const Plan& plan, const fs::path& dir) {
+std::vector<std::string> writeVariants(const Plan& plan, const fs::path& dir) {
     const fs::path manifest = dir / "sweep.json";
     const ojson mine = planJson(plan);
     std::error_code ec;
@@ -362,9 +361,14 @@ void writeVariants(const Plan& plan, const fs::path& dir) {
     };
     // Every variant checked before any is written or run: a value the scene format refuses
     // was an `invalid` row found only when its turn came.
+    // The same reading gives each variant's step note (a dt longer than a frame steps once a
+    // frame: varying dt past it changes nothing).
+    std::vector<std::string> notes;
     for (int k = 0; k < plan.count; ++k) {
         try {
-            io::parseScene(variant(k).dump(), "variant " + plan.name(k));
+            const std::string note =
+                stepNote(io::parseScene(variant(k).dump(), "variant " + plan.name(k)).settings);
+            if (!note.empty()) notes.push_back(plan.name(k) + ": " + note);
         } catch (const io::InputError& e) {
             std::string values;
             const std::vector<int> c = plan.choice(k);
@@ -388,6 +392,7 @@ void writeVariants(const Plan& plan, const fs::path& dir) {
     } catch (const std::runtime_error& e) {
         throw SweepError{e.what()};
     }
+    return notes;
 }
 
 Plan readPlan(const fs::path& dir) {

@@ -56,8 +56,9 @@ Plan makePlan(const std::filesystem::path& scene, const std::vector<Vary>& vary)
 /// is read and checked first: one the scene format refuses (a restitution of 1.5, a dt of
 /// 0) throws SweepError naming it and the field, and nothing is written. A DIR that holds
 /// another sweep (its sweep.json differs), or this sweep of a scene edited since, throws
-/// SweepError: nothing is overwritten.
-void writeVariants(const Plan& plan, const std::filesystem::path& dir);
+/// SweepError: nothing is overwritten. Returns a line ("0003: ...", tumble::stepNote) for each
+/// variant whose step is not its dt.
+std::vector<std::string> writeVariants(const Plan& plan, const std::filesystem::path& dir);
 
 /// The plan a sweep folder holds (its sweep.json). Throws SweepError when there is none or
 /// it cannot be read.
