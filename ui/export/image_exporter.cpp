@@ -402,16 +402,20 @@ void ImageExporter::onCaptured() {
         image = image.scaled(d.opt.size, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
     }
     const QString path = d.tempImage(d.next);
-    // Encoded in memory and written by AtomicFile, which checks every write: QImage::save
-    // into a file reported success on a full disk and left empty images.
+    // Encoded in memory and written with every write checked: QImage::save into a file
+    // reported success on a full disk and left empty images. (The image goes into the
+    // hidden folder, moved into place whole at the end: no temporary of its own needed.)
     QByteArray png;
     QBuffer buffer(&png);
     if (!buffer.open(QIODevice::WriteOnly) || !image.save(&buffer, "PNG"))
         return fail(tr("Cannot encode the image of frame %1").arg(frame));
-    try {
-        io::writeFileAtomically(QFile::encodeName(path).toStdString(), png.toStdString());
-    } catch (const std::exception& e) {
-        return fail(tr("Cannot write the image %1").arg(QString::fromLocal8Bit(e.what())));
+    QFile out(path);
+    bool written = out.open(QIODevice::WriteOnly) && out.write(png) == png.size() && out.flush();
+    out.close();
+    written = written && out.error() == QFileDevice::NoError;
+    if (!written) {
+        return fail(tr("Cannot write the image %1: %2")
+                        .arg(QDir::toNativeSeparators(path), plainly(out.errorString())));
     }
     ++d.next;
     const int gen = d.generation;
