@@ -1,20 +1,22 @@
-// glTF through assimp's exporter (5.2 writes TRS nodes, LINEAR samplers with times in
-// seconds and the accessor bounds the validator asks for). The exporter writes through an
-// IOSystem; ours keeps its files in memory, so that they reach the disk through AtomicFile
-// (the .bin first, then the .gltf that names it) or not at all.
+// glTF 2.0 written directly: the JSON with nlohmann-json, every mesh, time and key in one
+// binary buffer grown by appending (amortised), so the export is linear in bodies times
+// frames. (Assimp 5.2's glTF 2 exporter grows its buffer to the exact size at every
+// accessor, a copy of the whole buffer each time: quadratic in the bodies.)
+//
+// Layout: one buffer; a buffer view per accessor; one time accessor shared by every
+// sampler; per mesh POSITION (with its bounds, as the format requires), NORMAL and the
+// indices; per moving body a translation and a rotation sampler. Floats are written
+// little-endian, as the format says; this machine is little-endian (checked at compile
+// time below).
 #include <tumble/io/atomic_file.h>
 #include <tumble/io/gltf_export.h>
 #include <tumble/io/tessellate.h>
 
-#include <assimp/material.h>
-#include <assimp/scene.h>
-#include <assimp/Exporter.hpp>
-#include <assimp/IOStream.hpp>
-#include <assimp/IOSystem.hpp>
-
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -24,87 +26,15 @@
 namespace tumble::io {
 
 namespace fs = std::filesystem;
+using nlohmann::json;
+
+static_assert(std::endian::native == std::endian::little,
+              "the glTF buffer is written as the machine holds it");
 
 namespace {
 
-class MemoryStream : public Assimp::IOStream {
-public:
-    explicit MemoryStream(std::string& data) : data_(data) {}
-    size_t Read(void* buffer, size_t size, size_t count) override {
-        if (size == 0) return 0;
-        const size_t n = std::min(count, (data_.size() - pos_) / size);
-        std::memcpy(buffer, data_.data() + pos_, n * size);
-        pos_ += n * size;
-        return n;
-    }
-    size_t Write(const void* buffer, size_t size, size_t count) override {
-        const size_t bytes = size * count;
-        if (pos_ + bytes > data_.size()) data_.resize(pos_ + bytes);
-        std::memcpy(data_.data() + pos_, buffer, bytes);
-        pos_ += bytes;
-        return count;
-    }
-    aiReturn Seek(size_t offset, aiOrigin origin) override {
-        const size_t base = origin == aiOrigin_SET ? 0 : origin == aiOrigin_CUR ? pos_ : data_.size();
-        pos_ = base + offset;
-        if (pos_ > data_.size()) data_.resize(pos_);  // the .glb writer skips its header first
-        return aiReturn_SUCCESS;
-    }
-    size_t Tell() const override { return pos_; }
-    size_t FileSize() const override { return data_.size(); }
-    void Flush() override {}
-
-private:
-    std::string& data_;
-    size_t pos_ = 0;
-};
-
-class MemoryFiles : public Assimp::IOSystem {
-public:
-    std::map<std::string, std::string> files;
-
-    bool Exists(const char* file) const override { return files.count(file) != 0; }
-    char getOsSeparator() const override { return '/'; }
-    Assimp::IOStream* Open(const char* file, const char* mode) override {
-        std::string& data = files[file];
-        if (std::strchr(mode, 'w')) data.clear();
-        return new MemoryStream(data);
-    }
-    void Close(Assimp::IOStream* stream) override { delete stream; }
-};
-
-aiVector3D toAi(const Vec3& v) {
-    return aiVector3D(static_cast<ai_real>(v.x()), static_cast<ai_real>(v.y()), static_cast<ai_real>(v.z()));
-}
-
-aiMesh* toAiMesh(const RenderMesh& m, const std::string& name) {
-    auto* mesh = new aiMesh();
-    mesh->mName = name;
-    mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-    mesh->mMaterialIndex = 0;
-    mesh->mNumVertices = static_cast<unsigned>(m.positions.size());
-    mesh->mVertices = new aiVector3D[mesh->mNumVertices];
-    mesh->mNormals = new aiVector3D[mesh->mNumVertices];
-    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-        mesh->mVertices[i] = toAi(m.positions[i]);
-        mesh->mNormals[i] = toAi(m.normals[i]);
-    }
-    mesh->mNumFaces = static_cast<unsigned>(m.indices.size() / 3);
-    mesh->mFaces = new aiFace[mesh->mNumFaces];
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-        mesh->mFaces[f].mNumIndices = 3;
-        mesh->mFaces[f].mIndices =
-            new unsigned[3]{m.indices[3 * f], m.indices[3 * f + 1], m.indices[3 * f + 2]};
-    }
-    return mesh;
-}
-
-template <class T>
-T* copyArray(const std::vector<T>& v) {
-    T* out = new T[v.size()];
-    std::copy(v.begin(), v.end(), out);
-    return out;
-}
+constexpr int kFloat = 5126, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
 // What the render mesh of a shape depends on: equal keys, equal meshes. Imported meshes are
 // shared by the loader per file and scale, so their data's address tells.
@@ -129,36 +59,76 @@ std::string shapeKey(const ShapeDesc& s) {
     return buf;
 }
 
-std::uint32_t readU32(const std::string& bytes, size_t at) {
-    std::uint32_t v = 0;
-    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
-    return v;
+// A unit vector in single precision: normalised after rounding, so that the validator's
+// unit-length checks hold for the floats written.
+template <int N>
+std::array<float, N> unitFloats(std::array<double, N> v) {
+    double norm = 0;
+    for (double c : v) norm += c * c;
+    norm = std::sqrt(norm);
+    std::array<float, N> out;
+    for (int i = 0; i < N; ++i) out[i] = static_cast<float>(v[i] / norm);
+    return out;
 }
 
-void writeU32(std::string& out, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
-}
+// The JSON document and its binary buffer, built together.
+class Builder {
+public:
+    json doc = json::object();
+    std::string bin;
 
-// Assimp lists extensions it never uses (FB_ngon_encoding, KHR_materials_volume) in
-// extensionsUsed; nothing in these files needs an extension, so the list goes. A .glb is a
-// 12-byte header, a JSON chunk padded with spaces to 4 bytes, then the binary chunk.
-std::string withoutExtensionsUsed(const std::string& glb, const fs::path& file) {
-    const auto bad = [&] {
-        return std::runtime_error(file.string() + ": the glTF exporter wrote a malformed .glb");
-    };
-    if (glb.size() < 20 || glb.compare(0, 4, "glTF") != 0 || readU32(glb, 8) != glb.size()) throw bad();
-    const std::uint32_t jsonLength = readU32(glb, 12);
-    if (readU32(glb, 16) != 0x4E4F534Au || 20 + size_t(jsonLength) > glb.size()) throw bad();
-    nlohmann::json doc = nlohmann::json::parse(glb.substr(20, jsonLength));
-    doc.erase("extensionsUsed");
-    std::string json = doc.dump();
-    json.append((4 - json.size() % 4) % 4, ' ');
-    const std::string rest = glb.substr(20 + jsonLength);
-    std::string out = glb.substr(0, 8);
-    writeU32(out, static_cast<std::uint32_t>(12 + 8 + json.size() + rest.size()));
-    writeU32(out, static_cast<std::uint32_t>(json.size()));
-    writeU32(out, 0x4E4F534Au);  // "JSON"
-    return out + json + rest;
+    // Appends `count` elements of `components` floats (or uint32s) as one accessor in its
+    // own buffer view; returns the accessor's index. `bounds`: with min and max per component.
+    template <class T>
+    int accessor(const std::vector<T>& data, int components, const char* type, int target, bool bounds) {
+        static_assert(sizeof(T) == 4);
+        const size_t offset = bin.size();
+        bin.append(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(T));
+        json view = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", data.size() * sizeof(T)}};
+        if (target) view["target"] = target;
+        doc["bufferViews"].push_back(std::move(view));
+        json acc = {{"bufferView", doc["bufferViews"].size() - 1},
+                    {"componentType", std::is_same_v<T, float> ? kFloat : kUnsignedInt},
+                    {"count", data.size() / components},
+                    {"type", type}};
+        if (bounds) {
+            std::vector<T> lo(data.begin(), data.begin() + components), hi = lo;
+            for (size_t i = 0; i < data.size(); ++i) {
+                lo[i % components] = std::min(lo[i % components], data[i]);
+                hi[i % components] = std::max(hi[i % components], data[i]);
+            }
+            acc["min"] = lo;
+            acc["max"] = hi;
+        }
+        doc["accessors"].push_back(std::move(acc));
+        return static_cast<int>(doc["accessors"].size() - 1);
+    }
+
+    int mesh(const RenderMesh& m, const std::string& name) {
+        std::vector<float> positions, normals;
+        positions.reserve(3 * m.positions.size());
+        normals.reserve(3 * m.normals.size());
+        for (size_t i = 0; i < m.positions.size(); ++i) {
+            for (int c = 0; c < 3; ++c) positions.push_back(static_cast<float>(m.positions[i][c]));
+            const auto n = unitFloats<3>({m.normals[i].x(), m.normals[i].y(), m.normals[i].z()});
+            normals.insert(normals.end(), n.begin(), n.end());
+        }
+        const int p = accessor(positions, 3, "VEC3", kArrayBuffer, true);
+        const int n = accessor(normals, 3, "VEC3", kArrayBuffer, false);
+        const int idx = accessor(m.indices, 1, "SCALAR", kElementArrayBuffer, false);
+        doc["meshes"].push_back(
+            {{"name", name},
+             {"primitives",
+              json::array(
+                  {{{"attributes", {{"POSITION", p}, {"NORMAL", n}}}, {"indices", idx}, {"material", 0}}})}});
+        return static_cast<int>(doc["meshes"].size() - 1);
+    }
+};
+
+void writeU32(std::ostream& out, std::uint32_t v) {
+    char b[4];
+    for (int i = 0; i < 4; ++i) b[i] = static_cast<char>((v >> (8 * i)) & 0xff);
+    out.write(b, 4);
 }
 
 }  // namespace
@@ -206,143 +176,126 @@ void GltfTrajectoryWriter::close() {
     }
     const double planeHalf = std::max(10.0, 1.5 * reach + 1.0);
 
-    auto ai = std::make_unique<aiScene>();
-    // Channels find their node by name, so the root must not share one with a body.
+    Builder g;
+    json& doc = g.doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "Tumble"}};
+    doc["scene"] = 0;
+    doc["materials"] = json::array(
+        {{{"name", "body"},
+          {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}}}}});
+    doc["bufferViews"] = json::array();
+    doc["accessors"] = json::array();
+    doc["meshes"] = json::array();
+
+    // Node 0 is the root, named after the file; channels find their node by index, but
+    // importers that go by name (assimp) must not find a body's name on the root.
     std::string rootName = fs::path(file()).stem().string();
     auto taken = [&](const std::string& n) {
         return std::any_of(bodies().begin(), bodies().end(),
                            [&](int i) { return model().bodies[i].name == n; });
     };
     while (rootName.empty() || taken(rootName)) rootName += " scene";
-    ai->mRootNode = new aiNode(rootName);
-    ai->mNumMaterials = 1;
-    ai->mMaterials = new aiMaterial* [1] { new aiMaterial() };
-    {
-        aiMaterial& m = *ai->mMaterials[0];
-        const aiString name("body");
-        m.AddProperty(&name, AI_MATKEY_NAME);
-        const aiColor4D grey(0.8f, 0.8f, 0.8f, 1.0f);
-        m.AddProperty(&grey, 1, AI_MATKEY_COLOR_DIFFUSE);
-        m.AddProperty(&grey, 1, AI_MATKEY_BASE_COLOR);
-    }
+    json nodes = json::array({{{"name", rootName}}});
+    json children = json::array();
 
-    std::vector<aiMesh*> meshes;
-    std::map<std::string, unsigned> shared;  // bodies of the same shape share its mesh
-    std::vector<aiNode*> nodes;
-    std::vector<aiNodeAnim*> channels;
+    // The frames' times, shared by every sampler (strictly increasing, with bounds).
+    int timeAccessor = -1;
+    std::vector<float> times;
+    times.reserve(times_.size());
+    for (double t : times_) times.push_back(static_cast<float>(t));
+
+    json samplers = json::array(), channels = json::array();
+    std::map<std::string, int> shared;  // bodies of the same shape share its mesh
     for (size_t n = 0; n < bodies().size(); ++n) {
         const int i = bodies()[n];
         const BodyModel& b = model().bodies[i];
         const ShapeDesc& shape = scene().bodies[i].shape;
-        auto* node = new aiNode(b.name);
-        node->mParent = ai->mRootNode;
-        nodes.push_back(node);
+        const auto& first = poses_[n].front();
+        json node = {{"name", b.name},
+                     {"translation", {float(first[0]), float(first[1]), float(first[2])}},
+                     {"rotation", unitFloats<4>({first[4], first[5], first[6], first[3]})}};
 
-        unsigned meshIndex = static_cast<unsigned>(meshes.size());
         const std::string key = shapeKey(shape);
         auto it = shared.find(key);
-        if (it != shared.end()) {
-            meshIndex = it->second;
-        } else {
+        if (it == shared.end()) {
             const RenderMesh rm = tessellate(shape, segments_, planeHalf);
-            if (!rm.indices.empty()) {
-                meshes.push_back(toAiMesh(rm, b.name));
-                shared[key] = meshIndex;
-            } else {
-                meshIndex = ~0u;
-            }
+            it = shared.emplace(key, rm.indices.empty() ? -1 : g.mesh(rm, b.name)).first;
         }
-        if (meshIndex != ~0u) {
-            node->mNumMeshes = 1;
-            node->mMeshes = new unsigned[1]{meshIndex};
-        }
-
-        const auto& first = poses_[n].front();
-        const aiQuaternion q0(static_cast<ai_real>(first[3]), static_cast<ai_real>(first[4]),
-                              static_cast<ai_real>(first[5]), static_cast<ai_real>(first[6]));
-        node->mTransformation =
-            aiMatrix4x4(aiVector3D(1, 1, 1), q0,
-                        aiVector3D(static_cast<ai_real>(first[0]), static_cast<ai_real>(first[1]),
-                                   static_cast<ai_real>(first[2])));
+        if (it->second >= 0) node["mesh"] = it->second;
+        const int nodeIndex = static_cast<int>(nodes.size());
+        children.push_back(nodeIndex);
+        nodes.push_back(std::move(node));
 
         if (b.standsStill()) continue;
-        auto* channel = new aiNodeAnim();
-        channel->mNodeName = b.name;
-        channel->mNumPositionKeys = channel->mNumRotationKeys = static_cast<unsigned>(times_.size());
-        channel->mPositionKeys = new aiVectorKey[times_.size()];
-        channel->mRotationKeys = new aiQuatKey[times_.size()];
+        if (timeAccessor < 0) timeAccessor = g.accessor(times, 1, "SCALAR", 0, true);
+        std::vector<float> translation, rotation;
+        translation.reserve(3 * times_.size());
+        rotation.reserve(4 * times_.size());
         Quat previous = Quat::Identity();
         for (size_t f = 0; f < times_.size(); ++f) {
             const auto& p = poses_[n][f];
-            // Times in frames of the run at ticks = frame rate: the exporter writes seconds.
-            const double tick = times_[f] * frameRate();
-            channel->mPositionKeys[f].mTime = tick;
-            channel->mPositionKeys[f].mValue = aiVector3D(
-                static_cast<ai_real>(p[0]), static_cast<ai_real>(p[1]), static_cast<ai_real>(p[2]));
+            translation.insert(translation.end(), {float(p[0]), float(p[1]), float(p[2])});
             // q and -q are one rotation; keep each key on the previous one's side, so that a
             // viewer interpolating componentwise (Blender) never passes through a zero.
             Quat q(p[3], p[4], p[5], p[6]);
             if (f > 0 && q.coeffs().dot(previous.coeffs()) < 0) q.coeffs() = -q.coeffs();
             previous = q;
-            channel->mRotationKeys[f].mTime = tick;
-            channel->mRotationKeys[f].mValue =
-                aiQuaternion(static_cast<ai_real>(q.w()), static_cast<ai_real>(q.x()),
-                             static_cast<ai_real>(q.y()), static_cast<ai_real>(q.z()));
+            const auto r = unitFloats<4>({q.x(), q.y(), q.z(), q.w()});
+            rotation.insert(rotation.end(), r.begin(), r.end());
         }
-        channels.push_back(channel);
+        for (const auto& [path, data, type] :
+             {std::tuple{"translation", &translation, "VEC3"}, std::tuple{"rotation", &rotation, "VEC4"}}) {
+            const int out = g.accessor(*data, type[3] - '0', type, 0, false);
+            samplers.push_back({{"input", timeAccessor}, {"output", out}, {"interpolation", "LINEAR"}});
+            channels.push_back(
+                {{"sampler", samplers.size() - 1}, {"target", {{"node", nodeIndex}, {"path", path}}}});
+        }
     }
-    ai->mRootNode->mNumChildren = static_cast<unsigned>(nodes.size());
-    ai->mRootNode->mChildren = copyArray(nodes);
-    ai->mNumMeshes = static_cast<unsigned>(meshes.size());
-    ai->mMeshes = copyArray(meshes);
+    if (!children.empty()) nodes[0]["children"] = std::move(children);
+    doc["nodes"] = std::move(nodes);
+    doc["scenes"] = json::array({{{"nodes", {0}}}});
     if (!channels.empty()) {
-        auto* anim = new aiAnimation();
-        anim->mName = "simulation";
-        anim->mTicksPerSecond = frameRate();
-        anim->mDuration = times_.back() * frameRate();
-        anim->mNumChannels = static_cast<unsigned>(channels.size());
-        anim->mChannels = copyArray(channels);
-        ai->mNumAnimations = 1;
-        ai->mAnimations = new aiAnimation* [1] { anim };
+        doc["animations"] = json::array(
+            {{{"name", "simulation"}, {"samplers", std::move(samplers)}, {"channels", std::move(channels)}}});
+    }
+    for (const char* key : {"meshes", "accessors", "bufferViews"}) {
+        if (doc[key].empty()) doc.erase(key);
     }
 
-    // Export into memory under the target's own name, so that the .gltf names its .bin as
-    // it will be on disk.
-    const std::string name = fs::path(file()).filename().string();
-    auto* files = new MemoryFiles();
-    Assimp::Exporter exporter;
-    exporter.SetIOHandler(files);  // the exporter owns and deletes it
-    if (exporter.Export(ai.get(), binary_ ? "glb2" : "gltf2", name) != aiReturn_SUCCESS) {
-        throw std::runtime_error(file().string() +
-                                 ": the glTF exporter failed: " + exporter.GetErrorString());
+    g.bin.append((4 - g.bin.size() % 4) % 4, '\0');
+    if (!g.bin.empty()) {
+        json buffer = {{"byteLength", g.bin.size()}};
+        if (!binary_) buffer["uri"] = fs::path(file()).filename().replace_extension(".bin").string();
+        doc["buffers"] = json::array({std::move(buffer)});
     }
-    auto main = files->files.find(name);
-    if (main == files->files.end())
-        throw std::runtime_error(file().string() + ": the glTF exporter wrote nothing");
-    std::string mainText;
-    if (!binary_) {
-        // Assimp names the buffer after the file and an index (t_0.bin); on disk it is the
-        // .gltf's own name with .bin, and the .gltf says so.
-        if (files->files.size() != 2) {
-            throw std::runtime_error(file().string() + ": the glTF exporter wrote " +
-                                     std::to_string(files->files.size()) +
-                                     " files, not a .gltf and its .bin");
+
+    std::ostream& out = outputs_->main->stream();
+    if (binary_) {
+        // A 12-byte header, the JSON chunk padded with spaces to 4 bytes, the binary chunk.
+        std::string text = doc.dump();
+        text.append((4 - text.size() % 4) % 4, ' ');
+        const size_t total = 12 + 8 + text.size() + (g.bin.empty() ? 0 : 8 + g.bin.size());
+        if (total > 0xffffffffu) {
+            throw std::runtime_error(file().string() + ": the export would be " +
+                                     std::to_string(total >> 20) +
+                                     " MiB, past the 4 GiB a .glb can hold: export fewer frames or bodies, "
+                                     "or write .gltf");
         }
-        const auto bin =
-            files->files.begin()->first == name ? std::next(files->files.begin()) : files->files.begin();
-        nlohmann::json doc = nlohmann::json::parse(main->second);
-        if (!doc.contains("buffers") || doc["buffers"].size() != 1 ||
-            doc["buffers"][0].value("uri", "") != bin->first) {
-            throw std::runtime_error(file().string() + ": the glTF exporter named its buffer unexpectedly");
+        out.write("glTF", 4);
+        writeU32(out, 2);
+        writeU32(out, static_cast<std::uint32_t>(total));
+        writeU32(out, static_cast<std::uint32_t>(text.size()));
+        out.write("JSON", 4);
+        out << text;
+        if (!g.bin.empty()) {
+            writeU32(out, static_cast<std::uint32_t>(g.bin.size()));
+            out.write("BIN\0", 4);
+            out << g.bin;
         }
-        doc["buffers"][0]["uri"] = fs::path(name).replace_extension(".bin").string();
-        doc.erase("extensionsUsed");
-        mainText = doc.dump(2);
-        outputs_->bin->stream() << bin->second;
     } else {
-        mainText = withoutExtensionsUsed(main->second, file());
+        out << doc.dump(2);
+        outputs_->bin->stream() << g.bin;
     }
-    outputs_->main->stream() << mainText;
     // Both written out before either replaces its old file: a full disk leaves the old pair.
     // (Only a kill between the two renames, microseconds apart, can pair a new .bin with the
     // old .gltf.)

@@ -1,5 +1,5 @@
 // The benchmark program's parts: options, the engines to run, and the four measurements
-// (work-precision, speed, skips as speed variants, stress), each writing rows the report
+// (work-precision, speed, skips as speed variants, stress, export), each writing rows the report
 // turns into CSV, plots and Markdown tables.
 #pragma once
 
@@ -27,6 +27,8 @@ std::vector<std::unique_ptr<EngineAdapter>> makeEngines(const Options& opt);
 std::unique_ptr<EngineAdapter> makeEngine(const std::string& name);
 
 double wallNow();
+/// This program's own path (/proc/self/exe), to run parts of it in a child process.
+std::string selfPath();
 
 // --- work-precision -------------------------------------------------------------------
 struct AccuracyRow {
@@ -76,6 +78,22 @@ struct StressRow {
     double dt = 0.0, largestMove = 0.0;
 };
 bool runStress(const Options& opt, std::vector<StressRow>& rows);
+
+// --- export ---------------------------------------------------------------------------
+struct ExportRow {
+    int bodies = 0;
+    std::string format;  ///< the file's extension: csv, json, gltf, glb
+    int frames = 0;
+    double seconds = 0;            ///< the writer alone, the fastest of three
+    unsigned long long bytes = 0;  ///< a .gltf with its .bin
+    std::string note;              ///< why it failed
+};
+/// Times each trajectory writer on runs of 250 to 2 000 bodies (250 and 500 when quick),
+/// each write in a fresh child process (as a user's run meets the allocator).
+bool runExport(const Options& opt, std::vector<ExportRow>& rows);
+/// `tumble-bench --child export BODIES FILE`: one timed write, one "RESULT" line.
+int exportChildMain(int argc, char** argv);
+void writeExport(const Options& opt, const std::vector<ExportRow>& rows);
 
 // --- report ---------------------------------------------------------------------------
 void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows);

@@ -4,7 +4,8 @@
 //                                     steps 1/60 and 1/240, a few steps of each speed scene,
 //                                     shorter stress runs on Tumble alone
 //   tumble-bench --scene NAME         one scene or stress test (see --list), or a whole part:
-//                                     accuracy, speed or stress; or stacks (the stress tests
+//                                     accuracy, speed, stress or export (the trajectory
+//                                     writers' time against the bodies); or stacks (the stress tests
 //                                     STACK@1/N, with the stability-against-step plot)
 //   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
@@ -20,10 +21,18 @@
 #include <cstring>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace tumble::bench {
 
 double wallNow() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string selfPath() {
+    char buf[4096];
+    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    return n > 0 ? std::string(buf, n) : "tumble-bench";
 }
 
 std::unique_ptr<EngineAdapter> makeEngine(const std::string& name) {
@@ -80,6 +89,8 @@ void list() {
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (argc > 2 && std::strcmp(argv[1], "--child") == 0 && std::strcmp(argv[2], "export") == 0)
+        return exportChildMain(argc, argv);
     if (argc > 1 && std::strcmp(argv[1], "--child") == 0) return childMain(argc, argv);
     Options opt;
     for (int i = 1; i < argc; ++i) {
@@ -110,7 +121,8 @@ int main(int argc, char** argv) {
         }
     }
     // A part's name runs the whole part (the speed part's stage plot shows every scene).
-    const bool part = opt.scene == "accuracy" || opt.scene == "speed" || opt.scene == "stress";
+    const bool part =
+        opt.scene == "accuracy" || opt.scene == "speed" || opt.scene == "stress" || opt.scene == "export";
     const std::string only = part ? opt.scene : std::string();
     if (part) opt.scene.clear();
     const bool all = opt.scene.empty() && !part;
@@ -143,6 +155,12 @@ int main(int argc, char** argv) {
         std::printf("\n# Stability stress%s\n", opt.quick ? " (quick: shorter runs, Tumble alone)" : "");
         ok = runStress(opt, stress) && ok;
         writeStress(opt, stress);
+    }
+    if (all || only == "export") {
+        std::printf("\n# Trajectory export%s\n", opt.quick ? " (quick: 250 and 500 bodies)" : "");
+        std::vector<ExportRow> exports;
+        ok = runExport(opt, exports) && ok;
+        writeExport(opt, exports);
     }
     std::printf("\n%s in %.1f s; CSV, plots and summary.md in %s\n", ok ? "done" : "FAILED", wallNow() - t0,
                 opt.out.c_str());

@@ -68,12 +68,6 @@ void memoryReport(const char* when, double base) {
         if (kb > 0) std::fprintf(stderr, "MEMORY %s %6ld kB %s\n", when, kb, mapping.c_str());
 }
 
-std::string selfPath() {
-    char buf[4096];
-    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-    return n > 0 ? std::string(buf, n) : "tumble-bench";
-}
-
 // How far joint j is from holding in the engine's present state (m): its anchors' distance
 // (ball, hinge, fixed), that distance square to the axis (slider), or off the length
 // (distance; a rope only when longer).
