@@ -1,6 +1,7 @@
 // glTF 2.0 export (.gltf with its .bin beside it, or one .glb), written directly (JSON by
-// nlohmann-json, one binary buffer; linear in bodies x frames): one node per exported body carrying its render mesh (tessellate.h), placed at
-// the body's pose in the first exported frame, and one animation "simulation" with a
+// nlohmann-json, one binary buffer; linear in bodies x frames): one node per exported body
+// carrying its render mesh (tessellate.h), placed at the body's pose in the first exported
+// frame, and one animation "simulation" with a
 // translation and a rotation channel (LINEAR, times in seconds) per moving body, sampled at
 // every exported frame. Static bodies, and kinematic ones at zero velocity, get no channel.
 // Units metres, +Y up, right-handed: glTF's convention is Tumble's, nothing is converted.
