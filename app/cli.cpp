@@ -1,6 +1,7 @@
 #include "cli.h"
 #include "arg_reader.h"
 #include "cli_options.h"
+#include "std_streams.h"
 #include "stop_signals.h"
 #include "sweep/run_metrics.h"
 #include "sweep/sweep_cli.h"
@@ -63,18 +64,22 @@ const std::vector<OptionSpec>& headlessOptions() {
          ".glb (glTF 2.0: the bodies' meshes and their motion as an animation);\n"
          "a folder ending in / gets a PNG per frame, FILE.mp4 a video (its\n"
          "frames in FILE-frames/; needs ffmpeg): both drawn by the editor's\n"
-         "viewport, so they need a display (xvfb-run -a tumble --headless ...)"},
+         "viewport, so they need a display (xvfb-run -a tumble --headless ...).\n"
+         "- writes it to standard output (--format), once the run succeeded"},
+        {"--format", "FORMAT", "the format of --out -: csv (default), json or glb"},
         {"--joint-forces", "",
          "with a .csv or .json --out: each joint's reaction too (the force\n"
          "on body A at its anchor and the couple on A, world, over the last\n"
          "step before each frame; a CSV gets them in FILE-joints.csv beside it)"},
         {"--image-size", "WxH", "pixels of the images and video (default 1280x720)"},
-        {"--save-scene", "FILE", "writes the scene as run (options applied), normalised"},
+        {"--save-scene", "FILE",
+         "writes the scene as run (options applied), normalised; - to\n"
+         "standard output"},
         {"--metrics", "FILE",
          "writes the run's measures as JSON (what a sweep's summary holds,\n"
          "docs/sweeps.md): per body its final position and speed, highest\n"
          "point and the time it came to rest; the energy contacts and damping\n"
-         "took; the deepest overlap; the state hash"},
+         "took; the deepest overlap; the state hash; - to standard output"},
         {"--quiet", "", "prints nothing but errors"},
         {"--progress", "",
          "a progress line on stderr (frame, simulated time, time left) for a\n"
@@ -137,6 +142,7 @@ struct Options {
     std::optional<std::string> integrator;
     std::optional<ImpactTiming> impacts;
     std::string out, saveScene, metrics;
+    std::optional<io::TrajectoryFormat> format;  // --format, for --out -
     int imageWidth = 1280, imageHeight = 720;
     int threads = 1;
     bool quiet = false;
@@ -240,12 +246,26 @@ Options parse(const std::vector<std::string>& args) {
                 throw UsageError{"--image-size: '" + v + "' is not WIDTHxHEIGHT in pixels (16 to 8192 each)"};
             o.imageWidth = w;
             o.imageHeight = h;
+        } else if (a == "--format") {
+            const std::string v = next();
+            io::TrajectoryFormat f;
+            if ((v != "csv" && v != "json" && v != "glb") || !io::trajectoryFormatFor("x." + v, f))
+                throw UsageError{"--format: '" + v +
+                                 "' is not one of csv, json, glb (the formats standard output can carry)"};
+            o.format = f;
         } else if (a.rfind("-", 0) == 0 && a.size() > 1)
             throw UsageError{"unknown option '" + a + "' (see --help)"};
         else if (o.scene.empty()) o.scene = a;
         else throw UsageError{"more than one scene given: '" + o.scene + "' and '" + a + "'"};
     }
     if (o.scene.empty()) throw UsageError{"--headless needs a scene file (see --help)"};
+    // Standard output carries one file; the report then goes to standard error.
+    const int toStdout = (o.out == "-") + (o.saveScene == "-") + (o.metrics == "-");
+    if (toStdout > 1)
+        throw UsageError{
+            "only one of --out, --save-scene and --metrics can be - (standard output carries one file)"};
+    if (o.format && o.out != "-")
+        throw UsageError{"--format: only for --out - (a file's format follows its extension)"};
     return o;
 }
 
@@ -274,10 +294,16 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     // at its first frame with their temporaries removed.
     const StopSignals stopSignals;
     SceneDesc scene;
+    const std::string sceneName = o.scene == "-" ? kStdinName : o.scene;  // for messages
     try {
-        scene = io::readSceneFile(o.scene);
+        // From standard input, mesh files are found from the working folder.
+        scene = o.scene == "-" ? io::parseScene(readStandardInput(), kStdinName, std::filesystem::path("."))
+                               : io::readSceneFile(o.scene);
     } catch (const io::InputError& e) {
         err << e.what() << "\n";
+        return kInvalid;
+    } catch (const std::runtime_error& e) {
+        err << "tumble: " << e.what() << "\n";
         return kInvalid;
     }
     if (o.duration) scene.settings.duration = *o.duration;
@@ -287,12 +313,13 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     if (o.impacts) scene.settings.impacts = *o.impacts;
 
     const bool images = isImageOutput(o.out);
+    const bool trajectoryToStdout = o.out == "-";
     if (images && !imageRenderer()) {
         err << "tumble: --out: '" << o.out << "': images and video need the editor, which this build has not\n";
         return kInvalid;
     }
-    io::TrajectoryFormat format = io::TrajectoryFormat::Csv;
-    if (!o.out.empty() && !images && !io::trajectoryFormatFor(o.out, format)) {
+    io::TrajectoryFormat format = o.format.value_or(io::TrajectoryFormat::Csv);
+    if (!o.out.empty() && !images && !trajectoryToStdout && !io::trajectoryFormatFor(o.out, format)) {
         err << "tumble: --out: '" << o.out << "': " << io::trajectoryFormatsText() << "\n";
         return kInvalid;
     }
@@ -304,8 +331,14 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         return kInvalid;
     }
 
+    if (o.jointForces && trajectoryToStdout && format == io::TrajectoryFormat::Csv) {
+        err << "tumble: --joint-forces: with --out - needs --format json (a CSV puts the joints in a "
+               "second file)\n";
+        return kInvalid;
+    }
+
     if (o.jointForces && scene.joints.empty()) {
-        err << "tumble: --joint-forces: " << o.scene << " has no joints (nothing to write)\n";
+        err << "tumble: --joint-forces: " << sceneName << " has no joints (nothing to write)\n";
         return kInvalid;
     }
 
@@ -316,7 +349,8 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     } catch (const SceneError& e) {
         const std::string flag = flagFor(e.path(), o);
         if (!flag.empty()) err << "tumble: " << flag << ": " << e.message() << "\n";
-        else err << o.scene << ": " << e.what() << "\n";
+        else
+            err << sceneName << ": " << e.what() << "\n";
         return kInvalid;
     }
     if (!o.quiet) {
@@ -327,12 +361,30 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         }
     }
 
+    // The output given as -, written to a temporary file and copied out after the run.
+    std::unique_ptr<StdoutFile> stdoutFile;
+    try {
+        // Named after the scene: a .glb names its root node after its file.
+        const std::string stem = o.scene == "-" ? "scene" : std::filesystem::path(o.scene).stem().string();
+        if (trajectoryToStdout)
+            stdoutFile =
+                std::make_unique<StdoutFile>(stem + (format == io::TrajectoryFormat::Csv    ? ".csv"
+                                                     : format == io::TrajectoryFormat::Json ? ".json"
+                                                                                            : ".glb"));
+        else if (o.saveScene == "-" || o.metrics == "-")
+            stdoutFile = std::make_unique<StdoutFile>("out.json");
+    } catch (const std::exception& e) {
+        err << "tumble: " << e.what() << "\n";
+        return kFailure;
+    }
+    auto target = [&](const std::string& file) { return file == "-" ? stdoutFile->path().string() : file; };
+
     std::unique_ptr<io::TrajectoryWriter> trajectory;
     try {
         if (!o.out.empty() && !images) {
             io::ExportOptions options;
             options.jointForces = o.jointForces;
-            trajectory = io::makeTrajectoryWriter(format, o.out, options);
+            trajectory = io::makeTrajectoryWriter(format, target(o.out), options);
             trajectory->begin(world->model(), scene, frameCount(world->model().settings),
                               world->model().settings.frameRate);
         }
@@ -344,13 +396,13 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     // trajectory so that a failed run leaves none of the files behind.
     std::unique_ptr<io::AtomicFile> savedScene, metricsFile;
     try {
-        if (!o.saveScene.empty()) savedScene = std::make_unique<io::AtomicFile>(o.saveScene);
+        if (!o.saveScene.empty()) savedScene = std::make_unique<io::AtomicFile>(target(o.saveScene));
     } catch (const std::exception& e) {
         err << "tumble: --save-scene: " << e.what() << "\n";
         return kFailure;
     }
     try {
-        if (!o.metrics.empty()) metricsFile = std::make_unique<io::AtomicFile>(o.metrics);
+        if (!o.metrics.empty()) metricsFile = std::make_unique<io::AtomicFile>(target(o.metrics));
     } catch (const std::exception& e) {
         err << "tumble: --metrics: " << e.what() << "\n";
         return kFailure;
@@ -399,7 +451,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
     } catch (const Stopped&) {
         return stoppedMessage(frameReached);  // the outputs' temporaries go with their writers
     } catch (const SimulationError& e) {
-        err << "tumble: " << o.scene << ": " << e.what() << "\n";
+        err << "tumble: " << sceneName << ": " << e.what() << "\n";
         return kFailure;
     } catch (const std::exception& e) {
         err << "tumble: --out: " << e.what() << "\n";
@@ -445,6 +497,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         if (trajectory) trajectory->finish();
         if (savedScene) savedScene->commit();
         if (metricsFile) metricsFile->commit();
+        if (stdoutFile) stdoutFile->copyTo(out);
     } catch (const std::exception& e) {
         err << "tumble: " << e.what() << "\n";
         return kFailure;
@@ -453,40 +506,42 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
         const Model& m = world->model();
         const Energy after = energy(m, world->state());
         const Profile& p = world->profile();
-        out << "bodies: " << m.bodies.size() << "\n"
-            << "integrator: " << m.integrator->name << "\n"
-            << "dt: " << number(m.settings.dt) << "\n"
-            << "step: " << number(stepUsed(m.settings)) << "\n"
-            << "frames: " << result.frames << "\n"
-            << "steps: " << result.steps << "\n"
-            << "simulated_time: " << number(world->state().time) << "\n"
-            << "wall_seconds: " << wall << "\n"
-            << "energy_start: " << number(before.total()) << "\n"
-            << "energy_end: " << number(after.total()) << "\n"
-            << "energy_lost_contacts: " << number(world->ledger().lostInContacts) << "\n"
-            << "energy_lost_friction: " << number(world->ledger().lostInFriction) << "\n"
-            << "energy_position_correction: " << number(world->ledger().positionCorrection) << "\n"
-            << "energy_lost_joints: " << number(world->ledger().lostInJoints) << "\n"
-            << "forces_seconds: " << p.forces << "\n"
-            << "integrate_seconds: " << p.integrate << "\n"
-            << "broadphase_seconds: " << p.broadphase << "\n"
-            << "narrowphase_seconds: " << p.narrowphase << "\n"
-            << "toi_seconds: " << p.timeOfImpact << "\n"
-            << "impact_seconds: " << p.impactSolve << "\n"
-            << "solve_seconds: " << p.solve << "\n"
-            << "sleep_seconds: " << p.sleep << "\n"
-            << "pairs: " << p.pairs << "\n"
-            << "contact_points: " << p.contactPoints << "\n"
-            << "impacts: " << p.impacts << "\n"
-            << "impact_moments: " << p.impactMoments << "\n"
-            << "impact_sweep_limits: " << p.impactSweepLimits << "\n"
-            << "awake_body_steps: " << p.awakeBodySteps << "\n"
-            << "parked_body_steps: " << p.parkedBodySteps << "\n"
-            << "island_restarts: " << p.islandRestarts << "\n"
-            << "still_body_steps: " << p.stillBodySteps << "\n"
-            << "settled_bodies: " << p.settledBodies << "\n"
-            << "threads: " << world->threads() << "\n"
-            << "state_hash: " << hashHex(hashState(world->state())) << "\n";
+        // Standard output carries a file: the report goes to standard error.
+        std::ostream& report = stdoutFile ? err : out;
+        report << "bodies: " << m.bodies.size() << "\n"
+               << "integrator: " << m.integrator->name << "\n"
+               << "dt: " << number(m.settings.dt) << "\n"
+               << "step: " << number(stepUsed(m.settings)) << "\n"
+               << "frames: " << result.frames << "\n"
+               << "steps: " << result.steps << "\n"
+               << "simulated_time: " << number(world->state().time) << "\n"
+               << "wall_seconds: " << wall << "\n"
+               << "energy_start: " << number(before.total()) << "\n"
+               << "energy_end: " << number(after.total()) << "\n"
+               << "energy_lost_contacts: " << number(world->ledger().lostInContacts) << "\n"
+               << "energy_lost_friction: " << number(world->ledger().lostInFriction) << "\n"
+               << "energy_position_correction: " << number(world->ledger().positionCorrection) << "\n"
+               << "energy_lost_joints: " << number(world->ledger().lostInJoints) << "\n"
+               << "forces_seconds: " << p.forces << "\n"
+               << "integrate_seconds: " << p.integrate << "\n"
+               << "broadphase_seconds: " << p.broadphase << "\n"
+               << "narrowphase_seconds: " << p.narrowphase << "\n"
+               << "toi_seconds: " << p.timeOfImpact << "\n"
+               << "impact_seconds: " << p.impactSolve << "\n"
+               << "solve_seconds: " << p.solve << "\n"
+               << "sleep_seconds: " << p.sleep << "\n"
+               << "pairs: " << p.pairs << "\n"
+               << "contact_points: " << p.contactPoints << "\n"
+               << "impacts: " << p.impacts << "\n"
+               << "impact_moments: " << p.impactMoments << "\n"
+               << "impact_sweep_limits: " << p.impactSweepLimits << "\n"
+               << "awake_body_steps: " << p.awakeBodySteps << "\n"
+               << "parked_body_steps: " << p.parkedBodySteps << "\n"
+               << "island_restarts: " << p.islandRestarts << "\n"
+               << "still_body_steps: " << p.stillBodySteps << "\n"
+               << "settled_bodies: " << p.settledBodies << "\n"
+               << "threads: " << world->threads() << "\n"
+               << "state_hash: " << hashHex(hashState(world->state())) << "\n";
     }
     return kOk;
 }

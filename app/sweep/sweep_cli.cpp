@@ -41,7 +41,10 @@ const std::vector<cli::OptionSpec>& sweepOptions() {
          "energy_lost_contacts, energy_lost_damping, deepest_overlap, and per\n"
          "dynamic body final_x, final_y, final_z (final_position: the three),\n"
          "final_speed, highest, rest_time; BODY.NAME for one body's"},
-        {"--merge", "DIR", "write DIR/summary.csv again from the results there"},
+        {"--merge", "DIR",
+         "write DIR/summary.csv again from the results there; repeated, with\n"
+         "--out FILE.csv, several sweeps in one table (a column `sweep` names\n"
+         "the folder; the paths and measures of all of them)"},
         {"--quiet", "", "prints nothing but errors (no progress, notes or counts)"},
     };
     return options;
@@ -70,6 +73,7 @@ std::string helpText() {
     return R"(Usage:
   tumble sweep SCENE --vary PATH=VALUES [--vary PATH=VALUES ...] --out DIR [options]
   tumble sweep --merge DIR [--metric NAME ...]
+  tumble sweep --merge DIR --merge DIR ... --out FILE.csv [--metric NAME ...]
 
 Runs every combination of the values given (the full product; the last --vary changes
 fastest), each variant its own `tumble --headless` process, and writes:
@@ -91,7 +95,8 @@ empty list: nothing is run); 130 stopped (Ctrl-C): run the same command to resum
 }
 
 struct Options {
-    std::string scene, out, merge;
+    std::string scene, out;
+    std::vector<std::string> merge;
     std::vector<Vary> vary;
     std::vector<std::string> metrics;
     int jobs = 0;
@@ -137,7 +142,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--quiet")
             o.quiet = true;
         else if (a == "--out") o.out = next();
-        else if (a == "--merge") o.merge = next();
+        else if (a == "--merge")
+            o.merge.push_back(next());
         else if (a == "--trajectories") o.trajectories = true;
         else if (a == "--metric") {
             for (const std::string& m : splitList(next())) o.metrics.push_back(m);
@@ -160,11 +166,24 @@ Options parse(const std::vector<std::string>& args) {
         }
     }
     if (!o.merge.empty()) {
-        if (!o.scene.empty() || !o.vary.empty() || !o.out.empty())
-            throw SweepError{"--merge DIR takes no scene, --vary or --out: the folder holds its plan"};
+        if (!o.scene.empty() || !o.vary.empty())
+            throw SweepError{"--merge DIR takes no scene or --vary: the folder holds its plan"};
+        if (o.merge.size() > 1 && o.out.empty())
+            throw SweepError{
+                "--merge: several sweeps need --out FILE.csv, the file for the table of them all"};
+        if (!o.out.empty() && fs::path(o.out).extension() != ".csv")
+            throw SweepError{"--merge: --out '" + o.out + "': the merged table is a .csv file"};
+        for (std::size_t i = 0; i < o.merge.size(); ++i)
+            for (std::size_t j = 0; j < i; ++j)
+                if (fs::weakly_canonical(o.merge[i]) == fs::weakly_canonical(o.merge[j]))
+                    throw SweepError{"--merge: '" + o.merge[i] + "' is given twice"};
         return o;
     }
     if (o.scene.empty()) throw SweepError{"sweep: needs a scene file (see tumble sweep --help)"};
+    if (o.scene == "-")
+        throw SweepError{
+            "sweep: the scene must be a file, not - (a resumed sweep reads it again, and its "
+            "variants find their meshes beside it)"};
     if (o.out.empty()) throw SweepError{"sweep: needs --out DIR, the folder for its variants and results"};
     if (o.vary.empty()) throw SweepError{"sweep: nothing varies: give at least one --vary PATH=VALUES"};
     if (!o.slurm && (!o.slurmOptions.sbatch.empty() || o.slurmOptions.maxRunning > 0 || o.slurmOptions.tasks > 0 ||
@@ -202,6 +221,23 @@ void noteSteps(const std::vector<std::string>& notes, std::ostream& err) {
     if (notes.size() > 5)
         err << "tumble sweep: note: and " << notes.size() - 5
             << " more variants whose step is not their dt\n";
+}
+
+// Several sweeps' summaries in one table (--merge A --merge B --out FILE.csv).
+int mergeSweeps(const Options& o, std::ostream& out, std::ostream& err) {
+    const std::vector<fs::path> dirs(o.merge.begin(), o.merge.end());
+    const Tally t = mergeSummaries(dirs, o.metrics, o.out);
+    if (!o.quiet) {
+        out << "sweeps: " << dirs.size() << "\n"
+            << "variants: " << t.ok + t.failed + t.notRun << "\n"
+            << "ok: " << t.ok << "\n"
+            << "failed: " << t.failed << "\n"
+            << "not_run: " << t.notRun << "\n"
+            << "summary: " << o.out << "\n";
+    }
+    if (t.failed > 0)
+        err << "tumble sweep: " << t.failed << " variants failed; the first, " << t.firstFailure << "\n";
+    return t.failed > 0 || t.notRun > 0 ? kFailed : kOk;
 }
 
 int sweepInFolder(const Options& o, std::ostream& realOut, std::ostream& err) {
@@ -275,10 +311,11 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
             return runTask(args[1], args[2], task);
         }
         const Options o = parse(args);
-        if (!o.merge.empty()) {
-            const Plan plan = readPlan(o.merge);
-            return finish(plan, o.merge, metricColumns(plan, o.metrics), false, out, err);
+        if (o.merge.size() == 1 && o.out.empty()) {
+            const Plan plan = readPlan(o.merge[0]);
+            return finish(plan, o.merge[0], metricColumns(plan, o.metrics), false, out, err);
         }
+        if (!o.merge.empty()) return mergeSweeps(o, out, err);
         return sweepInFolder(o, out, err);
     } catch (const SweepError& e) {
         err << "tumble: " << e.message << "\n";

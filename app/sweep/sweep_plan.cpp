@@ -395,6 +395,27 @@ std::vector<std::string> writeVariants(const Plan& plan, const fs::path& dir) {
     return notes;
 }
 
+std::string valueInVariant(const Plan& plan, const fs::path& dir, int k, const std::string& path) {
+    std::ifstream in(variantFile(plan, dir, k));
+    if (!in) return {};
+    try {
+        ojson scene = ojson::parse(in);
+        std::string text;
+        for (const ojson* v : resolveAll(scene, path, variantFile(plan, dir, k).string())) {
+            const std::string t = v->is_number_float() ? shortest(v->get<double>())
+                                  : v->is_string()     ? v->get<std::string>()
+                                                       : v->dump();
+            if (!text.empty() && t != text) return "mixed";
+            text = t;
+        }
+        return text;
+    } catch (const SweepError&) {
+        return {};
+    } catch (const nlohmann::json::exception&) {
+        return {};
+    }
+}
+
 Plan readPlan(const fs::path& dir) {
     const fs::path manifest = dir / "sweep.json";
     std::ifstream in(manifest);

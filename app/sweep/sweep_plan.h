@@ -67,4 +67,11 @@ Plan readPlan(const std::filesystem::path& dir);
 /// Where variant k's scene file is.
 std::filesystem::path variantFile(const Plan& plan, const std::filesystem::path& dir, int k);
 
+/// The value `path` names in variant k's scene file, as text the way a --vary value is
+/// shown (numbers in their shortest exact form), for a merged summary's column of a path
+/// this sweep did not vary. "" when the file or the place is missing; "mixed" when a
+/// wildcard path finds different values.
+std::string valueInVariant(const Plan& plan, const std::filesystem::path& dir, int k,
+                           const std::string& path);
+
 }  // namespace tumble::sweep

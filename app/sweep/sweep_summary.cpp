@@ -151,37 +151,133 @@ std::vector<std::string> metricColumns(const Plan& plan, const std::vector<std::
     return columns;
 }
 
-Tally writeSummary(const Plan& plan, const fs::path& dir, const std::vector<std::string>& columns) {
-    std::ostringstream csv;
-    csv << "variant";
-    for (const Vary& v : plan.vary) csv << ',' << csvText(v.path);
-    csv << ",status,state_hash,trajectory_hash,wall_s";
-    for (const std::string& c : columns) csv << ',' << csvText(c);
-    csv << ",message\n";
-    Tally tally;
+namespace {
+
+// One sweep's summary: the header's names and a row of CSV-ready cells per variant.
+struct Table {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+
+Table summaryTable(const Plan& plan, const fs::path& dir, const std::vector<std::string>& columns,
+                   Tally& tally) {
+    Table t;
+    t.header = {"variant"};
+    for (const Vary& v : plan.vary) t.header.push_back(v.path);
+    for (const char* c : {"status", "state_hash", "trajectory_hash", "wall_s"}) t.header.push_back(c);
+    t.header.insert(t.header.end(), columns.begin(), columns.end());
+    t.header.push_back("message");
     for (int k = 0; k < plan.count; ++k) {
         const ojson r = readJson(resultFile(plan, dir, k));
-        csv << plan.name(k);
+        std::vector<std::string> row = {plan.name(k)};
         const std::vector<int> c = plan.choice(k);
-        for (std::size_t i = 0; i < plan.vary.size(); ++i) csv << ',' << csvText(plan.vary[i].values[c[i]]);
+        for (std::size_t i = 0; i < plan.vary.size(); ++i) row.push_back(csvText(plan.vary[i].values[c[i]]));
         const std::string status = r.is_object() ? r.value("status", std::string("failed")) : "not run";
         (status == "ok" ? tally.ok : status == "not run" ? tally.notRun : tally.failed) += 1;
         if (status != "ok" && status != "not run" && tally.firstFailure.empty())
             tally.firstFailure = plan.name(k) + ": " + r.value("message", std::string("failed"));
         const ojson metrics = r.is_object() && r.contains("metrics") ? r["metrics"] : ojson(nullptr);
         const ojson run = metrics.is_object() && metrics.contains("run") ? metrics["run"] : ojson(nullptr);
-        csv << ',' << status << ',' << (run.is_object() ? csvValue(run["state_hash"]) : "") << ','
-            << (run.is_object() && run.contains("trajectory_hash") ? csvValue(run["trajectory_hash"]) : "")
-            << ',' << (r.is_object() ? csvValue(r["wall_s"]) : "");
-        for (const std::string& col : columns) csv << ',' << csvValue(measure(metrics, col));
-        csv << ',' << (r.is_object() && r.contains("message") ? csvValue(r["message"]) : "") << '\n';
+        row.push_back(status);
+        row.push_back(run.is_object() ? csvValue(run["state_hash"]) : "");
+        row.push_back(run.is_object() && run.contains("trajectory_hash") ? csvValue(run["trajectory_hash"])
+                                                                         : "");
+        row.push_back(r.is_object() ? csvValue(r["wall_s"]) : "");
+        for (const std::string& col : columns) row.push_back(csvValue(measure(metrics, col)));
+        row.push_back(r.is_object() && r.contains("message") ? csvValue(r["message"]) : "");
+        t.rows.push_back(std::move(row));
     }
+    return t;
+}
+
+std::string csvOf(const Table& t) {
+    std::ostringstream csv;
+    for (std::size_t i = 0; i < t.header.size(); ++i) csv << (i ? "," : "") << csvText(t.header[i]);
+    csv << '\n';
+    for (const auto& row : t.rows) {
+        for (std::size_t i = 0; i < row.size(); ++i) csv << (i ? "," : "") << row[i];
+        csv << '\n';
+    }
+    return csv.str();
+}
+
+void writeAtomically(const fs::path& file, const std::string& text) {
     try {
-        io::writeFileAtomically(dir / "summary.csv", csv.str());
+        io::writeFileAtomically(file, text);
     } catch (const std::runtime_error& e) {
         throw SweepError{e.what()};
     }
+}
+
+}  // namespace
+
+Tally writeSummary(const Plan& plan, const fs::path& dir, const std::vector<std::string>& columns) {
+    Tally tally;
+    writeAtomically(dir / "summary.csv", csvOf(summaryTable(plan, dir, columns, tally)));
     return tally;
+}
+
+Tally mergeSummaries(const std::vector<fs::path>& dirs, const std::vector<std::string>& metrics,
+                     const fs::path& file) {
+    struct Part {
+        fs::path dir;
+        Plan plan;
+        Table table;
+    };
+    std::vector<Part> parts;
+    Tally total;
+    for (const fs::path& dir : dirs) {
+        Part p{dir, readPlan(dir), {}};
+        Tally t;
+        p.table = summaryTable(p.plan, dir, metricColumns(p.plan, metrics), t);
+        writeAtomically(dir / "summary.csv", csvOf(p.table));
+        total.ok += t.ok;
+        total.failed += t.failed;
+        total.notRun += t.notRun;
+        if (total.firstFailure.empty() && !t.firstFailure.empty())
+            total.firstFailure = dir.string() + " " + t.firstFailure;
+        parts.push_back(std::move(p));
+    }
+    // The merged header: the varied paths of all, then the measures of all, each once.
+    std::vector<std::string> paths, measures;
+    auto addOnce = [](std::vector<std::string>& list, const std::string& name) {
+        if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
+    };
+    for (const Part& p : parts) {
+        for (const Vary& v : p.plan.vary) addOnce(paths, v.path);
+        const std::size_t first = 1 + p.plan.vary.size() + 4;
+        for (std::size_t i = first; i + 1 < p.table.header.size(); ++i) addOnce(measures, p.table.header[i]);
+    }
+    Table merged;
+    merged.header = {"sweep", "variant"};
+    merged.header.insert(merged.header.end(), paths.begin(), paths.end());
+    for (const char* c : {"status", "state_hash", "trajectory_hash", "wall_s"}) merged.header.push_back(c);
+    merged.header.insert(merged.header.end(), measures.begin(), measures.end());
+    merged.header.push_back("message");
+    for (const Part& p : parts) {
+        auto column = [&](const std::string& name) -> int {
+            const auto it = std::find(p.table.header.begin(), p.table.header.end(), name);
+            return it == p.table.header.end() ? -1 : static_cast<int>(it - p.table.header.begin());
+        };
+        for (int k = 0; k < p.plan.count; ++k) {
+            const std::vector<std::string>& row = p.table.rows[k];
+            std::vector<std::string> out = {csvText(p.dir.string()), row[0]};
+            for (const std::string& path : paths) {
+                const int c = column(path);
+                out.push_back(c >= 0 ? row[c] : csvText(valueInVariant(p.plan, p.dir, k, path)));
+            }
+            for (const char* c : {"status", "state_hash", "trajectory_hash", "wall_s"})
+                out.push_back(row[column(c)]);
+            for (const std::string& m : measures) {
+                const int c = column(m);
+                out.push_back(c >= 0 ? row[c] : "");
+            }
+            out.push_back(row.back());
+            merged.rows.push_back(std::move(out));
+        }
+    }
+    writeAtomically(file, csvOf(merged));
+    return total;
 }
 
 }  // namespace tumble::sweep

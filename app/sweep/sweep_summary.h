@@ -45,4 +45,15 @@ struct Tally {
 /// `message`. Returns how many variants ended each way.
 Tally writeSummary(const Plan& plan, const std::filesystem::path& dir, const std::vector<std::string>& columns);
 
+/// Several sweeps in one table (`tumble sweep --merge A --merge B --out FILE.csv`): each
+/// folder's summary.csv written again (with its measures, `metrics` as --metric gives
+/// them: empty for all), and FILE (whole or not at all) with a first column `sweep` (the
+/// folder as given), then `variant`, every path any of them varied (a sweep that did not
+/// vary one gets its variants' value there, from their scene files), the status columns,
+/// every measure any of them has (blank where a sweep has none), and `message`. Throws
+/// SweepError for a folder without a sweep, or a FILE that cannot be written. Returns the
+/// counts over all of them.
+Tally mergeSummaries(const std::vector<std::filesystem::path>& dirs, const std::vector<std::string>& metrics,
+                     const std::filesystem::path& file);
+
 }  // namespace tumble::sweep

@@ -11,12 +11,14 @@
 #include <QtTest>
 
 #include <memory>
+#include <optional>
 
 namespace tumble::clitest {
 
 struct Run {
     int code = -1;
     QString out, err;
+    QByteArray outBytes;  ///< standard output as written (a .glb on it is binary)
 };
 
 // A tumbling box on a spring, with an offset centre of mass and a static ground: 0.5 s at
@@ -73,15 +75,24 @@ inline QMap<QString, QString> report(const QString& out) {
 class Harness {
 protected:
     std::unique_ptr<QTemporaryDir> dir_;
+    /// The runs' TMPDIR: a folder of the test's own, so that a test sees what is left there.
+    std::unique_ptr<QTemporaryDir> tmp_;
 
-    Run run(const QStringList& args) {
+    /// `input`: written to the process's standard input, which is then closed (without it,
+    /// standard input is closed at once).
+    Run run(const QStringList& args, const std::optional<QByteArray>& input = std::nullopt) {
         QProcess p;
         p.setWorkingDirectory(dir_->path());
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("TMPDIR", tmp_->path());
+        p.setProcessEnvironment(env);
         p.start(TUMBLE_EXECUTABLE, args);
         if (!p.waitForStarted(10000)) {
             QTest::qFail("the executable did not start", __FILE__, __LINE__);
             return {};
         }
+        if (input) p.write(*input);
+        p.closeWriteChannel();
         if (!p.waitForFinished(120000)) {
             p.kill();
             p.waitForFinished();
@@ -89,7 +100,8 @@ protected:
             return {};
         }
         Run r;
-        r.out = QString::fromUtf8(p.readAllStandardOutput());
+        r.outBytes = p.readAllStandardOutput();
+        r.out = QString::fromUtf8(r.outBytes);
         r.err = QString::fromUtf8(p.readAllStandardError());
         if (p.exitStatus() != QProcess::NormalExit) {
             QTest::qFail(qPrintable("the executable crashed: " + args.join(' ') + "\n" + r.err), __FILE__,
@@ -135,7 +147,8 @@ protected:
 
     void makeFolder() {
         dir_ = std::make_unique<QTemporaryDir>();
-        QVERIFY(dir_->isValid());
+        tmp_ = std::make_unique<QTemporaryDir>();
+        QVERIFY(dir_->isValid() && tmp_->isValid());
         write("box.json", kBox);
         write("blow.json", kBlowUp);
     }

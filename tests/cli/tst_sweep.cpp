@@ -333,6 +333,62 @@ private slots:
         QCOMPARE(other.code, 2);
         QVERIFY2(other.err.contains("holds another sweep"), qPrintable(other.err));
     }
+
+    // Issue 47 item 5: two sweeps of the drop, one over the restitution, one over the ball's
+    // mass, in one table: a row per variant of each, a column per path either varied (each
+    // sweep's own value where it did not vary it: 0.5 and 0.2 from the scene), the highest
+    // point of the first rebound e^2 above the ground in every row (the mass changes nothing).
+    void severalSweepsMerged() {
+        RUN(a, {"sweep", "drop.json", "--vary", "ball.restitution=0.4,0.6", "--out", "sa", "--quiet"});
+        RUN(b, {"sweep", "drop.json", "--vary", "ball.mass=1,2", "--vary", "settings.duration=0.5", "--out",
+                "sb", "--quiet"});
+        QCOMPARE(a.code + b.code, 0);
+        RUN(m, {"sweep", "--merge", "sa", "--merge", "sb", "--out", "all.csv", "--metric",
+                "ball.rest_time,final_y"});
+        QCOMPARE(m.code, 0);
+        QCOMPARE(report(m.out).value("variants"), QString("4"));
+        QCOMPARE(report(m.out).value("summary"), QString("all.csv"));
+        const QStringList l = lines(QString::fromUtf8(read("all.csv")));
+        QCOMPARE(l.first(),
+                 QString("sweep,variant,ball.restitution,ball.mass,settings.duration,status,state_hash,"
+                         "trajectory_hash,wall_s,ball.rest_time,ball.final_y,message"));
+        const auto rows = summaryRows(read("all.csv"));
+        QCOMPARE(rows.size(), 4);
+        const QStringList expected = {"sa 0000 0.4 0.2 1", "sa 0001 0.6 0.2 1", "sb 0000 0.5 1 0.5",
+                                      "sb 0001 0.5 2 0.5"};
+        for (int i = 0; i < 4; ++i) {
+            const auto& row = rows[i];
+            QCOMPARE(QStringList({row["sweep"], row["variant"], row["ball.restitution"], row["ball.mass"],
+                                  row["settings.duration"]})
+                         .join(' '),
+                     expected[i]);
+            QCOMPARE(row["status"], QString("ok"));
+        }
+        // Each row the same as its own sweep's summary (written again by the merge).
+        for (const char* dir : {"sa", "sb"}) {
+            const auto own = summaryRows(read(QString(dir) + "/summary.csv"));
+            for (const auto& row : rows) {
+                if (row["sweep"] != dir) continue;
+                const auto& mine = own[row["variant"].toInt()];
+                for (const char* col : {"state_hash", "trajectory_hash", "ball.rest_time", "ball.final_y"})
+                    QCOMPARE(row[col], mine[col]);
+            }
+        }
+        // A restitution of 0.4 and 0.6 differ; the two masses are one motion.
+        QVERIFY(rows[0]["trajectory_hash"] != rows[1]["trajectory_hash"]);
+        QCOMPARE(rows[2]["ball.final_y"], rows[3]["ball.final_y"]);
+
+        RUN(noOut, {"sweep", "--merge", "sa", "--merge", "sb"});
+        QCOMPARE(noOut.code, 2);
+        QVERIFY2(noOut.err.contains("--out FILE.csv"), qPrintable(noOut.err));
+        RUN(twice, {"sweep", "--merge", "sa", "--merge", "sa/", "--out", "x.csv"});
+        QCOMPARE(twice.code, 2);
+        QVERIFY2(twice.err.contains("given twice"), qPrintable(twice.err));
+        RUN(none, {"sweep", "--merge", "sa", "--merge", "nowhere", "--out", "x.csv"});
+        QCOMPARE(none.code, 2);
+        QVERIFY2(none.err.contains("nowhere/sweep.json: no sweep here"), qPrintable(none.err));
+        QVERIFY(!QFile::exists(path("x.csv")));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestSweep)
