@@ -13,7 +13,11 @@ void onSignal(int signal) {
 }  // namespace
 
 StopSignals::StopSignals() {
-    noted = 0;
+    // Nested in another (a sweep's whole run around its local runner): a signal already
+    // noted is kept, so that it still stops the inner work.
+    struct sigaction current {};
+    sigaction(SIGINT, nullptr, &current);
+    if (current.sa_handler != onSignal) noted = 0;
     struct sigaction sa {};
     sa.sa_handler = onSignal;
     sigemptyset(&sa.sa_mask);

@@ -9,7 +9,7 @@ namespace tumble::cli {
 
 class StopSignals {
 public:
-    StopSignals();  ///< (forgets a signal noted before)
+    StopSignals();  ///< (forgets a signal noted before, unless nested in another StopSignals)
     ~StopSignals();
     StopSignals(const StopSignals&) = delete;
     StopSignals& operator=(const StopSignals&) = delete;

@@ -3,10 +3,11 @@
 #include "arg_reader.h"
 #include "cli_options.h"
 
+#include "stop_signals.h"
 #include "sweep_plan.h"
 #include "sweep_progress.h"
-#include "sweep_slurm.h"
 #include "sweep_run.h"
+#include "sweep_slurm.h"
 #include "sweep_summary.h"
 
 #include <tumble/io/atomic_file.h>
@@ -246,9 +247,18 @@ int sweepInFolder(const Options& o, std::ostream& realOut, std::ostream& err) {
     std::ostream& out = o.quiet ? silent : realOut;
     std::ostream& chatter = o.quiet ? silent : err;
     const fs::path dir = o.out;
+    // Ctrl-C while the variants are written stops between two of them (each file whole).
+    const cli::StopSignals signals;
     const Plan plan = makePlan(o.scene, o.vary);
     const std::vector<std::string> columns = metricColumns(plan, o.metrics);
-    const std::vector<std::string> stepNotes = writeVariants(plan, dir);
+    std::vector<std::string> stepNotes;
+    try {
+        stepNotes = writeVariants(plan, dir, [] { return cli::StopSignals::received() != 0; });
+    } catch (const SweepStopped&) {
+        err << "tumble sweep: stopped while writing the variants; nothing was run: run the same command "
+               "to resume\n";
+        return 128 + cli::StopSignals::received();
+    }
     std::error_code ec;
     fs::create_directories(dir / "results", ec);
     if (!ec && o.trajectories) fs::create_directories(dir / "trajectories", ec);

@@ -323,7 +323,11 @@ fs::path variantFile(const Plan& plan, const fs::path& dir, int k) {
     return dir / "variants" / (plan.name(k) + ".json");
 }
 
-std::vector<std::string> writeVariants(const Plan& plan, const fs::path& dir) {
+std::vector<std::string> writeVariants(const Plan& plan, const fs::path& dir,
+                                       const std::function<bool()>& stopped) {
+    auto stopHere = [&] {
+        if (stopped && stopped()) throw SweepStopped{};
+    };
     const fs::path manifest = dir / "sweep.json";
     const ojson mine = planJson(plan);
     std::error_code ec;
@@ -365,6 +369,7 @@ std::vector<std::string> writeVariants(const Plan& plan, const fs::path& dir) {
     // frame: varying dt past it changes nothing).
     std::vector<std::string> notes;
     for (int k = 0; k < plan.count; ++k) {
+        stopHere();
         try {
             const std::string note =
                 stepNote(io::parseScene(variant(k).dump(), "variant " + plan.name(k)).settings);
@@ -382,6 +387,7 @@ std::vector<std::string> writeVariants(const Plan& plan, const fs::path& dir) {
         throw SweepError{(dir / "variants").string() + ": cannot be made: " + io::plainReason(ec.value())};
     try {
         for (int k = 0; k < plan.count; ++k) {
+            stopHere();
             const fs::path file = variantFile(plan, dir, k);
             if (fs::exists(file, ec)) continue;  // (a resumed sweep: the same plan made it)
             ojson scene = variant(k);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -58,7 +59,14 @@ Plan makePlan(const std::filesystem::path& scene, const std::vector<Vary>& vary)
 /// another sweep (its sweep.json differs), or this sweep of a scene edited since, throws
 /// SweepError: nothing is overwritten. Returns a line ("0003: ...", tumble::stepNote) for each
 /// variant whose step is not its dt.
-std::vector<std::string> writeVariants(const Plan& plan, const std::filesystem::path& dir);
+/// `stopped` (Ctrl-C) is asked between variants: when it says so, SweepStopped is thrown
+/// and what was written stays whole (each file written whole or not at all; a resume
+/// writes the rest).
+std::vector<std::string> writeVariants(const Plan& plan, const std::filesystem::path& dir,
+                                       const std::function<bool()>& stopped = {});
+
+/// writeVariants was stopped.
+struct SweepStopped {};
 
 /// The plan a sweep folder holds (its sweep.json). Throws SweepError when there is none or
 /// it cannot be read.

@@ -37,8 +37,8 @@ class TestSweepSlurm : public QObject, private Harness {
     QString conf_;
 
     QString tool(const QString& name) {
-        for (const QString& dir : {"/usr/sbin", "/usr/bin", "/sbin", "/bin"})
-            if (QFileInfo(dir + "/" + name).isExecutable()) return dir + "/" + name;
+        for (const char* dir : {"/usr/sbin", "/usr/bin", "/sbin", "/bin"})
+            if (QFileInfo(QString(dir) + "/" + name).isExecutable()) return QString(dir) + "/" + name;
         return QStandardPaths::findExecutable(name);
     }
 
