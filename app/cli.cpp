@@ -104,7 +104,8 @@ std::vector<OptionSpec> everyFlag() {
 std::string helpText() {
     return R"(Usage:
   tumble [SCENE]                      open the editor, with SCENE or the default sample scene
-  tumble --headless SCENE [options]   simulate without a window
+  tumble --headless SCENE [options]   simulate without a window (SCENE - reads it from
+                                      standard input; mesh files from the working folder)
   tumble --help | --version | --list-integrators
 
 Options for --headless:
@@ -116,7 +117,8 @@ Options for --headless:
 Exit status: 0 success; 2 invalid input (the message names the file and the field);
 1 any other failure, such as a state that became non-finite (the message names the
 body and the time); 130 or 143 stopped by SIGINT (Ctrl-C) or SIGTERM at the next frame.
-On failure or a stop no output file is written, nor any temporary left.
+On failure or a stop no output file is written, nor any temporary left. When an output
+is - (standard output), the key: value report below goes to standard error.
 
 A successful run prints key: value lines: bodies, integrator, dt, step (the step used
 between frames: see --dt), frames, steps,
