@@ -299,9 +299,18 @@ void GltfTrajectoryWriter::close() {
     // Both written out before either replaces its old file: a full disk leaves the old pair.
     // (Only a kill between the two renames, microseconds apart, can pair a new .bin with the
     // old .gltf.)
-    if (outputs_->bin) outputs_->bin->ready();
+    // Failures of the .bin are named by the file the user asked for.
+    auto binary = [&](void (AtomicFile::*step)()) {
+        if (!outputs_->bin) return;
+        try {
+            (outputs_->bin.get()->*step)();
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error(file().string() + ": its buffer " + e.what());
+        }
+    };
+    binary(&AtomicFile::ready);
     outputs_->main->ready();
-    if (outputs_->bin) outputs_->bin->commit();
+    binary(&AtomicFile::commit);
     outputs_->main->commit();
 }
 
