@@ -7,10 +7,10 @@
 // Times are process CPU time (std::clock), not wall time: the machines this runs on are
 // shared, and CPU time does not count the time other processes hold the core. Every figure
 // is the median of several runs. Usage: tumble-bench-collision [--quick]
+#include <tumble/convex_hull.h>
 #include "collision/broadphase.h"
 #include "collision/bvh.h"
 #include "collision/narrowphase.h"
-#include "mesh/convex_hull.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,11 +1,11 @@
 // The general convex narrowphase (collideConvex) and convex against a triangle mesh
 // (collideConvexMesh): manifolds checked against the corners, rims and depths that the
 // geometry fixes in closed form.
+#include <tumble/convex_hull.h>
 #include "collision/bvh.h"
 #include "collision/convex.h"
 #include "collision/gjk.h"
 #include "collision/narrowphase.h"
-#include "mesh/convex_hull.h"
 #include "test_random.h"
 
 #include <QtTest>

@@ -22,9 +22,9 @@
 // - Points. For two convex bodies the reference points are the vertices of A ∩ B, so a
 //   fast point lies in the reference's contact region when it is inside both bodies; a fast
 //   point is midway between the surfaces, so it may be outside A ∩ B by half its depth.
+#include <tumble/convex_hull.h>
 #include "collision/narrowphase.h"
 #include "collision/reference.h"
-#include "mesh/convex_hull.h"
 
 #include "test_random.h"
 

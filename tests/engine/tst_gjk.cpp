@@ -5,8 +5,8 @@
 // one reaches the closest point); the penetration depth of two overlapping polytopes is the
 // least overlap of their projections over the face normals of both and the cross products
 // of their edges (the separating axis theorem's candidates are the difference's normals).
+#include <tumble/convex_hull.h>
 #include "collision/gjk.h"
-#include "mesh/convex_hull.h"
 
 #include <QtTest>
 

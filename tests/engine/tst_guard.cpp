@@ -1,8 +1,8 @@
 // The physical guards: a run that blows up stops with a message naming the body, the time
 // and the likely cause (the energy guard stops it while the state is still finite); no
 // correct scene trips it, whatever the integrator; settings.energyGuard off lets a run go on.
-#include "energy_guard.h"
-#include "likely_cause.h"
+#include "guard/energy_guard.h"
+#include "guard/likely_cause.h"
 #include "scene_builders.h"
 
 #include <tumble/errors.h>

@@ -4,11 +4,11 @@
 // box's second corner, turned into the ground by the solve of its first, ended 2.7 cm deep (the margin there
 // is g h² = 1.1 cm), and a bin of 50 landing bodies showed 10.9 cm at 1/30 s, 3.7 cm at 1/60. Each case runs
 // in the world as built and turned and shifted as a whole.
+#include "collision/detect.h"
 #include "collision/narrowphase.h"
-#include "contact_solver.h"
-#include "detect.h"
 #include "ledger_checks.h"
 #include "scene_builders.h"
+#include "solver/contact_solver.h"
 #include "test_random.h"
 #include "turned_world.h"
 

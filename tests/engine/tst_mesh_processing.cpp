@@ -3,7 +3,7 @@
 // tetrahedron's mass properties) or geometric invariants (containment, Euler's formula).
 #include "scene_builders.h"
 
-#include "mesh/convex_hull.h"
+#include <tumble/convex_hull.h>
 #include "mesh/mesh_body.h"
 #include "mesh/mesh_clean.h"
 

@@ -1,6 +1,6 @@
 // The contact solver's block rows: the least-norm inverse of a manifold's K (the fast path
 // against the eigen-decomposition it replaces) and the impulses that push.
-#include "solver_body.h"
+#include "solver/solver_body.h"
 
 #include <QtTest>
 

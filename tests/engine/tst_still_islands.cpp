@@ -1,4 +1,4 @@
-// Islands at their fixed point (engine/src/still_islands.h): a world that takes the still
+// Islands at their fixed point (engine/src/islands/still_islands.h): a world that takes the still
 // islands' answer as known must agree bit for bit with one that solves every island every
 // step (World::skipStillIslands(false)), in piles that come to rest, are hit again, rest
 // on a slope under friction, are pushed by a force that starts late, change step length

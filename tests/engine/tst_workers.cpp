@@ -3,9 +3,9 @@
 // machine replays on another). Checked on a heap of 320 mixed bodies in a mesh bowl, with
 // impacts at their moment (cuts, parked islands) and at the end of the step, and on the
 // pool itself (every chunk once, errors carried back to the caller).
+#include "common/workers.h"
 #include "scene_builders.h"
 #include "test_meshes.h"
-#include "workers.h"
 
 #include <QtTest>
 

@@ -8,7 +8,7 @@
 
 #include <tumble/errors.h>
 
-#include "compile_joints.h"  // the engine's own validation of joints (engine/src)
+#include <tumble/model.h>  // validateJoints: the engine's own validation of joints
 
 #include <QCheckBox>
 #include <QComboBox>

@@ -4,8 +4,8 @@
 
 #include "document/body_presets.h"
 
-#include "detect.h"
-#include "forces.h"
+#include <tumble/contact_query.h>
+#include <tumble/forces.h>
 
 #include <Qt3DCore/QEntity>
 #include <Qt3DExtras/QPerVertexColorMaterial>
@@ -21,9 +21,6 @@ namespace tumble::ui {
 namespace overlays {
 
 namespace {
-
-// The engine's touch tolerance (world.cpp): this fraction of the largest bounded body's size.
-constexpr double kTouchTolerance = 1e-5;
 
 struct Rgb {
     float r, g, b;
@@ -81,26 +78,9 @@ double radiusOf(const BodyModel& b) {
 
 Lines contacts(const Model& model, const State& state) {
     Lines lines;
-    if (!needsContacts(model) || state.bodies.size() != model.bodies.size()) return lines;
-    double largest = 0.0;
-    for (const BodyModel& b : model.bodies) {
-        const double r = radiusOf(b);
-        if (std::isfinite(r)) largest = std::max(largest, r);
-    }
-    const double tolerance = kTouchTolerance * largest;
-    // Every body awake: a sleeping body does not pair with a static one in the broadphase,
-    // but it rests on it all the same.
-    State awake;
-    awake.time = state.time;
-    awake.bodies = state.bodies;
-    awake.jointBrokenAt = state.jointBrokenAt;
-    DetectScratch s;
-    refreshJointPairs(model, awake, s);  // joined bodies do not touch
-    bodyPoses(model, awake, s.end);
-    s.start = s.end;
-    findPairs(model, awake, tolerance, s);
-    findContacts(model, s, tolerance);
-    for (const collision::Manifold& m : s.contacts) {
+    // As the step finds them (every body awake: a sleeping one rests on its support all the same).
+    const collision::ManifoldList found = contactsOf(model, state);
+    for (const collision::Manifold& m : found) {
         double size =
             std::min(radiusOf(model.bodies[size_t(m.bodyA)]), radiusOf(model.bodies[size_t(m.bodyB)]));
         if (!std::isfinite(size) || size <= 0) size = 0.1;

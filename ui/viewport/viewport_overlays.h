@@ -48,7 +48,7 @@ struct Lines {
 };
 
 /// Contact points and normals of `state`, found by the engine's broadphase and narrowphase
-/// (engine/src/detect.h) at the engine's touch tolerance; sleeping bodies count as awake
+/// (tumble/contact_query.h) at the engine's touch tolerance; sleeping bodies count as awake
 /// so that their resting contacts show. items: contact points.
 Lines contacts(const Model& model, const State& state);
 /// Arrows of v at the centre of mass of each dynamic body that moves. items: arrows.

@@ -1,6 +1,6 @@
 #include "viewport/viewport_wire.h"
 
-#include "mesh/convex_hull.h"
+#include <tumble/convex_hull.h>
 
 #include <tumble/mass.h>
 

@@ -104,6 +104,12 @@ struct Model {
 /// Checks every value of a scene; throws SceneError naming the first bad field.
 void validate(const SceneDesc& scene);
 
+/// The joints' part of validate(): throws SceneError naming joints[i].field for an empty or
+/// repeated name, a body that does not exist, a joint of a body with itself, one between
+/// bodies that cannot move, a non-finite anchor or length (the joint panel checks an edit
+/// with it before it is applied).
+void validateJoints(const SceneDesc& scene);
+
 /// Every problem validate() would find, in the order it checks (the settings, each body,
 /// the joints): the first is the one it throws. A body with several bad fields counts
 /// once (its first), and so do the settings and the joints: an editor can list them all

@@ -113,7 +113,7 @@ struct Settings {
 /// The step a run takes between two frames (where no force switches on or off): a frame,
 /// 1 / frame_rate, split into the fewest equal steps no longer than dt. It is dt when dt
 /// divides a frame, a little shorter otherwise, and a whole frame when dt is longer than
-/// one: the step is capped by the frame rate. (engine/src/simulate.cpp)
+/// one: the step is capped by the frame rate. (engine/src/world/simulate.cpp)
 double stepUsed(const Settings& settings);
 /// How many steps a frame takes (stepUsed's divisor).
 long stepsPerFrame(const Settings& settings);

@@ -4,7 +4,7 @@
 // their centroid in the face plane (valid because every face is a convex polygon).
 // Degenerate input is refused before qhull sees it, with a reason a user can act on;
 // anything qhull still refuses is reported with the first line of its own message.
-#include "mesh/convex_hull.h"
+#include <tumble/convex_hull.h>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>

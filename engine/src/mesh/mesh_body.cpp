@@ -1,6 +1,6 @@
 #include "mesh/mesh_body.h"
 
-#include "mesh/convex_hull.h"
+#include <tumble/convex_hull.h>
 
 namespace tumble::mesh {
 

@@ -1,0 +1,355 @@
+#include "collision/detect.h"
+
+#include "common/make_room.h"
+#include "common/resting.h"
+#include "common/workers.h"
+
+#include "collision/narrowphase.h"
+#include "collision/toi.h"
+
+#include "common/pair_key.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace tumble {
+
+using namespace collision;
+
+bool needsContacts(const Model& model) {
+    int moving = 0;
+    for (const BodyModel& b : model.bodies) moving += b.motion != Motion::Static;
+    return model.bodies.size() >= 2 && moving > 0;
+}
+
+Pose bodyPose(const BodyModel& body, const BodyState& s) {
+    Pose p;
+    p.R = s.q.toRotationMatrix();
+    p.p = s.x - p.R * body.centerOfMass;
+    return p;
+}
+
+void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
+    auto place = [&](size_t i) { out[i] = bodyPose(model.bodies[i], state.bodies[i]); };
+    if (out.size() != model.bodies.size()) {
+        out.resize(model.bodies.size());
+        for (size_t i = 0; i < out.size(); ++i) place(i);
+        return;
+    }
+    // Static bodies never move: their poses are the ones already there.
+    for (int i : model.dynamicBodies) place(static_cast<size_t>(i));
+    for (int i : model.kinematicBodies) place(static_cast<size_t>(i));
+}
+
+void findPairs(const Model& model, const State& state, double margin, DetectScratch& s) {
+    const size_t n = model.bodies.size();
+    // A static body's box is the last one while the margin is the same.
+    const bool keepStatic = s.swept.size() == n && s.sweptMargin == margin;
+    s.sweptMargin = margin;
+    s.swept.resize(n);
+    s.moving.resize(n);
+    s.halfSpaces.clear();
+    for (size_t i = 0; i < n; ++i) {
+        const BodyModel& b = model.bodies[i];
+        if (keepStatic && b.motion == Motion::Static && b.collider.kind != Kind::Plane) continue;
+        s.moving[i] = !b.standsStill() && !state.isAsleep(static_cast<int>(i));
+        s.swept[i] = bounds(b.collider, s.end[i]);
+        if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
+        s.swept[i].min.array() -= margin;
+        s.swept[i].max.array() += margin;
+        // A plane that stands still is a half-space: it pairs only with the boxes reaching it.
+        if (b.collider.kind == Kind::Plane && b.standsStill()) {
+            s.halfSpaces.resize(n);
+            const Vec3 normal = s.end[i].R * b.collider.normal;
+            s.halfSpaces[i] = {normal, normal.dot(s.end[i].p) + b.collider.distance, true};
+        }
+    }
+    s.broadphase.update(s.swept, s.moving, s.halfSpaces);
+}
+
+namespace {
+
+constexpr int kPairGrain = 8;  // pairs per chunk on the worker threads
+
+// Runs pair(k, a, b, out) for every broadphase pair k = (a, b), appending to s.contacts (or
+// s.impacts) in the pairs' order: on the worker threads each chunk of pairs fills a list of
+// its own, and the lists are joined in chunk order, so the result does not depend on the
+// threads.
+template <class List, class Pair>
+void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, Pair&& pair) {
+    const auto& pairs = s.broadphase.pairs();
+    const int n = static_cast<int>(pairs.size());
+    if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain) {
+        for (int k = 0; k < n; ++k) pair(k, pairs[k].first, pairs[k].second, out);
+        return;
+    }
+    const int chunks = (n + kPairGrain - 1) / kPairGrain;
+    if (static_cast<int>(chunkOut.size()) < chunks) chunkOut.resize(chunks);
+    s.pool->run(chunks, [&](int c) {
+        List& mine = chunkOut[c];
+        mine.clear();
+        const int end = std::min(n, (c + 1) * kPairGrain);
+        for (int k = c * kPairGrain; k < end; ++k) pair(k, pairs[k].first, pairs[k].second, mine);
+    });
+    for (int c = 0; c < chunks; ++c) out.insert(out.end(), chunkOut[c].begin(), chunkOut[c].end());
+}
+
+}  // namespace
+
+namespace {
+
+static_assert(sizeof(Pose) == 12 * sizeof(double), "a pose is compared as its bytes");
+
+// Whether a joint that holds joins bodies a < b (they do not collide).
+bool joined(const DetectScratch& s, int a, int b) {
+    return !s.jointPairs.empty() &&
+           std::binary_search(s.jointPairs.begin(), s.jointPairs.end(), pairKey(a, b));
+}
+
+// The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
+bool samePose(const Pose& x, const Pose& y) {
+    return std::memcmp(&x, &y, sizeof(Pose)) == 0;
+}
+
+// The pairs of this narrowphase and their manifolds, for the next one; each paired body's
+// pose. Written over the last ones, which this narrowphase has done reading (a second
+// memory traded with it held every manifold twice).
+void rememberPairs(const Model& model, DetectScratch& s, double margin) {
+    DetectScratch::PairMemory& next = s.lastPairs;
+    next.keys.clear();
+    next.ranges.clear();
+    next.apart.swap(s.apart);  // (findContacts assigns s.apart afresh)
+    // Grown by half when it must grow: assigned at its exact size, a list that grows by a
+    // manifold or two a step (a heap filling up) was allocated anew each time, and each old
+    // one left a hole in the heap that nothing later fitted.
+    makeRoom(next.manifolds, s.contacts.size());
+    next.manifolds.assign(s.contacts.begin(), s.contacts.end());
+    next.margin = margin;
+    if (s.pairedPose.size() != model.bodies.size()) s.pairedPose.assign(model.bodies.size(), Pose{});
+    size_t m = 0;
+    for (const auto& [a, b] : s.broadphase.pairs()) {
+        const size_t first = m;
+        while (m < s.contacts.size() && s.contacts[m].bodyA == a && s.contacts[m].bodyB == b) ++m;
+        next.keys.push_back(pairKey(a, b));
+        next.ranges.emplace_back(static_cast<int>(first), static_cast<int>(m));
+        s.pairedPose[a] = s.end[a];
+        s.pairedPose[b] = s.end[b];
+    }
+}
+
+}  // namespace
+
+// A pair whose two bodies stand exactly where they stood at the last narrowphase takes the
+// manifolds found then: the same result, bit for bit, as finding them again. Mostly these
+// are the pairs a step looks at again after a cut at a moment of impact, away from the
+// impact (the islands without one keep their end of the step: hull-rain, 90 of its 93 such
+// pairs a step), and a few bodies that stand exactly still from one step to the next.
+// Nothing is approximated, so a run and its re-simulation from a saved state agree
+// whatever this memory held.
+void refreshJointPairs(const Model& model, const State& state, DetectScratch& s) {
+    int broken = 0;
+    for (const JointModel& j : model.joints) broken += state.jointBroken(j.index) ? 1 : 0;
+    if (broken == s.jointPairsBroken) return;
+    s.jointPairsBroken = broken;
+    s.jointPairs.clear();
+    for (const JointModel& j : model.joints)
+        if (j.b >= 0 && !state.jointBroken(j.index))
+            s.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
+    std::sort(s.jointPairs.begin(), s.jointPairs.end());
+}
+
+void findContacts(const Model& model, DetectScratch& s, double margin) {
+    s.contacts.clear();
+    // Room for about as many as the last time and an eighth: in a scene whose contacts keep
+    // growing (a heap filling up), grown by half ahead of need rather than doubled by the
+    // narrowphase's appends (hull-rain's ~300 manifolds held room for 512, 100 KB).
+    const size_t lastCount = s.lastPairs.manifolds.size();
+    makeRoom(s.contacts, lastCount + lastCount / 8 + 4);
+    const DetectScratch::PairMemory& last = s.lastPairs;
+    const bool remembered = last.margin == margin && s.pairedPose.size() == model.bodies.size();
+    // The manifolds of (a, b) from the last narrowphase, if both bodies stand still since.
+    auto lastOf = [&](int a, int b) -> const std::pair<int, int>* {
+        if (!remembered || !samePose(s.pairedPose[a], s.end[a]) || !samePose(s.pairedPose[b], s.end[b]))
+            return nullptr;
+        const std::uint64_t key = pairKey(a, b);
+        const auto it = std::lower_bound(last.keys.begin(), last.keys.end(), key);
+        return it != last.keys.end() && *it == key ? &last.ranges[it - last.keys.begin()] : nullptr;
+    };
+    // The direction along which (a, b) were found apart last time, if they were (zero if not).
+    auto lastApart = [&](int a, int b) -> Vec3 {
+        const std::uint64_t key = pairKey(a, b);
+        const auto it = std::lower_bound(last.keys.begin(), last.keys.end(), key);
+        return it != last.keys.end() && *it == key ? last.apart[it - last.keys.begin()] : Vec3::Zero();
+    };
+    s.apart.assign(s.broadphase.pairs().size(), Vec3::Zero());
+    std::atomic<long> reused{0}, provedApart{0};
+    overPairs(s, s.contacts, s.chunkContacts, [&](int k, int a, int b, ManifoldList& out) {
+        if (const auto* range = lastOf(a, b)) {
+            out.insert(out.end(), last.manifolds.begin() + range->first,
+                       last.manifolds.begin() + range->second);
+            s.apart[k] = last.apart[range - last.ranges.data()];
+            reused.fetch_add(1, std::memory_order_relaxed);
+            return;
+        }
+        if (joined(s, a, b)) return;  // a joint's bodies do not collide
+        const Shape& A = model.bodies[a].collider;
+        const Shape& B = model.bodies[b].collider;
+        const size_t first = out.size();
+        if (generalConvex(A.kind, B.kind)) {
+            // Two convex shapes found apart last time are still apart if the same direction
+            // still separates them by the margin; else GJK looks, and tells the new one.
+            const Vec3 axis = lastApart(a, b);
+            if (!axis.isZero(0.0) && apartAlong(A, s.end[a], B, s.end[b], axis, margin)) {
+                s.apart[k] = axis;
+                provedApart.fetch_add(1, std::memory_order_relaxed);
+                return;
+            }
+            collide(A, s.end[a], B, s.end[b], margin, out, s.apart[k]);
+        } else {
+            collide(A, s.end[a], B, s.end[b], margin, out);
+        }
+        for (size_t k = first; k < out.size(); ++k) {
+            out[k].bodyA = a;
+            out[k].bodyB = b;
+        }
+    });
+    s.reusedPairs += reused.load();
+    s.apartPairs += provedApart.load();
+    rememberPairs(model, s, margin);
+}
+
+namespace {
+
+// cos 45°: a contact at the end whose normal is this near the first touch's is on the near side.
+constexpr double kSameSide = 0.7071;
+constexpr double kSurelySameSide = 0.7660;  // cos 40°
+constexpr double kNearTouch = 1e-3;         // of the smaller body
+
+// A body's path over the step h: its centre on the parabola of the constant acceleration
+// that takes its velocity from the start's to the end's (exact for a free flight under
+// gravity, which the splitting step integrates exactly), its orientation by slerp.
+Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& after, double h) {
+    Sweep w;
+    w.c0 = before.x;
+    w.c1 = after.x;
+    if (body.motion == Motion::Dynamic) w.bow = 0.5 * h * body.invMass * (after.P - before.P);
+    w.q0 = before.q;
+    w.q1 = after.q;
+    w.localCenter = body.centerOfMass;
+    return w;
+}
+
+// How fast A's and B's points at `point` close along `normal` (out of B towards A) at the
+// fraction s of the step: velocities and centres taken linearly between the start and the end.
+double approachSpeed(const Model& model, const State& before, const State& after, int a, int b, double s,
+                     const Vec3& point, const Vec3& normal) {
+    auto pointVelocity = [&](int i) -> Vec3 {
+        const BodyModel& body = model.bodies[i];
+        if (body.motion == Motion::Static) return Vec3::Zero();
+        if (body.motion == Motion::Kinematic)
+            return body.kinematicVelocity + body.kinematicAngularVelocity.cross(point - after.bodies[i].x);
+        const Derived d0 = derive(body, before.bodies[i]), d1 = derive(body, after.bodies[i]);
+        const Vec3 x = (1.0 - s) * before.bodies[i].x + s * after.bodies[i].x;
+        return (1.0 - s) * d0.v + s * d1.v + ((1.0 - s) * d0.omega + s * d1.omega).cross(point - x);
+    };
+    return -normal.dot(pointVelocity(a) - pointVelocity(b));
+}
+
+}  // namespace
+
+void touchingPairs(const ManifoldList& contacts, double touchTolerance, std::vector<std::uint64_t>& out) {
+    out.clear();
+    for (const Manifold& m : contacts)
+        if (m.maxDepth() >= -touchTolerance) out.push_back(pairKey(m.bodyA, m.bodyB));
+    std::sort(out.begin(), out.end());
+}
+
+void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
+                 double tolerance, double minApproach, const std::vector<double>& sizes,
+                 const std::vector<double>* thickness, DetectScratch& s) {
+    s.impacts.clear();
+    if (thickness) {
+        s.found.clear();
+        for (int k = 0; k < static_cast<int>(s.contacts.size()); ++k)
+            s.found.emplace_back(pairKey(s.contacts[k].bodyA, s.contacts[k].bodyB), k);
+        std::sort(s.found.begin(), s.found.end());
+    }
+    // How far any point of body i moved in the step, at most.
+    auto travel = [&](int i) {
+        const BodyModel& body = model.bodies[i];
+        if (body.motion == Motion::Static) return 0.0;
+        const BodyState &b0 = before.bodies[i], &b1 = after.bodies[i];
+        return (b1.x - b0.x).norm() + b0.q.angularDistance(b1.q) * (sizes[i] + body.centerOfMass.norm());
+    };
+    // A pair overlapping at the end by more than a thousandth of the smaller body but not
+    // approaching there: it met within the step and is on its way out (a ball grazing a
+    // box's edge at 1/30 s, 2.3 mm inside at the end, leaving along the end's normal). The
+    // contact solver at the end has nothing to stop, so the end-of-step mode must find
+    // its moment.
+    auto leaving = [&](const Manifold& m) {
+        int deepest = 0;
+        for (int i = 1; i < m.count; ++i)
+            if (m.points[i].depth > m.points[deepest].depth) deepest = i;
+        const double size = std::min(sizes[m.bodyA], sizes[m.bodyB]);
+        return m.count > 0 && m.points[deepest].depth > kNearTouch * size &&
+               approachSpeed(model, before, after, m.bodyA, m.bodyB, 1.0, m.points[deepest].position,
+                             m.normal) <= 0.0;
+    };
+    overPairs(s, s.impacts, s.chunkImpacts, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
+        if (joined(s, a, b)) return;
+        // In contact already: no new impact.
+        if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
+        int found = -1;     // the pair's first manifold at the end (end-of-step mode), if any
+        bool away = false;  // ... and the pair leaves it there (`leaving`)
+        if (thickness) {
+            const double ta = (*thickness)[a], tb = (*thickness)[b];
+            // Touching at the end: left to the end unless the overlap can be past the middle
+            // of the thinner solid (its normal would then point out of the far side and push
+            // the body through). A plane's normal is its own whatever the overlap. A mesh's
+            // triangles (thickness 0) are trusted as the end finds them: asking for a moment
+            // whenever a body moved half its own width brought back 2.3 cuts a step in
+            // hull-rain (1.7 -> 3.4 ms); a body sinking past a triangle's plane within one
+            // step can go through, as in the peers.
+            const bool solids = std::isfinite(ta) && std::isfinite(tb) && ta > 0.0 && tb > 0.0;
+            const double thinner = solids ? std::min(ta, tb) : std::numeric_limits<double>::infinity();
+            const auto it =
+                std::lower_bound(s.found.begin(), s.found.end(), std::make_pair(pairKey(a, b), -1));
+            found = it != s.found.end() && it->first == pairKey(a, b) ? it->second : -1;
+            const double limit = found >= 0 ? 0.5 * thinner : ta + tb;
+            away = found >= 0 && leaving(s.contacts[found]);
+            if (travel(a) + travel(b) < limit && !away) return;
+        }
+        const BodyModel& A = model.bodies[a];
+        const BodyModel& B = model.bodies[b];
+        // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
+        const double size = std::min(sizes[a], sizes[b]);
+        const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a], h);
+        const Sweep sb = sweepOf(B, before.bodies[b], after.bodies[b], h);
+        if (found >= 0 && !away) {
+            // Touching at the end: whether the first touch was on the same side needs no
+            // exact moment. Near it (within 1e-3 of the smaller body) its normal is taken
+            // when it is well inside the same-side cone (40°, 5° to spare); else the moment
+            // is found as for a cut.
+            const auto near = timeOfImpact(A.collider, sa, B.collider, sb, kNearTouch * size);
+            if (!near) return;
+            if (s.contacts[found].normal.dot(near->normal) >= kSurelySameSide) return;
+        }
+        const auto hit = timeOfImpact(A.collider, sa, B.collider, sb, tolerance * size);
+        if (!hit) return;
+        // Touching at the end along much the normal of the first touch: the end's contact is
+        // on the side the bodies met, not past the middle, and the contact solver resolves
+        // it there (hull-rain: nearly every landing of a hull on another moved more than
+        // half a hull and was cut for nothing, 3.8 moments a step).
+        if (found >= 0 && !away && s.contacts[found].normal.dot(hit->normal) >= kSameSide) return;
+        // A slow approach is settling, the contact solver's work: no moment of impact.
+        if (approachSpeed(model, before, after, a, b, hit->s, hit->point, hit->normal) <=
+            minApproach * restingShare(model.settings.gravity, hit->normal))
+            return;
+        out.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
+    });
+}
+
+}  // namespace tumble

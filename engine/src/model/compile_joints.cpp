@@ -1,0 +1,161 @@
+// The joints of a scene: checked (named bodies, finite anchors, a length a rope can have,
+// axes where the type has one)
+// and resolved to body indices and anchors from each centre of mass (compile.cpp calls it
+// last, when the bodies' mass properties are known).
+#include "model/compile_joints.h"
+
+#include "common/pair_key.h"
+
+#include <tumble/errors.h>
+
+#include <algorithm>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+namespace tumble {
+
+namespace {
+
+std::string at(size_t i) {
+    return "joints[" + std::to_string(i) + "]";
+}
+
+}  // namespace
+
+void validateJoints(const SceneDesc& scene) {
+    std::map<std::string, const BodyDesc*> bodies;
+    for (const BodyDesc& b : scene.bodies) bodies[b.name] = &b;
+    std::set<std::string> names;
+    for (size_t i = 0; i < scene.joints.size(); ++i) {
+        const JointDesc& j = scene.joints[i];
+        const std::string p = at(i);
+        if (j.name.empty()) throw SceneError(p + ".name", "must not be empty");
+        if (!names.insert(j.name).second)
+            throw SceneError(p + ".name", "'" + j.name + "' is already the name of another joint");
+        const auto a = bodies.find(j.bodyA);
+        if (a == bodies.end()) throw SceneError(p + ".body_a", "no body is named '" + j.bodyA + "'");
+        const BodyDesc* b = nullptr;
+        if (!j.bodyB.empty()) {
+            const auto it = bodies.find(j.bodyB);
+            if (it == bodies.end()) throw SceneError(p + ".body_b", "no body is named '" + j.bodyB + "'");
+            if (j.bodyB == j.bodyA) throw SceneError(p + ".body_b", "a joint needs two different bodies");
+            b = it->second;
+        }
+        if (a->second->motion != Motion::Dynamic && (!b || b->motion != Motion::Dynamic))
+            throw SceneError(p, "joins nothing that moves: one of its bodies must be dynamic");
+        if (!j.anchorA.allFinite()) throw SceneError(p + ".anchor_a", "must be finite numbers");
+        if (!j.anchorB.allFinite()) throw SceneError(p + ".anchor_b", "must be finite numbers");
+        if (!std::isfinite(j.length)) throw SceneError(p + ".length", "must be a finite number");
+        const bool line = j.type == JointType::Distance || j.type == JointType::Rope;
+        if (!line && j.length >= 0.0)
+            throw SceneError(p + ".length",
+                             std::string("a ") + toString(j.type) +
+                                 " joint has no length (only distance and rope joints have one)");
+        const bool axial = j.type == JointType::Hinge || j.type == JointType::Slider;
+        if (axial && !j.axisA)
+            throw SceneError(p + ".axis_a",
+                             std::string("is missing (a ") + toString(j.type) + " joint needs its axis)");
+        if (!axial && (j.axisA || j.axisB))
+            throw SceneError(p + (j.axisA ? ".axis_a" : ".axis_b"),
+                             std::string("a ") + toString(j.type) +
+                                 " joint has no axis (only hinge and slider joints have one)");
+        if (!axial && (j.limits || j.motor))
+            throw SceneError(
+                p + (j.limits ? ".limits" : ".motor"),
+                std::string("a ") + toString(j.type) + " joint has none (only hinge and slider joints do)");
+        if (j.limits) {
+            const auto [lower, upper] = *j.limits;
+            if (!std::isfinite(lower) || !std::isfinite(upper))
+                throw SceneError(p + ".limits", "must be finite numbers");
+            if (lower > upper) throw SceneError(p + ".limits", "the lower limit is above the upper one");
+        }
+        if (j.motor) {
+            if (!std::isfinite(j.motor->speed))
+                throw SceneError(p + ".motor.speed", "must be a finite number");
+            if (!std::isfinite(j.motor->maxForce) || j.motor->maxForce < 0.0)
+                throw SceneError(p + (j.type == JointType::Hinge ? ".motor.max_torque" : ".motor.max_force"),
+                                 "must be a finite number, at least 0");
+        }
+        if (j.breakForce && !(std::isfinite(*j.breakForce) && *j.breakForce > 0.0))
+            throw SceneError(p + ".break_force", "must be a finite number greater than 0");
+        for (const auto& [axis, field] : {std::pair{&j.axisA, ".axis_a"}, std::pair{&j.axisB, ".axis_b"}}) {
+            if (!*axis) continue;
+            if (!(*axis)->allFinite()) throw SceneError(p + field, "must be finite numbers");
+            if (!((*axis)->norm() > 1e-9)) throw SceneError(p + field, "must not be the zero vector");
+        }
+    }
+}
+
+void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
+    if (scene.joints.empty()) return;
+    std::map<std::string, int> index;
+    for (size_t i = 0; i < scene.bodies.size(); ++i) index[scene.bodies[i].name] = static_cast<int>(i);
+    m.jointed.assign(m.bodies.size(), 0);
+    for (size_t i = 0; i < scene.joints.size(); ++i) {
+        const JointDesc& d = scene.joints[i];
+        JointModel j;
+        j.name = d.name;
+        j.type = d.type;
+        j.a = index.at(d.bodyA);
+        j.b = d.bodyB.empty() ? -1 : index.at(d.bodyB);
+        j.anchorA = d.anchorA - m.bodies[j.a].centerOfMass;
+        j.anchorB = j.b < 0 ? d.anchorB : Vec3(d.anchorB - m.bodies[j.b].centerOfMass);
+        // The anchors in the world at the start, for a length taken from the scene.
+        const Vec3 pa = start.bodies[j.a].x + start.bodies[j.a].q * j.anchorA;
+        const Vec3 pb = j.b < 0 ? j.anchorB : Vec3(start.bodies[j.b].x + start.bodies[j.b].q * j.anchorB);
+        j.length = d.length >= 0.0 ? d.length : (pa - pb).norm();
+        // Axes and the relative orientation as the scene places the bodies.
+        const Quat qa = start.bodies[j.a].q;
+        const Quat qb = j.b < 0 ? Quat::Identity() : start.bodies[j.b].q;
+        if (d.axisA) {
+            j.axisA = d.axisA->normalized();
+            j.axisB = d.axisB ? d.axisB->normalized() : Vec3(qb.conjugate() * (qa * j.axisA));
+        }
+        j.relative = (qb.conjugate() * qa).normalized();
+        if (d.limits) {
+            j.limited = true;
+            j.lower = (*d.limits)[0];
+            j.upper = (*d.limits)[1];
+        }
+        j.index = static_cast<int>(i);
+        if (d.breakForce) j.breakForce = *d.breakForce;
+        if (d.motor) {
+            j.motor = true;
+            j.motorSpeed = d.motor->speed;
+            j.motorMax = d.motor->maxForce;
+        }
+        if (j.type == JointType::Rope && !(j.length > 0.0))
+            throw SceneError(at(i) + ".length", "a rope must be longer than 0");
+        // A joint that does not hold in the scene as written is pulled together in the
+        // first step, which gives its bodies the speed of that move: said, not refused
+        // (the editor's joints start where the user put them; a file may be off by a typo).
+        const double size = std::max(collision::boundingRadius(m.bodies[j.a].collider), 1e-3);
+        const Vec3 gap = pa - pb;
+        double off = 0.0;
+        if (j.type == JointType::Ball || j.type == JointType::Hinge || j.type == JointType::Fixed)
+            off = gap.norm();
+        else if (j.type == JointType::Slider)
+            off = (gap - gap.dot(qb * j.axisB) * (qb * j.axisB)).norm();
+        else if (j.type == JointType::Distance)
+            off = std::abs(gap.norm() - j.length);
+        if (off > 1e-4 * size) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", off);
+            m.notes.push_back(at(i) + " (" + d.name + "): does not hold in the scene as written (off by " +
+                              text +
+                              " m); the first step pulls it together, giving its bodies that move's speed");
+        }
+        m.jointed[j.a] = 1;
+        if (j.b >= 0) {
+            m.jointed[j.b] = 1;
+            m.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
+        }
+        m.joints.push_back(j);
+    }
+    std::sort(m.jointPairs.begin(), m.jointPairs.end());
+}
+
+}  // namespace tumble

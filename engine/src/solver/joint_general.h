@@ -1,0 +1,86 @@
+// The joints that hold orientation as well as position: hinge (the anchors together, the
+// axes in line: 3 linear rows and 2 angular ones across the axis), slider (A's anchor on
+// B's axis line and the relative orientation kept: 2 linear rows across the axis and 3
+// angular) and fixed (3 and 3). One set of formulas for the three, used by the velocity
+// rows (joints.cpp: prepare, update, remember) and the position projection.
+//
+// Rows: a linear row along the unit direction d acts at A's anchor pA, on B's material point
+// there (B's arm rB = pA - xB: exact for a slider whose anchors are apart along the axis);
+// its error is d · (pA - pB). An angular row along e acts on the relative turn; its error is
+// e · c, with c the rotation vector taking B's frame (times the kept relative orientation)
+// to A's (slider, fixed), or aB × aA for a hinge's axes (both move like A's turn minus B's).
+// A hinge's or slider's motor and limits are scalar rows along its free axis: the motor's
+// impulse clamped to its force times the step, a limit's one-sided with a speculative
+// target (the coordinate may reach the limit within the step, no further; past it, no
+// velocity back: the projection moves it back without adding energy).
+#pragma once
+
+#include <limits>
+
+#include "solver/contact_solver.h"
+
+#include <tumble/model.h>
+#include <tumble/state.h>
+
+namespace tumble::joint {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+inline bool isGeneral(JointType t) {
+    return t == JointType::Hinge || t == JointType::Slider || t == JointType::Fixed;
+}
+
+/// The rows of joint `j` with its bodies at `a` and `b` (null: the world): their
+/// directions, Jacobians (JA, JB: a column per row, v then ω) and, in `error`, the
+/// position error along them. Kinv is not set. A hinge's coordinate is its angle within π
+/// of `near` (State::hingeAngles, hingeNear), or within [-π, π] when `near` is NaN.
+void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
+                 ContactSolverScratch::GeneralRow& rows, Vector6* error = nullptr,
+                 double near = std::numeric_limits<double>::quiet_NaN());
+
+/// A hinge's angle about its axis at these poses, within π of `near` (NaN: within [-π, π]);
+/// 0 as the scene places the bodies.
+double hingeAngle(const JointModel& j, const BodyState& a, const BodyState* b,
+                  double near = std::numeric_limits<double>::quiet_NaN());
+
+/// The angle the hinge `j` had at the end of the last step in `state` (NaN: unknown).
+inline double hingeNear(const State& state, const JointModel& j) {
+    return j.index < static_cast<int>(state.hingeAngles.size()) ? state.hingeAngles[j.index]
+                                                                : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Sets state.hingeAngles from the poses now (World, at the end of every step).
+void trackHingeAngles(const Model& model, State& state);
+
+/// K = JAᵀ M_A⁻¹ JA' + JBᵀ M_B⁻¹ JB' over the first m rows (JA', JB': the impulse's rows,
+/// which may be taken at another pose; the same rows give the symmetric effective mass),
+/// padded with the identity to 6 × 6.
+Matrix6 generalMass(const ContactSolverScratch::GeneralRow& now, const ContactSolverScratch::GeneralRow& then,
+                    const SolverBody& A, const SolverBody& B);
+
+/// The relative velocity along the rows (the first m entries).
+Vector6 generalVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
+
+/// Applies an impulse given as (linear, angular) to one body's velocities.
+void applyToBody(SolverBody& body, const Vector6& impulse);
+
+/// Applies the row impulses `lambda` to A (+) and B (−, through JB) velocities.
+void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B,
+                  const Vector6& lambda);
+
+/// Moves A and B (poses) as the row impulses `lambda` would in unit time: x += M⁻¹ J λ,
+/// turned by I⁻¹ J λ. A body not `movable` is left.
+void nudgeGeneral(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
+                  const SolverBody& B, BodyState* b, bool moveB, const Vector6& lambda);
+
+/// Hinge and slider: the effective mass along the free axis (0: nothing can move), the
+/// coordinate's rate now, an impulse along it applied to the velocities, and the poses moved
+/// by one (as nudgeGeneral).
+double axisMass(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
+double axisVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
+void applyAxis(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, double lambda);
+void nudgeAxis(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
+               const SolverBody& B, BodyState* b, bool moveB, double lambda);
+
+}  // namespace tumble::joint
