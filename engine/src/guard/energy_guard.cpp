@@ -1,5 +1,7 @@
 #include "guard/energy_guard.h"
 
+#include "common/number_text.h"
+
 #include "guard/likely_cause.h"
 
 #include <tumble/errors.h>
@@ -12,12 +14,6 @@
 namespace tumble {
 
 namespace {
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
 
 double radius(const BodyModel& b) {
     const double r = boundingRadius(b.collider);
@@ -56,10 +52,10 @@ double workingSpeed(const Model& m, const State& state, const ForceTerm& f) {
     std::snprintf(when, sizeof when, "%.9g", state.time);
     throw SimulationError(worst, b.name, state.time,
                           "body '" + b.name + "' (bodies[" + std::to_string(worst) +
-                              "]) ran away at t = " + when + " s: its energy rose by " + num(gain) +
-                              " J, the scene's from " + num(g.start) + " J to " + num(total) +
-                              " J, far beyond what its forces can put in (" + num(g.input) +
-                              " J); likely cause: " + likelyCause(m, state, worst));
+                              "]) ran away at t = " + when + " s: its energy rose by " + numberText(gain, 3) +
+                              " J, the scene's from " + numberText(g.start, 3) + " J to " +
+                              numberText(total, 3) + " J, far beyond what its forces can put in (" +
+                              numberText(g.input, 3) + " J); likely cause: " + likelyCause(m, state, worst));
 }
 
 // The turn per step past which an integrator no longer follows a free spin. Measured on a
@@ -100,12 +96,12 @@ void checkSpin(const Model& m, const State& state) {
         std::snprintf(when, sizeof when, "%.9g", state.time);
         throw SimulationError(i, b.name, state.time,
                               "body '" + b.name + "' (bodies[" + std::to_string(i) + "]) spins at " +
-                                  num(omega) + " rad/s at t = " + when + " s, " + num(omega * dt) +
-                                  " rad per step: more than " + m.integrator->name + " follows (" +
-                                  num(limit) +
+                                  numberText(omega, 3) + " rad/s at t = " + when + " s, " +
+                                  numberText(omega * dt, 3) + " rad per step: more than " +
+                                  m.integrator->name + " follows (" + numberText(limit, 3) +
                                   " rad a step; past it a spinning body turns over to another axis); use "
                                   "splitting, which sub-steps a fast spin, or dt <= " +
-                                  num(limit / omega) + " s");
+                                  numberText(limit / omega, 3) + " s");
     }
 }
 

@@ -8,6 +8,8 @@
 // damped spring holds it only for h < c/k (the damping must beat its 1 + z² gain).
 #include "guard/likely_cause.h"
 
+#include "common/number_text.h"
+
 #include "collision/detect.h"
 
 #include <algorithm>
@@ -17,12 +19,6 @@
 namespace tumble {
 
 namespace {
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
 
 std::string bodyRef(const Model& m, int i) {
     return "body '" + m.bodies[i].name + "'";
@@ -67,10 +63,11 @@ Springs springsOf(const Model& m, int body) {
 
 std::string springName(const Model& m, int body, const Springs& s) {
     const BodyModel& b = m.bodies[body];
-    std::string mass = "m = " + num(b.mass) + " kg";
-    if (s.term->arm.squaredNorm() > 0.0) mass += ", " + num(1.0 / s.termInvMass) + " kg at its point";
+    std::string mass = "m = " + numberText(b.mass, 3) + " kg";
+    if (s.term->arm.squaredNorm() > 0.0)
+        mass += ", " + numberText(1.0 / s.termInvMass, 3) + " kg at its point";
     return "spring forces[" + std::to_string(s.stiffest) + "] of " + bodyRef(m, body) +
-           " (k = " + num(s.term->stiffness) + " N/m, " + mass;
+           " (k = " + numberText(s.term->stiffness, 3) + " N/m, " + mass;
 }
 
 // A spring or damper of `body` that the step cannot hold, or "".
@@ -86,24 +83,25 @@ std::string stiffness(const Model& m, int body) {
             const double needs = s.rate / s.omega2;  // stable for dt < c/k
             if (dt >= needs) {
                 return "explicit euler gains energy on " + springName(m, body, s) +
-                       (needs > 0.0 ? ": it would need dt < " + num(needs) + " s"
+                       (needs > 0.0 ? ": it would need dt < " + numberText(needs, 3) + " s"
                                     : ": undamped, at any step") +
-                       "); use rk4 (stable for dt < " + num(oscillatorLimit(Integrator::Rk4) / omega) +
+                       "); use rk4 (stable for dt < " +
+                       numberText(oscillatorLimit(Integrator::Rk4) / omega, 3) +
                        " s) or symplectic-euler (dt < " +
-                       num(oscillatorLimit(Integrator::SymplecticEuler) / omega) + " s)";
+                       numberText(oscillatorLimit(Integrator::SymplecticEuler) / omega, 3) + " s)";
             }
         } else if (dt * omega >= oscillatorLimit(id)) {
-            return "dt = " + num(dt) + " s is too large for " + springName(m, body, s) + ": needs dt < " +
-                   num(oscillatorLimit(id) / omega) + " s with " + name + ")";
+            return "dt = " + numberText(dt, 3) + " s is too large for " + springName(m, body, s) +
+                   ": needs dt < " + numberText(oscillatorLimit(id) / omega, 3) + " s with " + name + ")";
         }
     }
     const double rates[3] = {s.rate, b.linearDamping, b.angularDamping};
     const char* what[3] = {"the damping of its springs", "its linear_damping", "its angular_damping"};
     for (int k = 0; k < 3; ++k) {
         if (rates[k] > 0.0 && dt * rates[k] >= dampingLimit(id))
-            return "dt = " + num(dt) + " s is too large for " + what[k] + " of " + bodyRef(m, body) + " (" +
-                   num(rates[k]) + " 1/s: needs dt < " + num(dampingLimit(id) / rates[k]) + " s with " +
-                   name + ")";
+            return "dt = " + numberText(dt, 3) + " s is too large for " + what[k] + " of " +
+                   bodyRef(m, body) + " (" + numberText(rates[k], 3) + " 1/s: needs dt < " +
+                   numberText(dampingLimit(id) / rates[k], 3) + " s with " + name + ")";
     }
     return {};
 }
@@ -142,28 +140,30 @@ std::string likelyCause(const Model& m, const State& state, int body) {
         const double speed = b.kinematicVelocity.norm() + b.kinematicAngularVelocity.norm() * reach;
         const double smaller = std::min(own, reach > 0.0 ? reach : own);
         if (speed * dt > 0.1 * smaller)
-            return "kinematic " + bodyRef(m, k) + " moves " + num(speed * dt) + " m per step (" + num(speed) +
-                   " m/s), more than a tenth of " +
+            return "kinematic " + bodyRef(m, k) + " moves " + numberText(speed * dt, 3) + " m per step (" +
+                   numberText(speed, 3) + " m/s), more than a tenth of " +
                    (smaller == own ? "the size of " + bodyRef(m, body) : "its own size") + " (" +
-                   num(smaller) + " m): use a smaller step";
+                   numberText(smaller, 3) + " m): use a smaller step";
     }
     if (m.bodies[body].motion == Motion::Dynamic) {
         const Vec3 omega = derive(m.bodies[body], state.bodies[body]).omega;
         const double turn = omega.norm() * dt;
         if (std::isfinite(turn) && turn > 0.5) {
-            return bodyRef(m, body) + " spins at " + num(omega.norm()) + " rad/s, " + num(turn) +
-                   " rad per step" +
+            return bodyRef(m, body) + " spins at " + numberText(omega.norm(), 3) + " rad/s, " +
+                   numberText(turn, 3) + " rad per step" +
                    (m.integrator->id == Integrator::Euler
                         ? ", too fast for explicit euler: use splitting (exact rotations) or a smaller step"
                         : ": use a smaller step");
         }
     }
     if (needsContacts(m))
-        return "the contact solver (the contacts put energy in): try half the step (dt = " + num(dt) +
-               " s -> " + num(0.5 * dt) + " s) or twice the solver iterations (solver_iterations = " +
+        return "the contact solver (the contacts put energy in): try half the step (dt = " +
+               numberText(dt, 3) + " s -> " + numberText(0.5 * dt, 3) +
+               " s) or twice the solver iterations (solver_iterations = " +
                std::to_string(m.settings.solverIterations) + " -> " +
                std::to_string(2 * m.settings.solverIterations) + ")";
-    return "a step too large for the forces acting on it: try a smaller step (dt = " + num(dt) + " s)";
+    return "a step too large for the forces acting on it: try a smaller step (dt = " + numberText(dt, 3) +
+           " s)";
 }
 
 }  // namespace tumble

@@ -6,6 +6,7 @@
 #include <tumble/model.h>
 
 #include "collision/bvh.h"
+#include "common/number_text.h"
 #include "mesh/mesh_body.h"
 #include "model/compile_joints.h"
 
@@ -27,12 +28,6 @@ std::string at(int i) {
     return "bodies[" + std::to_string(i) + "]";
 }
 
-std::string shortNumber(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", v);
-    return text;
-}
-
 // The largest energy, momentum or reach a body may start with: a run squares and sums them
 // (contact impulses, the energy guard), so 1e308 loaded and then stopped as "ran away ...
 // energy rose by -nan J"; refused here, naming the field, whatever the options.
@@ -41,7 +36,7 @@ constexpr double kLargestHeld = 1e150;
 void requireHoldable(double v, const std::string& path, const std::string& what, const std::string& unit,
                      const std::string& given = {}) {
     if (!(std::abs(v) <= kLargestHeld)) {
-        throw SceneError(path, "gives " + what + " of " + shortNumber(v) + " " + unit + given +
+        throw SceneError(path, "gives " + what + " of " + numberText(v) + " " + unit + given +
                                    ", more than a run can carry in double precision (at most 1e150)");
     }
 }
@@ -56,7 +51,7 @@ void requireHoldableStart(const BodyDesc& d, int i, double mass, const Mat3& ine
         return;
     }
     if (d.motion != Motion::Dynamic) return;
-    const std::string given = " (mass " + shortNumber(mass) + " kg)";
+    const std::string given = " (mass " + numberText(mass) + " kg)";
     requireHoldable(mass * speed, at(i) + ".velocity", "a momentum", "kg m/s", given);
     requireHoldable(0.5 * mass * speed * speed, at(i) + ".velocity", "a kinetic energy", "J", given);
     const Vec3 w = d.orientation.normalized().conjugate() * d.angularVelocity;  // body axes
@@ -342,14 +337,14 @@ MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMe
     // (a radius of 1e300, a density of 1e-300): refuse the body rather than simulate NaN.
     const std::string field = at(i) + (b.mass ? ".mass" : ".density");
     if (!std::isfinite(mp.mass) || !(mp.mass > 0.0)) {
-        throw SceneError(field, "with this shape gives a mass of " + shortNumber(mp.mass) +
+        throw SceneError(field, "with this shape gives a mass of " + numberText(mp.mass) +
                                     " kg, which is not a usable finite positive number");
     }
     if (!b.inertia && !inertiaProblem(mp.inertia).empty()) {
         throw SceneError(field,
                          "with this shape gives an inertia tensor that is not finite and "
                          "positive definite (largest entry " +
-                             shortNumber(mp.inertia.cwiseAbs().maxCoeff()) + " kg m^2)");
+                             numberText(mp.inertia.cwiseAbs().maxCoeff()) + " kg m^2)");
     }
     return mp;
 }

@@ -3,6 +3,8 @@
 // never accumulated, so a long run does not drift off them.
 #include <tumble/world.h>
 
+#include "common/number_text.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -48,11 +50,6 @@ double stepUsed(const Settings& s) {
 
 namespace {
 
-std::string shortText(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", v);
-    return text;
-}
 
 }  // namespace
 
@@ -61,16 +58,16 @@ std::string stepNote(const Settings& s) {
     if (std::abs(h - s.dt) <= 1e-6 * s.dt) return {};  // (a dt typed to 6 digits is that dt)
     const double frame = 1.0 / s.frameRate;
     const std::string frameText =
-        "a frame (" + shortText(frame) + " s at frame_rate " + shortText(s.frameRate) + ")";
+        "a frame (" + numberText(frame) + " s at frame_rate " + numberText(s.frameRate) + ")";
     if (s.dt > frame) {
-        return "settings.dt " + shortText(s.dt) + " s is longer than " + frameText +
-               ": each frame is one step of " + shortText(h) + " s, not " + shortText(s.dt) +
-               "; for steps of " + shortText(s.dt) + " s set frame_rate to " + shortText(1.0 / s.dt) +
+        return "settings.dt " + numberText(s.dt) + " s is longer than " + frameText +
+               ": each frame is one step of " + numberText(h) + " s, not " + numberText(s.dt) +
+               "; for steps of " + numberText(s.dt) + " s set frame_rate to " + numberText(1.0 / s.dt) +
                " or less";
     }
     const long n = stepsPerFrame(s);
-    return "settings.dt " + shortText(s.dt) + " s does not divide " + frameText + ": each frame is " +
-           std::to_string(n) + " equal steps of " + shortText(h) + " s, the fewest no longer than dt";
+    return "settings.dt " + numberText(s.dt) + " s does not divide " + frameText + ": each frame is " +
+           std::to_string(n) + " equal steps of " + numberText(h) + " s, the fewest no longer than dt";
 }
 
 long advanceFrame(World& world, int frame) {
