@@ -28,7 +28,7 @@ PACKAGES=(
   nodejs npm
   ffmpeg
   gnuplot-nox
-  blender python3-numpy
+  python3 blender python3-numpy
   slurm-wlm munge
   clang-14 libfuzzer-14-dev
   liblsan0
