@@ -1,0 +1,635 @@
+#include "mesh/convex_parts.h"
+
+#include <tumble/convex_hull.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <queue>
+#include <stdexcept>
+
+namespace tumble::mesh {
+
+namespace {
+
+// ---- Triangle geometry ------------------------------------------------------------------
+
+// The point of triangle abc nearest p (by the regions of the triangle's plane: vertices,
+// edges, inside).
+Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    const double denom = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Where the line {x, y, z} (x free) crosses triangle abc, or NaN. Half-open edge rules
+// (a point on an edge counts for one of the two triangles sharing it) keep the parity
+// right for a line through an edge.
+double crossingX(double y, double z, const Vec3& a, const Vec3& b, const Vec3& c) {
+    auto edge = [&](const Vec3& p, const Vec3& q) {  // twice the signed area of (p, q, point) in yz
+        return (q.y() - p.y()) * (z - p.z()) - (q.z() - p.z()) * (y - p.y());
+    };
+    double w0 = edge(b, c), w1 = edge(c, a), w2 = edge(a, b);
+    const double area = w0 + w1 + w2;
+    if (area == 0.0) return std::numeric_limits<double>::quiet_NaN();  // edge-on
+    if (area < 0) {
+        w0 = -w0, w1 = -w1, w2 = -w2;
+    }
+    // Top-left style tie-break on the yz plane: a zero weight counts only on one side.
+    auto owns = [&](double w, const Vec3& p, const Vec3& q) {
+        if (w != 0.0) return w > 0.0;
+        const double dy = q.y() - p.y(), dz = q.z() - p.z();
+        return (area > 0) == (dz > 0 || (dz == 0 && dy < 0));
+    };
+    if (!owns(w0, b, c) || !owns(w1, c, a) || !owns(w2, a, b))
+        return std::numeric_limits<double>::quiet_NaN();
+    const double s = std::abs(area);
+    return (w0 * a.x() + w1 * b.x() + w2 * c.x()) / s;
+}
+
+// Triangles bucketed by their yz bounds (for lines along x) and by their 3D bounds (for
+// nearest-point queries).
+class Buckets {
+public:
+    explicit Buckets(const TriangleMesh& m) : m_(m) {
+        for (const Vec3& v : m.vertices) box_.add(v);
+        box_ = box_.inflated(1e-9 * (box_.extent().norm() + 1.0));
+        n_ = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(m.triangles.size()) / 2.0)), 1, 48);
+        cell_ = box_.extent() / n_;
+        yz_.assign(static_cast<std::size_t>(n_ * n_), {});
+        xyz_.assign(static_cast<std::size_t>(n_ * n_ * n_), {});
+        for (int t = 0; t < static_cast<int>(m.triangles.size()); ++t) {
+            collision::Aabb b;
+            for (int k : m.triangles[t]) b.add(m.vertices[k]);
+            const auto lo = cellOf(b.min), hi = cellOf(b.max);
+            for (int k = lo[2]; k <= hi[2]; ++k)
+                for (int j = lo[1]; j <= hi[1]; ++j) {
+                    yz_[static_cast<std::size_t>(j + n_ * k)].push_back(t);
+                    for (int i = lo[0]; i <= hi[0]; ++i) xyz_[index(i, j, k)].push_back(t);
+                }
+        }
+    }
+
+    // Sorted x of every crossing of the line {x, y, z}.
+    void crossings(double y, double z, std::vector<double>& xs) const {
+        xs.clear();
+        const auto c = cellOf(Vec3(box_.min.x(), y, z));
+        if (y < box_.min.y() || y > box_.max.y() || z < box_.min.z() || z > box_.max.z()) return;
+        for (int t : yz_[static_cast<std::size_t>(c[1] + n_ * c[2])]) {
+            const auto& tri = m_.triangles[t];
+            const double x = crossingX(y, z, m_.vertices[tri[0]], m_.vertices[tri[1]], m_.vertices[tri[2]]);
+            if (!std::isnan(x)) xs.push_back(x);
+        }
+        std::sort(xs.begin(), xs.end());
+    }
+
+    bool inside(const Vec3& p) const {
+        // The line a hair off p's own y and z: a point on a regular mesh's grid would send it
+        // along edges and faces, where parity means nothing (p's answer moves by no more).
+        const double off = 1e-9 * (box_.extent().norm() + 1.0);
+        std::vector<double> xs;
+        crossings(p.y() + 1.3 * off, p.z() + 2.9 * off, xs);
+        return (std::upper_bound(xs.begin(), xs.end(), p.x()) - xs.begin()) % 2 == 1;
+    }
+
+    // Distance to the nearest triangle: cells searched in shells until the nearest found is
+    // nearer than any unsearched cell can be.
+    double distance(const Vec3& p) const {
+        const auto c = cellOf(p);
+        // How far p lies outside the grid, so that shells start from where it is.
+        const double off = (p - p.cwiseMax(box_.min).cwiseMin(box_.max)).norm();
+        const double step = cell_.minCoeff();
+        double best = std::numeric_limits<double>::infinity();
+        for (int r = 0; r <= n_; ++r) {
+            for (int k = c[2] - r; k <= c[2] + r; ++k)
+                for (int j = c[1] - r; j <= c[1] + r; ++j)
+                    for (int i = c[0] - r; i <= c[0] + r; ++i) {
+                        if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r)
+                            continue;
+                        if (i < 0 || j < 0 || k < 0 || i >= n_ || j >= n_ || k >= n_) continue;
+                        for (int t : xyz_[index(i, j, k)]) {
+                            const auto& tri = m_.triangles[t];
+                            const Vec3 q = nearestOnTriangle(p, m_.vertices[tri[0]], m_.vertices[tri[1]],
+                                                             m_.vertices[tri[2]]);
+                            best = std::min(best, (q - p).norm());
+                        }
+                    }
+            if (best <= off + r * step) break;
+        }
+        return best;
+    }
+
+    const collision::Aabb& box() const { return box_; }
+
+private:
+    std::array<int, 3> cellOf(const Vec3& p) const {
+        std::array<int, 3> c;
+        for (int a = 0; a < 3; ++a)
+            c[a] = std::clamp(static_cast<int>(std::floor((p[a] - box_.min[a]) / cell_[a])), 0, n_ - 1);
+        return c;
+    }
+    std::size_t index(int i, int j, int k) const { return static_cast<std::size_t>(i + n_ * (j + n_ * k)); }
+
+    const TriangleMesh& m_;
+    collision::Aabb box_;
+    int n_ = 1;
+    Vec3 cell_;
+    std::vector<std::vector<int>> yz_, xyz_;
+};
+
+double meshVolume(const TriangleMesh& m) {
+    double v = 0.0;
+    for (const auto& t : m.triangles)
+        v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    return v;
+}
+
+// ---- Pieces -----------------------------------------------------------------------------
+
+struct Plane {
+    Vec3 n;  // the piece keeps n·x <= d
+    double d;
+};
+
+// The polygon clipped to n·x <= d (Sutherland-Hodgman).
+void clip(std::vector<Vec3>& poly, const Plane& p, std::vector<Vec3>& scratch) {
+    scratch.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec3& a = poly[i];
+        const Vec3& b = poly[(i + 1) % poly.size()];
+        const double da = p.n.dot(a) - p.d, db = p.n.dot(b) - p.d;
+        if (da <= 0) scratch.push_back(a);
+        if ((da < 0 && db > 0) || (da > 0 && db < 0)) scratch.push_back(a + (da / (da - db)) * (b - a));
+    }
+    poly.swap(scratch);
+}
+
+struct Piece {
+    std::vector<Plane> planes;
+    std::vector<int> triangles;  // those that reach into the region
+    std::vector<int> cells;      // the interior cells whose centres are in the region
+    std::vector<Vec3> points;    // the surface clipped to the region, and the cells by its cuts
+    collision::ConvexHull hull;
+    double volume = 0.0;  // of the hull
+    double pokeOut = 0.0;
+    bool empty = false;  // no hull: nothing of the solid, or a flat sliver
+};
+
+bool inRegion(const std::vector<Plane>& planes, const Vec3& x) {
+    for (const Plane& p : planes)
+        if (p.n.dot(x) > p.d) return false;
+    return true;
+}
+
+// Felzenszwalb and Huttenlocher's squared distance transform of one line (f: 0 at the
+// sources, kFar elsewhere), in place: the lower envelope of the parabolas (q - v)^2 + f(v).
+constexpr double kFar = 1e20;
+void distanceLine(std::vector<double>& f, std::vector<double>& d, std::vector<int>& v,
+                  std::vector<double>& z) {
+    const int n = static_cast<int>(f.size());
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    int k = 0;
+    v[0] = 0;
+    z[0] = -kInf;
+    z[1] = kInf;
+    auto meet = [&](int q, int r) {
+        return ((f[q] + double(q) * q) - (f[r] + double(r) * r)) / (2.0 * q - 2.0 * r);
+    };
+    for (int q = 1; q < n; ++q) {
+        double s = meet(q, v[k]);
+        while (s <= z[k]) {
+            --k;
+            s = meet(q, v[k]);
+        }
+        ++k;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = kInf;
+    }
+    k = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[k + 1] < q) ++k;
+        d[q] = (q - v[k]) * double(q - v[k]) + f[v[k]];
+    }
+    for (int q = 0; q < n; ++q) f[q] = d[q];
+}
+
+class Decomposer {
+public:
+    Decomposer(const TriangleMesh& m, const ConvexPartsOptions& o, double tolerance)
+        : m_(m), buckets_(m), tolerance_(tolerance) {
+        const Vec3 extent = buckets_.box().extent();
+        scale_ = extent.norm();
+        // Cells no larger than a third of the tolerance (the measure of how far a hull
+        // reaches out is good to about a cell), within the resolution's bounds.
+        const int resolution =
+            std::clamp(static_cast<int>(std::ceil(3.0 * extent.maxCoeff() / tolerance)), o.resolution, 160);
+        h_ = extent.maxCoeff() / resolution;
+        origin_ = buckets_.box().min;
+        for (int a = 0; a < 3; ++a) n_[a] = std::max(1, static_cast<int>(std::ceil(extent[a] / h_)));
+        inside_.assign(cellCount(), 0);
+        std::vector<double> xs;
+        for (int k = 0; k < n_[2]; ++k)
+            for (int j = 0; j < n_[1]; ++j) {
+                const Vec3 c = centre(0, j, k);
+                buckets_.crossings(c.y(), c.z(), xs);
+                for (int i = 0; i < n_[0]; ++i) {
+                    const double x = centre(i, j, k).x();
+                    if ((std::upper_bound(xs.begin(), xs.end(), x) - xs.begin()) % 2 == 1)
+                        inside_[index(i, j, k)] = 1;
+                }
+            }
+        // Each outside cell's distance to the nearest interior cell's centre: how far a hull
+        // holding that cell's centre reaches out of the solid (to about a cell).
+        reach_.assign(cellCount(), 0.0);
+        for (std::size_t c = 0; c < reach_.size(); ++c) reach_[c] = inside_[c] ? 0.0 : kFar;
+        const int longest = std::max({n_[0], n_[1], n_[2]});
+        std::vector<double> f(longest), d(longest), z(longest + 1);
+        std::vector<int> v(longest);
+        for (int axis = 0; axis < 3; ++axis) {
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            f.resize(n_[axis]);
+            d.resize(n_[axis]);
+            for (int p = 0; p < n_[a1]; ++p)
+                for (int q = 0; q < n_[a2]; ++q) {
+                    std::array<int, 3> at;
+                    at[a1] = p;
+                    at[a2] = q;
+                    for (at[axis] = 0; at[axis] < n_[axis]; ++at[axis])
+                        f[at[axis]] = reach_[index(at[0], at[1], at[2])];
+                    distanceLine(f, d, v, z);
+                    for (at[axis] = 0; at[axis] < n_[axis]; ++at[axis])
+                        reach_[index(at[0], at[1], at[2])] = f[at[axis]];
+                }
+        }
+        for (double& r : reach_)
+            r = r >= kFar / 2 ? 0.0 : std::sqrt(r) * h_;  // (no solid at all: nothing to reach from)
+        findReflexPlanes();
+    }
+
+    // The planes of the two faces at each reflex (concave) edge bent by more than 15 degrees,
+    // each once.
+    void findReflexPlanes() {
+        std::map<std::pair<int, int>, int> edgeFace;
+        std::vector<Vec3> normal(m_.triangles.size());
+        for (int t = 0; t < static_cast<int>(m_.triangles.size()); ++t) {
+            const auto& tri = m_.triangles[t];
+            const Vec3 n =
+                (m_.vertices[tri[1]] - m_.vertices[tri[0]]).cross(m_.vertices[tri[2]] - m_.vertices[tri[0]]);
+            normal[t] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+            for (int e = 0; e < 3; ++e) edgeFace[{tri[e], tri[(e + 1) % 3]}] = t;
+        }
+        const double scale = buckets_.box().extent().norm();
+        auto add = [&](int t) {
+            const Plane c{normal[t], normal[t].dot(m_.vertices[m_.triangles[t][0]])};
+            for (const Plane& o : reflexPlanes_)
+                if (o.n.dot(c.n) > 1 - 1e-9 && std::abs(o.d - c.d) < 1e-9 * scale) return;
+            reflexPlanes_.push_back(c);
+        };
+        for (const auto& [edge, t] : edgeFace) {
+            if (edge.first > edge.second) continue;
+            const auto other = edgeFace.find({edge.second, edge.first});
+            if (other == edgeFace.end()) continue;
+            const int u = other->second;
+            if (normal[t].dot(normal[u]) > std::cos(15.0 * std::numbers::pi / 180.0)) continue;
+            // Reflex: the other face's far corner lies outside this face's plane.
+            int far = 0;
+            for (int k : m_.triangles[u])
+                if (k != edge.first && k != edge.second) far = k;
+            if (normal[t].dot(m_.vertices[far] - m_.vertices[edge.first]) <= 0) continue;
+            add(t);
+            add(u);
+        }
+    }
+
+    ConvexParts run(int maxParts) {
+        Piece whole;
+        whole.triangles.resize(m_.triangles.size());
+        for (int t = 0; t < static_cast<int>(whole.triangles.size()); ++t) whole.triangles[t] = t;
+        for (int c = 0; c < static_cast<int>(inside_.size()); ++c)
+            if (inside_[c]) whole.cells.push_back(c);
+        finish(whole);
+        std::vector<Piece> pieces;
+        pieces.push_back(std::move(whole));
+        // Split the piece that reaches out farthest while any is beyond the tolerance; then,
+        // while the hulls hold 3 % more than the solid, the piece whose hull holds most
+        // beyond its interior cells.
+        const double solid = meshVolume(m_);
+        std::vector<std::uint8_t> uncuttable(1, 0);
+        while (static_cast<int>(pieces.size()) < maxParts) {
+            int worst = -1;
+            for (int i = 0; i < static_cast<int>(pieces.size()); ++i)
+                if (!pieces[i].empty && !uncuttable[i] && pieces[i].pokeOut > tolerance_ &&
+                    (worst < 0 || pieces[i].pokeOut > pieces[worst].pokeOut))
+                    worst = i;
+            if (worst < 0) {
+                double total = 0.0, most = 0.0;
+                for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
+                    total += pieces[i].volume;
+                    const double extra =
+                        pieces[i].volume - static_cast<double>(pieces[i].cells.size()) * h_ * h_ * h_;
+                    if (!pieces[i].empty && !uncuttable[i] && extra > most) {
+                        most = extra;
+                        worst = i;
+                    }
+                }
+                if (total <= 1.03 * solid) break;
+            }
+            if (worst < 0) break;
+            std::array<Piece, 2> halves;
+            if (!split(pieces[worst], halves)) {
+                uncuttable[worst] = 1;
+                continue;
+            }
+            pieces[worst] = std::move(halves[0]);
+            pieces.push_back(std::move(halves[1]));
+            uncuttable.push_back(0);
+        }
+        ConvexParts out;
+        out.tolerance = tolerance_;
+        out.meshVolume = meshVolume(m_);
+        out.withinTolerance = true;
+        for (Piece& p : pieces) {
+            if (p.empty) continue;
+            out.largestPokeOut = std::max(out.largestPokeOut, p.pokeOut);
+            if (p.pokeOut > tolerance_) out.withinTolerance = false;
+            out.partsVolume += p.volume;
+            out.parts.push_back(std::move(p.hull));
+        }
+        return out;
+    }
+
+private:
+    std::size_t cellCount() const { return static_cast<std::size_t>(n_[0]) * n_[1] * n_[2]; }
+    std::size_t index(int i, int j, int k) const {
+        return static_cast<std::size_t>(i + n_[0] * (j + std::size_t(n_[1]) * k));
+    }
+    Vec3 centre(int i, int j, int k) const {
+        // (a little off the cells' own lines, so that a line of a regular mesh does not run
+        // along its edges)
+        return origin_ + h_ * Vec3(i + 0.5, j + 0.5 + 1.3e-7, k + 0.5 + 2.9e-7);
+    }
+    Vec3 centre(std::size_t c) const {
+        const int i = static_cast<int>(c % n_[0]);
+        const int j = static_cast<int>((c / n_[0]) % n_[1]);
+        const int k = static_cast<int>(c / (std::size_t(n_[0]) * n_[1]));
+        return centre(i, j, k);
+    }
+
+    // The piece's surface points, hull, volume and how far the hull reaches out.
+    void finish(Piece& p) {
+        clipAndHull(p);
+        if (!p.empty) p.pokeOut = pokeOut(p.hull);
+    }
+
+    void clipAndHull(Piece& p) {
+        std::vector<Vec3> poly, scratch;
+        std::vector<int> kept;
+        p.points.clear();
+        for (int t : p.triangles) {
+            const auto& tri = m_.triangles[t];
+            poly = {m_.vertices[tri[0]], m_.vertices[tri[1]], m_.vertices[tri[2]]};
+            const Vec3 facing = (poly[1] - poly[0]).cross(poly[2] - poly[0]);
+            for (const Plane& pl : p.planes) {
+                // A face in the cut belongs to the side its solid is on (behind its normal).
+                const double eps = 1e-9 * scale_;
+                if (std::abs(pl.n.dot(poly[0]) - pl.d) <= eps && std::abs(pl.n.dot(poly[1]) - pl.d) <= eps &&
+                    std::abs(pl.n.dot(poly[2]) - pl.d) <= eps && poly.size() == 3) {
+                    if (facing.dot(pl.n) <= 0) poly.clear();
+                    if (poly.empty()) break;
+                    continue;
+                }
+                clip(poly, pl, scratch);
+                if (poly.empty()) break;
+            }
+            if (poly.empty()) continue;
+            // What is left of a face that only touches the region (an edge or a corner on a
+            // cut) is no part of the piece's solid.
+            Vec3 area = Vec3::Zero();
+            for (std::size_t i = 1; i + 1 < poly.size(); ++i)
+                area += (poly[i] - poly[0]).cross(poly[i + 1] - poly[0]);
+            if (area.norm() <= 1e-12 * scale_ * scale_) continue;
+            kept.push_back(t);
+            p.points.insert(p.points.end(), poly.begin(), poly.end());
+        }
+        p.triangles.swap(kept);
+        // The region's corners inside the solid: with the clipped surface, every vertex of
+        // the piece (a cut's face is the hull of its boundary, on the clipped triangles, and
+        // of these).
+        addCorners(p.planes, p.points);
+        std::sort(p.points.begin(), p.points.end(), [](const Vec3& a, const Vec3& b) {
+            return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+        });
+        p.points.erase(std::unique(p.points.begin(), p.points.end()), p.points.end());
+        try {
+            p.hull = convexHull(p.points);
+        } catch (const HullError&) {
+            p.empty = true;  // no solid here, or a flat sliver of it
+            return;
+        }
+        p.volume = hullVolume(p.hull);
+    }
+
+    void addCorners(const std::vector<Plane>& planes, std::vector<Vec3>& out) const {
+        const int n = static_cast<int>(planes.size());
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j)
+                for (int k = j + 1; k < n; ++k) {
+                    Mat3 A;
+                    A.row(0) = planes[i].n.transpose();
+                    A.row(1) = planes[j].n.transpose();
+                    A.row(2) = planes[k].n.transpose();
+                    if (std::abs(A.determinant()) < 1e-9) continue;
+                    const Vec3 x = A.inverse() * Vec3(planes[i].d, planes[j].d, planes[k].d);
+                    bool in = true;
+                    for (const Plane& pl : planes)
+                        in = in && pl.n.dot(x) <= pl.d + 1e-9 * (1.0 + std::abs(pl.d));
+                    if (in && buckets_.box().contains(x) && buckets_.inside(x)) out.push_back(x);
+                }
+    }
+
+    // The pieces on either side of `cut` (points, hull, volume; not yet the poke-out).
+    bool halves(const Piece& p, const Plane& cut, std::array<Piece, 2>& out) {
+        for (int s = 0; s < 2; ++s) {
+            Piece& h = out[s];
+            h = Piece{};
+            h.planes = p.planes;
+            h.planes.push_back(s == 0 ? cut : Plane{-cut.n, -cut.d});
+            h.triangles = p.triangles;
+            clipAndHull(h);
+            if (h.empty) return false;
+        }
+        return true;
+    }
+
+    // How far the hull reaches out of the solid: the largest reach of an outside cell whose
+    // centre it holds. Line by line along x, the hull's span found from its faces.
+    double pokeOut(const collision::ConvexHull& hull) const {
+        collision::Aabb box;
+        for (const Vec3& v : hull.vertices) box.add(v);
+        const double eps = 1e-9 * (box.extent().norm() + 1.0);
+        auto range = [&](int a, int& lo, int& hi) {
+            lo = std::max(0, static_cast<int>(std::floor((box.min[a] - origin_[a]) / h_ - 0.5)));
+            hi = std::min(n_[a] - 1, static_cast<int>(std::ceil((box.max[a] - origin_[a]) / h_ - 0.5)));
+        };
+        int j0, j1, k0, k1;
+        range(1, j0, j1);
+        range(2, k0, k1);
+        double worst = 0.0;
+        for (int k = k0; k <= k1; ++k)
+            for (int j = j0; j <= j1; ++j) {
+                const Vec3 c = centre(0, j, k);
+                double lo = -1e300, hi = 1e300;
+                for (const auto& f : hull.faces) {
+                    // n·(x, y, z) < offset - eps along the line
+                    const double rest = f.offset - eps - f.normal.y() * c.y() - f.normal.z() * c.z();
+                    if (f.normal.x() > 1e-12)
+                        hi = std::min(hi, rest / f.normal.x());
+                    else if (f.normal.x() < -1e-12)
+                        lo = std::max(lo, rest / f.normal.x());
+                    else if (rest <= 0)
+                        hi = lo - 1;  // the line misses the hull
+                    if (hi < lo) break;
+                }
+                if (hi < lo) continue;
+                const int i0 = std::max(0, static_cast<int>(std::ceil((lo - origin_.x()) / h_ - 0.5)));
+                const int i1 =
+                    std::min(n_[0] - 1, static_cast<int>(std::floor((hi - origin_.x()) / h_ - 0.5)));
+                for (int i = i0; i <= i1; ++i) worst = std::max(worst, reach_[index(i, j, k)]);
+            }
+        return worst;
+    }
+
+    // The best cut of p into two pieces that both hold solid (false if none): the one whose
+    // halves' hulls hold the least volume (the piece's own is the same for every cut).
+    // Candidates: the planes of the faces at the mesh's reflex edges that cross the piece
+    // (the cuts a modelled part's concave corners ask for, in any pose), and across each of
+    // the world's axes and the piece's principal axes (a ring's arc is cut across its chord)
+    // at seven even steps.
+    bool split(const Piece& p, std::array<Piece, 2>& out) {
+        std::vector<Plane> candidates;
+        auto crosses = [&](const Plane& c) {
+            bool below = false, above = false;
+            for (const Vec3& x : p.points) {
+                const double off = c.n.dot(x) - c.d;
+                below = below || off < -0.5 * h_;
+                above = above || off > 0.5 * h_;
+                if (below && above) return true;
+            }
+            return false;
+        };
+        for (const Plane& c : reflexPlanes_)
+            if (crosses(c)) candidates.push_back(c);
+        const std::size_t reflex = std::min<std::size_t>(candidates.size(), 12);
+        if (candidates.size() > 12) {
+            std::vector<Plane> few;
+            for (int k = 0; k < 12; ++k) few.push_back(candidates[candidates.size() * (2 * k + 1) / 24]);
+            candidates.swap(few);
+        }
+        Vec3 mean = Vec3::Zero();
+        for (const Vec3& x : p.points) mean += x;
+        mean /= static_cast<double>(p.points.size());
+        Mat3 cov = Mat3::Zero();
+        for (const Vec3& x : p.points) cov += (x - mean) * (x - mean).transpose();
+        const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
+        std::vector<Vec3> directions = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+        for (int k = 0; k < 3; ++k) directions.push_back(eig.eigenvectors().col(k).normalized());
+        for (const Vec3& u : directions) {
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (const Vec3& x : p.points) {
+                lo = std::min(lo, u.dot(x));
+                hi = std::max(hi, u.dot(x));
+            }
+            if (hi - lo < 2 * h_) continue;
+            for (int k = 1; k <= 7; ++k) candidates.push_back({u, lo + (hi - lo) * k / 8.0});
+        }
+        double bestScore = std::numeric_limits<double>::infinity();
+        std::array<Piece, 2> trial;
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            const Plane& c = candidates[i];
+            if (!halves(p, c, trial)) continue;
+            // A reflex face's plane wins a tie: it is where the part's own corner is.
+            const double score = (trial[0].volume + trial[1].volume) * (i < reflex ? 1.0 - 1e-9 : 1.0);
+            if (score < bestScore) {
+                bestScore = score;
+                out = std::move(trial);
+            }
+        }
+        if (!std::isfinite(bestScore)) return false;
+        for (Piece& h : out) {
+            for (int c : p.cells)
+                if (inRegion({h.planes.back()}, centre(static_cast<std::size_t>(c)))) h.cells.push_back(c);
+            h.pokeOut = pokeOut(h.hull);
+        }
+        return true;
+    }
+
+    const TriangleMesh& m_;
+    Buckets buckets_;
+    double tolerance_;
+    double h_ = 0.0;
+    Vec3 origin_;
+    std::array<int, 3> n_{};
+    std::vector<std::uint8_t> inside_;
+    std::vector<Plane> reflexPlanes_;
+    double scale_ = 1.0;         // the mesh's diagonal
+    std::vector<double> reach_;  // per cell: 0 inside, else the distance to the nearest interior cell centre
+};
+
+}  // namespace
+
+double hullVolume(const collision::ConvexHull& hull) {
+    double v = 0.0;
+    for (const auto& f : hull.faces) {
+        const auto vs = hull.verticesOf(f);
+        Vec3 area = Vec3::Zero();  // twice the polygon's vector area
+        for (std::size_t i = 1; i + 1 < vs.size(); ++i)
+            area += (hull.vertices[vs[i]] - hull.vertices[vs[0]])
+                        .cross(hull.vertices[vs[i + 1]] - hull.vertices[vs[0]]);
+        v += f.offset * f.normal.dot(area) / 6.0;
+    }
+    return v;
+}
+
+double distanceOutside(const TriangleMesh& mesh, const Vec3& point) {
+    const Buckets b(mesh);
+    return b.inside(point) ? 0.0 : b.distance(point);
+}
+
+ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options) {
+    if (mesh.triangles.empty()) throw std::invalid_argument("convex parts: the mesh has no triangles");
+    if (!isClosed(mesh))
+        throw std::invalid_argument("convex parts: the mesh is not closed (it bounds no solid)");
+    if (options.maxParts < 1 || options.maxParts > 256)
+        throw std::invalid_argument("convex parts: max_parts must be from 1 to 256");
+    if (options.resolution < 8 || options.resolution > 256)
+        throw std::invalid_argument("convex parts: the resolution must be from 8 to 256");
+    collision::Aabb box;
+    for (const Vec3& v : mesh.vertices) box.add(v);
+    const double tolerance = options.tolerance > 0 ? options.tolerance : 0.01 * box.extent().norm();
+    if (meshVolume(mesh) <= 0) throw std::invalid_argument("convex parts: the mesh faces inwards or is flat");
+    Decomposer d(mesh, options, tolerance);
+    return d.run(options.maxParts);
+}
+
+}  // namespace tumble::mesh

@@ -1,0 +1,176 @@
+// Convex decomposition (mesh/convex_parts.h, issue 49 item 3, in progress): a convex solid is
+// one part; a U-bracket is its three boxes, their volume the solid's exactly, in any pose;
+// no part reaches out of the solid by more than the tolerance, checked here independently of
+// the decomposition's own measure at points spread densely over every part's faces. (Curved
+// concave solids, a mug and a torus, are not yet within the issue's targets: the test meshes
+// for them are in test_meshes.h, the figures in the issue's notes.)
+#include <tumble/convex_hull.h>
+
+#include "mesh/convex_parts.h"
+#include "test_meshes.h"
+#include "turned_world.h"
+
+#include <QtTest>
+
+#include <numbers>
+
+using namespace tumble;
+using namespace tumble::mesh;
+using namespace tumble::test;
+
+namespace {
+
+TriangleMesh boxMesh(const Vec3& half) {
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.emplace_back((i & 1 ? 1 : -1) * half.x(), (i & 2 ? 1 : -1) * half.y(),
+                                (i & 4 ? 1 : -1) * half.z());
+    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    return m;
+}
+
+double signedVolume(const TriangleMesh& m) {
+    double v = 0.0;
+    for (const auto& t : m.triangles)
+        v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    return v;
+}
+
+TriangleMesh turned(TriangleMesh m, const Quat& q, const Vec3& shift) {
+    for (Vec3& v : m.vertices) v = q * v + shift;
+    return m;
+}
+
+// The farthest any part reaches out of the solid, at points 1/8 of each face triangle apart
+// (the decomposition probes at 1/4).
+double farthestOut(const TriangleMesh& mesh, const ConvexParts& parts) {
+    double worst = 0.0;
+    constexpr int kSteps = 8;
+    for (const collision::ConvexHull& hull : parts.parts)
+        for (const auto& f : hull.faces) {
+            const auto vs = hull.verticesOf(f);
+            for (std::size_t i = 1; i + 1 < vs.size(); ++i) {
+                const Vec3 &a = hull.vertices[vs[0]], &b = hull.vertices[vs[i]],
+                           &c = hull.vertices[vs[i + 1]];
+                for (int u = 0; u <= kSteps; ++u)
+                    for (int v = 0; u + v <= kSteps; ++v)
+                        worst = std::max(worst, distanceOutside(mesh, a + (double(u) / kSteps) * (b - a) +
+                                                                          (double(v) / kSteps) * (c - a)));
+            }
+        }
+    return worst;
+}
+
+bool insideAnyPart(const ConvexParts& parts, const Vec3& p) {
+    for (const collision::ConvexHull& hull : parts.parts) {
+        bool in = true;
+        for (const auto& f : hull.faces) in = in && f.normal.dot(p) < f.offset;
+        if (in) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+class TestConvexParts : public QObject {
+    Q_OBJECT
+
+private slots:
+    void theTestMeshesBoundTheirSolids() {
+        QVERIFY(isClosed(uBracket(1.0, 0.2, 0.6, 0.4)));
+        QVERIFY(isClosed(mug(0.4, 1.0, 0.3, 0.8, 48)));
+        QVERIFY(isClosed(torus(1.0, 0.3, 64, 24)));
+        QVERIFY(std::abs(signedVolume(uBracket(1.0, 0.2, 0.6, 0.4)) - 0.4 * (0.2 + 2 * 0.2 * 0.6)) < 1e-12);
+        QVERIFY(std::abs(signedVolume(mug(0.4, 1.0, 0.3, 0.8, 48)) - mugVolume(0.4, 1.0, 0.3, 0.8, 48)) <
+                1e-12);
+        QVERIFY(signedVolume(torus(1.0, 0.3, 64, 24)) > 0);
+    }
+
+    // A convex solid is its own single part.
+    void aConvexSolidIsOnePart() {
+        const TriangleMesh box = boxMesh(Vec3(0.5, 0.2, 0.3));
+        const ConvexParts p = convexParts(box);
+        QCOMPARE(int(p.parts.size()), 1);
+        QVERIFY(p.withinTolerance);
+        QVERIFY(std::abs(p.partsVolume - 0.24) < 1e-12);
+        QVERIFY(std::abs(p.meshVolume - 0.24) < 1e-12);
+        QCOMPARE(farthestOut(box, p), 0.0);
+    }
+
+    void solids_data() {
+        QTest::addColumn<QString>("which");
+        QTest::addColumn<bool>("turn");
+        for (const char* w : {"u-bracket"}) {
+            QTest::newRow(w) << QString(w) << false;
+            QTest::newRow((std::string(w) + " turned and shifted").c_str()) << QString(w) << true;
+        }
+    }
+
+    // Each within 5 % of its volume, none out by more than the tolerance; the U-bracket in
+    // its three boxes, its volume exactly; a ball in the mug's hole is in no part.
+    void solids() {
+        QFETCH(QString, which);
+        QFETCH(bool, turn);
+        TriangleMesh m = which == "u-bracket" ? uBracket(1.0, 0.2, 0.6, 0.4)
+                         : which == "mug"     ? mug(0.4, 1.0, 0.3, 0.8, 48)
+                                              : torus(1.0, 0.3, 64, 24);
+        const Quat q = turn ? Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())) : Quat::Identity();
+        const Vec3 shift = turn ? Vec3(12.5, -3.25, 7.0) : Vec3::Zero();
+        m = turned(m, q, shift);
+        ConvexPartsOptions o;
+        o.tolerance = which == "torus" ? 0.03 : 0.02;  // (a torus arc of 2 cm sagitta needs 14 parts or more)
+        QElapsedTimer clock;
+        clock.start();
+        const ConvexParts p = convexParts(m, o);
+        const double error = p.partsVolume / p.meshVolume - 1.0;
+        const double out = farthestOut(m, p);
+        qInfo("%s: %d parts, volume %+.2f %%, out %.4f m (own measure %.4f), %lld ms", qPrintable(which),
+              int(p.parts.size()), 100 * error, out, p.largestPokeOut,
+              static_cast<long long>(clock.elapsed()));
+        QVERIFY2(error >= -1e-9, "the parts cover less than the solid");
+        QVERIFY2(error < 0.05, qPrintable(QString::number(error)));
+        QVERIFY2(int(p.parts.size()) <= o.maxParts, "too many parts");
+        // The final measure is at points 1/4 of a face apart; at 1/8 a part may reach a
+        // little farther, never past the tolerance by more than a sample's spacing.
+        QVERIFY2(out <= o.tolerance * 1.25, qPrintable(QString::number(out)));
+        if (which == "u-bracket") {
+            QVERIFY(p.withinTolerance);
+            QVERIFY2(std::abs(error) < 1e-9, qPrintable(QString::number(error)));
+            QCOMPARE(int(p.parts.size()), 3);
+        }
+        if (which == "mug") QVERIFY(!insideAnyPart(p, q * Vec3(0, 0.6, 0) + shift));  // in the hole
+        if (which == "torus") QVERIFY(!insideAnyPart(p, shift));                      // in the hole
+    }
+
+    // Too few parts allowed: the result says it is not within the tolerance, and how far out
+    // it reaches, as measured here (to a cell of the grid).
+    void tooFewPartsSaysSo() {
+        const TriangleMesh u = uBracket(1.0, 0.2, 0.6, 0.4);
+        ConvexPartsOptions o;
+        o.tolerance = 0.02;
+        o.maxParts = 2;
+        const ConvexParts p = convexParts(u, o);
+        QCOMPARE(int(p.parts.size()), 2);
+        QVERIFY(!p.withinTolerance);
+        const double out = farthestOut(u, p);
+        qInfo("two parts: out %.4f m, own measure %.4f m", out, p.largestPokeOut);
+        QVERIFY(out > o.tolerance);
+        QVERIFY2(std::abs(p.largestPokeOut - out) < 0.02, qPrintable(QString::number(p.largestPokeOut)));
+    }
+
+    void badInput() {
+        TriangleMesh open = boxMesh(Vec3(1, 1, 1));
+        open.triangles.pop_back();
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, convexParts(open));
+        ConvexPartsOptions none;
+        none.maxParts = 0;
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, convexParts(boxMesh(Vec3(1, 1, 1)), none));
+        TriangleMesh inward = boxMesh(Vec3(1, 1, 1));
+        for (auto& t : inward.triangles) std::swap(t[1], t[2]);
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, convexParts(inward));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestConvexParts)
+#include "tst_convex_parts.moc"
