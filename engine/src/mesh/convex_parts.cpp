@@ -333,10 +333,13 @@ public:
         pieces.push_back(std::move(whole));
         // Split the piece that reaches out farthest while any is beyond the tolerance; then,
         // while the hulls hold 3 % more than the solid, the piece whose hull holds most
-        // beyond its interior cells.
+        // beyond its interior cells; up to twice the parts asked for, then the neighbours
+        // whose joint hull adds least are merged back down to them (greedy cuts made early
+        // are undone where they were not needed).
         const double solid = meshVolume(m_);
+        const int most = std::min(2 * maxParts, 256);
         std::vector<std::uint8_t> uncuttable(1, 0);
-        while (static_cast<int>(pieces.size()) < maxParts) {
+        while (static_cast<int>(pieces.size()) < most) {
             int worst = -1;
             for (int i = 0; i < static_cast<int>(pieces.size()); ++i)
                 if (!pieces[i].empty && !uncuttable[i] && pieces[i].pokeOut > tolerance_ &&
@@ -365,6 +368,8 @@ public:
             pieces.push_back(std::move(halves[1]));
             uncuttable.push_back(0);
         }
+        std::erase_if(pieces, [](const Piece& p) { return p.empty; });
+        merge(pieces, maxParts);
         ConvexParts out;
         out.tolerance = tolerance_;
         out.meshVolume = meshVolume(m_);
@@ -520,6 +525,77 @@ private:
         return worst;
     }
 
+    // Merges pairs of pieces whose boxes touch, the pair whose joint hull adds least volume
+    // first, until there are `count` pieces.
+    void merge(std::vector<Piece>& pieces, int count) {
+        auto boxOf = [](const Piece& p) {
+            collision::Aabb b;
+            for (const Vec3& v : p.hull.vertices) b.add(v);
+            return b;
+        };
+        auto joined = [&](const Piece& a, const Piece& b, Piece& out) {
+            out = Piece{};
+            out.points = a.points;
+            out.points.insert(out.points.end(), b.points.begin(), b.points.end());
+            try {
+                out.hull = convexHull(out.points);
+            } catch (const HullError&) {
+                return false;
+            }
+            out.volume = hullVolume(out.hull);
+            return true;
+        };
+        struct Pair {
+            double cost;
+            int a, b;
+        };
+        while (static_cast<int>(pieces.size()) > count) {
+            Pair best{std::numeric_limits<double>::infinity(), -1, -1};
+            std::vector<collision::Aabb> boxes;
+            for (const Piece& p : pieces) boxes.push_back(boxOf(p).inflated(h_));
+            Piece trial;
+            for (int i = 0; i < static_cast<int>(pieces.size()); ++i)
+                for (int j = i + 1; j < static_cast<int>(pieces.size()); ++j) {
+                    if (!boxes[i].overlaps(boxes[j])) continue;
+                    if (!joined(pieces[i], pieces[j], trial)) continue;
+                    const double cost = trial.volume - pieces[i].volume - pieces[j].volume;
+                    if (cost < best.cost) best = {cost, i, j};
+                }
+            if (best.a < 0) break;  // nothing touches: the parts are as few as they can be
+            Piece m;
+            joined(pieces[best.a], pieces[best.b], m);
+            m.cells = pieces[best.a].cells;
+            m.cells.insert(m.cells.end(), pieces[best.b].cells.begin(), pieces[best.b].cells.end());
+            m.pokeOut = pokeOut(m.hull);
+            pieces[best.a] = std::move(m);
+            pieces.erase(pieces.begin() + best.b);
+        }
+    }
+
+    // The least hull volume of `h` cut once across one of its principal axes at its middle
+    // (its own hull volume when no such cut holds solid on both sides).
+    double bestMiddleCut(const Piece& h) {
+        Vec3 mean = Vec3::Zero();
+        for (const Vec3& x : h.points) mean += x;
+        mean /= static_cast<double>(h.points.size());
+        Mat3 cov = Mat3::Zero();
+        for (const Vec3& x : h.points) cov += (x - mean) * (x - mean).transpose();
+        const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
+        double least = h.volume;
+        std::array<Piece, 2> two;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 u = eig.eigenvectors().col(k).normalized();
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (const Vec3& x : h.points) {
+                lo = std::min(lo, u.dot(x));
+                hi = std::max(hi, u.dot(x));
+            }
+            if (hi - lo < 2 * h_) continue;
+            if (halves(h, {u, 0.5 * (lo + hi)}, two)) least = std::min(least, two[0].volume + two[1].volume);
+        }
+        return least;
+    }
+
     // The best cut of p into two pieces that both hold solid (false if none): the one whose
     // halves' hulls hold the least volume (the piece's own is the same for every cut).
     // Candidates: the planes of the faces at the mesh's reflex edges that cross the piece
@@ -540,12 +616,12 @@ private:
         };
         for (const Plane& c : reflexPlanes_)
             if (crosses(c)) candidates.push_back(c);
-        const std::size_t reflex = std::min<std::size_t>(candidates.size(), 12);
         if (candidates.size() > 12) {
             std::vector<Plane> few;
             for (int k = 0; k < 12; ++k) few.push_back(candidates[candidates.size() * (2 * k + 1) / 24]);
             candidates.swap(few);
         }
+        const std::size_t reflex = candidates.size();
         Vec3 mean = Vec3::Zero();
         for (const Vec3& x : p.points) mean += x;
         mean /= static_cast<double>(p.points.size());
@@ -554,6 +630,11 @@ private:
         const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
         std::vector<Vec3> directions = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
         for (int k = 0; k < 3; ++k) directions.push_back(eig.eigenvectors().col(k).normalized());
+        // and half way between each two principal axes (a tube's staves need more than two)
+        for (int k = 0; k < 3; ++k)
+            for (double sign : {1.0, -1.0})
+                directions.push_back(
+                    (eig.eigenvectors().col(k) + sign * eig.eigenvectors().col((k + 1) % 3)).normalized());
         for (const Vec3& u : directions) {
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
             for (const Vec3& x : p.points) {
@@ -563,18 +644,38 @@ private:
             if (hi - lo < 2 * h_) continue;
             for (int k = 1; k <= 7; ++k) candidates.push_back({u, lo + (hi - lo) * k / 8.0});
         }
-        double bestScore = std::numeric_limits<double>::infinity();
-        std::array<Piece, 2> trial;
+        // One cut ahead first; where no cut gains (a ring's or a tube's first cuts: each half's
+        // hull is as large as its share of the whole), the reflex planes and the middle cuts
+        // are looked at two ahead: each half cut once more, across its own principal axes
+        // at their middle, the best of those counted.
+        std::vector<double> score(candidates.size(), std::numeric_limits<double>::infinity());
+        std::vector<std::array<Piece, 2>> trials(candidates.size());
+        double best = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < candidates.size(); ++i) {
-            const Plane& c = candidates[i];
-            if (!halves(p, c, trial)) continue;
-            // A reflex face's plane wins a tie: it is where the part's own corner is.
-            const double score = (trial[0].volume + trial[1].volume) * (i < reflex ? 1.0 - 1e-9 : 1.0);
-            if (score < bestScore) {
-                bestScore = score;
-                out = std::move(trial);
+            if (!halves(p, candidates[i], trials[i])) continue;
+            score[i] = trials[i][0].volume + trials[i][1].volume;
+            best = std::min(best, score[i]);
+        }
+        if (!std::isfinite(best)) return false;
+        const bool stalled = best > (1.0 - 0.02) * p.volume;
+        std::size_t chosen = 0;
+        double bestScore = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            if (!std::isfinite(score[i])) continue;
+            double s = score[i];
+            const bool middle = i >= reflex && (i - reflex) % 7 == 3;
+            if (stalled && (i < reflex || middle)) {
+                s = 0.0;
+                for (const Piece& h : trials[i]) s += bestMiddleCut(h);
+            }
+            if (i < reflex)
+                s *= 1.0 - 1e-9;  // a reflex face's plane wins a tie: the part's own corner is there
+            if (s < bestScore) {
+                bestScore = s;
+                chosen = i;
             }
         }
+        out = std::move(trials[chosen]);
         if (!std::isfinite(bestScore)) return false;
         for (Piece& h : out) {
             for (int c : p.cells)
@@ -611,9 +712,12 @@ double hullVolume(const collision::ConvexHull& hull) {
     return v;
 }
 
-double distanceOutside(const TriangleMesh& mesh, const Vec3& point) {
+std::vector<double> distancesOutside(const TriangleMesh& mesh, const std::vector<Vec3>& points) {
     const Buckets b(mesh);
-    return b.inside(point) ? 0.0 : b.distance(point);
+    std::vector<double> out;
+    out.reserve(points.size());
+    for (const Vec3& p : points) out.push_back(b.inside(p) ? 0.0 : b.distance(p));
+    return out;
 }
 
 ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options) {
