@@ -165,6 +165,29 @@ private slots:
         if (which == "torus") QVERIFY(!insideAnyPart(p, shift));                      // in the hole
     }
 
+    // A mug (no handle) is not yet within the 5 % in 16 parts when turned (6.2 %; 2.7 %
+    // upright): what holds in both poses is that its parts cover the solid and leave its
+    // hole open.
+    void theMugIsCoveredAndItsHoleOpen_data() {
+        QTest::addColumn<bool>("turn");
+        QTest::newRow("upright") << false;
+        QTest::newRow("turned and shifted") << true;
+    }
+    void theMugIsCoveredAndItsHoleOpen() {
+        QFETCH(bool, turn);
+        const Quat q = turn ? Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())) : Quat::Identity();
+        const Vec3 shift = turn ? Vec3(12.5, -3.25, 7.0) : Vec3::Zero();
+        const TriangleMesh m = turned(mug(0.4, 1.0, 0.3, 0.8, 48), q, shift);
+        ConvexPartsOptions o;
+        o.tolerance = 0.02;
+        const ConvexParts p = convexParts(m, o);
+        qInfo("mug: %d parts, volume %+.2f %%, out %.4f m", int(p.parts.size()),
+              100 * (p.partsVolume / p.meshVolume - 1), p.largestPokeOut);
+        QVERIFY(p.partsVolume >= p.meshVolume * (1 - 1e-9));
+        QCOMPARE(uncovered(m, p), 0);
+        for (double y : {0.3, 0.6, 0.95}) QVERIFY(!insideAnyPart(p, q * Vec3(0, y, 0) + shift));
+    }
+
     // Too few parts allowed: the result says it is not within the tolerance, and how far out
     // it reaches, as measured here (to a cell of the grid).
     void tooFewPartsSaysSo() {

@@ -418,8 +418,8 @@ private:
             for (const Plane& pl : p.planes) {
                 // A face in the cut belongs to the side its solid is on (behind its normal).
                 const double eps = 1e-9 * scale_;
-                if (std::abs(pl.n.dot(poly[0]) - pl.d) <= eps && std::abs(pl.n.dot(poly[1]) - pl.d) <= eps &&
-                    std::abs(pl.n.dot(poly[2]) - pl.d) <= eps && poly.size() == 3) {
+                if (std::all_of(poly.begin(), poly.end(),
+                                [&](const Vec3& x) { return std::abs(pl.n.dot(x) - pl.d) <= eps; })) {
                     if (facing.dot(pl.n) <= 0) poly.clear();
                     if (poly.empty()) break;
                     continue;
@@ -433,7 +433,7 @@ private:
             Vec3 area = Vec3::Zero();
             for (std::size_t i = 1; i + 1 < poly.size(); ++i)
                 area += (poly[i] - poly[0]).cross(poly[i + 1] - poly[0]);
-            if (area.norm() <= 1e-12 * scale_ * scale_) continue;
+            if (area.norm() <= 1e-12 * scale_ * scale_ && !touchesSolid(p.planes, poly)) continue;
             kept.push_back(t);
             p.points.insert(p.points.end(), poly.begin(), poly.end());
         }
@@ -455,6 +455,22 @@ private:
         p.volume = hullVolume(p.hull);
     }
 
+    // Whether the solid lies next to these points on the region's side: their centre moved a
+    // hair into the region, off every cut it lies on, is inside. (A face's remnant on a cut, or
+    // a corner, that lies on the surface belongs to the piece when the solid is behind it,
+    // as along a wall's edge the cut runs down; not when the solid there is across the cut.)
+    bool touchesSolid(const std::vector<Plane>& planes, const std::vector<Vec3>& points) const {
+        Vec3 c = Vec3::Zero();
+        for (const Vec3& x : points) c += x;
+        c /= static_cast<double>(points.size());
+        const double eps = 1e-9 * scale_;
+        Vec3 in = Vec3::Zero();
+        for (const Plane& pl : planes)
+            if (std::abs(pl.n.dot(c) - pl.d) <= eps) in -= pl.n;
+        const Vec3 probe = c + 1e-6 * scale_ * (in.norm() > 0 ? Vec3(in.normalized()) : Vec3::Zero());
+        return buckets_.box().contains(probe) && buckets_.inside(probe);
+    }
+
     void addCorners(const std::vector<Plane>& planes, std::vector<Vec3>& out) const {
         const int n = static_cast<int>(planes.size());
         for (int i = 0; i < n; ++i)
@@ -469,7 +485,7 @@ private:
                     bool in = true;
                     for (const Plane& pl : planes)
                         in = in && pl.n.dot(x) <= pl.d + 1e-9 * (1.0 + std::abs(pl.d));
-                    if (in && buckets_.box().contains(x) && buckets_.inside(x)) out.push_back(x);
+                    if (in && touchesSolid(planes, {x})) out.push_back(x);
                 }
     }
 
