@@ -32,6 +32,8 @@
 //   both bodies, which the cross-check tests with the plane test.
 #pragma once
 
+#include "common/closest_point.h"
+
 #include <tumble/collision.h>
 
 #include <array>
@@ -105,8 +107,7 @@ Parity rayParity(const MeshShape& mesh, const Vec3& localPoint);
 /// receives the number of rays cast.
 bool pointInMesh(const MeshShape& mesh, const Pose& pose, const Vec3& p, int* rays = nullptr);
 
-/// The closest point to p of the triangle (a, b, c), degenerate triangles included.
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+using ::tumble::closestPointOnTriangle;  // (common/closest_point.h)
 
 /// Distance from p to the closest point of the faces' polygons (all of them; a mesh's
 /// faces are its triangles), that point, and (optional) the face it lies on.

@@ -1,5 +1,7 @@
 #include "mesh/convex_parts.h"
 
+#include "common/closest_point.h"
+
 #include <tumble/convex_hull.h>
 
 #include <Eigen/Eigenvalues>
@@ -19,28 +21,6 @@ namespace tumble::mesh {
 namespace {
 
 // ---- Triangle geometry ------------------------------------------------------------------
-
-// The point of triangle abc nearest p (by the regions of the triangle's plane: vertices,
-// edges, inside).
-Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 // Where the line {x, y, z} (x free) crosses triangle abc, or NaN. Half-open edge rules
 // (a point on an edge counts for one of the two triangles sharing it) keep the parity
@@ -129,8 +109,8 @@ public:
                         if (i < 0 || j < 0 || k < 0 || i >= n_ || j >= n_ || k >= n_) continue;
                         for (int t : xyz_[index(i, j, k)]) {
                             const auto& tri = m_.triangles[t];
-                            const Vec3 q = nearestOnTriangle(p, m_.vertices[tri[0]], m_.vertices[tri[1]],
-                                                             m_.vertices[tri[2]]);
+                            const Vec3 q = closestPointOnTriangle(p, m_.vertices[tri[0]], m_.vertices[tri[1]],
+                                                                  m_.vertices[tri[2]]);
                             best = std::min(best, (q - p).norm());
                         }
                     }
