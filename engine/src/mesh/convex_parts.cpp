@@ -214,6 +214,29 @@ void distanceLine(std::vector<double>& f, std::vector<double>& d, std::vector<in
     for (int q = 0; q < n; ++q) f[q] = d[q];
 }
 
+// The principal axes of a cloud of points (unit columns; eigenvectors of its covariance).
+Mat3 principalAxes(const std::vector<Vec3>& points) {
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& x : points) mean += x;
+    mean /= static_cast<double>(points.size());
+    Mat3 cov = Mat3::Zero();
+    for (const Vec3& x : points) cov += (x - mean) * (x - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
+    Mat3 axes;
+    for (int k = 0; k < 3; ++k) axes.col(k) = eig.eigenvectors().col(k).normalized();
+    return axes;
+}
+
+// The least and largest of u·x over the points.
+std::pair<double, double> spanAlong(const std::vector<Vec3>& points, const Vec3& u) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec3& x : points) {
+        lo = std::min(lo, u.dot(x));
+        hi = std::max(hi, u.dot(x));
+    }
+    return {lo, hi};
+}
+
 class Decomposer {
 public:
     Decomposer(const TriangleMesh& m, const ConvexPartsOptions& o, double tolerance)
@@ -352,7 +375,7 @@ public:
         merge(pieces, maxParts);
         ConvexParts out;
         out.tolerance = tolerance_;
-        out.meshVolume = meshVolume(m_);
+        out.meshVolume = solid;
         out.withinTolerance = true;
         for (Piece& p : pieces) {
             if (p.empty) continue;
@@ -571,21 +594,12 @@ private:
     // The least hull volume of `h` cut once across one of its principal axes at its middle
     // (its own hull volume when no such cut holds solid on both sides).
     double bestMiddleCut(const Piece& h) {
-        Vec3 mean = Vec3::Zero();
-        for (const Vec3& x : h.points) mean += x;
-        mean /= static_cast<double>(h.points.size());
-        Mat3 cov = Mat3::Zero();
-        for (const Vec3& x : h.points) cov += (x - mean) * (x - mean).transpose();
-        const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
+        const Mat3 axes = principalAxes(h.points);
         double least = h.volume;
         std::array<Piece, 2> two;
         for (int k = 0; k < 3; ++k) {
-            const Vec3 u = eig.eigenvectors().col(k).normalized();
-            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-            for (const Vec3& x : h.points) {
-                lo = std::min(lo, u.dot(x));
-                hi = std::max(hi, u.dot(x));
-            }
+            const Vec3 u = axes.col(k);
+            const auto [lo, hi] = spanAlong(h.points, u);
             if (hi - lo < 2 * h_) continue;
             if (halves(h, {u, 0.5 * (lo + hi)}, two)) least = std::min(least, two[0].volume + two[1].volume);
         }
@@ -618,25 +632,15 @@ private:
             candidates.swap(few);
         }
         const std::size_t reflex = candidates.size();
-        Vec3 mean = Vec3::Zero();
-        for (const Vec3& x : p.points) mean += x;
-        mean /= static_cast<double>(p.points.size());
-        Mat3 cov = Mat3::Zero();
-        for (const Vec3& x : p.points) cov += (x - mean) * (x - mean).transpose();
-        const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
+        const Mat3 axes = principalAxes(p.points);
         std::vector<Vec3> directions = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
-        for (int k = 0; k < 3; ++k) directions.push_back(eig.eigenvectors().col(k).normalized());
+        for (int k = 0; k < 3; ++k) directions.push_back(axes.col(k));
         // and half way between each two principal axes (a tube's staves need more than two)
         for (int k = 0; k < 3; ++k)
             for (double sign : {1.0, -1.0})
-                directions.push_back(
-                    (eig.eigenvectors().col(k) + sign * eig.eigenvectors().col((k + 1) % 3)).normalized());
+                directions.push_back((axes.col(k) + sign * axes.col((k + 1) % 3)).normalized());
         for (const Vec3& u : directions) {
-            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-            for (const Vec3& x : p.points) {
-                lo = std::min(lo, u.dot(x));
-                hi = std::max(hi, u.dot(x));
-            }
+            const auto [lo, hi] = spanAlong(p.points, u);
             if (hi - lo < 2 * h_) continue;
             for (int k = 1; k <= 7; ++k) candidates.push_back({u, lo + (hi - lo) * k / 8.0});
         }
