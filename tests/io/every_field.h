@@ -124,6 +124,29 @@ inline SceneDesc everyField() {
     post.position = Vec3(0, 1, 5);
     s.bodies.push_back(post);
 
+    BodyDesc cart;  // a compound: every part field, a mesh part among them
+    cart.name = "cart";
+    cart.shape.type = ShapeType::Compound;
+    PartDesc deck;
+    deck.name = "deck";
+    deck.shape.type = ShapeType::Box;
+    deck.shape.halfExtents = Vec3(0.5, 0.05, 0.3);
+    deck.position = Vec3(0, 0.2, 0);
+    deck.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY()));
+    deck.density = 600;
+    deck.friction = 0.3;
+    deck.restitution = 0.1;
+    cart.shape.parts.push_back(deck);
+    PartDesc lump;  // no name, no own density or material: the body's
+    lump.shape.type = ShapeType::Mesh;
+    lump.shape.file = "meshes/bunny.obj";
+    lump.shape.scale = Vec3(0.5, 0.5, 0.5);
+    lump.position = Vec3(0.2, 0.4, -0.1);
+    cart.shape.parts.push_back(lump);
+    cart.mass = 12.0;
+    cart.position = Vec3(4, 0.5, 4);
+    s.bodies.push_back(cart);
+
     JointDesc rope;  // to the world, with its length
     rope.name = "string";
     rope.type = JointType::Rope;

@@ -350,6 +350,64 @@ private slots:
         TUMBLE_VERIFY_GLTF_VALID(QString::fromStdString(file.string()));
     }
 
+    // A compound is a node that moves, with a child node per part placed in its frame and
+    // the part's mesh: the world pose of each part's mesh is the body's pose times the part's.
+    void compoundPartsAreChildNodes() {
+        QTemporaryDir dir;
+        const fs::path file = fs::path(dir.path().toStdString()) / "cart.glb";
+        SceneDesc s;
+        s.settings.dt = 0.01;
+        s.settings.duration = 0.3;
+        s.settings.frameRate = 10;
+        BodyDesc cart;
+        cart.name = "cart";
+        cart.shape.type = ShapeType::Compound;
+        cart.mass = 3.0;
+        cart.position = Vec3(1, 2, 3);
+        cart.angularVelocity = Vec3(0.5, 1, 0);
+        PartDesc deck;
+        deck.name = "deck";
+        deck.shape.type = ShapeType::Box;
+        deck.shape.halfExtents = Vec3(0.5, 0.05, 0.3);
+        deck.position = Vec3(0, 0.2, 0);
+        deck.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY()));
+        PartDesc wheel;
+        wheel.shape.type = ShapeType::Cylinder;
+        wheel.shape.radius = 0.1;
+        wheel.shape.halfHeight = 0.02;
+        wheel.position = Vec3(0.4, 0, 0.3);
+        wheel.orientation = Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitX()));
+        cart.shape.parts = {deck, wheel, wheel};
+        cart.shape.parts[2].position.z() = -0.3;
+        s.bodies.push_back(cart);
+        auto writer = io::makeTrajectoryWriter(file);
+        const std::vector<State> frames = run(s, *writer);
+        TUMBLE_VERIFY_GLTF_VALID(QString::fromStdString(file.string()));
+        const aiScene* ai = aiImportFile(file.c_str(), 0);
+        QVERIFY2(ai, aiGetErrorString());
+        std::unique_ptr<const aiScene, void (*)(const aiScene*)> guard(ai, aiReleaseImport);
+        const aiNode* node = ai->mRootNode->FindNode("cart");
+        QVERIFY(node && node->mNumMeshes == 0);
+        QCOMPARE(node->mNumChildren, 3u);
+        QCOMPARE(QString(node->mChildren[0]->mName.C_Str()), QString("cart deck"));
+        QCOMPARE(QString(node->mChildren[1]->mName.C_Str()), QString("cart part 1"));
+        QCOMPARE(ai->mNumMeshes, 2u);  // the two wheels share one
+        for (unsigned j = 0; j < 3; ++j) {
+            const aiNode* child = node->mChildren[j];
+            QCOMPARE(child->mNumMeshes, 1u);
+            aiVector3D scaling, position;
+            aiQuaternion rotation;
+            child->mTransformation.Decompose(scaling, rotation, position);
+            QVERIFY(close(position, cart.shape.parts[j].position));
+            QVERIFY(close(rotation, cart.shape.parts[j].orientation));
+        }
+        // The deck's mesh is its box, in its own frame.
+        const Box3 deckBox = bounds(*ai->mMeshes[node->mChildren[0]->mMeshes[0]]);
+        QVERIFY(close(deckBox.hi.x(), 0.5) && close(deckBox.hi.y(), 0.05) && close(deckBox.hi.z(), 0.3));
+        QCOMPARE(ai->mAnimations[0]->mNumChannels, 1u);
+        QCOMPARE(QString(ai->mAnimations[0]->mChannels[0]->mNodeName.C_Str()), QString("cart"));
+    }
+
     // An unwritable .bin or .gltf fails at begin(), before any run, and leaves nothing.
     void unwritable() {
         QTemporaryDir dir;

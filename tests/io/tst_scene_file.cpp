@@ -102,6 +102,7 @@ private slots:
         QCOMPARE(readBytes(first), io::sceneToJson(scene));
         const SceneDesc loaded = io::readSceneFile(first);
         QVERIFY(loaded.bodies[5].shape.meshData);
+        QVERIFY(loaded.bodies[7].shape.parts[1].shape.meshData);  // a compound's mesh part is read too
         QVERIFY(loaded == scene);
         io::writeSceneFile(loaded, second);
         QCOMPARE(readBytes(second), readBytes(first));
@@ -240,6 +241,39 @@ private slots:
         row("impact timing not a string", R"("frame_rate": 30})", R"("frame_rate": 30, "impacts": true})",
             "settings.impacts", "drop.json: settings.impacts: must be a string");
 
+        // Compounds (docs/scene-format.md "Compound bodies").
+        const char* crate = R"({"type": "box", "half_extents": [0.5, 0.25, 0.5]})";
+        auto compound = [](const char* parts) {
+            return QString(R"({"type": "compound", "parts": %1})").arg(parts);
+        };
+        row("compound parts not an array", crate, compound("{}"), "bodies[2].shape.parts",
+            "drop.json: bodies[2].shape.parts: must be an array of parts");
+        row("compound without parts", crate, R"({"type": "compound"})", "bodies[2].shape.parts",
+            "drop.json: bodies[2].shape.parts: is missing");
+        row("compound with no parts", crate, compound("[]"), "bodies[2].shape.parts",
+            "drop.json: bodies[2].shape.parts: a compound needs at least one part");
+        row("compound part without shape", crate, compound(R"([{"position": [0, 0, 0]}])"),
+            "bodies[2].shape.parts[0].shape", "drop.json: bodies[2].shape.parts[0].shape: is missing");
+        row("compound part unknown key", crate,
+            compound(R"([{"shape": {"type": "sphere", "radius": 0.1}, "colour": 1}])"),
+            "bodies[2].shape.parts[0].colour", "drop.json: bodies[2].shape.parts[0].colour: unknown key");
+        row("compound in a compound", crate, compound(R"([{"shape": {"type": "compound", "parts": []}}])"),
+            "bodies[2].shape.parts[0].shape.type",
+            "drop.json: bodies[2].shape.parts[0].shape.type: a part cannot be a compound (nested compounds "
+            "are not supported: list its parts in this one)");
+        row("compound plane part", crate, compound(R"([{"shape": {"type": "plane", "normal": [0, 1, 0]}}])"),
+            "bodies[2].shape.parts[0].shape.type",
+            "drop.json: bodies[2].shape.parts[0].shape.type: a plane cannot be a part; make it a static body "
+            "of its own");
+        row("compound part negative density", crate,
+            compound(R"([{"shape": {"type": "sphere", "radius": 0.1}, "density": -1}])"),
+            "bodies[2].shape.parts[0].density",
+            "drop.json: bodies[2].shape.parts[0].density: must be greater than 0");
+        row("compound part zero orientation", crate,
+            compound(R"([{"shape": {"type": "sphere", "radius": 0.1}, "orientation": [0, 0, 0, 0]}])"),
+            "bodies[2].shape.parts[0].orientation",
+            "drop.json: bodies[2].shape.parts[0].orientation: must not be the zero quaternion");
+
         // Numbers a double cannot hold: the JSON library refuses them; so must the reader.
         row("1e999", R"("mass": 1,)", R"("mass": 1e999,)", "bodies[1].mass",
             "drop.json: bodies[1].mass: must be a finite number");
@@ -363,7 +397,7 @@ private slots:
         // Shapes and forces.
         row("unknown shape type", R"("type": "sphere")", R"("type": "cone")", "bodies[1].shape.type",
             "drop.json: bodies[1].shape.type: 'cone' is not one of sphere, box, capsule, cylinder, plane, "
-            "mesh");
+            "mesh, compound");
         row("plane on a dynamic body", R"("motion": "static", )", "", "bodies[0].shape.type",
             "drop.json: bodies[0].shape.type: a plane must belong to a static body");
         row("plane on a kinematic body", R"("motion": "static")", R"("motion": "kinematic")",

@@ -20,6 +20,13 @@ double boundingRadius(const ShapeDesc& s) {
             for (const Vec3& v : s.meshData->vertices) r = std::max(r, v.norm());
             return r;
         }
+        case ShapeType::Compound: {
+            double r = 0.0;
+            for (const PartDesc& p : s.parts)
+                if (p.shape.type != ShapeType::Compound)
+                    r = std::max(r, p.position.norm() + boundingRadius(p.shape));
+            return r > 0.0 ? r : 1.0;
+        }
     }
     return 1.0;
 }
@@ -63,6 +70,19 @@ BodyDesc presetBody(ShapeType type, const SceneDesc& scene) {
             b.shape.distance = 0.0;
             return b;
         case ShapeType::Mesh: break;
+        case ShapeType::Compound:
+            // A table-like start: a slab on a post, to be edited part by part.
+            b.shape.parts.resize(2);
+            b.shape.parts[0].name = "top";
+            b.shape.parts[0].shape.type = ShapeType::Box;
+            b.shape.parts[0].shape.halfExtents = Vec3(0.5, 0.05, 0.5);
+            b.shape.parts[0].position = Vec3(0, 0.45, 0);
+            b.shape.parts[1].name = "post";
+            b.shape.parts[1].shape.type = ShapeType::Cylinder;
+            b.shape.parts[1].shape.radius = 0.05;
+            b.shape.parts[1].shape.halfHeight = 0.45;
+            b.shape.parts[1].position = Vec3(0, 0, 0);
+            break;
     }
     b.mass = 1.0;
 

@@ -74,13 +74,25 @@ void PropertyDock::Impl::build() {
          {QObject::tr("Capsule"), ShapeType::Capsule},
          {QObject::tr("Cylinder"), ShapeType::Cylinder},
          {QObject::tr("Plane"), ShapeType::Plane},
-         {QObject::tr("Mesh"), ShapeType::Mesh}},
+         {QObject::tr("Mesh"), ShapeType::Mesh},
+         {QObject::tr("Compound"), ShapeType::Compound}},
         [](const BodyDesc& b) { return std::optional<ShapeType>(b.shape.type); },
         [this](BodyDesc& b, int index, ShapeType t) {
+            // A body made a compound starts as one part, its shape as it was (a plane
+            // cannot be a part: a box in its place).
+            if (t == ShapeType::Compound && b.shape.type != ShapeType::Compound && b.shape.parts.empty()) {
+                PartDesc part;
+                part.shape = b.shape;
+                part.shape.parts.clear();
+                if (part.shape.type == ShapeType::Plane) part.shape.type = ShapeType::Box;
+                b.shape.parts.push_back(part);
+            }
             b.shape.type = t;
             if (t == ShapeType::Plane) setMotion(b, index, Motion::Static);  // planes are static
         });
-    type->setToolTip(QObject::tr("A plane makes the body static; a mesh comes from File > Import Mesh"));
+    type->setToolTip(
+        QObject::tr("A plane makes the body static; a mesh comes from File > Import Mesh; a "
+                    "compound is several shapes as one body (its parts are in the scene file)"));
     auto has = [](std::initializer_list<ShapeType> list) {
         return [types = std::vector<ShapeType>(list)](const BodyDesc& b) {
             for (ShapeType t : types)

@@ -48,9 +48,13 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
         ShapeType type;
         const char* text;
     } kinds[] = {
-        {ShapeType::Sphere, QT_TR_NOOP("&Sphere")},   {ShapeType::Box, QT_TR_NOOP("&Box")},
-        {ShapeType::Capsule, QT_TR_NOOP("&Capsule")}, {ShapeType::Cylinder, QT_TR_NOOP("C&ylinder")},
-        {ShapeType::Plane, QT_TR_NOOP("&Plane")},     {ShapeType::Mesh, QT_TR_NOOP("&Mesh from File...")},
+        {ShapeType::Sphere, QT_TR_NOOP("&Sphere")},
+        {ShapeType::Box, QT_TR_NOOP("&Box")},
+        {ShapeType::Capsule, QT_TR_NOOP("&Capsule")},
+        {ShapeType::Cylinder, QT_TR_NOOP("C&ylinder")},
+        {ShapeType::Plane, QT_TR_NOOP("&Plane")},
+        {ShapeType::Compound, QT_TR_NOOP("C&ompound")},
+        {ShapeType::Mesh, QT_TR_NOOP("&Mesh from File...")},
     };
     for (const auto& k : kinds) {
         QAction* a = addMenu_->addAction(tr(k.text));

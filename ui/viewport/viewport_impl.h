@@ -93,6 +93,20 @@ inline bool boundingSphere(const BodyDesc& b, const Vec3& position, Vec3* centre
             *radius = r;
             return true;
         }
+        case ShapeType::Compound: {
+            // About the frame's origin: each part's sphere at its distance from it.
+            double r = 0.0;
+            for (const PartDesc& p : s.parts) {
+                BodyDesc one;
+                one.shape = p.shape;
+                Vec3 c;
+                double pr = 0.0;
+                if (p.shape.type != ShapeType::Compound && boundingSphere(one, p.position, &c, &pr))
+                    r = std::max(r, c.norm() + pr);
+            }
+            *radius = r;
+            return true;
+        }
     }
     return false;
 }

@@ -207,35 +207,48 @@ struct ViewportScene::Impl {
             pose.translate(b.position);
             pose.rotate(b.orientation);
             const ViewportInstances::Look& look = lookFor(b);
-            auto part = [&](K kind, const QVector3D& scale, const QVector3D& translation = QVector3D(),
-                            const QQuaternion& rotation = QQuaternion()) {
-                QMatrix4x4 m = pose;
-                m.translate(translation);
-                m.rotate(rotation);
-                m.scale(scale);
-                instances->add(kind, m, look);
-            };
-            const float r = float(s.radius);
-            const float h = float(s.halfHeight);
-            switch (s.type) {
-                case ShapeType::Sphere: part(K::Sphere, QVector3D(r, r, r)); break;
-                case ShapeType::Box: part(K::Box, 2.0f * toQt(s.halfExtents)); break;
-                case ShapeType::Cylinder: part(K::Cylinder, QVector3D(r, 2 * h, r)); break;
-                case ShapeType::Capsule:
-                    part(K::Cylinder, QVector3D(r, 2 * h, r));
-                    part(K::Sphere, QVector3D(r, r, r), QVector3D(0, h, 0));
-                    part(K::Sphere, QVector3D(r, r, r), QVector3D(0, -h, 0));
-                    break;
-                case ShapeType::Plane: {
-                    QVector3D n = toQt(s.normal);
-                    if (n.isNull()) n = QVector3D(0, 1, 0);
-                    n.normalize();
-                    part(K::Plane, QVector3D(kPlaneSize, 1, kPlaneSize), n * float(s.distance),
-                         QQuaternion::rotationTo(QVector3D(0, 1, 0), n));
-                    break;
+            // A shape drawn in the frame `frame` (the body's, or a compound's part's in it).
+            auto draw = [&](const ShapeDesc& shape, const QMatrix4x4& frame, auto& self) -> void {
+                auto part = [&](K kind, const QVector3D& scale, const QVector3D& translation = QVector3D(),
+                                const QQuaternion& rotation = QQuaternion()) {
+                    QMatrix4x4 m = frame;
+                    m.translate(translation);
+                    m.rotate(rotation);
+                    m.scale(scale);
+                    instances->add(kind, m, look);
+                };
+                const float r = float(shape.radius);
+                const float h = float(shape.halfHeight);
+                switch (shape.type) {
+                    case ShapeType::Sphere: part(K::Sphere, QVector3D(r, r, r)); break;
+                    case ShapeType::Box: part(K::Box, 2.0f * toQt(shape.halfExtents)); break;
+                    case ShapeType::Cylinder: part(K::Cylinder, QVector3D(r, 2 * h, r)); break;
+                    case ShapeType::Capsule:
+                        part(K::Cylinder, QVector3D(r, 2 * h, r));
+                        part(K::Sphere, QVector3D(r, r, r), QVector3D(0, h, 0));
+                        part(K::Sphere, QVector3D(r, r, r), QVector3D(0, -h, 0));
+                        break;
+                    case ShapeType::Plane: {
+                        QVector3D n = toQt(shape.normal);
+                        if (n.isNull()) n = QVector3D(0, 1, 0);
+                        n.normalize();
+                        part(K::Plane, QVector3D(kPlaneSize, 1, kPlaneSize), n * float(shape.distance),
+                             QQuaternion::rotationTo(QVector3D(0, 1, 0), n));
+                        break;
+                    }
+                    case ShapeType::Mesh: break;  // (a compound's mesh parts are not drawn yet)
+                    case ShapeType::Compound:
+                        for (const PartDesc& p : shape.parts) {
+                            if (p.shape.type == ShapeType::Compound) continue;  // refused by validate
+                            QMatrix4x4 m = frame;
+                            m.translate(toQt(p.position));
+                            m.rotate(toQt(p.orientation.normalized()));
+                            self(p.shape, m, self);
+                        }
+                        break;
                 }
-                case ShapeType::Mesh: break;
-            }
+            };
+            draw(s, pose, draw);
         }
         instances->commit();
     }

@@ -111,6 +111,14 @@ std::vector<Vec3> collisionWire(const ShapeDesc& s) {
             }
             break;
         }
+        case ShapeType::Compound:
+            // Each part's wire placed in the body frame.
+            for (const PartDesc& p : s.parts) {
+                if (p.shape.type == ShapeType::Compound) continue;  // refused by validate
+                const Mat3 R = p.orientation.normalized().toRotationMatrix();
+                for (const Vec3& q : collisionWire(p.shape)) out.push_back(R * q + p.position);
+            }
+            break;
     }
     return out;
 }

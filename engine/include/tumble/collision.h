@@ -29,6 +29,8 @@ struct Pose {
     Vec3 toLocal(const Vec3& world) const { return R.transpose() * (world - p); }
     Vec3 directionToWorld(const Vec3& local) const { return R * local; }
     Vec3 directionToLocal(const Vec3& world) const { return R.transpose() * world; }
+    /// The pose of a frame placed at `inner` in this one (a compound's part in the world).
+    Pose operator*(const Pose& inner) const { return {R * inner.R, R * inner.p + p}; }
 };
 
 /// Axis-aligned box; empty (min > max) by default.
@@ -93,8 +95,10 @@ struct MeshShape {
     std::shared_ptr<const TriangleBvh> bvh;
 };
 
-enum class Kind { Sphere, Box, Capsule, Cylinder, Plane, Hull, Mesh };
+enum class Kind { Sphere, Box, Capsule, Cylinder, Plane, Hull, Mesh, Compound };
 const char* toString(Kind k);
+
+struct Compound;  // below
 
 /// A collision shape in the body frame. Only the fields of `kind` are used. The axis of a
 /// capsule or cylinder is y; a plane's free side is normal·p > distance.
@@ -107,6 +111,7 @@ struct Shape {
     double distance = 0.0;
     std::shared_ptr<const ConvexHull> hull;
     std::shared_ptr<const MeshShape> mesh;
+    std::shared_ptr<const Compound> compound;
 
     static Shape sphere(double r);
     static Shape box(const Vec3& halfExtents);
@@ -114,6 +119,34 @@ struct Shape {
     static Shape cylinder(double r, double halfHeight);
     static Shape plane(const Vec3& unitNormal, double distance);
 };
+
+/// Several shapes as one body's (a table's top and legs, a mesh's convex parts): each part
+/// a shape of any kind but a plane or a compound, placed in the body frame. A manifold
+/// between two bodies comes from one pair of parts, which it names (Manifold::partA, partB).
+struct Compound {
+    struct Part {
+        Shape shape;
+        Pose pose;  ///< the part's frame in the body frame
+        Aabb box;   ///< the part's bounds in the body frame
+        double friction = 0.5;
+        double restitution = 0.5;
+    };
+    std::vector<Part> parts;
+    Aabb box;  ///< all the parts' bounds, body frame
+
+    /// Calls visit(int part) for every part whose box (body frame) overlaps `box`.
+    template <class Visit>
+    void query(const Aabb& localBox, Visit&& visit) const {
+        if (!box.overlaps(localBox)) return;
+        for (int k = 0; k < static_cast<int>(parts.size()); ++k)
+            if (parts[k].box.overlaps(localBox)) visit(k);
+    }
+};
+
+/// The part's shape of a manifold's body: the part named for a compound, else the shape.
+inline const Shape& partShape(const Shape& shape, int part) {
+    return shape.kind == Kind::Compound ? shape.compound->parts[part].shape : shape;
+}
 
 /// World bounds of a shape at a pose; a plane's bounds are infinite.
 Aabb bounds(const Shape& shape, const Pose& pose);
@@ -141,6 +174,9 @@ struct Manifold {
     Vec3 normal = Vec3(0, 1, 0);   ///< out of B towards A
     std::array<ContactPoint, kMaxPoints> points{};
     int count = 0;
+    /// The parts the manifold is between, when a body is a compound (Compound::parts); 0
+    /// otherwise.
+    std::uint16_t partA = 0, partB = 0;
 
     void add(const Vec3& position, double depth, std::uint32_t feature = 0) {
         if (count < kMaxPoints) points[count++] = {position, depth, feature};

@@ -54,6 +54,17 @@ struct BodyModel {
     Vec3 kinematicVelocity = Vec3::Zero();         ///< kinematic bodies: constant, world
     Vec3 kinematicAngularVelocity = Vec3::Zero();  ///< kinematic bodies: constant, world
 
+    /// The friction and restitution of a contact on `part` (a compound's part, which may
+    /// have its own; any other shape's part is 0, the body's).
+    double frictionOf(int part) const {
+        return collider.kind == collision::Kind::Compound ? collider.compound->parts[part].friction
+                                                          : friction;
+    }
+    double restitutionOf(int part) const {
+        return collider.kind == collision::Kind::Compound ? collider.compound->parts[part].restitution
+                                                          : restitution;
+    }
+
     /// Static, or kinematic at zero velocity: never moves, so never wakes or pairs like a moving body.
     bool standsStill() const {
         return motion == Motion::Static ||

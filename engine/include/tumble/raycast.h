@@ -43,6 +43,7 @@ enum class RayStart {
 
 struct RayHit {
     int body = -1;               ///< model or scene body index; -1 from the per-shape casts
+    int part = -1;               ///< the part of a compound hit; -1 for a shape that is not one
     double distance = 0.0;       ///< m, from the origin along the unit direction
     Vec3 point = Vec3::Zero();   ///< world
     Vec3 normal = Vec3::Zero();  ///< world, unit, outward (see the conventions above)

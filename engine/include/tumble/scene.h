@@ -15,7 +15,7 @@ namespace tumble {
 struct TriangleMesh;  // tumble/mass.h
 
 enum class Motion { Dynamic, Static, Kinematic };
-enum class ShapeType { Sphere, Box, Capsule, Cylinder, Plane, Mesh };
+enum class ShapeType { Sphere, Box, Capsule, Cylinder, Plane, Mesh, Compound };
 enum class MeshCollision { ConvexHull, Triangles };
 enum class ForceType { Force, Torque, Spring };
 enum class Frame { World, Body };
@@ -31,6 +31,8 @@ const char* toString(MeshCollision c);
 const char* toString(ForceType t);
 const char* toString(Frame f);
 const char* toString(ImpactTiming t);
+
+struct PartDesc;  // below: one part of a compound shape
 
 /// A collision and mass shape in the body frame. Only the fields of `type` are used.
 /// The axis of a capsule or cylinder is the body's y axis.
@@ -48,9 +50,26 @@ struct ShapeDesc {
     /// loader (io::readSceneFile), or by code that builds a scene; never saved. compile()
     /// refuses a mesh body without it. Shared, so copies of a scene are cheap.
     std::shared_ptr<const TriangleMesh> meshData;
+    /// Compound: the parts, each a shape of its own (any but a plane or a compound) placed
+    /// in the body frame (docs/scene-format.md "Compound bodies").
+    std::vector<PartDesc> parts;
 
     /// Compares what the file holds: meshData follows from file and scale, so it is left out.
     bool operator==(const ShapeDesc& o) const;
+};
+
+/// One part of a compound shape: its shape placed in the body frame, and what it is made
+/// of when that differs from the body.
+struct PartDesc {
+    std::string name;                     ///< optional; shown by the editor
+    ShapeDesc shape;                      ///< in the part's frame
+    Vec3 position = Vec3::Zero();         ///< of the part's frame in the body frame
+    Quat orientation = Quat::Identity();  ///< part to body
+    std::optional<double> density;   ///< kg/m³; absent: the body's density, or a share of its mass by volume
+    std::optional<double> friction;  ///< absent: the body's
+    std::optional<double> restitution;  ///< absent: the body's
+
+    bool operator==(const PartDesc& o) const;
 };
 
 /// A force, torque or spring acting on one body while start <= t < end.
@@ -89,6 +108,17 @@ struct BodyDesc {
 
     bool operator==(const BodyDesc& o) const;
 };
+
+/// Calls visit(shape, path) for a body's shape and, when it is a compound, for each part's
+/// shape, with the path of each ("bodies[2].shape", "bodies[2].shape.parts[1].shape" for
+/// `bodyPath` "bodies[2]"): what a loader of mesh files or an exporter of shapes goes over.
+/// (Works for a const body too.)
+template <class Body, class Visit>
+void forEachShape(Body& body, const std::string& bodyPath, Visit&& visit) {
+    visit(body.shape, bodyPath + ".shape");
+    for (size_t j = 0; j < body.shape.parts.size(); ++j)
+        visit(body.shape.parts[j].shape, bodyPath + ".shape.parts[" + std::to_string(j) + "].shape");
+}
 
 struct Settings {
     Vec3 gravity = Vec3(0, -9.81, 0);

@@ -52,6 +52,7 @@ std::string shapeKey(const ShapeDesc& s) {
             std::snprintf(buf, sizeof buf, "box %.17g %.17g %.17g", s.halfExtents.x(), s.halfExtents.y(),
                           s.halfExtents.z());
             break;
+        case ShapeType::Compound: return "compound";  // (never looked up: its parts are)
         default:
             std::snprintf(buf, sizeof buf, "%s %.17g %.17g", toString(s.type), s.radius,
                           s.type == ShapeType::Sphere ? 0.0 : s.halfHeight);
@@ -215,16 +216,41 @@ void GltfTrajectoryWriter::close() {
                      {"translation", {float(first[0]), float(first[1]), float(first[2])}},
                      {"rotation", unitFloats<4>({first[4], first[5], first[6], first[3]})}};
 
-        const std::string key = shapeKey(shape);
-        auto it = shared.find(key);
-        if (it == shared.end()) {
-            const RenderMesh rm = tessellate(shape, segments_, planeHalf);
-            it = shared.emplace(key, rm.indices.empty() ? -1 : g.mesh(rm, b.name)).first;
-        }
-        if (it->second >= 0) node["mesh"] = it->second;
+        // The mesh of a shape, shared by the shapes alike; -1 for none.
+        auto meshOf = [&](const ShapeDesc& s, const std::string& name) {
+            const std::string key = shapeKey(s);
+            auto it = shared.find(key);
+            if (it == shared.end()) {
+                const RenderMesh rm = tessellate(s, segments_, planeHalf);
+                it = shared.emplace(key, rm.indices.empty() ? -1 : g.mesh(rm, name)).first;
+            }
+            return it->second;
+        };
         const int nodeIndex = static_cast<int>(nodes.size());
         children.push_back(nodeIndex);
-        nodes.push_back(std::move(node));
+        if (shape.type != ShapeType::Compound) {
+            if (const int mesh = meshOf(shape, b.name); mesh >= 0) node["mesh"] = mesh;
+            nodes.push_back(std::move(node));
+        } else {
+            // A compound: the body's node moves, each part a child node placed in its frame.
+            nodes.push_back(std::move(node));
+            json parts = json::array();
+            for (size_t j = 0; j < shape.parts.size(); ++j) {
+                const PartDesc& part = shape.parts[j];
+                const Quat q = part.orientation.normalized();
+                const std::string name =
+                    part.name.empty() ? b.name + " part " + std::to_string(j) : b.name + " " + part.name;
+                json child = {
+                    {"name", name},
+                    {"translation",
+                     {float(part.position.x()), float(part.position.y()), float(part.position.z())}},
+                    {"rotation", unitFloats<4>({q.x(), q.y(), q.z(), q.w()})}};
+                if (const int mesh = meshOf(part.shape, name); mesh >= 0) child["mesh"] = mesh;
+                parts.push_back(static_cast<int>(nodes.size()));
+                nodes.push_back(std::move(child));
+            }
+            nodes[nodeIndex]["children"] = std::move(parts);
+        }
 
         if (b.standsStill()) continue;
         if (timeAccessor < 0) timeAccessor = g.accessor(times, 1, "SCALAR", 0, true);

@@ -107,21 +107,22 @@ void loadSceneMeshes(SceneDesc& scene, const std::filesystem::path& baseDir, con
                      std::vector<InputError>* failures) {
     std::map<std::pair<std::string, std::array<double, 3>>, std::shared_ptr<const TriangleMesh>> loaded;
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
-        ShapeDesc& s = scene.bodies[i].shape;
-        if (s.type != ShapeType::Mesh) continue;
-        auto& slot = loaded[{s.file, {s.scale.x(), s.scale.y(), s.scale.z()}}];
-        if (!slot) {
-            try {
-                slot = std::make_shared<const TriangleMesh>(importMesh(baseDir / s.file, s.scale));
-            } catch (const InputError& e) {
-                InputError named(sceneName, "bodies[" + std::to_string(i) + "].shape.file",
-                                 s.file + ": " + e.message());
-                if (!failures) throw named;
-                failures->push_back(named);
-                continue;  // this body stays without its mesh
-            }
-        }
-        s.meshData = slot;
+        forEachShape(
+            scene.bodies[i], "bodies[" + std::to_string(i) + "]", [&](ShapeDesc& s, const std::string& path) {
+                if (s.type != ShapeType::Mesh) return;
+                auto& slot = loaded[{s.file, {s.scale.x(), s.scale.y(), s.scale.z()}}];
+                if (!slot) {
+                    try {
+                        slot = std::make_shared<const TriangleMesh>(importMesh(baseDir / s.file, s.scale));
+                    } catch (const InputError& e) {
+                        InputError named(sceneName, path + ".file", s.file + ": " + e.message());
+                        if (!failures) throw named;
+                        failures->push_back(named);
+                        return;  // this shape stays without its mesh
+                    }
+                }
+                s.meshData = slot;
+            });
     }
 }
 

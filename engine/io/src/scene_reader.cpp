@@ -152,12 +152,45 @@ Settings readSettings(const Reader& r, const json& j) {
     return s;
 }
 
+ShapeDesc readShape(const Reader& r, const json& j, const std::string& p);
+
+Quat readOrientation(const Reader& r, const json& v, const std::string& f) {
+    const Eigen::Vector4d q = r.vector<4>(v, f);
+    if (!(q.norm() > 1e-12)) r.fail(f, "must not be the zero quaternion");
+    return unitLength(Quat(q[0], q[1], q[2], q[3]));
+}
+
+// A part of a compound (docs/scene-format.md "Compound bodies").
+PartDesc readPart(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    r.onlyKeys(j, p, {"name", "shape", "position", "orientation", "density", "friction", "restitution"});
+    PartDesc d;
+    r.optional(j, p, "name", [&](const json& v, const std::string& f) { d.name = r.string(v, f); });
+    const json& shape = r.require(j, p, "shape");
+    // Refused before it is read: a file of compounds nested a million deep would take the
+    // reader's stack down with it.
+    if (shape.is_object() && shape.contains("type") && shape["type"] == "compound")
+        r.fail(
+            p + ".shape.type",
+            "a part cannot be a compound (nested compounds are not supported: list its parts in this one)");
+    d.shape = readShape(r, shape, p + ".shape");
+    r.optional(j, p, "position",
+               [&](const json& v, const std::string& f) { d.position = r.vector<3>(v, f); });
+    r.optional(j, p, "orientation",
+               [&](const json& v, const std::string& f) { d.orientation = readOrientation(r, v, f); });
+    r.optional(j, p, "density", [&](const json& v, const std::string& f) { d.density = r.number(v, f); });
+    r.optional(j, p, "friction", [&](const json& v, const std::string& f) { d.friction = r.number(v, f); });
+    r.optional(j, p, "restitution",
+               [&](const json& v, const std::string& f) { d.restitution = r.number(v, f); });
+    return d;
+}
+
 ShapeDesc readShape(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
     ShapeDesc s;
     s.type = enumValue(r, r.require(j, p, "type"), p + ".type",
                        {ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Cylinder,
-                        ShapeType::Plane, ShapeType::Mesh});
+                        ShapeType::Plane, ShapeType::Mesh, ShapeType::Compound});
     auto num = [&](const char* key) { return r.number(r.require(j, p, key), p + "." + key); };
     switch (s.type) {
         case ShapeType::Sphere:
@@ -190,6 +223,15 @@ ShapeDesc readShape(const Reader& r, const json& j, const std::string& p) {
                 s.collision = enumValue(r, v, f, {MeshCollision::ConvexHull, MeshCollision::Triangles});
             });
             break;
+        case ShapeType::Compound: {
+            r.onlyKeys(j, p, {"type", "parts"});
+            const std::string f = p + ".parts";
+            const json& parts = r.require(j, p, "parts");
+            if (!parts.is_array()) r.fail(f, "must be an array of parts");
+            for (size_t k = 0; k < parts.size(); ++k)
+                s.parts.push_back(readPart(r, parts[k], f + "[" + std::to_string(k) + "]"));
+            break;
+        }
     }
     return s;
 }
@@ -257,11 +299,8 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     r.optional(j, p, "center_of_mass",
                [&](const json& v, const std::string& f) { b.centerOfMass = r.vector<3>(v, f); });
     r.optional(j, p, "position", vec(b.position));
-    r.optional(j, p, "orientation", [&](const json& v, const std::string& f) {
-        const Eigen::Vector4d q = r.vector<4>(v, f);
-        if (!(q.norm() > 1e-12)) r.fail(f, "must not be the zero quaternion");
-        b.orientation = unitLength(Quat(q[0], q[1], q[2], q[3]));
-    });
+    r.optional(j, p, "orientation",
+               [&](const json& v, const std::string& f) { b.orientation = readOrientation(r, v, f); });
     r.optional(j, p, "velocity", vec(b.velocity));
     r.optional(j, p, "angular_velocity", vec(b.angularVelocity));
     r.optional(j, p, "restitution", num(b.restitution));

@@ -18,6 +18,25 @@ namespace {
 
 ojson vec(const Vec3& v) { return ojson::array({v.x(), v.y(), v.z()}); }
 
+ojson quatJson(const Quat& orientation) {
+    const Quat q = unitLength(orientation);
+    return ojson::array({q.w(), q.x(), q.y(), q.z()});
+}
+
+ojson shapeJson(const ShapeDesc& s);
+
+ojson partJson(const PartDesc& p) {
+    ojson j;
+    if (!p.name.empty()) j["name"] = p.name;
+    j["shape"] = shapeJson(p.shape);
+    j["position"] = vec(p.position);
+    j["orientation"] = quatJson(p.orientation);
+    if (p.density) j["density"] = *p.density;
+    if (p.friction) j["friction"] = *p.friction;
+    if (p.restitution) j["restitution"] = *p.restitution;
+    return j;
+}
+
 ojson shapeJson(const ShapeDesc& s) {
     ojson j;
     j["type"] = toString(s.type);
@@ -37,6 +56,10 @@ ojson shapeJson(const ShapeDesc& s) {
         j["file"] = s.file;
         j["scale"] = vec(s.scale);
         j["collision"] = toString(s.collision);
+        break;
+    case ShapeType::Compound:
+        j["parts"] = ojson::array();
+        for (const PartDesc& p : s.parts) j["parts"].push_back(partJson(p));
         break;
     }
     return j;
@@ -81,8 +104,7 @@ ojson bodyJson(const BodyDesc& b) {
     }
     if (b.centerOfMass) j["center_of_mass"] = vec(*b.centerOfMass);
     j["position"] = vec(b.position);
-    const Quat q = unitLength(b.orientation);
-    j["orientation"] = ojson::array({q.w(), q.x(), q.y(), q.z()});
+    j["orientation"] = quatJson(b.orientation);
     j["velocity"] = vec(b.velocity);
     j["angular_velocity"] = vec(b.angularVelocity);
     j["restitution"] = b.restitution;

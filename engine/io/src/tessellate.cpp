@@ -162,6 +162,20 @@ RenderMesh tessellate(const ShapeDesc& shape, int segments, double planeHalfSize
         case ShapeType::Mesh:
             if (shape.meshData) mesh(m, *shape.meshData);
             break;
+        case ShapeType::Compound:
+            // Every part's mesh placed in the body frame, one after another.
+            for (const PartDesc& part : shape.parts) {
+                if (part.shape.type == ShapeType::Compound) continue;  // refused by validate
+                const RenderMesh pm = tessellate(part.shape, segments, planeHalfSize);
+                const Mat3 R = part.orientation.normalized().toRotationMatrix();
+                const Index first = static_cast<Index>(m.positions.size());
+                for (size_t k = 0; k < pm.positions.size(); ++k) {
+                    m.positions.push_back(R * pm.positions[k] + part.position);
+                    m.normals.push_back(R * pm.normals[k]);
+                }
+                for (Index i : pm.indices) m.indices.push_back(first + i);
+            }
+            break;
     }
     return m;
 }

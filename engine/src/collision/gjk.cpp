@@ -332,6 +332,7 @@ ConvexProxy proxyOf(const Shape& s, const Pose& pose) {
         }
         case Kind::Plane:
         case Kind::Mesh:
+        case Kind::Compound:
             throw std::invalid_argument(std::string("proxyOf: not a convex shape: ") + toString(s.kind));
     }
     return p;

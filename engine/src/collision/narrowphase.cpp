@@ -2,6 +2,7 @@
 // other order swaps the arguments and flips the normals of what it produced.
 #include "collision/narrowphase.h"
 
+#include "collision/compound_pairs.h"
 #include "collision/convex.h"
 #include "collision/gjk.h"
 #include "collision/mesh_pairs.h"
@@ -14,7 +15,9 @@ namespace {
 
 using Routine = void (*)(const Shape&, const Pose&, const Shape&, const Pose&, double, ManifoldList&);
 
-bool isConvex(Kind k) { return k != Kind::Plane && k != Kind::Mesh; }
+bool isConvex(Kind k) {
+    return k != Kind::Plane && k != Kind::Mesh && k != Kind::Compound;
+}
 
 // The routine for (a, b) in this order, or nullptr when it is written for (b, a).
 Routine routineFor(Kind a, Kind b) {
@@ -76,6 +79,10 @@ bool apartAlong(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, 
 void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
              ManifoldList& out) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return;
+    if (a.kind == Kind::Compound || b.kind == Kind::Compound) {
+        collideCompound(a, pa, b, pb, margin, out);
+        return;
+    }
     if (Routine r = routineFor(a.kind, b.kind)) {
         r(a, pa, b, pb, margin, out);
         return;

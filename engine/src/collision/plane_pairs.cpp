@@ -82,7 +82,8 @@ void convexPlane(const Shape& a, const Pose& pa, const Shape& plane, const Pose&
         break;
     }
     case Kind::Plane:
-    case Kind::Mesh: return;  // not convex shapes: the dispatcher sends them elsewhere
+    case Kind::Mesh:
+    case Kind::Compound: return;  // not convex shapes: the dispatcher sends them elsewhere
     }
     addReduced(c, t.n, out);
 }

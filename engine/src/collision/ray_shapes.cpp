@@ -260,6 +260,20 @@ std::optional<RayHit> rayShape(const Shape& shape, const Pose& pose, const Vec3&
                                const Vec3& direction, double maxDistance, RayStart start) {
     const auto du = unitDirection(direction);
     if (!du || !(maxDistance >= 0.0)) return std::nullopt;
+    if (shape.kind == Kind::Compound) {
+        // The nearest part; a later part only when strictly nearer (ties: the lower index).
+        std::optional<RayHit> best;
+        const auto& parts = shape.compound->parts;
+        for (int k = 0; k < static_cast<int>(parts.size()); ++k) {
+            auto hit = rayShape(parts[k].shape, pose * parts[k].pose, origin, *du,
+                                best ? best->distance : maxDistance, start);
+            if (hit && (!best || hit->distance < best->distance)) {
+                best = hit;
+                best->part = k;
+            }
+        }
+        return best;
+    }
     const Vec3 o = pose.toLocal(origin);
     const Vec3 d = pose.directionToLocal(*du);
     std::optional<LocalHit> local;
@@ -287,6 +301,7 @@ std::optional<RayHit> rayShape(const Shape& shape, const Pose& pose, const Vec3&
             local = triangles(shape.mesh->vertices, shape.mesh->triangles, shape.mesh->bvh.get(), o, d,
                               maxDistance, start, shape.mesh->closed);
             break;
+        case Kind::Compound: break;  // above
     }
     if (!local) return std::nullopt;
     return worldHit(*local, pose, origin, *du);

@@ -53,6 +53,21 @@ std::optional<RayHit> rayShapeDesc(const ShapeDesc& s, const Vec3& position, con
         case ShapeType::Capsule: shape = Shape::capsule(s.radius, s.halfHeight); break;
         case ShapeType::Cylinder: shape = Shape::cylinder(s.radius, s.halfHeight); break;
         case ShapeType::Plane: shape = Shape::plane(s.normal.stableNormalized(), s.distance); break;
+        case ShapeType::Compound: {
+            std::optional<RayHit> best;
+            for (int k = 0; k < static_cast<int>(s.parts.size()); ++k) {
+                const PartDesc& part = s.parts[k];
+                if (part.shape.type == ShapeType::Compound) continue;  // refused by validate
+                const Quat q = Quat(orientation.coeffs() / qn) * part.orientation.normalized();
+                auto hit = rayShapeDesc(part.shape, pose.toWorld(part.position), q, origin, direction,
+                                        best ? best->distance : maxDistance, start);
+                if (hit && (!best || hit->distance < best->distance)) {
+                    best = hit;
+                    best->part = k;
+                }
+            }
+            return best;
+        }
         case ShapeType::Mesh:
             if (!s.meshData) return std::nullopt;
             // Closedness costs a pass over the edges; only the solid query needs it.

@@ -15,6 +15,7 @@ const char* toString(Kind k) {
     case Kind::Plane: return "plane";
     case Kind::Hull: return "convex-hull";
     case Kind::Mesh: return "triangles";
+    case Kind::Compound: return "compound";
     }
     return "?";
 }
@@ -91,6 +92,11 @@ Aabb bounds(const Shape& s, const Pose& pose) {
     case Kind::Plane: return {Vec3::Constant(-inf), Vec3::Constant(inf)};
     case Kind::Hull: return pointsBounds(s.hull->vertices, pose);
     case Kind::Mesh: return pointsBounds(s.mesh->vertices, pose);
+    case Kind::Compound: {
+        Aabb box;
+        for (const Compound::Part& part : s.compound->parts) box.add(bounds(part.shape, pose * part.pose));
+        return box;
+    }
     }
     return {};
 }
@@ -109,6 +115,12 @@ double boundingRadius(const Shape& s) {
     case Kind::Plane: return std::numeric_limits<double>::infinity();
     case Kind::Hull: return farthest(s.hull->vertices);
     case Kind::Mesh: return farthest(s.mesh->vertices);
+    case Kind::Compound: {
+        double r = 0.0;
+        for (const Compound::Part& part : s.compound->parts)
+            r = std::max(r, part.pose.p.norm() + boundingRadius(part.shape));
+        return r;
+    }
     }
     return 0.0;
 }
@@ -166,6 +178,12 @@ double thickness(const Shape& s) {
     case Kind::Plane: return std::numeric_limits<double>::infinity();
     case Kind::Hull: return hullWidth(*s.hull);
     case Kind::Mesh: return 0.0;  // a surface, perhaps open
+    case Kind::Compound: {
+        // A body moving less than its thinnest part cannot pass through any part.
+        double w = std::numeric_limits<double>::infinity();
+        for (const Compound::Part& part : s.compound->parts) w = std::min(w, thickness(part.shape));
+        return w;
+    }
     }
     return 0.0;
 }

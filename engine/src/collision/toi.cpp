@@ -17,6 +17,7 @@
 #include "collision/toi.h"
 
 #include "collision/bvh.h"
+#include "collision/compound_pairs.h"
 #include "collision/gjk.h"
 
 #include <algorithm>
@@ -285,6 +286,7 @@ std::optional<Impact> flipped(std::optional<Impact> i) {
 std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
                                    double tolerance) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return std::nullopt;
+    if (a.kind == Kind::Compound || b.kind == Kind::Compound) return compoundImpact(a, sa, b, sb, tolerance);
     // A tolerance of zero would only be reached in the limit; keep a rounding-level floor.
     double scale = 0.0;
     if (a.kind != Kind::Plane) scale += boundingRadius(a);

@@ -17,11 +17,12 @@ namespace {
 constexpr int kMaxSweeps = 200;
 
 double restitution(const Model& model, const Manifold& m) {
-    return std::max(model.bodies[m.bodyA].restitution, model.bodies[m.bodyB].restitution);
+    return std::max(model.bodies[m.bodyA].restitutionOf(m.partA),
+                    model.bodies[m.bodyB].restitutionOf(m.partB));
 }
 
 double friction(const Model& model, const Manifold& m) {
-    return std::sqrt(model.bodies[m.bodyA].friction * model.bodies[m.bodyB].friction);
+    return std::sqrt(model.bodies[m.bodyA].frictionOf(m.partA) * model.bodies[m.bodyB].frictionOf(m.partB));
 }
 
 bool touches(const Manifold& m, double tol) {

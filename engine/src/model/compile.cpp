@@ -8,7 +8,9 @@
 #include "collision/bvh.h"
 #include "common/number_text.h"
 #include "mesh/mesh_body.h"
+#include "model/compile_compound.h"
 #include "model/compile_joints.h"
+#include "model/compile_shape.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -23,6 +25,8 @@
 namespace tumble {
 
 namespace {
+
+using namespace compiling;
 
 std::string at(int i) {
     return "bodies[" + std::to_string(i) + "]";
@@ -61,35 +65,6 @@ void requireHoldableStart(const BodyDesc& d, int i, double mass, const Mat3& ine
                     "a potential energy over the run", "J", given);
 }
 
-void requireFinite(double v, const std::string& path) {
-    if (!std::isfinite(v)) throw SceneError(path, "must be a finite number");
-}
-
-void requireFinite(const Vec3& v, const std::string& path) {
-    if (!v.allFinite()) throw SceneError(path, "must be finite numbers");
-}
-
-void requirePositive(double v, const std::string& path) {
-    requireFinite(v, path);
-    if (!(v > 0.0)) throw SceneError(path, "must be greater than 0");
-}
-
-// The largest size a shape may have, in metres: a thousand kilometres. The engine's
-// tolerances are fractions of the bodies' sizes, and beyond it its arithmetic loses what a
-// scene of everyday bodies needs (a box of 4e93 m made three steps take seconds and its
-// energies overflow: the scene fuzzer).
-constexpr double kLargestSize = 1e6;
-
-void requireLength(double v, const std::string& path) {
-    requirePositive(v, path);
-    if (v > kLargestSize) throw SceneError(path, "must be at most 1e6 m");
-}
-
-void requireNonNegative(double v, const std::string& path) {
-    requireFinite(v, path);
-    if (v < 0.0) throw SceneError(path, "must be 0 or greater");
-}
-
 // The most steps a run may take: far more than any run needs (10^10 steps of one free body
 // take hours here).
 constexpr double kMostSteps = 1e10;
@@ -119,37 +94,6 @@ void validateSettings(const Settings& s) {
     }
 }
 
-void validateShape(const BodyDesc& b, const std::string& path) {
-    const ShapeDesc& s = b.shape;
-    switch (s.type) {
-        case ShapeType::Sphere: requireLength(s.radius, path + ".radius"); break;
-        case ShapeType::Box:
-            for (int k = 0; k < 3; ++k) {
-                requireLength(s.halfExtents[k], path + ".half_extents[" + std::to_string(k) + "]");
-            }
-            break;
-        case ShapeType::Capsule:
-        case ShapeType::Cylinder:
-            requireLength(s.radius, path + ".radius");
-            requireLength(s.halfHeight, path + ".half_height");
-            break;
-        case ShapeType::Plane:
-            requireFinite(s.normal, path + ".normal");
-            requireFinite(s.distance, path + ".distance");
-            if (!(s.normal.stableNorm() > 1e-12)) throw SceneError(path + ".normal", "must not be zero");
-            if (b.motion != Motion::Static) {
-                throw SceneError(path + ".type", "a plane must belong to a static body");
-            }
-            break;
-        case ShapeType::Mesh:
-            if (s.file.empty()) throw SceneError(path + ".file", "must name a mesh file");
-            for (int k = 0; k < 3; ++k) {
-                requirePositive(s.scale[k], path + ".scale[" + std::to_string(k) + "]");
-            }
-            break;
-    }
-}
-
 void validateForce(const ForceDesc& f, const std::string& path) {
     requireFinite(f.vector, path + ".vector");
     if (f.point) requireFinite(*f.point, path + ".point");
@@ -166,94 +110,18 @@ void validateForce(const ForceDesc& f, const std::string& path) {
     }
 }
 
-MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared = nullptr);
+MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared = nullptr,
+                                const MassProperties* compound = nullptr);
 MassProperties meshBodyMassProperties(const BodyDesc& b, int i, const mesh::PreparedMesh& p);
-
-// A mesh body's geometry, cleaned, with what its collider and mass need. The mesh file is
-// read by the scene loader (tumble_io); a scene built in code must fill meshData itself.
-mesh::PreparedMesh prepareMeshBody(const BodyDesc& b, int i) {
-    const ShapeDesc& s = b.shape;
-    const std::string field = at(i) + ".shape.file";
-    if (!s.meshData) {
-        throw SceneError(field, "the mesh '" + s.file +
-                                    "' was never loaded (scenes read with io::readSceneFile load their "
-                                    "meshes; a scene built in code must set shape.meshData)");
-    }
-    mesh::PreparedMesh p;
-    try {
-        p = mesh::prepareMesh(*s.meshData, s.collision == MeshCollision::ConvexHull,
-                              b.motion == Motion::Dynamic);
-    } catch (const std::invalid_argument& e) {
-        throw SceneError(field, s.file + ": " + e.what());
-    }
-    if (p.surface.triangles.empty()) {
-        throw SceneError(field, s.file + ": has no triangles with an area (every one is degenerate)");
-    }
-    // A missing volume is the first thing to report: it is what a density or inertia needs.
-    if (b.motion == Motion::Dynamic) meshBodyMassProperties(b, i, p);
-    return p;
-}
-
-// Things worth telling the user about a mesh body: where its mass comes from, and what
-// cleaning changed.
-void noteMesh(const BodyDesc& b, int i, const mesh::PreparedMesh& p, std::vector<std::string>& notes) {
-    const std::string who = at(i) + " (" + b.name + "): ";
-    if (b.motion == Motion::Dynamic) {
-        notes.push_back(who + (p.closed
-                                   ? "the mesh is closed; mass properties come from its surface"
-                                   : "the mesh is not closed; mass properties come from its convex hull"));
-    }
-    if (p.turnedOutward) notes.push_back(who + "the mesh's triangles face inwards; they were turned around");
-    if (p.stats.degenerateTriangles > 0 || p.stats.duplicateTriangles > 0) {
-        notes.push_back(who + std::to_string(p.stats.degenerateTriangles) + " degenerate and " +
-                        std::to_string(p.stats.duplicateTriangles) +
-                        " repeated triangles of the mesh were dropped");
-    }
-    if (b.shape.collision == MeshCollision::Triangles && !p.closed) {
-        notes.push_back(who +
-                        "the mesh is not closed; as collision \"triangles\" it is a surface with no inside");
-    }
-}
-
-// The collision shape of a body; mesh shapes are built from their prepared geometry.
-collision::Shape colliderOf(const ShapeDesc& s, int i, const mesh::PreparedMesh* prepared = nullptr) {
-    using collision::Shape;
-    switch (s.type) {
-        case ShapeType::Sphere: return Shape::sphere(s.radius);
-        case ShapeType::Box: return Shape::box(s.halfExtents);
-        case ShapeType::Capsule: return Shape::capsule(s.radius, s.halfHeight);
-        case ShapeType::Cylinder: return Shape::cylinder(s.radius, s.halfHeight);
-        case ShapeType::Plane: return Shape::plane(s.normal.stableNormalized(), s.distance);
-        case ShapeType::Mesh: break;
-    }
-    if (!prepared) throw SceneError(at(i) + ".shape.file", "the mesh '" + s.file + "' was never loaded");
-    Shape shape;
-    if (s.collision == MeshCollision::ConvexHull) {
-        if (!prepared->hull) {
-            throw SceneError(at(i) + ".shape.file", s.file +
-                                                        ": has no convex hull: " + prepared->hullProblem +
-                                                        "; use \"collision\": \"triangles\" for a flat mesh");
-        }
-        shape.kind = collision::Kind::Hull;
-        shape.hull = prepared->hull;
-    } else {
-        auto m = std::make_shared<collision::MeshShape>();
-        m->vertices = prepared->surface.vertices;
-        m->triangles = prepared->surface.triangles;
-        m->closed = prepared->closed;
-        m->bvh = std::make_shared<const collision::TriangleBvh>(m->vertices, m->triangles);
-        shape.kind = collision::Kind::Mesh;
-        shape.mesh = std::move(m);
-    }
-    return shape;
-}
 
 void validateBody(const BodyDesc& b, int i) {
     const std::string p = at(i);
     if (b.name.empty()) throw SceneError(p + ".name", "must not be empty");
-    validateShape(b, p + ".shape");
+    validateShape(b.shape, b.motion, p + ".shape");
     const bool dynamic = b.motion == Motion::Dynamic;
-    if (dynamic) {
+    if (dynamic && b.shape.type == ShapeType::Compound) {
+        validateCompoundMass(b, p);
+    } else if (dynamic) {
         if (b.mass && b.density) throw SceneError(p, "give mass or density, not both");
         if (!b.mass && !b.density) throw SceneError(p, "a dynamic body needs mass or density");
         if (b.mass) requirePositive(*b.mass, p + ".mass");
@@ -294,7 +162,9 @@ void validateBody(const BodyDesc& b, int i) {
     for (size_t k = 0; k < b.forces.size(); ++k) {
         validateForce(b.forces[k], p + ".forces[" + std::to_string(k) + "]");
     }
-    if (dynamic && b.shape.type != ShapeType::Mesh) massPropertiesOf(b, i);  // throws if unusable
+    // Throws if unusable (a mesh's, and a compound's, need their meshes prepared: compile).
+    if (dynamic && b.shape.type != ShapeType::Mesh && b.shape.type != ShapeType::Compound)
+        massPropertiesOf(b, i);
 }
 
 // A mesh body's mass properties, scaled from those of its solid at density 1.
@@ -322,9 +192,12 @@ MassProperties meshBodyMassProperties(const BodyDesc& b, int i, const mesh::Prep
     return mp;
 }
 
-MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared) {
+MassProperties massPropertiesOf(const BodyDesc& b, int i, const mesh::PreparedMesh* prepared,
+                                const MassProperties* compound) {
     MassProperties mp;
-    if (b.shape.type == ShapeType::Mesh) {
+    if (compound) {
+        mp = *compound;
+    } else if (b.shape.type == ShapeType::Mesh) {
         if (!prepared)
             throw SceneError(at(i) + ".shape.file", "the mesh '" + b.shape.file + "' was never loaded");
         mp = meshBodyMassProperties(b, i, *prepared);
@@ -397,16 +270,26 @@ Model compile(const SceneDesc& scene) {
         b.motion = d.motion;
         b.shape = d.shape;
         if (b.shape.type == ShapeType::Plane) b.shape.normal.stableNormalize();
+        const std::string who = at(index) + " (" + d.name + "): ";
         std::optional<mesh::PreparedMesh> prepared;
+        std::optional<BuiltCompound> compound;
         if (d.shape.type == ShapeType::Mesh) {
-            prepared = prepareMeshBody(d, index);
-            noteMesh(d, index, *prepared, m.notes);
+            prepared = prepareMeshShape(d.shape, d.motion == Motion::Dynamic, at(index) + ".shape");
+            // A missing volume is the first thing to report: it is what a density or inertia needs.
+            if (d.motion == Motion::Dynamic) meshBodyMassProperties(d, index, *prepared);
+            noteMesh(d.shape, d.motion == Motion::Dynamic, who, *prepared, m.notes);
+            b.collider = colliderOf(d.shape, at(index) + ".shape", &*prepared);
+        } else if (d.shape.type == ShapeType::Compound) {
+            compound = buildCompound(d, at(index), who, m.notes);
+            b.collider = compound->collider;
+        } else {
+            b.collider = colliderOf(d.shape, at(index) + ".shape", nullptr);
         }
-        b.collider = colliderOf(d.shape, index, prepared ? &*prepared : nullptr);
         // The collider holds what the stages need (the hull, or the triangles in their tree):
         // the model keeps no share of the mesh as read (300 small meshes of hull-rain were
         // 0.1 MB once the scene they came with was gone). The scene still has it.
         b.shape.meshData.reset();
+        for (PartDesc& part : b.shape.parts) part.shape.meshData.reset();
         b.restitution = d.restitution;
         b.friction = d.friction;
         b.linearDamping = d.linearDamping;
@@ -414,7 +297,8 @@ Model compile(const SceneDesc& scene) {
         if (d.centerOfMass) b.centerOfMass = *d.centerOfMass;
         switch (d.motion) {
             case Motion::Dynamic: {
-                const MassProperties mp = massPropertiesOf(d, index, prepared ? &*prepared : nullptr);
+                const MassProperties mp = massPropertiesOf(d, index, prepared ? &*prepared : nullptr,
+                                                           compound ? &compound->mass : nullptr);
                 requireHoldableStart(d, index, mp.mass, mp.inertia, scene.settings);
                 b.mass = mp.mass;
                 b.invMass = 1.0 / mp.mass;

@@ -22,7 +22,8 @@ double shapeVolume(const ShapeDesc& s) {
         case ShapeType::Cylinder: return pi * r * r * 2.0 * h;
         case ShapeType::Capsule: return pi * r * r * 2.0 * h + 4.0 / 3.0 * pi * r * r * r;
         case ShapeType::Plane:
-        case ShapeType::Mesh: return 0.0;
+        case ShapeType::Mesh:
+        case ShapeType::Compound: return 0.0;
     }
     return 0.0;
 }
@@ -59,7 +60,8 @@ MassProperties primitiveMassProperties(const ShapeDesc& s, double m) {
             break;
         }
         case ShapeType::Plane:
-        case ShapeType::Mesh: break;
+        case ShapeType::Mesh:
+        case ShapeType::Compound: break;
     }
     mp.inertia = d.asDiagonal();
     return mp;

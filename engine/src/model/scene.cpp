@@ -19,6 +19,7 @@ const char* toString(ShapeType t) {
         case ShapeType::Cylinder: return "cylinder";
         case ShapeType::Plane: return "plane";
         case ShapeType::Mesh: return "mesh";
+        case ShapeType::Compound: return "compound";
     }
     return "?";
 }
@@ -59,7 +60,13 @@ const char* toString(JointType t) {
 bool ShapeDesc::operator==(const ShapeDesc& o) const {
     return type == o.type && radius == o.radius && halfHeight == o.halfHeight &&
            halfExtents == o.halfExtents && normal == o.normal && distance == o.distance && file == o.file &&
-           scale == o.scale && collision == o.collision;
+           scale == o.scale && collision == o.collision && parts == o.parts;
+}
+
+bool PartDesc::operator==(const PartDesc& o) const {
+    return name == o.name && shape == o.shape && position == o.position &&
+           orientation.coeffs() == o.orientation.coeffs() && density == o.density && friction == o.friction &&
+           restitution == o.restitution;
 }
 
 bool BodyDesc::operator==(const BodyDesc& o) const {

@@ -109,7 +109,7 @@ void prepare(const Model& model, const State& state, const State& before, const 
         }
         const BodyModel& ma = model.bodies[m.bodyA];
         const BodyModel& mb = model.bodies[m.bodyB];
-        const double e = std::max(ma.restitution, mb.restitution);
+        const double e = std::max(ma.restitutionOf(m.partA), mb.restitutionOf(m.partB));
         const Mat3 RA = state.bodies[m.bodyA].q.toRotationMatrix();
         const Mat3 RB = state.bodies[m.bodyB].q.toRotationMatrix();
         // Each body's orientation at the start: its surface points where they were then
@@ -118,7 +118,7 @@ void prepare(const Model& model, const State& state, const State& before, const 
         const Mat3 RB0 = before.bodies[m.bodyB].q.toRotationMatrix();
         ContactSolverScratch::Block block;
         block.begin = static_cast<int>(s.points.size());
-        block.mu = std::sqrt(ma.friction * mb.friction);
+        block.mu = std::sqrt(ma.frictionOf(m.partA) * mb.frictionOf(m.partB));
         for (int i = 0; i < m.count; ++i) {
             const collision::ContactPoint& c = m.points[i];
             if (c.depth < -cfg.margin) continue;
@@ -144,7 +144,8 @@ void prepare(const Model& model, const State& state, const State& before, const 
             g.localA = RA.transpose() * sA;
             g.localB = RB.transpose() * sB;
             g.localN = RB.transpose() * p.n;
-            const double roundA = roundness(ma.collider), roundB = roundness(mb.collider);
+            const double roundA = roundness(partShape(ma.collider, m.partA)),
+                         roundB = roundness(partShape(mb.collider, m.partB));
             // A round body's friction arm reaches its surface point (see prepareBlock).
             g.depth = c.depth;
             g.roundA = roundA > 0.0;

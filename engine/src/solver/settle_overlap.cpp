@@ -212,8 +212,9 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
         const double slop = slopOf(a, b);
         // (A round surface is its core grown by a radius: the core moves with the body, the
         // surface point slides over it as it rolls; as in the solver's gap.)
-        const double roundA = roundness(model.bodies[a].collider),
-                     roundB = roundness(model.bodies[b].collider);
+        const collision::Shape& partA = partShape(model.bodies[a].collider, m.partA);
+        const collision::Shape& partB = partShape(model.bodies[b].collider, m.partB);
+        const double roundA = roundness(partA), roundB = roundness(partB);
         const Vec3 n = s.pose[b].directionToWorld(freeEnd[b].directionToLocal(m.normal));
         double deepest = 0.0;
         for (int k = 0; k < m.count; ++k) {
@@ -226,8 +227,7 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
         }
         // A capsule's core point slides along its segment as it turns: near the allowance,
         // the pair as it stands.
-        const bool capsule = model.bodies[a].collider.kind == collision::Kind::Capsule ||
-                             model.bodies[b].collider.kind == collision::Kind::Capsule;
+        const bool capsule = partA.kind == collision::Kind::Capsule || partB.kind == collision::Kind::Capsule;
         if (capsule && deepest > kKeep * margin) {
             s.found.clear();
             collision::collide(model.bodies[a].collider, s.pose[a], model.bodies[b].collider, s.pose[b], 0.0,

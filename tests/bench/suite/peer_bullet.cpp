@@ -106,7 +106,8 @@ double innerRadius(const BodyModel& b) {
                 return r;
             }
             return 0.0;
-        case ShapeType::Plane: return 0.0;
+        case ShapeType::Plane:
+        case ShapeType::Compound: return 0.0;  // (refused by peer::prepare)
     }
     return 0.0;
 }
@@ -211,6 +212,7 @@ btCollisionShape* BulletAdapter::makeShape(const BodyModel& b, const Vec3& posit
                 meshes_.push_back(std::move(tm));
             }
             break;
+        case ShapeType::Compound: *why = "compound bodies are not translated yet"; return nullptr;
     }
     shapes_.push_back(std::move(s));
     return shapes_.back().get();

@@ -53,6 +53,8 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
         if (b.motion == Motion::Kinematic && moves && !caps.movingKinematic)
             return fail(who + "a moving kinematic body is not translated to this peer");
         if (b.shape.type == ShapeType::Plane && moves) return fail(who + "a plane must stand still");
+        if (b.shape.type == ShapeType::Compound && !caps.compounds)
+            return fail(who + "compound bodies are not translated to this peer yet");
         if (b.shape.type == ShapeType::Mesh && b.shape.collision == MeshCollision::Triangles) {
             if (moves) return fail(who + "a triangle mesh must stand still in the peers");
             if (!caps.meshTriangles)

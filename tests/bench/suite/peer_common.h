@@ -31,6 +31,7 @@ struct PeerCaps {
     /// options: hinge and slider limits, motors, breaking.
     unsigned jointTypes = 0;
     bool jointLimits = false, jointMotors = false, jointBreaking = false;
+    bool compounds = false;  ///< ShapeType::Compound (several shapes on one body)
 };
 
 constexpr unsigned jointBit(JointType t) { return 1u << static_cast<unsigned>(t); }

@@ -266,6 +266,7 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
                    << str(Quat::FromTwoVectors(Vec3::UnitZ(), nrm)) << "\"/>\n";
                 return;
             }
+            case ShapeType::Compound: return;  // (refused by peer::prepare)
         }
         os << "pos=\"" << str(pos) << "\" quat=\"" << str(shapeQ.normalized()) << "\"/>\n";
     };

@@ -196,6 +196,7 @@ dGeomID OdeAdapter::makeGeom(const BodyModel& b, const Vec3& position, const Qua
                 meshes_.push_back(std::move(m));
                 return g;
             }
+        case ShapeType::Compound: break;  // (refused by peer::prepare)
     }
     return nullptr;
 }

@@ -57,7 +57,8 @@ std::string meshReaderProgram();
 /// wrong arguments.
 int meshReaderMain(int argc, char** argv);
 
-/// Fills shape.meshData of every mesh body of `scene` by reading its file relative to
+/// Fills shape.meshData of every mesh shape of `scene` (a body's, or a compound's part's:
+/// "bodies[2].shape.parts[1].shape.file") by reading its file relative to
 /// `baseDir` (absolute paths are taken as they are) with the body's scale; bodies with the
 /// same file and scale share one mesh. A failure throws InputError naming `sceneName`, the
 /// field and the mesh file as written, e.g. "drop.json: bodies[2].shape.file: meshes/rock.obj:

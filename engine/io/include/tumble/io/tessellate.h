@@ -21,7 +21,9 @@ struct RenderMesh {
 /// caps and meshes flat ones (a mesh's triangles each get their own three vertices).
 /// A plane, infinite in the scene, becomes a square of side 2 * planeHalfSize centred on
 /// the point of the plane nearest the body frame's origin, facing its free side.
-/// A mesh without meshData gives an empty RenderMesh.
+/// A mesh without meshData gives an empty RenderMesh. A compound gives its parts' meshes
+/// placed in the body frame, part after part (an exporter that wants one mesh per part
+/// tessellates each part's shape).
 RenderMesh tessellate(const ShapeDesc& shape, int segments = 32, double planeHalfSize = 50.0);
 
 }  // namespace tumble::io

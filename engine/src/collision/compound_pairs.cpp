@@ -1,0 +1,231 @@
+// Compound pairs. The parts of a body are few (a table's five, a decomposed mesh's 16), so
+// a part's box in the body frame is looked at in turn; what keeps the cost linear is that
+// only the parts whose boxes meet the other body's box (carried into the body frame) are
+// paired, and two compounds pair only those near parts of each whose world boxes overlap.
+#include "collision/compound_pairs.h"
+
+#include "collision/contact_util.h"
+#include "collision/narrowphase.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace tumble::collision {
+
+namespace {
+
+struct Near {
+    int part = 0;
+    Pose pose;
+    Aabb box;  // world, grown by the margin
+};
+
+// The box of a world box turned into the frame of `pose` (the box about the turned box).
+Aabb intoFrame(const Aabb& world, const Pose& pose) {
+    const Vec3 c = pose.toLocal(world.center());
+    const Vec3 e = pose.R.transpose().cwiseAbs() * (0.5 * world.extent());
+    return {c - e, c + e};
+}
+
+// The parts of `shape` at `pose` whose boxes meet `other` (world), or the shape itself as
+// part 0 when it is not a compound.
+void nearParts(const Shape& shape, const Pose& pose, const Aabb& other, double margin,
+               std::vector<Near>& out) {
+    out.clear();
+    if (shape.kind != Kind::Compound) {
+        out.push_back({0, pose, bounds(shape, pose).inflated(margin)});
+        return;
+    }
+    const Compound& c = *shape.compound;
+    auto take = [&](int k) {
+        const Pose placed = pose * c.parts[k].pose;
+        const Aabb box = bounds(c.parts[k].shape, placed).inflated(margin);
+        if (box.overlaps(other)) out.push_back({k, placed, box});
+    };
+    if (!other.min.allFinite() || !other.max.allFinite()) {  // a plane: every part
+        for (int k = 0; k < static_cast<int>(c.parts.size()); ++k) take(k);
+        return;
+    }
+    c.query(intoFrame(other.inflated(margin), pose), take);
+}
+
+// A pair of parts' feature ids, kept apart from every other pair's.
+std::uint32_t mixed(std::uint32_t feature, int partA, int partB) {
+    const std::uint32_t parts =
+        static_cast<std::uint32_t>(partA) * 0x10001u + static_cast<std::uint32_t>(partB);
+    return feature ^ (parts * 0x9E3779B1u);
+}
+
+// Normals this near (within 0.08°) are one contact plane.
+constexpr double kSamePlane = 1.0 - 1e-6;
+
+// The radius by which a part's surface is its core grown (the contact solver's roundness).
+double roundness(const Shape& s) {
+    return s.kind == Kind::Sphere || s.kind == Kind::Capsule ? s.radius : 0.0;
+}
+
+// Whether contacts on parts p and q of a compound (or the shape itself) act alike: the same
+// material and the same roundness, so that one manifold can carry both.
+bool alike(const Shape& shape, int p, int q) {
+    if (p == q || shape.kind != Kind::Compound) return true;
+    const auto& a = shape.compound->parts[p];
+    const auto& b = shape.compound->parts[q];
+    return a.friction == b.friction && a.restitution == b.restitution &&
+           roundness(a.shape) == roundness(b.shape);
+}
+
+// Keeps at most four of the points, those that span the most of the contact plane: the
+// farthest from their middle, the farthest from it, the largest triangle with both, the
+// most area added on the far side. (collision::addReduced starts from the deepest point
+// instead; merged from several parts, the points are often at one depth to rounding, and
+// that rounding chose a leg's inner corner.) For a rigid contact in one plane the depth is
+// an affine function of the position, so its deepest point is at a corner of the spread;
+// a deeper point that is not (curved parts) takes the place of the chosen point nearest it.
+void addSpread(const std::vector<Candidate>& c, const Vec3& normal, ManifoldList& out) {
+    if (c.size() <= Manifold::kMaxPoints) {
+        addReduced(c, normal, out);
+        return;
+    }
+    auto flat = [&](size_t i) { return Vec3(c[i].position - normal * normal.dot(c[i].position)); };
+    auto area = [&](size_t a, size_t b, size_t i) {
+        return (flat(b) - flat(a)).cross(flat(i) - flat(a)).dot(normal);
+    };
+    Vec3 middle = Vec3::Zero();
+    for (size_t i = 0; i < c.size(); ++i) middle += flat(i) / static_cast<double>(c.size());
+    auto farthestFrom = [&](const Vec3& q) {
+        size_t best = 0;
+        for (size_t i = 1; i < c.size(); ++i)
+            if ((flat(i) - q).squaredNorm() > (flat(best) - q).squaredNorm()) best = i;
+        return best;
+    };
+    std::array<size_t, 4> pick;
+    pick[0] = farthestFrom(middle);
+    pick[1] = farthestFrom(flat(pick[0]));
+    pick[2] = pick[0];
+    for (size_t i = 0; i < c.size(); ++i)
+        if (std::abs(area(pick[0], pick[1], i)) > std::abs(area(pick[0], pick[1], pick[2]))) pick[2] = i;
+    const double side = area(pick[0], pick[1], pick[2]);
+    pick[3] = pick[0];
+    double most = 0.0;
+    for (size_t i = 0; i < c.size(); ++i)
+        if (area(pick[0], pick[1], i) * side < 0.0 && std::abs(area(pick[0], pick[1], i)) > most)
+            most = std::abs(area(pick[0], pick[1], i)), pick[3] = i;
+    size_t deepest = 0;
+    for (size_t i = 1; i < c.size(); ++i)
+        if (c[i].depth > c[deepest].depth) deepest = i;
+    double chosenDepth = -std::numeric_limits<double>::infinity();
+    for (size_t i : pick) chosenDepth = std::max(chosenDepth, c[i].depth);
+    if (c[deepest].depth > chosenDepth + 1e-9 * (flat(pick[0]) - flat(pick[1])).norm()) {
+        size_t nearest = 0;
+        for (size_t k = 1; k < 4; ++k)
+            if ((flat(pick[k]) - flat(deepest)).squaredNorm() <
+                (flat(pick[nearest]) - flat(deepest)).squaredNorm())
+                nearest = k;
+        pick[nearest] = deepest;
+    }
+    Manifold m;
+    m.normal = normal;
+    for (size_t k = 0; k < 4; ++k) {
+        bool seen = false;
+        for (size_t j = 0; j < k; ++j) seen = seen || pick[j] == pick[k];
+        if (!seen) m.add(c[pick[k]].position, c[pick[k]].depth, c[pick[k]].feature);
+    }
+    out.push_back(m);
+}
+
+// The manifolds out[first ..] that share a contact plane and act alike become one, reduced to
+// the four points that span the most (addSpread). A table on the floor is one
+// manifold of the four legs' outer corners, not four manifolds of a leg each: the contact
+// solver's block shares the weight over the corners by least norm, a quarter on each leg,
+// where four separate blocks solved one after another ended wherever their history left
+// them (113 to 192 N on the legs of a 608 N table).
+void mergeSamePlane(const Shape& a, const Shape& b, size_t first, ManifoldList& out) {
+    if (out.size() - first < 2) return;
+    thread_local std::vector<Manifold> kept;
+    thread_local std::vector<std::vector<Candidate>> points;
+    kept.clear();
+    points.clear();
+    for (size_t m = first; m < out.size(); ++m) {
+        const Manifold& x = out[m];
+        size_t g = 0;
+        while (g < kept.size() && !(kept[g].normal.dot(x.normal) >= kSamePlane &&
+                                    alike(a, kept[g].partA, x.partA) && alike(b, kept[g].partB, x.partB)))
+            ++g;
+        if (g == kept.size()) {
+            kept.push_back(x);
+            points.emplace_back();
+        }
+        for (int i = 0; i < x.count; ++i)
+            points[g].push_back({x.points[i].position, x.points[i].depth, x.points[i].feature});
+    }
+    if (kept.size() == out.size() - first) return;
+    out.resize(first);
+    for (size_t g = 0; g < kept.size(); ++g) {
+        const size_t at = out.size();
+        addSpread(points[g], kept[g].normal, out);
+        for (size_t m = at; m < out.size(); ++m) {
+            out[m].partA = kept[g].partA;
+            out[m].partB = kept[g].partB;
+        }
+    }
+}
+
+}  // namespace
+
+void collideCompound(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
+                     ManifoldList& out) {
+    thread_local std::vector<Near> nearA, nearB;
+    nearParts(a, pa, bounds(b, pb), margin, nearA);
+    if (nearA.empty()) return;
+    nearParts(b, pb, bounds(a, pa), margin, nearB);
+    const size_t first = out.size();
+    for (const Near& x : nearA) {
+        for (const Near& y : nearB) {
+            if (!x.box.overlaps(y.box)) continue;
+            const size_t first = out.size();
+            collide(partShape(a, x.part), x.pose, partShape(b, y.part), y.pose, margin, out);
+            for (size_t m = first; m < out.size(); ++m) {
+                out[m].partA = static_cast<std::uint16_t>(x.part);
+                out[m].partB = static_cast<std::uint16_t>(y.part);
+                for (int i = 0; i < out[m].count; ++i)
+                    out[m].points[i].feature = mixed(out[m].points[i].feature, x.part, y.part);
+            }
+        }
+    }
+    mergeSamePlane(a, b, first, out);
+}
+
+Sweep partSweep(const Sweep& body, const Pose& part) {
+    Sweep s = body;
+    const Quat turn(part.R);
+    s.q0 = body.q0 * turn;
+    s.q1 = body.q1 * turn;
+    // The part's frame origin is the body's plus R part.p, so the centre of mass sits at
+    // R_part^T (localCenter - part.p) in the part's frame.
+    s.localCenter = part.R.transpose() * (body.localCenter - part.p);
+    return s;
+}
+
+std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
+                                     double tolerance) {
+    auto partsOf = [](const Shape& s) {
+        return s.kind == Kind::Compound ? static_cast<int>(s.compound->parts.size()) : 1;
+    };
+    auto sweepOf = [](const Shape& s, const Sweep& sw, int k) {
+        return s.kind == Kind::Compound ? partSweep(sw, s.compound->parts[k].pose) : sw;
+    };
+    std::optional<Impact> best;
+    for (int i = 0; i < partsOf(a); ++i) {
+        const Sweep si = sweepOf(a, sa, i);
+        for (int j = 0; j < partsOf(b); ++j) {
+            auto hit = timeOfImpact(partShape(a, i), si, partShape(b, j), sweepOf(b, sb, j), tolerance);
+            if (hit && (!best || hit->s < best->s)) best = hit;
+        }
+    }
+    return best;
+}
+
+}  // namespace tumble::collision

@@ -1,0 +1,43 @@
+// Compile stage, shapes: the checks of a shape's values, a mesh shape's preparation, the
+// collider of a shape, and the value checks the rest of compile shares. Each takes the
+// path of the field it checks ("bodies[2].shape", "bodies[2].shape.parts[1].shape"), so a
+// compound's parts are checked and built as bodies' shapes are.
+#pragma once
+
+#include <tumble/collision.h>
+#include <tumble/scene.h>
+
+#include "mesh/mesh_body.h"
+
+#include <string>
+#include <vector>
+
+namespace tumble::compiling {
+
+/// Each throws SceneError(path, ...) for a value outside its range.
+void requireFinite(double v, const std::string& path);
+void requireFinite(const Vec3& v, const std::string& path);
+void requirePositive(double v, const std::string& path);
+/// Positive and at most 1e6 m: the largest size a shape may have.
+void requireLength(double v, const std::string& path);
+void requireNonNegative(double v, const std::string& path);
+
+/// The values of a shape (`path` names it) of a body moving as `motion`. A compound's
+/// parts are checked by compiling::validateParts (compile_compound.h), which this calls.
+void validateShape(const ShapeDesc& s, Motion motion, const std::string& path);
+
+/// A mesh shape's geometry, cleaned, with what its collider and mass need (`wantMass`: the
+/// solid integrated). The mesh file is read by the scene loader (tumble_io); a scene built
+/// in code must fill meshData itself. Throws SceneError naming path + ".file".
+mesh::PreparedMesh prepareMeshShape(const ShapeDesc& s, bool wantMass, const std::string& path);
+
+/// Things worth telling the user about a mesh shape (`who`: "bodies[3] (rock): "): where
+/// its mass comes from (`dynamic`), and what cleaning changed.
+void noteMesh(const ShapeDesc& s, bool dynamic, const std::string& who, const mesh::PreparedMesh& p,
+              std::vector<std::string>& notes);
+
+/// The collision shape of a primitive, or of a mesh from its prepared geometry. Not for a
+/// compound (compiling::compoundCollider).
+collision::Shape colliderOf(const ShapeDesc& s, const std::string& path, const mesh::PreparedMesh* prepared);
+
+}  // namespace tumble::compiling
