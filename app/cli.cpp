@@ -6,8 +6,10 @@
 #include "sweep/run_metrics.h"
 #include "sweep/sweep_cli.h"
 
+#include <tumble/convex_parts.h>
 #include <tumble/errors.h>
 #include <tumble/io/atomic_file.h>
+#include <tumble/io/convex_parts_cache.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/io/trajectory_writer.h>
 #include <tumble/world.h>
@@ -341,6 +343,41 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
 
     if (o.jointForces && scene.joints.empty()) {
         err << "tumble: --joint-forces: " << sceneName << " has no joints (nothing to write)\n";
+        return kInvalid;
+    }
+
+    // Meshes to split into convex parts that the sidecar did not have: split here, noted,
+    // and kept in the sidecar for the next run (not for a scene read from standard input).
+    try {
+        std::vector<std::pair<ShapeDesc*, std::string>> toMake;
+        for (auto& entry : io::convexPartsShapes(scene))
+            if (!entry.first->convexParts) toMake.push_back(entry);
+        const int made = io::makeConvexParts(scene, sceneName);
+        if (made > 0 && !o.quiet) {
+            for (auto& [shape, path] : toMake) {
+                if (!shape->convexParts) continue;
+                const mesh::ConvexParts& p = *shape->convexParts;
+                char text[256];
+                std::snprintf(
+                    text, sizeof text,
+                    "%s: %s split into %zu convex parts in %.2f s (their hulls %+.1f %% of its volume, "
+                    "reaching out %.3g m at most)",
+                    path.c_str(), shape->file.c_str(), p.parts.size(), p.seconds,
+                    100.0 * (p.partsVolume / p.meshVolume - 1.0), p.largestPokeOut);
+                err << "tumble: note: " << text << "\n";
+            }
+        }
+        if (made > 0 && o.scene != "-") {
+            const auto cache = io::convexPartsCachePath(o.scene);
+            try {
+                io::writeConvexPartsCache(scene, cache);
+                if (!o.quiet) err << "tumble: note: the convex parts are kept in " << cache.string() << "\n";
+            } catch (const std::runtime_error& e) {
+                if (!o.quiet) err << "tumble: note: the convex parts were not kept: " << e.what() << "\n";
+            }
+        }
+    } catch (const io::InputError& e) {
+        err << e.what() << "\n";
         return kInvalid;
     }
 

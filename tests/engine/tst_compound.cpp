@@ -423,6 +423,69 @@ private slots:
         }
     }
 
+    // A ball dropped into a mug split into convex parts falls into its hole and rests on its
+    // inner floor; with the mug's convex hull it rests on the rim's lid. The mug static, then
+    // dynamic (its parts' mass from the mesh, exactly). Both in a turned world.
+    void ballStaysInTheSplitMug_data() {
+        QTest::addColumn<int>("collision");
+        QTest::addColumn<bool>("dynamic");
+        QTest::addColumn<int>("seed");
+        for (int seed : {0, 1}) {
+            QTest::addRow("convex parts, static, pose %d", seed)
+                << int(MeshCollision::ConvexParts) << false << seed;
+            QTest::addRow("convex parts, dynamic, pose %d", seed)
+                << int(MeshCollision::ConvexParts) << true << seed;
+            QTest::addRow("convex hull, pose %d", seed) << int(MeshCollision::ConvexHull) << false << seed;
+        }
+    }
+    void ballStaysInTheSplitMug() {
+        QFETCH(int, collision);
+        QFETCH(bool, dynamic);
+        QFETCH(int, seed);
+        // Radius 0.4, height 1, a hole of radius 0.3 and depth 0.8: the inner floor at 0.2.
+        static const auto mugMesh = std::make_shared<const TriangleMesh>(mug(0.4, 1.0, 0.3, 0.8, 32));
+        BodyDesc cup;
+        cup.name = "mug";
+        cup.motion = dynamic ? Motion::Dynamic : Motion::Static;
+        if (dynamic) cup.density = 1000.0;
+        cup.shape.type = ShapeType::Mesh;
+        cup.shape.file = "mug (built by the test)";
+        cup.shape.meshData = mugMesh;
+        cup.shape.collision = static_cast<MeshCollision>(collision);
+        cup.restitution = 0.0;
+        BodyDesc ball = material(sphereBody("ball", 0.1, 0.05), 0.0, 0.5);
+        ball.position = Vec3(0.02, 1.5, -0.01);
+        const WorldPose pose = seed == 0 ? WorldPose{} : randomWorldPose(static_cast<std::uint64_t>(seed));
+        std::vector<BodyDesc> bodies = {groundPlane(0.0, 0.8), cup, ball};
+        World w(turnedScene(sceneOf(bodies), pose));
+        if (collision == int(MeshCollision::ConvexParts)) {
+            const collision::Shape& c = w.model().bodies[1].collider;
+            QCOMPARE(c.kind, collision::Kind::Compound);
+            QVERIFY2(c.compound->parts.size() >= 4, qPrintable(QString::number(c.compound->parts.size())));
+        }
+        if (dynamic) {
+            // The mass from the closed mesh (the parts' hulls only collide).
+            const double volume = mugVolume(0.4, 1.0, 0.3, 0.8, 32);
+            QVERIFY(std::abs(w.model().bodies[1].mass - 1000.0 * volume) < 1e-9 * 1000.0 * volume);
+        }
+        for (int k = 0; k < 480; ++k) w.step(1.0 / 240.0);
+        const Vec3 p = pose.R.conjugate() * (w.state().bodies[2].x - pose.t);
+        const Vec3 cupAt =
+            pose.R.conjugate() * (bodyFramePosition(w.model().bodies[1], w.state().bodies[1]) - pose.t);
+        const Vec3 rel = p - cupAt;
+        if (collision == int(MeshCollision::ConvexParts)) {
+            // On the inner floor, within the split's tolerance (1 % of the mug's diagonal).
+            QVERIFY2(std::abs(rel.y() - 0.3) < 0.02 && std::hypot(rel.x(), rel.z()) < 0.2 + 0.02,
+                     qPrintable(QString("the ball is at %1, %2, %3 from the mug")
+                                    .arg(rel.x())
+                                    .arg(rel.y())
+                                    .arg(rel.z())));
+        } else {
+            QVERIFY2(std::abs(rel.y() - 1.1) < 1e-3,
+                     qPrintable(QString("the ball rests at %1 m above the mug's base").arg(rel.y())));
+        }
+    }
+
     // A fast compound never passes through a thin wall: the dumbbell's small ball leads at
     // 40 m/s towards a 2 cm plate (8 cm a step at 1/60 s); the time of impact finds the part.
     void fastCompoundStopsAtThinWall() {

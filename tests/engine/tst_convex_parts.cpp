@@ -6,7 +6,7 @@
 // part's faces. All of it again with the mesh turned and shifted. Its time is tumble-bench's.
 #include <tumble/convex_hull.h>
 
-#include "mesh/convex_parts.h"
+#include <tumble/convex_parts.h>
 #include "test_meshes.h"
 #include "turned_world.h"
 

@@ -13,10 +13,13 @@
 namespace tumble {
 
 struct TriangleMesh;  // tumble/mass.h
+namespace mesh {
+struct ConvexParts;  // tumble/convex_parts.h
+}
 
 enum class Motion { Dynamic, Static, Kinematic };
 enum class ShapeType { Sphere, Box, Capsule, Cylinder, Plane, Mesh, Compound };
-enum class MeshCollision { ConvexHull, Triangles };
+enum class MeshCollision { ConvexHull, Triangles, ConvexParts };
 enum class ForceType { Force, Torque, Spring };
 enum class Frame { World, Body };
 /// When a collision of bodies that did not touch is resolved.
@@ -46,10 +49,19 @@ struct ShapeDesc {
     std::string file;                            ///< mesh, relative to the scene file
     Vec3 scale = Vec3(1, 1, 1);                  ///< mesh
     MeshCollision collision = MeshCollision::ConvexHull;  ///< mesh
+    int maxParts = 16;                                    ///< mesh, convex-parts: at most this many parts
+    /// Mesh, convex-parts: how far a part may reach out of the solid (m); absent: 1 % of the
+    /// mesh's bounding-box diagonal.
+    std::optional<double> partsTolerance;
     /// Mesh: the triangles of `file` as read, scaled, in the body frame. Filled by the scene
     /// loader (io::readSceneFile), or by code that builds a scene; never saved. compile()
     /// refuses a mesh body without it. Shared, so copies of a scene are cheap.
     std::shared_ptr<const TriangleMesh> meshData;
+    /// Mesh, convex-parts: the parts, made from meshData with maxParts and partsTolerance
+    /// (mesh::convexPartsFit), by the scene loader from the sidecar cache or by the editor in
+    /// the background; never saved in the scene. compile() makes them itself when they are
+    /// absent or were made from another mesh or options (seconds for a large mesh).
+    std::shared_ptr<const mesh::ConvexParts> convexParts;
     /// Compound: the parts, each a shape of its own (any but a plane or a compound) placed
     /// in the body frame (docs/scene-format.md "Compound bodies").
     std::vector<PartDesc> parts;

@@ -2,6 +2,7 @@
 // path of the field; the values themselves are checked by tumble::validate, whose
 // SceneError carries the same kind of path.
 #include <tumble/errors.h>
+#include <tumble/io/convex_parts_cache.h>
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 #include <tumble/model.h>
@@ -215,13 +216,23 @@ ShapeDesc readShape(const Reader& r, const json& j, const std::string& p) {
             if (s.normal.norm() > 0.0 && s.normal.allFinite()) s.normal = unitLength(s.normal);
             break;
         case ShapeType::Mesh:
-            r.onlyKeys(j, p, {"type", "file", "scale", "collision"});
+            r.onlyKeys(j, p, {"type", "file", "scale", "collision", "max_parts", "tolerance"});
             s.file = r.string(r.require(j, p, "file"), p + ".file");
             r.optional(j, p, "scale",
                        [&](const json& v, const std::string& f) { s.scale = r.vector<3>(v, f); });
             r.optional(j, p, "collision", [&](const json& v, const std::string& f) {
-                s.collision = enumValue(r, v, f, {MeshCollision::ConvexHull, MeshCollision::Triangles});
+                s.collision = enumValue(
+                    r, v, f,
+                    {MeshCollision::ConvexHull, MeshCollision::Triangles, MeshCollision::ConvexParts});
             });
+            // The split's options, only with the split.
+            for (const char* key : {"max_parts", "tolerance"})
+                if (j.contains(key) && s.collision != MeshCollision::ConvexParts)
+                    r.fail(p + "." + key, "is for \"collision\": \"convex-parts\" only");
+            r.optional(j, p, "max_parts",
+                       [&](const json& v, const std::string& f) { s.maxParts = r.integer(v, f); });
+            r.optional(j, p, "tolerance",
+                       [&](const json& v, const std::string& f) { s.partsTolerance = r.number(v, f); });
             break;
         case ShapeType::Compound: {
             r.onlyKeys(j, p, {"type", "parts"});
@@ -511,7 +522,10 @@ SceneDesc readSceneFile(const std::filesystem::path& path) {
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) throw InputError(name, "", "could not be read to the end");
-    return parseScene(text.str(), name, path.parent_path());
+    SceneDesc scene = parseScene(text.str(), name, path.parent_path());
+    // The convex parts made before, from the sidecar (a missing or stale one is made again).
+    readConvexPartsCache(scene, convexPartsCachePath(path));
+    return scene;
 }
 
 }  // namespace tumble::io

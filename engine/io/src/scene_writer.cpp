@@ -56,6 +56,10 @@ ojson shapeJson(const ShapeDesc& s) {
         j["file"] = s.file;
         j["scale"] = vec(s.scale);
         j["collision"] = toString(s.collision);
+        if (s.collision == MeshCollision::ConvexParts) {
+            j["max_parts"] = s.maxParts;
+            if (s.partsTolerance) j["tolerance"] = *s.partsTolerance;
+        }
         break;
     case ShapeType::Compound:
         j["parts"] = ojson::array();

@@ -1,4 +1,4 @@
-#include "mesh/convex_parts.h"
+#include <tumble/convex_parts.h>
 
 #include "common/closest_point.h"
 

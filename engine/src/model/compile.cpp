@@ -278,7 +278,10 @@ Model compile(const SceneDesc& scene) {
             // A missing volume is the first thing to report: it is what a density or inertia needs.
             if (d.motion == Motion::Dynamic) meshBodyMassProperties(d, index, *prepared);
             noteMesh(d.shape, d.motion == Motion::Dynamic, who, *prepared, m.notes);
-            b.collider = colliderOf(d.shape, at(index) + ".shape", &*prepared);
+            b.collider = d.shape.collision == MeshCollision::ConvexParts
+                             ? convexPartsCollider(d.shape, at(index) + ".shape", who, d.friction,
+                                                   d.restitution, m.notes)
+                             : colliderOf(d.shape, at(index) + ".shape", &*prepared);
         } else if (d.shape.type == ShapeType::Compound) {
             compound = buildCompound(d, at(index), who, m.notes);
             b.collider = compound->collider;
@@ -289,7 +292,11 @@ Model compile(const SceneDesc& scene) {
         // the model keeps no share of the mesh as read (300 small meshes of hull-rain were
         // 0.1 MB once the scene they came with was gone). The scene still has it.
         b.shape.meshData.reset();
-        for (PartDesc& part : b.shape.parts) part.shape.meshData.reset();
+        b.shape.convexParts.reset();
+        for (PartDesc& part : b.shape.parts) {
+            part.shape.meshData.reset();
+            part.shape.convexParts.reset();
+        }
         b.restitution = d.restitution;
         b.friction = d.friction;
         b.linearDamping = d.linearDamping;

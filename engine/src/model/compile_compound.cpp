@@ -92,14 +92,28 @@ BuiltCompound buildCompound(const BodyDesc& b, const std::string& path, const st
             noteMesh(d.shape, dynamic, who + "part " + std::to_string(j) + ": ", *prepared, notes);
         }
         collision::Compound::Part part;
-        part.shape = colliderOf(d.shape, p + ".shape", prepared ? &*prepared : nullptr);
         part.pose.R = d.orientation.normalized().toRotationMatrix();
         part.pose.p = d.position;
-        part.box = bounds(part.shape, part.pose);
         part.friction = d.friction.value_or(b.friction);
         part.restitution = d.restitution.value_or(b.restitution);
-        compound->box.add(part.box);
-        compound->parts.push_back(std::move(part));
+        if (d.shape.type == ShapeType::Mesh && d.shape.collision == MeshCollision::ConvexParts) {
+            // A mesh split into convex parts: each hull a part of this compound, in the
+            // part's frame (a compound holds no compound).
+            const collision::Shape split =
+                convexPartsCollider(d.shape, p + ".shape", who + "part " + std::to_string(j) + ": ",
+                                    part.friction, part.restitution, notes);
+            for (collision::Compound::Part hull : split.compound->parts) {
+                hull.pose = part.pose * hull.pose;
+                hull.box = bounds(hull.shape, hull.pose);
+                compound->box.add(hull.box);
+                compound->parts.push_back(std::move(hull));
+            }
+        } else {
+            part.shape = colliderOf(d.shape, p + ".shape", prepared ? &*prepared : nullptr);
+            part.box = bounds(part.shape, part.pose);
+            compound->box.add(part.box);
+            compound->parts.push_back(std::move(part));
+        }
         if (!dynamic) continue;
         UnitSolid solid;
         if (prepared) {
@@ -116,6 +130,11 @@ BuiltCompound buildCompound(const BodyDesc& b, const std::string& path, const st
         }
         solids.push_back(solid);
     }
+    if (compound->parts.size() > static_cast<size_t>(kMostParts))
+        throw SceneError(shapePath + ".parts",
+                         "makes " + std::to_string(compound->parts.size()) +
+                             " collision parts with its meshes' convex parts; at most " +
+                             std::to_string(kMostParts));
     BuiltCompound built;
     built.collider.kind = collision::Kind::Compound;
     built.collider.compound = compound;

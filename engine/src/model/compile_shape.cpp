@@ -3,10 +3,13 @@
 
 #include <tumble/errors.h>
 
+#include <tumble/convex_parts.h>
+
 #include "collision/bvh.h"
 #include "model/compile_compound.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace tumble::compiling {
@@ -66,6 +69,12 @@ void validateShape(const ShapeDesc& s, Motion motion, const std::string& path) {
             for (int k = 0; k < 3; ++k) {
                 requirePositive(s.scale[k], path + ".scale[" + std::to_string(k) + "]");
             }
+            if (s.collision == MeshCollision::ConvexParts) {
+                if (s.maxParts < 1 || s.maxParts > kMostConvexParts)
+                    throw SceneError(path + ".max_parts",
+                                     "must be from 1 to " + std::to_string(kMostConvexParts));
+                if (s.partsTolerance) requireLength(*s.partsTolerance, path + ".tolerance");
+            }
             break;
         case ShapeType::Compound: validateParts(s, motion, path); break;
     }
@@ -86,6 +95,12 @@ mesh::PreparedMesh prepareMeshShape(const ShapeDesc& s, bool wantMass, const std
     }
     if (p.surface.triangles.empty()) {
         throw SceneError(field, s.file + ": has no triangles with an area (every one is degenerate)");
+    }
+    if (s.collision == MeshCollision::ConvexParts && !p.closed) {
+        throw SceneError(path + ".collision",
+                         s.file +
+                             ": the mesh is not closed, so it bounds no solid to split into "
+                             "convex parts; use \"convex-hull\" or \"triangles\"");
     }
     return p;
 }
@@ -139,6 +154,42 @@ collision::Shape colliderOf(const ShapeDesc& s, const std::string& path, const m
         shape.kind = collision::Kind::Mesh;
         shape.mesh = std::move(m);
     }
+    return shape;
+}
+
+collision::Shape convexPartsCollider(const ShapeDesc& s, const std::string& path, const std::string& who,
+                                     double friction, double restitution, std::vector<std::string>& notes) {
+    std::shared_ptr<const mesh::ConvexParts> parts = s.convexParts;
+    if (!parts || !mesh::convexPartsFit(*parts, s)) {
+        try {
+            parts = std::make_shared<const mesh::ConvexParts>(mesh::convexPartsOfShape(s));
+        } catch (const std::invalid_argument& e) {
+            throw SceneError(path + ".collision", s.file + ": " + e.what());
+        }
+        char text[256];
+        std::snprintf(
+            text, sizeof text,
+            "split into %zu convex parts in %.2f s (their hulls %+.1f %% of the mesh's volume, reaching "
+            "out of it %.3g m at most%s)",
+            parts->parts.size(), parts->seconds, 100.0 * (parts->partsVolume / parts->meshVolume - 1.0),
+            parts->largestPokeOut,
+            parts->withinTolerance ? "" : "; max_parts was reached before the tolerance");
+        notes.push_back(who + text);
+    }
+    auto compound = std::make_shared<collision::Compound>();
+    for (const collision::ConvexHull& hull : parts->parts) {
+        collision::Compound::Part part;
+        part.shape.kind = collision::Kind::Hull;
+        part.shape.hull = std::make_shared<const collision::ConvexHull>(hull);
+        part.box = bounds(part.shape, part.pose);
+        part.friction = friction;
+        part.restitution = restitution;
+        compound->box.add(part.box);
+        compound->parts.push_back(std::move(part));
+    }
+    collision::Shape shape;
+    shape.kind = collision::Kind::Compound;
+    shape.compound = std::move(compound);
     return shape;
 }
 

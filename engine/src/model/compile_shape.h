@@ -14,6 +14,9 @@
 
 namespace tumble::compiling {
 
+/// The most parts a mesh may be split into (max_parts).
+inline constexpr int kMostConvexParts = 256;
+
 /// Each throws SceneError(path, ...) for a value outside its range.
 void requireFinite(double v, const std::string& path);
 void requireFinite(const Vec3& v, const std::string& path);
@@ -39,5 +42,13 @@ void noteMesh(const ShapeDesc& s, bool dynamic, const std::string& who, const me
 /// The collision shape of a primitive, or of a mesh from its prepared geometry. Not for a
 /// compound (compiling::compoundCollider).
 collision::Shape colliderOf(const ShapeDesc& s, const std::string& path, const mesh::PreparedMesh* prepared);
+
+/// The collider of a mesh shape with collision convex-parts: a compound of the parts'
+/// hulls, each of the given material. The parts are the shape's own (ShapeDesc::convexParts)
+/// when they fit its mesh and options, else they are made here, with a note (`who` starts
+/// it) of how many, how long, and how well. Throws SceneError naming path + ".collision"
+/// when the mesh bounds no solid.
+collision::Shape convexPartsCollider(const ShapeDesc& s, const std::string& path, const std::string& who,
+                                     double friction, double restitution, std::vector<std::string>& notes);
 
 }  // namespace tumble::compiling

@@ -25,7 +25,12 @@ const char* toString(ShapeType t) {
 }
 
 const char* toString(MeshCollision c) {
-    return c == MeshCollision::ConvexHull ? "convex-hull" : "triangles";
+    switch (c) {
+        case MeshCollision::ConvexHull: return "convex-hull";
+        case MeshCollision::Triangles: return "triangles";
+        case MeshCollision::ConvexParts: return "convex-parts";
+    }
+    return "?";
 }
 
 const char* toString(ForceType t) {
@@ -60,7 +65,8 @@ const char* toString(JointType t) {
 bool ShapeDesc::operator==(const ShapeDesc& o) const {
     return type == o.type && radius == o.radius && halfHeight == o.halfHeight &&
            halfExtents == o.halfExtents && normal == o.normal && distance == o.distance && file == o.file &&
-           scale == o.scale && collision == o.collision && parts == o.parts;
+           scale == o.scale && collision == o.collision && maxParts == o.maxParts &&
+           partsTolerance == o.partsTolerance && parts == o.parts;
 }
 
 bool PartDesc::operator==(const PartDesc& o) const {

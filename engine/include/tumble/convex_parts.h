@@ -23,7 +23,10 @@
 // Pieces are split up to twice the parts asked for, then neighbours merged back (the pair
 // whose joint hull adds least first).
 //
-// Not wired to scenes yet (issue 49). Tested (tst_engine_convex_parts, both poses): a
+// A scene's mesh with `"collision": "convex-parts"` is split by convexPartsOfShape, which
+// compile() calls when the shape does not carry its parts already (ShapeDesc::convexParts,
+// filled from the sidecar cache by the scene loader or by the editor in the background).
+// Tested (tst_engine_convex_parts, both poses): a
 // U-bracket in its three boxes exactly; a torus within 1.7 % of its volume in 16 parts, its
 // hole open; every solid covered. Short of the issue's target: a mug without handle
 // (test_meshes.h mug(0.4, 1, 0.3, 0.8)) is 2.7 % over its volume in 16 parts upright but
@@ -33,7 +36,12 @@
 #include <tumble/collision.h>
 #include <tumble/mass.h>
 
+#include <cstdint>
 #include <vector>
+
+namespace tumble {
+struct ShapeDesc;  // tumble/scene.h
+}
 
 namespace tumble::mesh {
 
@@ -53,6 +61,12 @@ struct ConvexParts {
     /// when `withinTolerance`.
     double largestPokeOut = 0.0;
     bool withinTolerance = false;  ///< false: maxParts was reached first
+    /// What the parts were made from, when made by convexPartsOfShape: the hash of the mesh
+    /// as read (meshHash of ShapeDesc::meshData) and the options asked for (tolerance 0: the
+    /// default); a shape whose mesh or options differ needs them made again.
+    std::uint64_t meshHash = 0;
+    ConvexPartsOptions options;
+    double seconds = 0.0;  ///< how long they took to make (s)
 };
 
 /// Volume of a convex hull (its faces' offsets times their areas, over three).
@@ -62,6 +76,20 @@ double hullVolume(const collision::ConvexHull& hull);
 /// (isClosed; prepareMesh makes it so). Throws std::invalid_argument for an open or empty
 /// mesh, or options out of range.
 ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options = {});
+
+/// A hash of the mesh's vertices (their bits) and triangles: equal meshes, equal hashes.
+std::uint64_t meshHash(const TriangleMesh& mesh);
+
+/// The options a mesh shape with collision convex-parts asks for (max_parts, tolerance).
+ConvexPartsOptions convexPartsOptionsOf(const ShapeDesc& shape);
+
+/// True when `parts` were made from this shape's mesh (meshData) with its options.
+bool convexPartsFit(const ConvexParts& parts, const ShapeDesc& shape);
+
+/// The convex parts of a mesh shape (its meshData cleaned as compile cleans it) with its
+/// options, timed, with the mesh's hash. Throws std::invalid_argument when the shape has no
+/// mesh, or the cleaned mesh is not closed (it bounds no solid to split).
+ConvexParts convexPartsOfShape(const ShapeDesc& shape);
 
 /// How far each point lies outside the solid bounded by the closed `mesh` (0 inside): its
 /// distance to the nearest triangle when a ray from it crosses the surface an even number of
