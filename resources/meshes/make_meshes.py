@@ -7,6 +7,9 @@ tetrahedron.off  the corner tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1); volu
 box.stl          the unit cube centred at the origin, ascii STL (every facet has its own
                  three vertices, as STL always does).
 open-box.ply     the same cube without its top face (+y): an open mesh.
+mug.obj          a mug without a handle (concave): a 32-sided prism of radius 0.05 m and
+                 height 0.1 m standing on y = 0, with a hole of radius 0.04 m and depth 0.09 m;
+                 for "collision": "convex-parts" (mug-on-board.json).
 All faces run counter-clockwise seen from outside.
 """
 
@@ -83,7 +86,38 @@ def open_box_ply():
             f.write("4 " + " ".join(str(verts.index(v)) for v in c) + "\n")
 
 
+def mug(R=0.05, H=0.1, r=0.04, D=0.09, segments=32):
+    """A revolved profile (radius, height) from the axis at the bottom round to the axis at
+    the hole's floor, counter-clockwise seen from outside (as tests/engine/test_meshes.h)."""
+    import math
+    profile = [(0, 0), (R, 0), (R, H), (r, H), (r, H - D), (0, H - D)]
+    verts = [(0.0, 0.0, 0.0)]
+    for rad, y in profile[1:-1]:
+        for k in range(segments):
+            a = 2 * math.pi * k / segments
+            verts.append((rad * math.cos(a), y, -rad * math.sin(a)))
+    verts.append((0.0, H - D, 0.0))
+    last = len(verts) - 1
+
+    def ring(i, k):
+        return 1 + (i - 1) * segments + (k % segments)
+
+    tris = [(0, ring(1, k + 1), ring(1, k)) for k in range(segments)]
+    for i in range(1, len(profile) - 2):
+        for k in range(segments):
+            tris.append((ring(i, k), ring(i, k + 1), ring(i + 1, k + 1)))
+            tris.append((ring(i, k), ring(i + 1, k + 1), ring(i + 1, k)))
+    tris += [(last, ring(len(profile) - 2, k), ring(len(profile) - 2, k + 1)) for k in range(segments)]
+    with open("mug.obj", "w") as f:
+        f.write("# a mug without a handle (make_meshes.py)\no mug\n")
+        for v in verts:
+            f.write("v %.9g %.9g %.9g\n" % v)
+        for t in tris:
+            f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+
+
 if __name__ == "__main__":
+    mug()
     l_prism()
     tetrahedron()
     box_stl()

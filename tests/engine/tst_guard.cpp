@@ -9,6 +9,8 @@
 #include <tumble/io/scene_file.h>
 
 #include <QDir>
+#include "sample_scenes.h"
+
 #include <QtTest>
 
 #include <cmath>
@@ -245,7 +247,7 @@ private slots:
     void samplesNeverTrip_data() {
         QTest::addColumn<QString>("file");
         QTest::addColumn<QString>("integrator");
-        const QStringList files = QDir(TUMBLE_SCENES_DIR).entryList({"*.json"}, QDir::Files, QDir::Name);
+        const QStringList files = sampleSceneFiles();
         QVERIFY(files.size() >= 10);
         for (const QString& f : files) {
             const Settings own =

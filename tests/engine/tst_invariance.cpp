@@ -3,6 +3,7 @@
 // original does, turned and shifted. A failure names its seed and writes its scene.
 #include "joint_checks.h"
 #include "ledger_checks.h"
+#include "sample_scenes.h"
 #include "scene_builders.h"
 #include "turned_world.h"
 
@@ -274,7 +275,7 @@ private slots:
         QTest::addColumn<QString>("file");
         QTest::addColumn<int>("seed");
         QTest::addColumn<QString>("integrator");
-        for (const QString& f : QDir(TUMBLE_SCENES_DIR).entryList({"*.json"}, QDir::Files))
+        for (const QString& f : sampleSceneFiles())
             for (int seed = 1; seed <= (shortRun() ? 1 : 2); ++seed)
                 for (const char* name : {"", "rk4"})
                     QTest::addRow("%s seed %d %s", qPrintable(f), seed, *name ? name : "default")
@@ -432,7 +433,7 @@ private slots:
     void theLedgerClosesAndNeverGoesNegative_data() {
         QTest::addColumn<QString>("file");
         QTest::addColumn<int>("rate");
-        for (const QString& f : QDir(TUMBLE_SCENES_DIR).entryList({"*.json"}, QDir::Files)) {
+        for (const QString& f : sampleSceneFiles()) {
             // (The driven samples, the door's motor and the ragdoll's and spring's damping, do
             // work the ledger does not book.)
             if (driven(io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath(f).toStdString()))) continue;

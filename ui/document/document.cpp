@@ -3,12 +3,17 @@
 #include "document/commands.h"
 
 #include <tumble/io/atomic_file.h>
+#include <tumble/io/convex_parts_cache.h>
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/scene_file.h>
 
+#include <tumble/convex_parts.h>
+
+#include <QCursor>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QMap>
 #include <QSet>
 #include <QUndoStack>
@@ -56,21 +61,42 @@ namespace {
 // from; a saved scene holds it relative to the scene's own folder (what the format says), so
 // Save As to another folder keeps every mesh reachable.
 void makeMeshPathsAbsolute(SceneDesc& scene, const QString& dir) {
-    for (BodyDesc& b : scene.bodies) {
-        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
-        const QString file = QString::fromStdString(b.shape.file);
-        if (QFileInfo(file).isRelative())
-            b.shape.file = QDir::cleanPath(QDir(dir).absoluteFilePath(file)).toStdString();
-    }
+    for (BodyDesc& b : scene.bodies)
+        forEachShape(b, {}, [&](ShapeDesc& s, const std::string&) {
+            if (s.type != ShapeType::Mesh || s.file.empty()) return;
+            const QString file = QString::fromStdString(s.file);
+            if (QFileInfo(file).isRelative())
+                s.file = QDir::cleanPath(QDir(dir).absoluteFilePath(file)).toStdString();
+        });
 }
 
 SceneDesc withMeshPathsRelativeTo(SceneDesc scene, const QString& dir) {
-    for (BodyDesc& b : scene.bodies) {
-        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
-        const QString file = QString::fromStdString(b.shape.file);
-        if (QFileInfo(file).isAbsolute()) b.shape.file = QDir(dir).relativeFilePath(file).toStdString();
-    }
+    for (BodyDesc& b : scene.bodies)
+        forEachShape(b, {}, [&](ShapeDesc& s, const std::string&) {
+            if (s.type != ShapeType::Mesh || s.file.empty()) return;
+            const QString file = QString::fromStdString(s.file);
+            if (QFileInfo(file).isAbsolute()) s.file = QDir(dir).relativeFilePath(file).toStdString();
+        });
     return scene;
+}
+
+// The convex parts of the scene's meshes that ask for them: from the scene's sidecar, and
+// those it lacks made now (once, not at every edit's compile) and kept in it. A sidecar that
+// cannot be written is not kept, and says so in `warnings`.
+void prepareConvexParts(SceneDesc& scene, const QString& path, const std::string& name,
+                        QStringList& warnings) {
+    if (io::convexPartsShapes(scene).empty()) return;
+    const auto cache = io::convexPartsCachePath(QFile::encodeName(path).toStdString());
+    std::string problem;
+    io::readConvexPartsCache(scene, cache, &problem);
+    if (!problem.empty()) warnings << QString::fromStdString(problem);
+    try {
+        if (io::makeConvexParts(scene, name) > 0) io::writeConvexPartsCache(scene, cache);
+    } catch (const io::InputError& e) {
+        warnings << QString::fromStdString(e.what());  // compile names it again when run
+    } catch (const std::runtime_error& e) {
+        warnings << QString::fromStdString(e.what());
+    }
 }
 
 // Writes `bytes` to `path` whole or not at all, through the engine's AtomicFile (which also
@@ -126,6 +152,7 @@ bool Document::open(const QString& path, QString* error) {
             io::loadSceneMeshes(scene, QFileInfo(path).absolutePath().toStdString(), name.toStdString(),
                                 &failures);
             for (const io::InputError& f : failures) warnings << QString::fromStdString(f.what());
+            prepareConvexParts(scene, path, name.toStdString(), warnings);
             makeMeshPathsAbsolute(scene, QFileInfo(path).absolutePath());
         }
     } catch (const io::InputError& e) {
@@ -157,6 +184,11 @@ bool Document::open(const QString& path, QString* error) {
 bool Document::saveAs(const QString& path, QString* error) {
     const std::string text = io::sceneToJson(withMeshPathsRelativeTo(scene_, QFileInfo(path).absolutePath()));
     if (!writeWhole(path, QByteArray::fromStdString(text), error)) return false;
+    // The convex parts beside the scene, for the next open (not keeping them loses nothing).
+    try {
+        io::writeConvexPartsCache(scene_, io::convexPartsCachePath(QFile::encodeName(path).toStdString()));
+    } catch (const std::runtime_error&) {
+    }
     path_ = path;
     undo_->setClean();
     emit fileStateChanged();
@@ -279,8 +311,34 @@ void Document::replaceScene(const SceneDesc& scene, const QString& text, bool un
     stampMeshes();
 }
 
-void Document::setBody(int index, const BodyDesc& body, const QString& text, int mergeId) {
-    if (index < 0 || index >= bodyCount() || body == scene_.bodies[static_cast<size_t>(index)]) return;
+namespace {
+
+// The body with the convex parts its meshes ask for made (a mesh switched to convex parts,
+// or its options changed): made once here, under a wait cursor, and kept in the scene (and
+// in the undo step), not made again by every compile of the runs that follow. A mesh that
+// cannot be split is left without: compile names it.
+BodyDesc withConvexParts(BodyDesc body) {
+    bool waiting = false;
+    forEachShape(body, {}, [&](ShapeDesc& s, const std::string&) {
+        if (s.type != ShapeType::Mesh || s.collision != MeshCollision::ConvexParts || !s.meshData) return;
+        if (s.convexParts && mesh::convexPartsFit(*s.convexParts, s)) return;
+        if (!waiting) QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor));
+        waiting = true;
+        try {
+            s.convexParts = std::make_shared<const mesh::ConvexParts>(mesh::convexPartsOfShape(s));
+        } catch (const std::invalid_argument&) {
+            s.convexParts.reset();
+        }
+    });
+    if (waiting) QGuiApplication::restoreOverrideCursor();
+    return body;
+}
+
+}  // namespace
+
+void Document::setBody(int index, const BodyDesc& given, const QString& text, int mergeId) {
+    if (index < 0 || index >= bodyCount() || given == scene_.bodies[static_cast<size_t>(index)]) return;
+    const BodyDesc body = withConvexParts(given);
     const std::string& old = scene_.bodies[static_cast<size_t>(index)].name;
     std::vector<JointDesc> joints = scene_.joints;
     for (JointDesc& j : joints) {

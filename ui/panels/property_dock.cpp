@@ -157,7 +157,8 @@ void PropertyDock::Impl::build() {
     addChoice<MeshCollision>(
         form, QObject::tr("Collision"), "shape.collision", QObject::tr("Set mesh collision"),
         {{QObject::tr("Convex hull"), MeshCollision::ConvexHull},
-         {QObject::tr("Triangles"), MeshCollision::Triangles}},
+         {QObject::tr("Triangles"), MeshCollision::Triangles},
+         {QObject::tr("Convex parts"), MeshCollision::ConvexParts}},
         [mesh](const BodyDesc& b) { return mesh(b) ? std::optional(b.shape.collision) : std::nullopt; },
         [](BodyDesc& b, int, MeshCollision c) { b.shape.collision = c; });
 

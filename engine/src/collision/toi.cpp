@@ -286,12 +286,18 @@ std::optional<Impact> flipped(std::optional<Impact> i) {
 std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
                                    double tolerance) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return std::nullopt;
-    if (a.kind == Kind::Compound || b.kind == Kind::Compound) return compoundImpact(a, sa, b, sb, tolerance);
     // A tolerance of zero would only be reached in the limit; keep a rounding-level floor.
     double scale = 0.0;
     if (a.kind != Kind::Plane) scale += boundingRadius(a);
     if (b.kind != Kind::Plane) scale += boundingRadius(b);
     const double tol = std::max(tolerance, 1e-12 * scale);
+    if (a.kind == Kind::Compound || b.kind == Kind::Compound) {
+        // The whole bodies' balls first: most pairs end there, before any pair of parts.
+        if (a.kind != Kind::Plane && b.kind != Kind::Plane &&
+            spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol))
+            return std::nullopt;
+        return compoundImpact(a, sa, b, sb, tolerance);
+    }
     if (b.kind == Kind::Plane) return againstPlane(a, sa, b, sb, tol);
     if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, a, sa, tol));
     if (spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol)) return std::nullopt;
