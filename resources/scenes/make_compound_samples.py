@@ -9,13 +9,8 @@ hammer.json         a hammer (a wooden handle, a steel head) thrown spinning abo
 mug-on-board.json   a mug (mesh, split into convex parts) with a ball in it, on a board that a
                     kinematic turn tilts: the mug slides and tips, the ball stays in until the
                     mug falls over. Its parts are kept in mug-on-board.convex-parts.json.
-cart.json           a cart (a deck with an axle housing) on four wheels held by hinges, rolling
-                    down a slope.
-chairs-200.json     200 chairs dropped in a pile onto the floor (tumble-bench's compound pile),
-                    impacts at the end of the step (exact moments for thousands of first
-                    touches a second took 20 times as long).
 
-The chair is the same in chair.json and chairs-200.json: a seat 0.44 x 0.04 x 0.44 m at
+The chair: a seat 0.44 x 0.04 x 0.44 m at
 0.45 m, a back 0.44 x 0.5 x 0.04 m on its rear edge, legs 0.04 x 0.45 x 0.04 m under its
 corners; pine, 500 kg/m³ (4.9 kg).
 """
@@ -121,62 +116,8 @@ def mug_on_board():
     write("mug-on-board.json", scene(6, [floor(), board, mug, ball]))
 
 
-def cart():
-    slope = 0.15  # rad: the floor's tilt, down towards +x
-    normal = [math.sin(slope), math.cos(slope), 0]
-    ground = {"name": "slope", "motion": "static", "shape": {"type": "plane", "normal": normal, "distance": 0},
-              "friction": 0.9, "restitution": 0.0}
-    # The cart in the slope's frame: its deck level with the slope (turned by -slope about z).
-    turn = quat_axis([0, 0, 1], -slope)
-    c, s = math.cos(-slope), math.sin(-slope)
-
-    def placed(x, y, z):  # a point of the cart's frame, the frame on the slope at the origin
-        return [c * x - s * y, s * x + c * y, z]
-
-    deck = {"name": "cart", "shape": {"type": "compound", "parts": [
-        box_part("deck", [0.4, 0.02, 0.2], [0, 0.1, 0]),
-        box_part("front housing", [0.03, 0.03, 0.17], [0.3, 0.07, 0]),
-        box_part("back housing", [0.03, 0.03, 0.17], [-0.3, 0.07, 0])]},
-        "density": 700, "position": placed(0, 0.02, 0), "orientation": turn, "friction": 0.5}
-    bodies = [ground, deck]
-    joints = []
-    wheel_turn = quat_axis([1, 0, 0], math.pi / 2)  # the cylinder's axis (y) along z
-    for x, z, n in [(0.3, 0.21, "front left"), (0.3, -0.21, "front right"), (-0.3, 0.21, "back left"),
-                    (-0.3, -0.21, "back right")]:
-        name = "wheel " + n
-        q = [turn[0] * wheel_turn[0] - turn[3] * wheel_turn[3], turn[0] * wheel_turn[1] - turn[3] * wheel_turn[2],
-             turn[0] * wheel_turn[2] + turn[3] * wheel_turn[1], turn[0] * wheel_turn[3] + turn[3] * wheel_turn[0]]
-        bodies.append({"name": name, "shape": {"type": "cylinder", "radius": 0.07, "half_height": 0.02},
-                       "density": 900, "position": placed(x, 0.07 + 0.0005, z), "orientation": q, "friction": 0.9})
-        joints.append({"name": "axle " + n, "type": "hinge", "body_a": name, "anchor_a": [0, 0, 0],
-                       "axis_a": [0, 1, 0], "body_b": "cart", "anchor_b": [x, 0.0505, z]})
-    write("cart.json", scene(4, bodies, joints))
-
-
-def chairs_pile(count=200):
-    bodies = [floor()]
-    k = 0
-    layer = 0
-    while k < count:
-        for i in range(5):
-            for j in range(5):
-                if k == count:
-                    break
-                x, z = (i - 2) * 0.7, (j - 2) * 0.7
-                angle = 0.3 * ((k * 7) % 11 - 5) / 5
-                bodies.append(chair("chair-%03d" % k, [x, 0.1 + 1.1 * layer, z], quat_axis([0, 1, 0], angle + k)))
-                k += 1
-        layer += 1
-    s = scene(4, bodies, frame_rate=30)
-    # A pile: every landing at the end of its step (thousands of first touches a second).
-    s["settings"]["impacts"] = "end-of-step"
-    write("chairs-200.json", s)
-
-
 if __name__ == "__main__":
     table()
     chair_sample()
     hammer()
     mug_on_board()
-    cart()
-    chairs_pile()

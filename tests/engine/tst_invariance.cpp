@@ -289,6 +289,14 @@ private slots:
         if (!integrator.isEmpty()) scene.settings.integrator = integrator.toStdString();
         double seconds = 2.0, bound = 1e-7;
         if (file == "mesh-shapes.json") bound = 1e-3;
+        // The mug's convex parts are hulls, met by GJK and EPA as mesh-shapes' are: 6e-6 m
+        // apart after 2 s, the ball rolling in it 3e-3 rad/s.
+        if (file == "mug-on-board.json") bound = 1e-2;
+        // The chair falls over onto one corner of its back: 3e-14 m apart until 0.46 s, when
+        // the solve of that one contact point (the same point, depth and feature in both
+        // worlds) gives 0.35578 N s in one and 0.35609 in the other, and 2e-4 m apart after:
+        // a threshold of the contact solve, not of the compound (its manifolds agree).
+        if (file == "chair.json") bound = 1e-2;
         if (file == "ragdoll.json") seconds = 0.5, bound = 1e-5;
         const WorldPose pose = randomWorldPose(seed);
         const SceneDesc turned = turnedScene(scene, pose);
