@@ -1,6 +1,7 @@
 #include "document/document.h"
 
 #include "document/commands.h"
+#include "document/grouping.h"
 
 #include <tumble/io/atomic_file.h>
 #include <tumble/io/convex_parts_cache.h>
@@ -477,6 +478,30 @@ void Document::duplicateBodies(QList<int> indices) {
     for (int i : indices) copies.append(addBody(body(i)));
     undo_->endMacro();
     setSelection(copies);
+}
+
+bool Document::group(QList<int> indices, QString* why) {
+    std::string reason;
+    const auto done = groupBodies(scene_, std::vector<int>(indices.begin(), indices.end()), &reason);
+    if (!done) {
+        if (why) *why = QString::fromStdString(reason);
+        return false;
+    }
+    replaceScene(done->scene, tr("Group %n bodies", nullptr, int(indices.size())), true);
+    setSelection(QList<int>(done->bodies.begin(), done->bodies.end()));
+    return true;
+}
+
+bool Document::ungroup(int index, QString* why) {
+    std::string reason;
+    const auto done = ungroupBody(scene_, index, &reason);
+    if (!done) {
+        if (why) *why = QString::fromStdString(reason);
+        return false;
+    }
+    replaceScene(done->scene, tr("Ungroup %1").arg(QString::fromStdString(body(index).name)), true);
+    setSelection(QList<int>(done->bodies.begin(), done->bodies.end()));
+    return true;
 }
 
 void Document::beginMacro(const QString& text) {

@@ -86,6 +86,12 @@ public:
     void removeBodies(QList<int> indices);
     /// Copies of the bodies, named uniquely, placed after the last one; selects the copies.
     void duplicateBodies(QList<int> indices);
+    /// Makes the bodies one compound body (one undo step; ui::groupBodies says how) and
+    /// selects it; false, with the reason in `why`, when they cannot be grouped.
+    bool group(QList<int> indices, QString* why);
+    /// Makes the compound body `index` a body per part (one undo step; ui::ungroupBody) and
+    /// selects them; false, with the reason in `why`, when it cannot be.
+    bool ungroup(int index, QString* why);
     /// Adds `joint` (one undo step) with its name made unique among the joints, and selects it.
     void addJoint(const JointDesc& joint);
     /// Replaces joint `index` (one undo step; consecutive calls with the same nonzero

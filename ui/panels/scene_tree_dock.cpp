@@ -104,6 +104,24 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
             doc_->removeBodies(doc_->selection());
     });
 
+    group_ = new QAction(tr("&Group"), this);
+    group_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_G));
+    group_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    group_->setStatusTip(tr("Make the selected bodies one body of several parts, each where it is"));
+    connect(group_, &QAction::triggered, this, [this] {
+        QString why;
+        if (!doc_->group(doc_->selection(), &why)) showMessage(why);
+    });
+    ungroup_ = new QAction(tr("U&ngroup"), this);
+    ungroup_->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_G));
+    ungroup_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    ungroup_->setStatusTip(tr("Make the selected compound body a body per part"));
+    connect(ungroup_, &QAction::triggered, this, [this] {
+        const QList<int> rows = doc_->selection();
+        QString why;
+        if (rows.size() == 1 && !doc_->ungroup(rows.front(), &why)) showMessage(why);
+    });
+
     rename_ = new QAction(tr("&Rename"), this);
     rename_->setShortcut(QKeySequence(Qt::Key_F2));
     rename_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
@@ -114,6 +132,8 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     // The shortcuts work wherever the focus is inside the dock (the line editor of a rename
     // keeps Delete for itself).
     addAction(duplicate_);
+    addAction(group_);
+    addAction(ungroup_);
     addAction(delete_);
     addAction(rename_);
 
@@ -158,6 +178,8 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
         menu.addSeparator();
         menu.addAction(rename_);
         menu.addAction(duplicate_);
+        menu.addAction(group_);
+        menu.addAction(ungroup_);
         menu.addAction(delete_);
         rename_->setEnabled(view_->indexAt(pos).isValid());
         menu.exec(view_->viewport()->mapToGlobal(pos));
@@ -246,6 +268,9 @@ void SceneTreeDock::updateActions() {
     duplicate_->setEnabled(any);
     delete_->setEnabled(any || doc_->selectedJoint() >= 0);
     jointMenu_->setEnabled(any && doc_->selection().size() <= 2);
+    group_->setEnabled(doc_->selection().size() >= 2);
+    ungroup_->setEnabled(doc_->selection().size() == 1 &&
+                         doc_->body(doc_->selection().front()).shape.type == ShapeType::Compound);
 }
 
 void SceneTreeDock::addJoint(JointType type) {

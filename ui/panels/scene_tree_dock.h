@@ -31,6 +31,8 @@ public:
     QMenu* addMenu() const { return addMenu_; }
     QAction* addBodyAction(ShapeType type) const { return addActions_.value(type); }
     QAction* duplicateAction() const { return duplicate_; }
+    QAction* groupAction() const { return group_; }
+    QAction* ungroupAction() const { return ungroup_; }
     QAction* deleteAction() const { return delete_; }
     QAction* renameAction() const { return rename_; }
     /// Add Joint: one action per joint type, for the selected bodies (joint_presets.h);
@@ -69,6 +71,8 @@ private:
     QMenu* jointMenu_;
     QMap<JointType, QAction*> jointActions_;
     QAction* duplicate_;
+    QAction* group_;
+    QAction* ungroup_;
     QAction* delete_;
     QAction* rename_;
     // Set while the selection is being copied one way, or while rows move: the other
