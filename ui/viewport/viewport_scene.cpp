@@ -333,7 +333,9 @@ struct ViewportScene::Impl {
             }
             return data;
         };
-        if (s.type != ShapeType::Mesh) {
+        // (Convex parts are drawn as made, each time: parts made anew under the same mesh
+        // must not find the old ones' buffer.)
+        if (s.type != ShapeType::Mesh || s.collision == MeshCollision::ConvexParts) {
             return makeColouredRenderer(build(s), Qt3DRender::QGeometryRenderer::Lines, owner);
         }
         // A mesh's wire: one buffer per mesh and collision kind, a renderer per body (as

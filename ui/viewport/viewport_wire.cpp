@@ -1,6 +1,7 @@
 #include "viewport/viewport_wire.h"
 
 #include <tumble/convex_hull.h>
+#include <tumble/convex_parts.h>
 
 #include <tumble/mass.h>
 
@@ -98,6 +99,15 @@ std::vector<Vec3> collisionWire(const ShapeDesc& s) {
             if (!s.meshData || s.meshData->vertices.empty()) break;
             if (s.collision == MeshCollision::Triangles) {
                 triangleEdges(out, *s.meshData);
+                break;
+            }
+            if (s.collision == MeshCollision::ConvexParts && s.convexParts) {
+                // Each part's hull: the split as the collision sees it.
+                for (const collision::ConvexHull& hull : s.convexParts->parts)
+                    for (const auto& e : hull.edges) {
+                        out.push_back(hull.vertices[size_t(e[0])]);
+                        out.push_back(hull.vertices[size_t(e[1])]);
+                    }
                 break;
             }
             try {
