@@ -66,6 +66,32 @@ private slots:
 
     void cleanup() { dir_.reset(); }
 
+    // A mesh split into convex parts: the first run splits it, says so and keeps the parts
+    // beside the scene; the second takes them from there, with the same run to the bit.
+    void convexPartsMadeOnceAndKept() {
+        // A closed L-shaped prism (concave): two boxes' worth of parts.
+        write("l.obj",
+              "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\n"
+              "v 0 0 1\nv 2 0 1\nv 2 1 1\nv 1 1 1\nv 1 2 1\nv 0 2 1\n"
+              "f 1 6 5 4\nf 1 4 3 2\nf 7 8 9 10\nf 7 10 11 12\n"
+              "f 1 2 8 7\nf 2 3 9 8\nf 3 4 10 9\nf 4 5 11 10\nf 5 6 12 11\nf 6 1 7 12\n");
+        write("l.json", R"({"format": "tumble-scene", "version": 1, "settings": {"duration": 0.5},
+  "bodies": [{"name": "floor", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0]}},
+             {"name": "l", "shape": {"type": "mesh", "file": "l.obj", "collision": "convex-parts", "max_parts": 4},
+              "density": 500, "position": [0, 0.5, 0]}]})");
+        RUN(first, {"--headless", "l.json"});
+        QCOMPARE(first.code, 0);
+        QVERIFY2(first.err.contains("tumble: note: bodies[1].shape: l.obj split into 2 convex parts in "),
+                 qPrintable(first.err));
+        QVERIFY2(first.err.contains("the convex parts are kept in l.convex-parts.json"),
+                 qPrintable(first.err));
+        QVERIFY(QFile::exists(path("l.convex-parts.json")));
+        RUN(second, {"--headless", "l.json"});
+        QCOMPARE(second.code, 0);
+        QVERIFY2(!second.err.contains("split into"), qPrintable(second.err));
+        QCOMPARE(second.out.section("state_hash:", 1), first.out.section("state_hash:", 1));
+    }
+
     void help() {
         RUN(r, {"--help"});
         QCOMPARE(r.code, 0);

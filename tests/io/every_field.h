@@ -141,6 +141,9 @@ inline SceneDesc everyField() {
     lump.shape.type = ShapeType::Mesh;
     lump.shape.file = "meshes/bunny.obj";
     lump.shape.scale = Vec3(0.5, 0.5, 0.5);
+    lump.shape.collision = MeshCollision::ConvexParts;  // with both of its options
+    lump.shape.maxParts = 4;
+    lump.shape.partsTolerance = 0.01;
     lump.position = Vec3(0.2, 0.4, -0.1);
     cart.shape.parts.push_back(lump);
     cart.mass = 12.0;

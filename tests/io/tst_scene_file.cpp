@@ -276,6 +276,25 @@ private slots:
             "bodies[2].shape.parts[0].orientation",
             "drop.json: bodies[2].shape.parts[0].orientation: must not be the zero quaternion");
 
+        // A mesh's split into convex parts: its options only with it, in range.
+        const char* mesh = R"({"type": "box", "half_extents": [0.5, 0.25, 0.5]})";
+        row("max_parts without convex-parts", mesh, R"({"type": "mesh", "file": "m.obj", "max_parts": 4})",
+            "bodies[2].shape.max_parts",
+            "drop.json: bodies[2].shape.max_parts: is for \"collision\": \"convex-parts\" only");
+        row("tolerance with triangles", mesh,
+            R"({"type": "mesh", "file": "m.obj", "collision": "triangles", "tolerance": 0.01})",
+            "bodies[2].shape.tolerance",
+            "drop.json: bodies[2].shape.tolerance: is for \"collision\": \"convex-parts\" only");
+        row("max_parts 0", mesh,
+            R"({"type": "mesh", "file": "m.obj", "collision": "convex-parts", "max_parts": 0})",
+            "bodies[2].shape.max_parts", "drop.json: bodies[2].shape.max_parts: must be from 1 to 256");
+        row("max_parts not an integer", mesh,
+            R"({"type": "mesh", "file": "m.obj", "collision": "convex-parts", "max_parts": 2.5})",
+            "bodies[2].shape.max_parts", "drop.json: bodies[2].shape.max_parts: must be an integer");
+        row("negative tolerance", mesh,
+            R"({"type": "mesh", "file": "m.obj", "collision": "convex-parts", "tolerance": -1})",
+            "bodies[2].shape.tolerance", "drop.json: bodies[2].shape.tolerance: must be greater than 0");
+
         // Numbers a double cannot hold: the JSON library refuses them; so must the reader.
         row("1e999", R"("mass": 1,)", R"("mass": 1e999,)", "bodies[1].mass",
             "drop.json: bodies[1].mass: must be a finite number");
