@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Blender round trip (ctest blender/roundtrip, issue 19): a scene is exported by
+"""Blender round trip (ctest blender/roundtrip, issues 19 and 49): a scene is exported by
 `tumble --headless` as .glb and as .gltf, and as the trajectory CSV; Blender's own glTF
 importer reads each file (import_gltf.py, headless), and every body's location and rotation
 at several frames must be the CSV's, within 1e-5 m and 1e-5 rad, with the objects named as
-the bodies and the animation's keys from frame 0 to the last frame.
+the bodies and the animation's keys from frame 0 to the last frame. A compound body's parts
+are child objects ("BODY PART" or "BODY part J"), each where its body's pose puts it.
 
 usage: roundtrip.py TUMBLE SCENE [SCENE ...]   (needs `blender` on the PATH: ./dev.sh installs it)
 """
@@ -58,6 +59,37 @@ def to_blender(pose):
     return (x, -z, y), (qw, qx, -qz, qy)
 
 
+def qmul(a, b):
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return (aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw)
+
+
+def rotate(q, v):
+    w, x, y, z = qmul(qmul(q, (0.0,) + tuple(v)), (q[0], -q[1], -q[2], -q[3]))
+    return (x, y, z)
+
+
+def unit(q):
+    n = math.sqrt(sum(c * c for c in q))
+    return tuple(c / n for c in q)
+
+
+def part_poses(scene):
+    """{child object name: (body name, part position, part orientation)} of the compounds."""
+    with open(scene) as f:
+        bodies = json.load(f)["bodies"]
+    out = {}
+    for body in bodies:
+        if body["shape"]["type"] != "compound":
+            continue
+        for j, part in enumerate(body["shape"]["parts"]):
+            name = body["name"] + (" " + part["name"] if part.get("name") else " part %d" % j)
+            out[name] = (body["name"], part.get("position", [0, 0, 0]), unit(part.get("orientation", [1, 0, 0, 0])))
+    return out
+
+
 def angle_between(q1, q2):
     dot = abs(sum(a * b for a, b in zip(q1, q2)))
     n1 = math.sqrt(sum(a * a for a in q1))
@@ -84,11 +116,29 @@ def check(tumble, scene, fmt, work):
         fail(f"{name}.{fmt}: Blender did not import it (exit {run.returncode}):\n{run.stdout[-2000:]}{run.stderr[-2000:]}")
     with open(report) as f:
         got = json.load(f)
-    # The objects are the bodies, named as in the scene, and the scene's root node above them.
+    # The objects are the bodies, named as in the scene, the scene's root node above them and
+    # the compounds' parts below theirs.
+    parts = part_poses(scene)
     extra = set(got["objects"]) - set(poses)
-    if not set(poses) <= set(got["objects"]) or extra != {name}:
-        fail(f"{name}.{fmt}: Blender's objects {sorted(got['objects'])} are not the bodies {sorted(poses)} "
-             "and one root")
+    root = name
+    while root in poses:  # the root is never named as a body
+        root += " scene"
+    if not set(poses) <= set(got["objects"]) or extra != {root} | set(parts):
+        fail(f"{name}.{fmt}: Blender's objects {sorted(got['objects'])} are not the bodies {sorted(poses)}, "
+             f"one root and the parts {sorted(parts)}")
+    # Each part where its body puts it: the body's pose times the part's.
+    for part, (body, offset, turn) in parts.items():
+        for frame in frames:
+            x, y, z, qw, qx, qy, qz = poses[body][frame]
+            q = (qw, qx, qy, qz)
+            p = tuple(a + b for a, b in zip(rotate(q, offset), (x, y, z)))
+            position, rotation = to_blender(p + qmul(q, turn))
+            seen = got["objects"][part][str(frame)]
+            if math.dist(position, seen[:3]) > TOLERANCE or angle_between(rotation, seen[3:]) > TOLERANCE:
+                fail(f"{name}.{fmt}: part {part} at frame {frame}: Blender has {seen}, the body's pose and "
+                     f"the part's give {position + rotation}")
+    if parts:
+        print(f"{name}.{fmt}: {len(parts)} parts where their bodies put them")
     moving = [b for b in poses if any(poses[b][k] != poses[b][0] for k in poses[b])]
     if moving and (got["first_key"] != 0 or got["last_key"] != last):
         fail(f"{name}.{fmt}: the animation's keys run from frame {got['first_key']} to {got['last_key']}, "
