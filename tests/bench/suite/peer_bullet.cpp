@@ -91,23 +91,25 @@ btScalar combinedFriction(const btCollisionObject* a, const btCollisionObject* b
 
 // The radius of a sphere that fits inside the shape (about its origin): Bullet's CCD sweeps
 // a sphere of half this size once a body moves farther than this in one step.
-double innerRadius(const BodyModel& b) {
-    const collision::Shape& c = b.collider;
-    switch (b.shape.type) {
-        case ShapeType::Sphere:
-        case ShapeType::Capsule: return c.radius;
-        case ShapeType::Box: return c.halfExtents.minCoeff();
-        case ShapeType::Cylinder: return std::min(c.radius, c.halfHeight);
-        case ShapeType::Mesh:
-            if (c.hull) {
-                double r = std::numeric_limits<double>::infinity();
-                for (const auto& f : c.hull->faces)
-                    r = std::min(r, f.offset - f.normal.dot(c.hull->interiorPoint));
-                return r;
-            }
-            return 0.0;
-        case ShapeType::Plane:
-        case ShapeType::Compound: return 0.0;  // (refused by peer::prepare)
+double innerRadius(const collision::Shape& c) {
+    switch (c.kind) {
+        case collision::Kind::Sphere:
+        case collision::Kind::Capsule: return c.radius;
+        case collision::Kind::Box: return c.halfExtents.minCoeff();
+        case collision::Kind::Cylinder: return std::min(c.radius, c.halfHeight);
+        case collision::Kind::Hull: {
+            double r = std::numeric_limits<double>::infinity();
+            for (const auto& f : c.hull->faces)
+                r = std::min(r, f.offset - f.normal.dot(c.hull->interiorPoint));
+            return r;
+        }
+        case collision::Kind::Compound: {  // the thinnest part's
+            double r = std::numeric_limits<double>::infinity();
+            for (const auto& part : c.compound->parts) r = std::min(r, innerRadius(part.shape));
+            return r;
+        }
+        case collision::Kind::Plane:
+        case collision::Kind::Mesh: return 0.0;
     }
     return 0.0;
 }
@@ -212,7 +214,42 @@ btCollisionShape* BulletAdapter::makeShape(const BodyModel& b, const Vec3& posit
                 meshes_.push_back(std::move(tm));
             }
             break;
-        case ShapeType::Compound: *why = "compound bodies are not translated yet"; return nullptr;
+        case ShapeType::Compound: {
+            // A btCompoundShape of the parts (spheres, boxes, capsules, cylinders, hulls), each
+            // at its pose in the body frame. (The parts' own materials are not translated:
+            // Bullet takes one per body.)
+            auto compound = std::make_unique<btCompoundShape>(true, int(c.compound->parts.size()));
+            for (const collision::Compound::Part& part : c.compound->parts) {
+                const collision::Shape& ps = part.shape;
+                std::unique_ptr<btCollisionShape> child;
+                switch (ps.kind) {
+                    case collision::Kind::Sphere: child = std::make_unique<btSphereShape>(ps.radius); break;
+                    case collision::Kind::Box:
+                        child = std::make_unique<btBoxShape>(bt(ps.halfExtents));
+                        break;
+                    case collision::Kind::Capsule:
+                        child = std::make_unique<btCapsuleShape>(ps.radius, 2.0 * ps.halfHeight);
+                        break;
+                    case collision::Kind::Cylinder:
+                        child =
+                            std::make_unique<btCylinderShape>(btVector3(ps.radius, ps.halfHeight, ps.radius));
+                        break;
+                    case collision::Kind::Hull: {
+                        auto hull = std::make_unique<btConvexHullShape>();
+                        for (const Vec3& v : ps.hull->vertices) hull->addPoint(bt(v), false);
+                        hull->recalcLocalAabb();
+                        hull->setMargin(0.001);
+                        child = std::move(hull);
+                        break;
+                    }
+                    default: *why = "a compound part of this kind is not translated"; return nullptr;
+                }
+                compound->addChildShape(btTransform(bt(Quat(part.pose.R)), bt(part.pose.p)), child.get());
+                shapes_.push_back(std::move(child));
+            }
+            s = std::move(compound);
+            break;
+        }
     }
     shapes_.push_back(std::move(s));
     return shapes_.back().get();
@@ -234,10 +271,13 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
         return false;
     }
     std::string reason;
-    if (!peer::prepare(scene, peer::PeerCaps{false, true,
-                                                  peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
-                                                      peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed),
-                                                  true, true, true}, &ps_, &reason)) {
+    if (!peer::prepare(
+            scene,
+            peer::PeerCaps{false, true,
+                           peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
+                               peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed),
+                           true, true, true, true},
+            &ps_, &reason)) {
         if (why) *why = reason;
         return false;
     }
@@ -322,7 +362,7 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
             rb->setFlags(flags | gyro);
             if (!scene.settings.sleeping) rb->setActivationState(DISABLE_DEACTIVATION);
             // Continuous collision for a body that moves more than its inner radius in a step.
-            const double inner = innerRadius(b);
+            const double inner = innerRadius(b.collider);
             rb->setCcdMotionThreshold(inner);
             rb->setCcdSweptSphereRadius(0.5 * inner);
         } else {

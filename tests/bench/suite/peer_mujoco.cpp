@@ -242,6 +242,36 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
     auto geom = [&](int i, const Vec3& pos, const Quat& q) {
         const BodyModel& b = model.bodies[i];
         const collision::Shape& c = b.collider;
+        if (b.shape.type == ShapeType::Compound) {
+            // A geom per part, each at its place in the body (the body's material on all).
+            int k = 0;
+            for (const collision::Compound::Part& part : c.compound->parts) {
+                os << "<geom name=\"g" << i << "_" << k++ << "\" condim=\"3\" friction=\"" << b.friction
+                   << " 0 0\" solref=\"" << solref(dt, zeta.at(b.restitution))
+                   << "\" solimp=\"0.99 0.99 0.001\" priority=\"" << rank.at(b.restitution) << "\" ";
+                const collision::Shape& ps = part.shape;
+                Quat turn = q * Quat(part.pose.R);
+                switch (ps.kind) {
+                    case collision::Kind::Sphere:
+                        os << "type=\"sphere\" size=\"" << ps.radius << "\" ";
+                        break;
+                    case collision::Kind::Box:
+                        os << "type=\"box\" size=\"" << str(ps.halfExtents) << "\" ";
+                        break;
+                    case collision::Kind::Capsule:
+                        os << "type=\"capsule\" size=\"" << ps.radius << ' ' << ps.halfHeight << "\" ";
+                        turn = turn * peer::zToY();
+                        break;
+                    default:  // a cylinder (hull parts are refused by load)
+                        os << "type=\"cylinder\" size=\"" << ps.radius << ' ' << ps.halfHeight << "\" ";
+                        turn = turn * peer::zToY();
+                        break;
+                }
+                os << "pos=\"" << str(Vec3(pos + q * part.pose.p)) << "\" quat=\"" << str(turn.normalized())
+                   << "\"/>\n";
+            }
+            return;
+        }
         os << "<geom name=\"g" << i << "\" condim=\"3\" friction=\"" << b.friction << " 0 0\" solref=\""
            << solref(dt, zeta.at(b.restitution)) << "\" solimp=\"0.99 0.99 0.001\" priority=\""
            << rank.at(b.restitution) << "\" ";
@@ -266,7 +296,7 @@ std::string MujocoAdapter::xml(double dt, int integrator) const {
                    << str(Quat::FromTwoVectors(Vec3::UnitZ(), nrm)) << "\"/>\n";
                 return;
             }
-            case ShapeType::Compound: return;  // (refused by peer::prepare)
+            case ShapeType::Compound: return;  // (above)
         }
         os << "pos=\"" << str(pos) << "\" quat=\"" << str(shapeQ.normalized()) << "\"/>\n";
     };
@@ -328,12 +358,21 @@ bool MujocoAdapter::load(const SceneDesc& scene, const std::string& mode, double
         return false;
     }
     std::string reason;
-    if (!peer::prepare(scene,
-                       peer::PeerCaps{false, false, peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge)},
-                       &ps_, &reason)) {
+    if (!peer::prepare(
+            scene,
+            peer::PeerCaps{false, false, peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge),
+                           false, false, false, true},
+            &ps_, &reason)) {
         if (why) *why = reason;
         return false;
     }
+    for (const BodyModel& b : ps_.model.bodies)
+        if (b.collider.kind == collision::Kind::Compound)
+            for (const auto& part : b.collider.compound->parts)
+                if (part.shape.kind == collision::Kind::Hull || part.shape.kind == collision::Kind::Mesh) {
+                    if (why) *why = b.name + ": a compound's mesh parts are not translated to MuJoCo";
+                    return false;
+                }
     dt_ = dt;
     time_ = 0.0;
     overflow_ = false;

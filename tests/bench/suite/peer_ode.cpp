@@ -119,6 +119,7 @@ private:
     void clear();
     void makeJoint(const JointModel& j);
     dGeomID makeGeom(const BodyModel& b, const Vec3& position, const Quat& q);
+    bool addCompound(const BodyModel& b, const BodyDesc& d, int i, bool gyro, Body& out);
     static void nearCallback(void* self, dGeomID a, dGeomID b);
     void collide(dGeomID a, dGeomID b);
 
@@ -201,6 +202,72 @@ dGeomID OdeAdapter::makeGeom(const BodyModel& b, const Vec3& position, const Qua
     return nullptr;
 }
 
+bool OdeAdapter::addCompound(const BodyModel& b, const BodyDesc& d, int i, bool gyro, Body& out) {
+    std::vector<dGeomID> geoms;
+    for (const collision::Compound::Part& part : b.collider.compound->parts) {
+        const collision::Shape& c = part.shape;
+        dGeomID g = nullptr;
+        switch (c.kind) {
+            case collision::Kind::Sphere: g = dCreateSphere(space_, c.radius); break;
+            case collision::Kind::Box:
+                g = dCreateBox(space_, 2.0 * c.halfExtents.x(), 2.0 * c.halfExtents.y(),
+                               2.0 * c.halfExtents.z());
+                break;
+            case collision::Kind::Capsule: g = dCreateCapsule(space_, c.radius, 2.0 * c.halfHeight); break;
+            case collision::Kind::Cylinder: g = dCreateCylinder(space_, c.radius, 2.0 * c.halfHeight); break;
+            default: return false;
+        }
+        dGeomSetData(g, reinterpret_cast<void*>(std::intptr_t(i)));
+        geoms.push_back(g);
+    }
+    auto partTurn = [&](size_t k) {
+        const collision::Shape& c = b.collider.compound->parts[k].shape;
+        const Quat q(b.collider.compound->parts[k].pose.R);
+        return c.kind == collision::Kind::Capsule || c.kind == collision::Kind::Cylinder
+                   ? Quat(q * peer::zToY())
+                   : q;
+    };
+    dQuaternion qq;
+    if (b.standsStill()) {
+        out.still.x = ps_.com[i];
+        out.still.q = ps_.q[i];
+        for (size_t k = 0; k < geoms.size(); ++k) {
+            const Vec3 p = d.position + ps_.q[i] * b.collider.compound->parts[k].pose.p;
+            dGeomSetPosition(geoms[k], p.x(), p.y(), p.z());
+            setQuat(qq, Quat(ps_.q[i] * partTurn(k)));
+            dGeomSetQuaternion(geoms[k], qq);
+        }
+        return true;
+    }
+    out.id = dBodyCreate(world_);
+    if (b.motion == Motion::Dynamic) {
+        dMass mass;
+        const Mat3& I = b.inertia;
+        dMassSetParameters(&mass, b.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
+        dBodySetMass(out.id, &mass);
+        dBodySetGyroscopicMode(out.id, gyro ? 1 : 0);
+    } else {
+        dBodySetKinematic(out.id);
+    }
+    const Vec3& x = ps_.com[i];
+    dBodySetPosition(out.id, x.x(), x.y(), x.z());
+    setQuat(qq, ps_.q[i]);
+    dBodySetQuaternion(out.id, qq);
+    dBodySetLinearVel(out.id, ps_.v[i].x(), ps_.v[i].y(), ps_.v[i].z());
+    dBodySetAngularVel(out.id, ps_.w[i].x(), ps_.w[i].y(), ps_.w[i].z());
+    dBodySetLinearDamping(out.id, 0.0);
+    dBodySetAngularDamping(out.id, 0.0);
+    dBodySetMaxAngularSpeed(out.id, dInfinity);
+    for (size_t k = 0; k < geoms.size(); ++k) {
+        dGeomSetBody(geoms[k], out.id);
+        const Vec3 offset = b.collider.compound->parts[k].pose.p - b.centerOfMass;
+        dGeomSetOffsetPosition(geoms[k], offset.x(), offset.y(), offset.z());
+        setQuat(qq, partTurn(k));
+        dGeomSetOffsetQuaternion(geoms[k], qq);
+    }
+    return true;
+}
+
 bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) {
     clear();
     bool gyro = true;
@@ -219,12 +286,14 @@ bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt
         return false;
     }
     std::string reason;
-    if (!peer::prepare(scene, peer::PeerCaps{true, true,
-                                                  peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
-                                                      peer::jointBit(JointType::Slider) |
-                                                      peer::jointBit(JointType::Fixed) |
-                                                      peer::jointBit(JointType::Distance),
-                                                  true, true, false}, &ps_, &reason)) {
+    if (!peer::prepare(
+            scene,
+            peer::PeerCaps{true, true,
+                           peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
+                               peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed) |
+                               peer::jointBit(JointType::Distance),
+                           true, true, false, true},
+            &ps_, &reason)) {
         if (why) *why = reason;
         return false;
     }
@@ -253,6 +322,19 @@ bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt
         Body out;
         out.restitution = b.restitution;
         out.friction = b.friction;
+        if (b.shape.type == ShapeType::Compound) {
+            // A geom per part on one body, each offset to its place (its own materials are
+            // not translated: the contact callback takes the body's).
+            if (!addCompound(b, d, i, gyro, out)) {
+                if (why)
+                    *why =
+                        "bodies[" + std::to_string(i) + "]: a compound part of this kind is not translated";
+                clear();
+                return false;
+            }
+            bodies_.push_back(out);
+            continue;
+        }
         dGeomID geom = makeGeom(b, d.position, ps_.q[i]);
         if (!geom) {
             if (why) *why = "bodies[" + std::to_string(i) + "]: the shape is not translated";
@@ -359,6 +441,7 @@ void OdeAdapter::nearCallback(void* self, dGeomID a, dGeomID b) {
 void OdeAdapter::collide(dGeomID ga, dGeomID gb) {
     dBodyID ba = dGeomGetBody(ga), bb = dGeomGetBody(gb);
     if (!ba && !bb) return;
+    if (ba && ba == bb) return;  // two parts of one compound
     if (ba && bb && dAreConnected(ba, bb)) return;
     const Body& A = bodies_[std::intptr_t(dGeomGetData(ga))];
     const Body& B = bodies_[std::intptr_t(dGeomGetData(gb))];

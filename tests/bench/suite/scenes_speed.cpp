@@ -211,6 +211,32 @@ SceneDesc ragdollPile(int count) {
     return s;
 }
 
+// `count` chairs (resources/scenes/chair.json's: a seat, a back and four legs, one compound
+// body of 4.9 kg) in layers of 5 x 5, 0.7 m apart and 1.1 m up, each turned about the
+// vertical, dropped onto the floor; impacts at the end of the step, as the peers take them.
+SceneDesc chairPile(int count) {
+    const SceneDesc one = sampleScene("chair.json");
+    SceneDesc s;
+    s.settings = one.settings;
+    s.settings.impacts = ImpactTiming::EndOfStep;
+    BodyDesc chair;
+    for (const BodyDesc& b : one.bodies) {
+        if (b.motion == Motion::Static)
+            s.bodies.push_back(b);
+        else
+            chair = b;
+    }
+    for (int k = 0; k < count; ++k) {
+        BodyDesc c = chair;
+        c.name = "chair-" + std::to_string(k);
+        const int layer = k / 25, i = (k % 25) / 5, j = k % 5;
+        c.position = Vec3((i - 2) * 0.7, 0.1 + 1.1 * layer, (j - 2) * 0.7);
+        c.orientation = Quat(Eigen::AngleAxisd(k + 0.3 * ((k * 7) % 11 - 5) / 5.0, Vec3::UnitY()));
+        s.bodies.push_back(c);
+    }
+    return s;
+}
+
 // Body names must be unique: the builders above name by kind, this numbers them.
 SceneDesc named(SceneDesc s) {
     for (size_t i = 0; i < s.bodies.size(); ++i)
@@ -273,6 +299,10 @@ std::vector<SpeedScene> speedScenes() {
                    "20 ragdolls (10 bodies, 9 joints each: balls and limited hinges) dropped in four "
                    "columns of five onto the ground",
                    [] { return ragdollPile(20); }, 1.0 / 60.0, 300, 10});
+    out.push_back({"chair-pile",
+                   "200 chairs (compound bodies of six boxes) dropped in eight layers of 5 x 5 onto the "
+                   "floor, impacts at the end of the step",
+                   [] { return chairPile(200); }, 1.0 / 60.0, 240, 10});
     return out;
 }
 
