@@ -120,6 +120,7 @@ private:
     void makeJoint(const JointModel& j);
     dGeomID makeGeom(const BodyModel& b, const Vec3& position, const Quat& q);
     bool addCompound(const BodyModel& b, const BodyDesc& d, int i, bool gyro, Body& out);
+    dBodyID makeBody(const BodyModel& b, int i, bool gyro);
     static void nearCallback(void* self, dGeomID a, dGeomID b);
     void collide(dGeomID a, dGeomID b);
 
@@ -202,6 +203,32 @@ dGeomID OdeAdapter::makeGeom(const BodyModel& b, const Vec3& position, const Qua
     return nullptr;
 }
 
+// The ODE body of a moving body: its mass and inertia about the centre of mass (dynamic) or
+// kinematic, placed and moving as the scene says, undamped.
+dBodyID OdeAdapter::makeBody(const BodyModel& b, int i, bool gyro) {
+    const dBodyID id = dBodyCreate(world_);
+    if (b.motion == Motion::Dynamic) {
+        dMass mass;
+        const Mat3& I = b.inertia;
+        dMassSetParameters(&mass, b.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
+        dBodySetMass(id, &mass);
+        dBodySetGyroscopicMode(id, gyro ? 1 : 0);
+    } else {
+        dBodySetKinematic(id);
+    }
+    const Vec3& x = ps_.com[i];
+    dBodySetPosition(id, x.x(), x.y(), x.z());
+    dQuaternion qq;
+    setQuat(qq, ps_.q[i]);
+    dBodySetQuaternion(id, qq);
+    dBodySetLinearVel(id, ps_.v[i].x(), ps_.v[i].y(), ps_.v[i].z());
+    dBodySetAngularVel(id, ps_.w[i].x(), ps_.w[i].y(), ps_.w[i].z());
+    dBodySetLinearDamping(id, 0.0);
+    dBodySetAngularDamping(id, 0.0);
+    dBodySetMaxAngularSpeed(id, dInfinity);
+    return id;
+}
+
 bool OdeAdapter::addCompound(const BodyModel& b, const BodyDesc& d, int i, bool gyro, Body& out) {
     std::vector<dGeomID> geoms;
     for (const collision::Compound::Part& part : b.collider.compound->parts) {
@@ -239,25 +266,7 @@ bool OdeAdapter::addCompound(const BodyModel& b, const BodyDesc& d, int i, bool 
         }
         return true;
     }
-    out.id = dBodyCreate(world_);
-    if (b.motion == Motion::Dynamic) {
-        dMass mass;
-        const Mat3& I = b.inertia;
-        dMassSetParameters(&mass, b.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
-        dBodySetMass(out.id, &mass);
-        dBodySetGyroscopicMode(out.id, gyro ? 1 : 0);
-    } else {
-        dBodySetKinematic(out.id);
-    }
-    const Vec3& x = ps_.com[i];
-    dBodySetPosition(out.id, x.x(), x.y(), x.z());
-    setQuat(qq, ps_.q[i]);
-    dBodySetQuaternion(out.id, qq);
-    dBodySetLinearVel(out.id, ps_.v[i].x(), ps_.v[i].y(), ps_.v[i].z());
-    dBodySetAngularVel(out.id, ps_.w[i].x(), ps_.w[i].y(), ps_.w[i].z());
-    dBodySetLinearDamping(out.id, 0.0);
-    dBodySetAngularDamping(out.id, 0.0);
-    dBodySetMaxAngularSpeed(out.id, dInfinity);
+    out.id = makeBody(b, i, gyro);
     for (size_t k = 0; k < geoms.size(); ++k) {
         dGeomSetBody(geoms[k], out.id);
         const Vec3 offset = b.collider.compound->parts[k].pose.p - b.centerOfMass;
@@ -353,26 +362,7 @@ bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt
                 dGeomSetQuaternion(geom, qq);
             }
         } else {
-            out.id = dBodyCreate(world_);
-            if (b.motion == Motion::Dynamic) {
-                dMass mass;
-                const Mat3& I = b.inertia;
-                dMassSetParameters(&mass, b.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2),
-                                   I(1, 2));
-                dBodySetMass(out.id, &mass);
-                dBodySetGyroscopicMode(out.id, gyro ? 1 : 0);
-            } else {
-                dBodySetKinematic(out.id);
-            }
-            const Vec3& x = ps_.com[i];
-            dBodySetPosition(out.id, x.x(), x.y(), x.z());
-            setQuat(qq, ps_.q[i]);
-            dBodySetQuaternion(out.id, qq);
-            dBodySetLinearVel(out.id, ps_.v[i].x(), ps_.v[i].y(), ps_.v[i].z());
-            dBodySetAngularVel(out.id, ps_.w[i].x(), ps_.w[i].y(), ps_.w[i].z());
-            dBodySetLinearDamping(out.id, 0.0);
-            dBodySetAngularDamping(out.id, 0.0);
-            dBodySetMaxAngularSpeed(out.id, dInfinity);
+            out.id = makeBody(b, i, gyro);
             dGeomSetBody(geom, out.id);
             const Vec3& com = b.centerOfMass;
             if (com.norm() > 0.0) dGeomSetOffsetPosition(geom, -com.x(), -com.y(), -com.z());
