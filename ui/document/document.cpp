@@ -204,23 +204,28 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
     // different files share a name).
     QMap<QString, QString> copyOf;  // source -> name in the folder
     QSet<QString> names;
-    for (const BodyDesc& b : scene_.bodies) {
-        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
-        const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+    // Every mesh shape: a body's, or a compound's part's.
+    std::vector<std::pair<const BodyDesc*, const ShapeDesc*>> meshShapes;
+    for (const BodyDesc& b : scene_.bodies)
+        forEachShape(b, {}, [&](const ShapeDesc& s, const std::string&) {
+            if (s.type == ShapeType::Mesh && !s.file.empty()) meshShapes.emplace_back(&b, &s);
+        });
+    for (const auto& [b, s] : meshShapes) {
+        const QString source = QFileInfo(QString::fromStdString(s->file)).absoluteFilePath();
         if (copyOf.contains(source)) continue;
-        const QString change = meshFileChange(b);
+        const QString change = meshFileChange(*s);
         if (change == QLatin1String("changed")) {
             if (error)
                 *error =
                     tr("%1: body \"%2\": the mesh file changed on disk since it was loaded, so a copy would "
                        "not be the mesh the scene shows; open the scene again to load it anew")
-                        .arg(source, QString::fromStdString(b.name));
+                        .arg(source, QString::fromStdString(b->name));
             return false;
         }
         if (!QFileInfo(source).isReadable()) {
             if (error)
                 *error = tr("%1: body \"%2\": the mesh file cannot be read%3")
-                             .arg(source, QString::fromStdString(b.name),
+                             .arg(source, QString::fromStdString(b->name),
                                   change == QLatin1String("removed") ? tr(" (removed since it was loaded)")
                                                                      : QString());
             return false;
@@ -248,11 +253,12 @@ bool Document::saveWithMeshes(const QString& path, QString* error) {
         }
     }
     SceneDesc moved = scene_;
-    for (BodyDesc& b : moved.bodies) {
-        if (b.shape.type != ShapeType::Mesh || b.shape.file.empty()) continue;
-        const QString source = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
-        b.shape.file = QDir(folder).filePath(copyOf.value(source)).toStdString();
-    }
+    for (BodyDesc& b : moved.bodies)
+        forEachShape(b, {}, [&](ShapeDesc& s, const std::string&) {
+            if (s.type != ShapeType::Mesh || s.file.empty()) return;
+            const QString source = QFileInfo(QString::fromStdString(s.file)).absoluteFilePath();
+            s.file = QDir(folder).filePath(copyOf.value(source)).toStdString();
+        });
     // Every copy and the scene are written out before any replaces its old file (a full disk
     // or a read-only one leaves the old save whole, copies included), then the copies first:
     // the new scene never names a copy not yet there.
@@ -388,16 +394,17 @@ Document::FileStamp Document::stampOf(const QString& file) {
 }
 
 void Document::stampMeshes() {
-    for (const BodyDesc& b : scene_.bodies) {
-        if (b.shape.type != ShapeType::Mesh || !b.shape.meshData || b.shape.file.empty()) continue;
-        const QString file = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
-        if (!meshStamps_.contains(file)) meshStamps_.insert(file, stampOf(file));
-    }
+    for (const BodyDesc& b : scene_.bodies)
+        forEachShape(b, {}, [&](const ShapeDesc& s, const std::string&) {
+            if (s.type != ShapeType::Mesh || !s.meshData || s.file.empty()) return;
+            const QString file = QFileInfo(QString::fromStdString(s.file)).absoluteFilePath();
+            if (!meshStamps_.contains(file)) meshStamps_.insert(file, stampOf(file));
+        });
 }
 
-QString Document::meshFileChange(const BodyDesc& b) const {
-    if (b.shape.type != ShapeType::Mesh || !b.shape.meshData || b.shape.file.empty()) return {};
-    const QString file = QFileInfo(QString::fromStdString(b.shape.file)).absoluteFilePath();
+QString Document::meshFileChange(const ShapeDesc& s) const {
+    if (s.type != ShapeType::Mesh || !s.meshData || s.file.empty()) return {};
+    const QString file = QFileInfo(QString::fromStdString(s.file)).absoluteFilePath();
     const auto it = meshStamps_.constFind(file);
     if (it == meshStamps_.constEnd() || it->size < 0) return {};
     const FileStamp now = stampOf(file);
@@ -407,11 +414,12 @@ QString Document::meshFileChange(const BodyDesc& b) const {
 
 QStringList Document::meshFilesChangedOnDisk() const {
     QStringList out;
-    for (const BodyDesc& b : scene_.bodies) {
-        const QString change = meshFileChange(b);
-        const QString line = QStringLiteral("%1 (%2)").arg(QString::fromStdString(b.shape.file), change);
-        if (!change.isEmpty() && !out.contains(line)) out << line;
-    }
+    for (const BodyDesc& b : scene_.bodies)
+        forEachShape(b, {}, [&](const ShapeDesc& s, const std::string&) {
+            const QString change = meshFileChange(s);
+            const QString line = QStringLiteral("%1 (%2)").arg(QString::fromStdString(s.file), change);
+            if (!change.isEmpty() && !out.contains(line)) out << line;
+        });
     return out;
 }
 

@@ -152,7 +152,7 @@ private:
     void stampMeshes();  // stamps the mesh files of bodies with a mesh not stamped yet
     static FileStamp stampOf(const QString& file);
     // "(removed)", "(changed)" or "" for the body's mesh file.
-    QString meshFileChange(const BodyDesc& body) const;
+    QString meshFileChange(const ShapeDesc& shape) const;
     QList<int> selection_;
     int selectedJoint_ = -1;
     QUndoStack* undo_ = nullptr;

@@ -380,6 +380,34 @@ private slots:
         QCOMPARE(int(again.body(2).shape.meshData->triangles.size()), 4);
     }
 
+    // A compound's mesh part is a mesh like a body's: opened from its folder, copied by Save
+    // With Meshes, and found again without the original.
+    void compoundMeshPartsTravelWithTheScene() {
+        QTemporaryDir root;
+        QVERIFY(QDir(root.path()).mkpath("src/parts") && QDir(root.path()).mkpath("out"));
+        QVERIFY(QFile::copy(kMeshes + "/tetrahedron.off", root.filePath("src/parts/lump.off")));
+        const QString first = root.filePath("src/cart.json");
+        QFile f(first);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(R"({"format": "tumble-scene", "version": 1, "bodies": [
+  {"name": "cart", "mass": 2, "shape": {"type": "compound", "parts": [
+    {"shape": {"type": "box", "half_extents": [0.5, 0.1, 0.3]}},
+    {"name": "lump", "shape": {"type": "mesh", "file": "parts/lump.off"}, "position": [0, 0.2, 0]}]}}]})");
+        f.close();
+        Document doc;
+        QString error;
+        QVERIFY2(doc.open(first, &error), qPrintable(error));
+        QVERIFY(doc.body(0).shape.parts[1].shape.meshData);
+        const QString target = root.filePath("out/cart.json");
+        QVERIFY2(doc.saveWithMeshes(target, &error), qPrintable(error));
+        QVERIFY(QFile::exists(root.filePath("out/cart-meshes/lump.off")));
+        QVERIFY(readAll(target).contains("\"cart-meshes/lump.off\""));
+        QVERIFY(QDir(root.filePath("src")).removeRecursively());
+        Document again;
+        QVERIFY2(again.open(target, &error), qPrintable(error));
+        QCOMPARE(int(again.body(0).shape.parts[1].shape.meshData->triangles.size()), 4);
+    }
+
     // A mesh that cannot be read: a message naming it, and nothing written.
     void saveWithMeshesRefusesAMissingMesh() {
         QTemporaryDir root;
