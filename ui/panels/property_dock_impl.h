@@ -174,7 +174,23 @@ struct PropertyDock::Impl {
     }
 
     std::optional<Computed> computed(const BodyDesc& b) {
-        if (b.motion != Motion::Dynamic || (!b.mass && !b.density)) return std::nullopt;
+        if (b.motion != Motion::Dynamic) return std::nullopt;
+        if (b.shape.type == ShapeType::Compound) {
+            // The parts' sum, as compile makes it (each part may have its own density).
+            try {
+                SceneDesc s;
+                BodyDesc c = b;
+                c.forces.clear();
+                c.inertia.reset();
+                c.centerOfMass.reset();
+                s.bodies.push_back(c);
+                const Model m = compile(s);
+                return Computed{m.bodies[0].mass, m.bodies[0].centerOfMass, m.bodies[0].inertia};
+            } catch (const std::exception&) {
+                return std::nullopt;
+            }
+        }
+        if (!b.mass && !b.density) return std::nullopt;
         if (isPrimitive(b.shape.type)) {
             const double m = b.mass ? *b.mass : *b.density * shapeVolume(b.shape);
             if (!std::isfinite(m) || !(m > 0.0)) return std::nullopt;

@@ -163,6 +163,31 @@ private slots:
         QCOMPARE(inertia->cell(0, 0)->suffix(), QString(" kg·m²"));
     }
 
+    // A compound's mass, centre and inertia shown are its parts' sum (compile's): two unit
+    // cubes of their own densities 100 and 300 at x = ±1 weigh 400 kg, centred at x = 0.5,
+    // Iyy = 400/6 (each cube's m/6) + 100 (1.5²) + 300 (0.5²) = 366.67, Ixx = 400/6.
+    void compoundShowsItsPartsSum() {
+        Fixture f;
+        BodyDesc c;
+        c.name = "pair";
+        c.shape.type = ShapeType::Compound;
+        for (double x : {-1.0, 1.0}) {
+            PartDesc p;
+            p.shape.type = ShapeType::Box;
+            p.shape.halfExtents = Vec3(0.5, 0.5, 0.5);
+            p.position = Vec3(x, 0, 0);
+            p.density = x < 0 ? 100.0 : 300.0;
+            c.shape.parts.push_back(p);
+        }
+        const int index = f.doc.addBody(c);
+        f.doc.setSelection({index});
+        QCOMPARE(f.find<QComboBox>("shape.type")->currentText(), QString("Compound"));
+        auto* inertia = f.find<InertiaEdit>("inertia");
+        QVERIFY2(std::abs(inertia->cell(1, 1)->value() - (400.0 / 6.0 + 225.0 + 75.0)) < 1e-6,
+                 qPrintable(QString::number(inertia->cell(1, 1)->value(), 'g', 17)));
+        QVERIFY(std::abs(inertia->cell(0, 0)->value() - 400.0 / 6.0) < 1e-6);
+    }
+
     void nameEditAndUndo() {
         Fixture f;
         auto* name = f.find<QLineEdit>("name");
