@@ -137,6 +137,54 @@ class TestRaycast : public QObject {
     Q_OBJECT
 
 private slots:
+    // A compound is hit on its nearest part, which the hit names, in the scene as described
+    // and in the compiled model (turned, placed away from the origin): a table seen from
+    // above is hit on its top, from below between its legs on the top's underside, and on a
+    // leg from the side.
+    void compoundHitsItsNearestPart() {
+        BodyDesc t;
+        t.name = "table";
+        t.shape.type = ShapeType::Compound;
+        auto box = [](const Vec3& half, const Vec3& at) {
+            PartDesc p;
+            p.shape.type = ShapeType::Box;
+            p.shape.halfExtents = half;
+            p.position = at;
+            return p;
+        };
+        t.shape.parts = {box(Vec3(0.6, 0.05, 0.4), Vec3(0, 0.75, 0)),
+                         box(Vec3(0.05, 0.35, 0.05), Vec3(0.5, 0.35, 0.3)),
+                         box(Vec3(0.05, 0.35, 0.05), Vec3(-0.5, 0.35, 0.3))};
+        t.mass = 10.0;
+        const Quat q(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+        t.orientation = q;
+        t.position = Vec3(3, -2, 5);
+        SceneDesc scene;
+        scene.bodies = {t};
+        const Model model = compile(scene);
+        const State state = initialState(model, scene);
+        auto world = [&](const Vec3& p) { return Vec3(q * p + t.position); };
+        struct Ray {
+            Vec3 from, direction;
+            int part;
+            double distance;
+        };
+        const Ray rays[] = {
+            {Vec3(0.5, 2.0, 0.3), Vec3(0, -1, 0), 0, 2.0 - 0.8},    // down onto the top over a leg
+            {Vec3(0, -1.0, 0), Vec3(0, 1, 0), 0, 1.0 + 0.7},        // up between the legs: the underside
+            {Vec3(2.0, 0.35, 0.3), Vec3(-1, 0, 0), 1, 2.0 - 0.55},  // from the side: the near leg
+        };
+        for (const Ray& r : rays) {
+            const Vec3 o = world(r.from), d = q * r.direction;
+            for (const auto& hit : {rayCastScene(scene, o, d), rayCast(model, state, o, d)}) {
+                QVERIFY(hit);
+                QCOMPARE(hit->part, r.part);
+                QVERIFY2(std::abs(hit->distance - r.distance) < 1e-12,
+                         qPrintable(QString::number(hit->distance, 'g', 17)));
+            }
+        }
+    }
+
     void sphere() {
         const Shape s = Shape::sphere(2.0);
         const Pose p = at(Vec3(1, 2, 3));

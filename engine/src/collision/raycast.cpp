@@ -57,7 +57,10 @@ std::optional<RayHit> rayShapeDesc(const ShapeDesc& s, const Vec3& position, con
             std::optional<RayHit> best;
             for (int k = 0; k < static_cast<int>(s.parts.size()); ++k) {
                 const PartDesc& part = s.parts[k];
-                if (part.shape.type == ShapeType::Compound) continue;  // refused by validate
+                // (Refused by validate, but the editor holds scenes with problems too.)
+                if (part.shape.type == ShapeType::Compound || !(part.orientation.norm() > 0.0) ||
+                    !part.orientation.coeffs().allFinite() || !part.position.allFinite())
+                    continue;
                 const Quat q = Quat(orientation.coeffs() / qn) * part.orientation.normalized();
                 auto hit = rayShapeDesc(part.shape, pose.toWorld(part.position), q, origin, direction,
                                         best ? best->distance : maxDistance, start);
