@@ -74,14 +74,10 @@ Vec3 centreOf(const ShapeDesc& s) {
     return meshMassProperties(*s.meshData, 1.0).centerOfMass;
 }
 
-std::string uniqueName(const SceneDesc& scene, const std::string& base, const std::set<std::string>& taken) {
-    auto used = [&](const std::string& n) {
-        if (taken.count(n)) return true;
-        return std::any_of(scene.bodies.begin(), scene.bodies.end(),
-                           [&](const BodyDesc& b) { return b.name == n; });
-    };
+// `base`, or `base 2`, `base 3` ... : the first not in `taken`.
+std::string uniqueName(const std::string& base, const std::set<std::string>& taken) {
     std::string name = base;
-    for (int k = 2; used(name); ++k) name = base + " " + std::to_string(k);
+    for (int k = 2; taken.count(name); ++k) name = base + " " + std::to_string(k);
     return name;
 }
 
@@ -158,16 +154,15 @@ std::optional<Regrouped> groupBodies(const SceneDesc& scene, std::vector<int> in
 
     std::set<std::string> grouped;
     for (int i : indices) grouped.insert(scene.bodies[static_cast<size_t>(i)].name);
+    std::set<std::string> others;  // the names the group's may not take
+    for (const BodyDesc& b : scene.bodies)
+        if (!grouped.count(b.name)) others.insert(b.name);
+    group.name = uniqueName(group.name, others);
     Regrouped out;
     out.scene = scene;
     out.scene.bodies.clear();
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         if (static_cast<int>(i) == indices.front()) {
-            std::set<std::string> taken;
-            for (const BodyDesc& b : scene.bodies)
-                if (!grouped.count(b.name)) taken.insert(b.name);
-            SceneDesc others;
-            group.name = uniqueName(others, group.name, taken);
             out.bodies = {static_cast<int>(out.scene.bodies.size())};
             out.scene.bodies.push_back(group);
         } else if (!grouped.count(scene.bodies[i].name)) {
@@ -239,12 +234,12 @@ std::optional<Regrouped> ungroupBody(const SceneDesc& scene, int index, std::str
     out.scene = scene;
     out.scene.bodies.erase(out.scene.bodies.begin() + index);
     std::set<std::string> taken;
+    for (const BodyDesc& b : out.scene.bodies) taken.insert(b.name);
     std::vector<BodyDesc> made;
     for (size_t k = 0; k < pieces->size(); ++k) {
         const Piece& p = (*pieces)[k];
         BodyDesc b;
-        b.name = uniqueName(out.scene,
-                            p.part.name.empty() ? g.name + " " + std::to_string(k + 1) : p.part.name, taken);
+        b.name = uniqueName(p.part.name.empty() ? g.name + " " + std::to_string(k + 1) : p.part.name, taken);
         taken.insert(b.name);
         b.motion = g.motion;
         b.shape = p.part.shape;

@@ -148,6 +148,13 @@ inline const Shape& partShape(const Shape& shape, int part) {
     return shape.kind == Kind::Compound ? shape.compound->parts[part].shape : shape;
 }
 
+/// The radius by which a shape's surface is its core grown (a sphere's centre, a capsule's
+/// segment); 0 for shapes whose contact points are points of the body. (The contact solver
+/// takes a round surface's gap from its core; contacts of parts alike in it can be merged.)
+inline double roundness(const Shape& shape) {
+    return shape.kind == Kind::Sphere || shape.kind == Kind::Capsule ? shape.radius : 0.0;
+}
+
 /// World bounds of a shape at a pose; a plane's bounds are infinite.
 Aabb bounds(const Shape& shape, const Pose& pose);
 

@@ -149,17 +149,18 @@ int readConvexPartsCache(SceneDesc& scene, const fs::path& cache, std::string* p
 int makeConvexParts(SceneDesc& scene, const std::string& sceneName,
                     const std::function<void(int, int, const std::string&)>& progress,
                     const std::atomic<bool>* cancel) {
-    std::vector<std::pair<ShapeDesc*, std::string>> todo;
+    std::vector<std::pair<ShapeDesc*, std::string>> missing;
     for (auto& entry : convexPartsShapes(scene)) {
         ShapeDesc& s = *entry.first;
-        if (s.meshData && !(s.convexParts && mesh::convexPartsFit(*s.convexParts, s))) todo.push_back(entry);
+        if (s.meshData && !(s.convexParts && mesh::convexPartsFit(*s.convexParts, s)))
+            missing.push_back(entry);
     }
     // Shapes of one mesh and options share their parts: made once.
     std::map<std::string, std::shared_ptr<const mesh::ConvexParts>> made;
     int done = 0;
-    for (auto& [shape, path] : todo) {
+    for (auto& [shape, path] : missing) {
         if (cancel && cancel->load()) break;
-        if (progress) progress(done, static_cast<int>(todo.size()), path);
+        if (progress) progress(done, static_cast<int>(missing.size()), path);
         auto& slot = made[keyOf(mesh::meshHash(*shape->meshData), mesh::convexPartsOptionsOf(*shape))];
         if (!slot) {
             try {

@@ -31,6 +31,17 @@ Aabb intoFrame(const Aabb& world, const Pose& pose) {
     return {c - e, c + e};
 }
 
+// A box that holds the shape at the pose, for culling: a compound's is its box in the body
+// frame carried into the world (one turn of a box, where its exact bounds are a pass over
+// every part, and every hull part's vertices); any other shape's own bounds.
+Aabb cullBox(const Shape& shape, const Pose& pose) {
+    if (shape.kind != Kind::Compound) return bounds(shape, pose);
+    const Aabb& local = shape.compound->box;
+    const Vec3 c = pose.toWorld(local.center());
+    const Vec3 e = pose.R.cwiseAbs() * (0.5 * local.extent());
+    return {c - e, c + e};
+}
+
 // The parts of `shape` at `pose` whose boxes meet `other` (world), or the shape itself as
 // part 0 when it is not a compound.
 void nearParts(const Shape& shape, const Pose& pose, const Aabb& other, double margin,
@@ -62,11 +73,6 @@ std::uint32_t mixed(std::uint32_t feature, int partA, int partB) {
 
 // Normals this near (within 0.08°) are one contact plane.
 constexpr double kSamePlane = 1.0 - 1e-6;
-
-// The radius by which a part's surface is its core grown (the contact solver's roundness).
-double roundness(const Shape& s) {
-    return s.kind == Kind::Sphere || s.kind == Kind::Capsule ? s.radius : 0.0;
-}
 
 // Whether contacts on parts p and q of a compound (or the shape itself) act alike: the same
 // material and the same roundness, so that one manifold can carry both.
@@ -185,9 +191,9 @@ void mergeSamePlane(const Shape& a, const Shape& b, size_t first, ManifoldList& 
 void collideCompound(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
                      ManifoldList& out) {
     thread_local std::vector<Near> nearA, nearB;
-    nearParts(a, pa, bounds(b, pb), margin, nearA);
+    nearParts(a, pa, cullBox(b, pb), margin, nearA);
     if (nearA.empty()) return;
-    nearParts(b, pb, bounds(a, pa), margin, nearB);
+    nearParts(b, pb, cullBox(a, pa), margin, nearB);
     const size_t first = out.size();
     for (const Near& x : nearA) {
         for (const Near& y : nearB) {
@@ -270,17 +276,21 @@ std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shap
     // Only the pairs of parts whose swept balls meet are swept part against part: a chair
     // landing on a chair has 36 pairs of parts, of which a few come near.
     thread_local std::vector<SweptBall> ballsB;
+    thread_local std::vector<Sweep> sweepsB;
     ballsB.clear();
+    sweepsB.clear();
     const SweepEnds endsA(sa), endsB(sb);
-    for (int j = 0; j < partsOf(b); ++j)
+    for (int j = 0; j < partsOf(b); ++j) {
         ballsB.push_back(sweptBall(partShape(b, j), sb, endsB, poseOf(b, j)));
+        sweepsB.push_back(sweepOf(b, sb, j));
+    }
     std::optional<Impact> best;
     for (int i = 0; i < partsOf(a); ++i) {
         const SweptBall ballA = sweptBall(partShape(a, i), sa, endsA, poseOf(a, i));
         const Sweep si = sweepOf(a, sa, i);
         for (int j = 0; j < partsOf(b); ++j) {
             if (ballsMiss(ballA, ballsB[j], tolerance)) continue;
-            auto hit = timeOfImpact(partShape(a, i), si, partShape(b, j), sweepOf(b, sb, j), tolerance);
+            auto hit = timeOfImpact(partShape(a, i), si, partShape(b, j), sweepsB[j], tolerance);
             if (hit && (!best || hit->s < best->s)) best = hit;
         }
     }

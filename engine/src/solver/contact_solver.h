@@ -38,12 +38,7 @@ inline constexpr double kContactSlop = 0.005;
 /// × the slop: deeper overlap is removed whatever it costs in energy (contact_energy.cpp).
 inline constexpr double kFreeOverlap = 10.0;
 
-/// The radius by which a shape's surface is its core grown (a sphere's centre, a capsule's
-/// segment); 0 for shapes whose contact points are points of the body.
-inline double roundness(const collision::Shape& shape) {
-    return shape.kind == collision::Kind::Sphere || shape.kind == collision::Kind::Capsule ? shape.radius
-                                                                                           : 0.0;
-}
+using collision::roundness;  // (tumble/collision.h)
 
 struct ContactSolverScratch {
     /// What the iterations read and write of a point; the rest is in PointGeometry, so that
