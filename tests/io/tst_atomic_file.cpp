@@ -212,6 +212,41 @@ private slots:
         QCOMPARE(pid, long(getpid()));
     }
 
+    // For a pair of files switched in steps (a .gltf and its .bin): the target is replaced
+    // while the temporary stays whole under its own name, which another file may name
+    // meanwhile; Stale::Keep leaves old temporaries for the caller; keepTemporary() keeps
+    // the temporary (made ready) of a file that is never committed.
+    void aTemporaryCanOutliveItsCommit() {
+        QTemporaryDir dir;
+        const fs::path folder = dir.path().toStdString();
+        writeBytes(folder / "run.bin", "old");
+        const std::string stale = temporaryName("run.bin", deadPid());
+        writeBytes(folder / stale, "named by an old .gltf");
+        QVERIFY(age(folder / stale, 2 * 60));
+        fs::path temporary;
+        {
+            io::AtomicFile file(folder / "run.bin", io::AtomicFile::Stale::Keep);
+            temporary = file.temporaryPath();
+            file.stream() << "new";
+            file.commitKeepingTemporary();
+        }
+        QCOMPARE(readBytes(folder / "run.bin"), std::string("new"));
+        QCOMPARE(readBytes(temporary), std::string("new"));
+        QCOMPARE(namesIn(folder), (std::set<std::string>{"run.bin", stale, temporary.filename().string()}));
+        fs::remove(temporary);
+        {
+            io::AtomicFile file(folder / "run.bin", io::AtomicFile::Stale::Keep);
+            temporary = file.temporaryPath();
+            file.stream() << "never committed";
+            file.ready();
+            file.keepTemporary();
+        }
+        QCOMPARE(readBytes(temporary), std::string("never committed"));
+        QCOMPARE(readBytes(folder / "run.bin"), std::string("new"));
+        QCOMPARE(io::removeStaleTemporaries(folder / "run.bin"), 1);  // the dead one only
+        QVERIFY(fs::exists(temporary));
+    }
+
     void destroyedWithoutCommitLeavesTheTargetAsItWas() {
         QTemporaryDir dir;
         const fs::path folder = dir.path().toStdString();

@@ -172,8 +172,9 @@ private:
     char data_[1 << 16];
 };
 
-AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)), final_(followLinks(target_)) {
-    removeStaleTemporaries(final_);
+AtomicFile::AtomicFile(fs::path target, Stale stale)
+    : target_(std::move(target)), final_(followLinks(target_)) {
+    if (stale == Stale::Remove) removeStaleTemporaries(final_);
     const std::string stem = final_.string() + kMark + std::to_string(::getpid()) + "-";
     int fd = -1;
     for (int attempt = 0; fd < 0 && attempt < 16; ++attempt) {
@@ -187,7 +188,7 @@ AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)), final_(fol
 }
 
 AtomicFile::~AtomicFile() {
-    if (!committed_) {
+    if (!committed_ && !keep_) {
         out_.rdbuf(nullptr);
         buf_.reset();
         std::error_code ec;
@@ -230,6 +231,47 @@ void AtomicFile::commit() {
     fs::rename(temp_, final_, ec);
     if (ec) throw std::runtime_error(target_.string() + ": cannot be replaced: " + plainReason(ec.value()));
     committed_ = true;
+    syncFolder();
+}
+
+void AtomicFile::commitKeepingTemporary() {
+    ready();
+    keep_ = true;  // from here on another file may name it
+    const std::string stem = temp_.string().substr(0, temp_.string().size() - kHexDigits);
+    fs::path second;
+    std::error_code ec;
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        second = stem + randomHex();
+        fs::create_hard_link(temp_, second, ec);
+        if (ec != std::errc::file_exists) break;
+    }
+    if (ec && ec != std::errc::file_exists) {
+        // No hard links here (FAT, some network shares): a durable copy instead.
+        ec.clear();
+        fs::copy_file(temp_, second, fs::copy_options::none, ec);
+        const int fd = ec ? -1 : ::open(second.c_str(), O_WRONLY | O_CLOEXEC);
+        if (fd >= 0) {
+            if (::fsync(fd) != 0 && errno != EINVAL) ec.assign(errno, std::generic_category());
+            ::close(fd);
+        }
+        if (ec) {
+            std::error_code ignored;
+            fs::remove(second, ignored);
+            throw std::runtime_error(target_.string() + ": writing failed: " + plainReason(ec.value()));
+        }
+    }
+    if (ec) throw std::runtime_error(target_.string() + ": cannot be written: " + plainReason(ec.value()));
+    fs::rename(second, final_, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(second, ignored);
+        throw std::runtime_error(target_.string() + ": cannot be replaced: " + plainReason(ec.value()));
+    }
+    committed_ = true;
+    syncFolder();
+}
+
+void AtomicFile::syncFolder() const {
     // And the new name durable: until the folder is synced a power cut can bring back the
     // old file (whole, never a mix). Best effort: a folder that cannot be opened keeps the
     // save as it is.

@@ -132,6 +132,43 @@ void writeU32(std::ostream& out, std::uint32_t v) {
     out.write(b, 4);
 }
 
+// The .gltf and its .bin cannot be renamed in one step, and a kill between two renames
+// would pair an old .gltf with a new .bin. So the old .gltf is first replaced by a bridge,
+// the new .gltf naming the .bin's temporary; then the .bin takes its name (the temporary
+// kept as a second link); then the .gltf naming the .bin replaces the bridge. At every
+// moment the .gltf on disk fits the buffer it names.
+void commitPair(const fs::path& file, AtomicFile& main, AtomicFile& bin, json& doc) {
+    // Failures of the .bin are named by the file the user asked for.
+    auto asBuffer = [&](auto step) {
+        try {
+            step();
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error(file.string() + ": its buffer " + e.what());
+        }
+    };
+    const fs::path temporary = bin.temporaryPath();
+    std::error_code ec;
+    const fs::path folder = fs::path(file).parent_path();
+    const bool besideIt =
+        fs::equivalent(folder.empty() ? fs::path(".") : folder,
+                       temporary.has_parent_path() ? temporary.parent_path() : fs::path("."), ec);
+    if (!fs::exists(file, ec) || !besideIt) {
+        // No old pair to keep (or a .bin linked elsewhere, which the .gltf cannot name).
+        asBuffer([&] { bin.commit(); });
+        main.commit();
+        return;
+    }
+    doc["buffers"][0]["uri"] = temporary.filename().string();
+    AtomicFile bridge(file);
+    bridge.stream() << doc.dump(2);
+    bridge.ready();
+    bin.keepTemporary();
+    bridge.commit();
+    asBuffer([&] { bin.commitKeepingTemporary(); });
+    main.commit();
+    fs::remove(temporary, ec);
+}
+
 }  // namespace
 
 struct GltfTrajectoryWriter::Outputs {
@@ -148,7 +185,11 @@ void GltfTrajectoryWriter::open() {
     // that the message names the file the user asked for.
     outputs_ = std::make_unique<Outputs>();
     outputs_->main = std::make_unique<AtomicFile>(file());
-    if (!binary_) outputs_->bin = std::make_unique<AtomicFile>(fs::path(file()).replace_extension(".bin"));
+    // The .bin's stale temporaries are removed after the new pair is in (close()): a .gltf
+    // left by an export killed mid-switch names one.
+    if (!binary_)
+        outputs_->bin =
+            std::make_unique<AtomicFile>(fs::path(file()).replace_extension(".bin"), AtomicFile::Stale::Keep);
     times_.clear();
     poses_.assign(bodies().size(), {});
 }
@@ -323,8 +364,6 @@ void GltfTrajectoryWriter::close() {
         outputs_->bin->stream() << g.bin;
     }
     // Both written out before either replaces its old file: a full disk leaves the old pair.
-    // (Only a kill between the two renames, microseconds apart, can pair a new .bin with the
-    // old .gltf.)
     // Failures of the .bin are named by the file the user asked for.
     auto binary = [&](void (AtomicFile::*step)()) {
         if (!outputs_->bin) return;
@@ -336,8 +375,13 @@ void GltfTrajectoryWriter::close() {
     };
     binary(&AtomicFile::ready);
     outputs_->main->ready();
-    binary(&AtomicFile::commit);
-    outputs_->main->commit();
+    if (!binary_ && doc.contains("buffers")) {
+        commitPair(file(), *outputs_->main, *outputs_->bin, doc);
+    } else {
+        binary(&AtomicFile::commit);
+        outputs_->main->commit();
+    }
+    if (outputs_->bin) removeStaleTemporaries(fs::path(file()).replace_extension(".bin"));
 }
 
 }  // namespace tumble::io

@@ -24,7 +24,10 @@ public:
     /// A target that exists keeps its permission bits. Throws std::runtime_error naming the
     /// target when the temporary cannot be made, with the reason (no such folder, no permission,
     /// a read-only or full disk).
-    explicit AtomicFile(std::filesystem::path target);
+    /// `stale`: Keep leaves the old temporaries for the caller to remove once its new files
+    /// are in place (a .gltf left by a killed export may name its .bin's temporary).
+    enum class Stale { Remove, Keep };
+    explicit AtomicFile(std::filesystem::path target, Stale stale = Stale::Remove);
     ~AtomicFile();
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
@@ -38,10 +41,18 @@ public:
     /// ready(), then the temporary replaces the target; throws as ready() does, or when the
     /// target cannot be replaced.
     void commit();
+    /// Like commit(), but the temporary stays under its own name too (a second hard link to
+    /// the same data; a copy on a file system without links), for a file that names the
+    /// temporary until it is replaced in turn. The caller removes the temporary.
+    void commitKeepingTemporary();
+    /// The temporary (made ready) is not removed by the destructor: another file names it.
+    void keepTemporary() { keep_ = true; }
     /// The temporary being written (for tests and messages).
     const std::filesystem::path& temporaryPath() const { return temp_; }
 
 private:
+    void syncFolder() const;
+
     std::filesystem::path target_;  // as given (messages name it)
     std::filesystem::path final_;   // the file replaced: target_, symbolic links followed
     std::filesystem::path temp_;
@@ -50,6 +61,7 @@ private:
     std::ostream out_{nullptr};
     bool ready_ = false;
     bool committed_ = false;
+    bool keep_ = false;
 };
 
 /// Why a file could not be written, from its errno, as a user reads it: "no such folder",
