@@ -2,6 +2,7 @@
 
 #include "document/commands.h"
 #include "document/grouping.h"
+#include "document/part_edits.h"
 
 #include <tumble/io/atomic_file.h>
 #include <tumble/io/convex_parts_cache.h>
@@ -51,6 +52,7 @@ void Document::newScene() {
     path_.clear();
     selection_.clear();
     selectedJoint_ = -1;
+    selectedPart_ = -1;
     emit sceneReset();
     emit selectionChanged();
     emit fileStateChanged();
@@ -176,6 +178,7 @@ bool Document::open(const QString& path, QString* error) {
     path_ = sample ? QString() : path;
     selection_.clear();
     selectedJoint_ = -1;
+    selectedPart_ = -1;
     emit sceneReset();
     emit selectionChanged();
     emit fileStateChanged();
@@ -512,6 +515,36 @@ bool Document::ungroup(int index, QString* why) {
     return true;
 }
 
+int Document::addPart(int index, ShapeType type, QString* why) {
+    std::string reason;
+    const auto done = withPartAdded(body(index), type, &reason);
+    if (!done) {
+        if (why) *why = QString::fromStdString(reason);
+        return -1;
+    }
+    const int part = static_cast<int>(done->shape.parts.size()) - 1;
+    setBody(index, *done,
+            tr("Add %1 to %2")
+                .arg(QString::fromStdString(done->shape.parts.back().name),
+                     QString::fromStdString(body(index).name)));
+    selectPart(index, part);
+    return part;
+}
+
+bool Document::removePart(int index, int part, QString* why) {
+    std::string reason;
+    const auto done = withoutPart(body(index), part, &reason);
+    if (!done) {
+        if (why) *why = QString::fromStdString(reason);
+        return false;
+    }
+    const QString name =
+        QString::fromStdString(partLabel(body(index).shape.parts[static_cast<size_t>(part)], part));
+    setBody(index, *done, tr("Remove %1 from %2").arg(name, QString::fromStdString(body(index).name)));
+    selectPart(index, -1);
+    return true;
+}
+
 void Document::beginMacro(const QString& text) {
     undo_->beginMacro(text);
 }
@@ -523,9 +556,22 @@ void Document::setSelection(QList<int> indices) {
     std::sort(indices.begin(), indices.end());
     indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
     indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
-    if (indices == selection_ && selectedJoint_ < 0) return;
+    if (indices == selection_ && selectedJoint_ < 0 && selectedPart_ < 0) return;
     selection_ = indices;
     selectedJoint_ = -1;
+    selectedPart_ = -1;
+    emit selectionChanged();
+}
+
+void Document::selectPart(int body, int part) {
+    if (body < 0 || body >= bodyCount()) return setSelection({});
+    const ShapeDesc& shape = this->body(body).shape;
+    if (shape.type != ShapeType::Compound || part < 0 || part >= static_cast<int>(shape.parts.size()))
+        part = -1;
+    if (selection_ == QList<int>{body} && selectedJoint_ < 0 && selectedPart_ == part) return;
+    selection_ = {body};
+    selectedJoint_ = -1;
+    selectedPart_ = part;
     emit selectionChanged();
 }
 
@@ -533,13 +579,22 @@ void Document::selectJoint(int index) {
     if (index < 0 || index >= jointCount()) index = -1;
     if (index == selectedJoint_ && (index < 0 || selection_.isEmpty())) return;
     selectedJoint_ = index;
-    if (index >= 0) selection_.clear();
+    if (index >= 0) {
+        selection_.clear();
+        selectedPart_ = -1;
+    }
     emit selectionChanged();
 }
 
 void Document::applyBody(int index, const BodyDesc& body) {
     scene_.bodies[static_cast<size_t>(index)] = body;
+    // A part removed (or the body no longer a compound) takes the part selection with it.
+    const bool partGone = selectedPart_ >= 0 && selection_ == QList<int>{index} &&
+                          (body.shape.type != ShapeType::Compound ||
+                           selectedPart_ >= static_cast<int>(body.shape.parts.size()));
+    if (partGone) selectedPart_ = -1;
     emit bodyChanged(index);
+    if (partGone) emit selectionChanged();
 }
 
 void Document::applySettings(const Settings& settings) {
@@ -560,6 +615,7 @@ void Document::applyRemove(int index) {
     selection_.removeAll(index);
     for (int& s : selection_)
         if (s > index) --s;
+    if (selection_.size() != 1) selectedPart_ = -1;
     emit bodyRemoved(index);
     if (selection_.size() != before) emit selectionChanged();
 }
@@ -579,6 +635,7 @@ void Document::applyScene(const SceneDesc& scene) {
     scene_ = scene;
     selection_.clear();
     selectedJoint_ = -1;
+    selectedPart_ = -1;
     emit sceneReset();
     emit selectionChanged();
 }

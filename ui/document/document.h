@@ -92,6 +92,12 @@ public:
     /// Makes the compound body `index` a body per part (one undo step; ui::ungroupBody) and
     /// selects them; false, with the reason in `why`, when it cannot be.
     bool ungroup(int index, QString* why);
+    /// Adds a part of `type` to body `index` (one undo step; ui::withPartAdded says where and
+    /// how) and selects it; returns its index, or -1 with the reason in `why`.
+    int addPart(int index, ShapeType type, QString* why);
+    /// Removes part `part` of body `index` (one undo step) and selects the body; false, with
+    /// the reason in `why`, when it cannot be (ui::withoutPart).
+    bool removePart(int index, int part, QString* why);
     /// Adds `joint` (one undo step) with its name made unique among the joints, and selects it.
     void addJoint(const JointDesc& joint);
     /// Replaces joint `index` (one undo step; consecutive calls with the same nonzero
@@ -113,6 +119,11 @@ public:
     // joint page): selecting bodies deselects it and selecting it deselects the bodies.
     const QList<int>& selection() const { return selection_; }
     void setSelection(QList<int> indices);
+    /// The selected part of the one selected (compound) body, or -1: the scene tree's part
+    /// rows and the part panel. Selecting bodies or a joint deselects it.
+    int selectedPart() const { return selectedPart_; }
+    /// Selects body `body` alone and its part `part` (-1: the body itself).
+    void selectPart(int body, int part);
     /// The selected joint's index, or -1.
     int selectedJoint() const { return selectedJoint_; }
     void selectJoint(int index);
@@ -155,6 +166,7 @@ private:
     QString meshFileChange(const ShapeDesc& shape) const;
     QList<int> selection_;
     int selectedJoint_ = -1;
+    int selectedPart_ = -1;
     QUndoStack* undo_ = nullptr;
 };
 

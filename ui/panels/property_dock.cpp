@@ -65,6 +65,8 @@ void PropertyDock::Impl::build() {
         [](const BodyDesc& b) { return std::optional<Motion>(b.motion); },
         [this](BodyDesc& b, int index, Motion m) { setMotion(b, index, m); });
 
+    buildPart(layout);
+
     // ---- Shape
     form = group(layout, QObject::tr("Shape"));
     auto* type = addChoice<ShapeType>(

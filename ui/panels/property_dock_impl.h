@@ -30,6 +30,7 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -311,6 +312,15 @@ struct PropertyDock::Impl {
         QString error;
         try {
             validate(check);
+            // A compound's mass rules need its parts' volumes, which compile computes: for
+            // parts of primitives (cheap; a mesh part's would build its hull on every edit).
+            const bool compoundOfPrimitives =
+                std::any_of(bodies.begin(), bodies.end(), [](const BodyDesc& b) {
+                    return b.shape.type == ShapeType::Compound &&
+                           std::none_of(b.shape.parts.begin(), b.shape.parts.end(),
+                                        [](const PartDesc& p) { return p.shape.type == ShapeType::Mesh; });
+                });
+            if (compoundOfPrimitives) compile(check);
         } catch (const SceneError& e) {
             QString path = QString::fromStdString(e.path());
             const int dot = path.indexOf('.');
@@ -513,6 +523,15 @@ struct PropertyDock::Impl {
     void holdable(const QString& key, std::function<void(bool)> mark);
 
     void build();
+    // (property_dock_part.cpp) The selected part of the one selected body, or none; its
+    // sweep key ("shape.parts[2].<field>").
+    const PartDesc* partIn(const BodyDesc& b) const;
+    PartDesc& partIn(BodyDesc& b) const;
+    QString partKey(const QString& field) const;
+    void buildPart(QVBoxLayout* layout);
+    void addOwnValue(QFormLayout* form, const char* label, const QString& field, const QString& suffix,
+                     double step, std::optional<double> PartDesc::*member,
+                     const std::function<std::optional<double>(const BodyDesc&)>& inherited, const char* tip);
     void buildMass(QVBoxLayout* layout);
     void buildForces(QVBoxLayout* layout);
 };

@@ -25,7 +25,7 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     view_ = new QTreeView;
     view_->setObjectName(QStringLiteral("sceneTreeView"));
     view_->setModel(model_);
-    view_->setRootIsDecorated(false);
+    view_->setRootIsDecorated(true);  // a compound opens on its parts
     view_->setUniformRowHeights(true);
     view_->setAllColumnsShowFocus(true);
     view_->setSelectionMode(QAbstractItemView::ExtendedSelection);
@@ -66,6 +66,22 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
         connect(a, &QAction::triggered, this, [this, type] { addBody(type); });
         addActions_.insert(type, a);
     }
+    partMenu_ = new QMenu(tr("Add &Part"), this);
+    for (const auto& k : kinds) {
+        if (k.type == ShapeType::Plane || k.type == ShapeType::Mesh || k.type == ShapeType::Compound)
+            continue;
+        QAction* a = partMenu_->addAction(tr(k.text));
+        const ShapeType type = k.type;
+        a->setStatusTip(tr("Add a %1 part to the selected body (it becomes a compound)")
+                            .arg(QString::fromLatin1(toString(type))));
+        connect(a, &QAction::triggered, this, [this, type] {
+            if (doc_->selection().size() != 1) return;
+            QString why;
+            if (doc_->addPart(doc_->selection().front(), type, &why) < 0)
+                showMessage(tr("No part added: %1.").arg(why));
+        });
+        partActions_.insert(type, a);
+    }
     jointMenu_ = new QMenu(tr("Add &Joint"), this);
     const struct {
         JointType type;
@@ -96,11 +112,15 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     delete_ = new QAction(tr("&Delete"), this);
     delete_->setShortcut(QKeySequence::Delete);
     delete_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
-    delete_->setStatusTip(tr("Remove the selected bodies, or the selected joint"));
+    delete_->setStatusTip(tr("Remove the selected bodies, or the selected part or joint"));
     connect(delete_, &QAction::triggered, this, [this] {
+        QString why;
         if (doc_->selectedJoint() >= 0)
             doc_->removeJoint(doc_->selectedJoint());
-        else
+        else if (doc_->selectedPart() >= 0) {
+            if (!doc_->removePart(doc_->selection().front(), doc_->selectedPart(), &why))
+                showMessage(tr("The part stays: %1.").arg(why));
+        } else
             doc_->removeBodies(doc_->selection());
     });
 
@@ -175,6 +195,7 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     connect(view_, &QWidget::customContextMenuRequested, this, [this](const QPoint& pos) {
         QMenu menu(this);
         menu.addMenu(addMenu_);
+        menu.addMenu(partMenu_);
         menu.addSeparator();
         menu.addAction(rename_);
         menu.addAction(duplicate_);
@@ -237,14 +258,25 @@ void SceneTreeDock::selectionFromDocument() {
     if (syncing_) return;
     syncing_ = true;
     QItemSelection selection;
-    for (int row : doc_->selection()) {
-        selection.select(model_->index(row, 0), model_->index(row, SceneTreeModel::ColumnCount - 1));
+    const QList<int>& rows = doc_->selection();
+    const int part = doc_->selectedPart();
+    QModelIndex current;
+    if (part >= 0 && rows.size() == 1) {
+        view_->expand(model_->index(rows.front(), 0));
+        current = model_->partIndex(rows.front(), part);
+        selection.select(current, model_->partIndex(rows.front(), part, SceneTreeModel::ColumnCount - 1));
+    } else {
+        for (int row : rows)
+            selection.select(model_->index(row, 0), model_->index(row, SceneTreeModel::ColumnCount - 1));
+        if (!rows.isEmpty()) current = model_->index(rows.last(), 0);
     }
     QItemSelectionModel* sm = view_->selectionModel();
     sm->select(selection, QItemSelectionModel::ClearAndSelect);
-    const QList<int>& rows = doc_->selection();
-    if (!rows.isEmpty() && !rows.contains(sm->currentIndex().row())) {
-        const QModelIndex current = model_->index(rows.last(), 0);
+    const QModelIndex now = sm->currentIndex();
+    const bool currentShown =
+        part >= 0 ? now.isValid() && now.sibling(now.row(), 0) == current
+                  : SceneTreeModel::partOf(now) < 0 && rows.contains(SceneTreeModel::bodyOf(now));
+    if (current.isValid() && !currentShown) {
         sm->setCurrentIndex(current, QItemSelectionModel::NoUpdate);
         view_->scrollTo(current);
     }
@@ -252,13 +284,21 @@ void SceneTreeDock::selectionFromDocument() {
     updateActions();
 }
 
+// A part row selected alone selects that part (and its body); otherwise the rows' bodies.
 void SceneTreeDock::selectionFromView() {
     if (syncing_ || model_->rowsChanging()) return;
     syncing_ = true;
     QList<int> rows;
-    for (const QModelIndex& index : view_->selectionModel()->selection().indexes())
-        if (!rows.contains(index.row())) rows.append(index.row());
-    doc_->setSelection(rows);
+    QList<std::pair<int, int>> parts;
+    for (const QModelIndex& index : view_->selectionModel()->selection().indexes()) {
+        const int body = SceneTreeModel::bodyOf(index), part = SceneTreeModel::partOf(index);
+        if (!rows.contains(body)) rows.append(body);
+        if (part >= 0 && !parts.contains(std::pair(body, part))) parts.append({body, part});
+    }
+    if (rows.size() == 1 && parts.size() == 1)
+        doc_->selectPart(parts.front().first, parts.front().second);
+    else
+        doc_->setSelection(rows);
     syncing_ = false;
     updateActions();
 }
@@ -268,6 +308,8 @@ void SceneTreeDock::updateActions() {
     duplicate_->setEnabled(any);
     delete_->setEnabled(any || doc_->selectedJoint() >= 0);
     jointMenu_->setEnabled(any && doc_->selection().size() <= 2);
+    partMenu_->setEnabled(doc_->selection().size() == 1 &&
+                          doc_->body(doc_->selection().front()).shape.type != ShapeType::Plane);
     group_->setEnabled(doc_->selection().size() >= 2);
     ungroup_->setEnabled(doc_->selection().size() == 1 &&
                          doc_->body(doc_->selection().front()).shape.type == ShapeType::Compound);

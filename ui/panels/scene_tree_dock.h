@@ -1,6 +1,7 @@
-// The scene tree dock: the bodies in a list with extended selection shared with the
-// document (and so with the viewport and the property panel), and the actions that add,
-// duplicate, delete and rename bodies, in a tool bar and a context menu.
+// The scene tree dock: the bodies in a list (a compound's parts under it) with extended
+// selection shared with the document (and so with the viewport and the property panel),
+// and the actions that add, duplicate, delete and rename bodies and parts, in a tool bar
+// and a context menu.
 #pragma once
 
 #include <tumble/scene.h>
@@ -30,6 +31,9 @@ public:
     /// The actions, for the main window's menus. Add > Mesh... emits importMeshRequested.
     QMenu* addMenu() const { return addMenu_; }
     QAction* addBodyAction(ShapeType type) const { return addActions_.value(type); }
+    /// Add Part: one action per shape, for the one selected body (document/part_edits.h).
+    QMenu* partMenu() const { return partMenu_; }
+    QAction* addPartAction(ShapeType type) const { return partActions_.value(type); }
     QAction* duplicateAction() const { return duplicate_; }
     QAction* groupAction() const { return group_; }
     QAction* ungroupAction() const { return ungroup_; }
@@ -68,6 +72,8 @@ private:
     QLabel* message_;
     QMenu* addMenu_;
     QMap<ShapeType, QAction*> addActions_;
+    QMenu* partMenu_;
+    QMap<ShapeType, QAction*> partActions_;
     QMenu* jointMenu_;
     QMap<JointType, QAction*> jointActions_;
     QAction* duplicate_;

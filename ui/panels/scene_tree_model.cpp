@@ -3,6 +3,7 @@
 #include <QColor>
 
 #include "document/document.h"
+#include "document/part_edits.h"
 
 #include <QFileInfo>
 
@@ -24,10 +25,7 @@ SceneTreeModel::SceneTreeModel(Document* doc, QObject* parent) : QAbstractItemMo
         endRemoveRows();
         changing_ = false;
     });
-    connect(doc_, &Document::bodyChanged, this, [this](int i) {
-        rows_[i] = rowOf(i);
-        emit dataChanged(index(i, 0), index(i, ColumnCount - 1));
-    });
+    connect(doc_, &Document::bodyChanged, this, &SceneTreeModel::bodyChanged);
     connect(doc_, &Document::sceneReset, this, [this] {
         changing_ = true;
         beginResetModel();
@@ -35,6 +33,47 @@ SceneTreeModel::SceneTreeModel(Document* doc, QObject* parent) : QAbstractItemMo
         endResetModel();
         changing_ = false;
     });
+}
+
+// Body rows have the internal id 0; part rows their body's row + 1.
+int SceneTreeModel::bodyOf(const QModelIndex& index) {
+    if (!index.isValid()) return -1;
+    return index.internalId() ? static_cast<int>(index.internalId()) - 1 : index.row();
+}
+
+int SceneTreeModel::partOf(const QModelIndex& index) {
+    return index.isValid() && index.internalId() ? index.row() : -1;
+}
+
+QModelIndex SceneTreeModel::partIndex(int body, int part, int column) const {
+    return index(part, column, index(body, 0));
+}
+
+void SceneTreeModel::bodyChanged(int i) {
+    Row row = rowOf(i);
+    const QModelIndex parent = index(i, 0);
+    const auto before = rows_[i].parts.size(), after = row.parts.size();
+    if (before != after) {
+        // Parts added or removed: the part rows go and come back (a part's row number is
+        // its index, so every row after the change moves anyway).
+        changing_ = true;
+        if (before > 0) {
+            beginRemoveRows(parent, 0, static_cast<int>(before) - 1);
+            rows_[i].parts.clear();
+            rows_[i].partShapes.clear();
+            endRemoveRows();
+        }
+        if (after > 0) {
+            beginInsertRows(parent, 0, static_cast<int>(after) - 1);
+            rows_[i] = row;
+            endInsertRows();
+        }
+        changing_ = false;
+    }
+    rows_[i] = row;
+    emit dataChanged(index(i, 0), index(i, ColumnCount - 1));
+    if (after > 0)
+        emit dataChanged(partIndex(i, 0), partIndex(i, static_cast<int>(after) - 1, ColumnCount - 1));
 }
 
 SceneTreeModel::Row SceneTreeModel::rowOf(int i) const {
@@ -53,6 +92,16 @@ SceneTreeModel::Row SceneTreeModel::rowOf(int i) const {
             .arg(p.y(), 0, 'g', 4)
             .arg(p.z(), 0, 'g', 4);
     if (b.mass) r.tip += tr("\nmass %1 kg").arg(*b.mass, 0, 'g', 4);
+    if (b.shape.type == ShapeType::Compound) {
+        for (size_t k = 0; k < b.shape.parts.size(); ++k) {
+            const PartDesc& p = b.shape.parts[k];
+            r.parts.append(QString::fromStdString(partLabel(p, static_cast<int>(k))));
+            r.partShapes.append(p.shape.type == ShapeType::Mesh
+                                    ? QStringLiteral("mesh (%1)")
+                                          .arg(QFileInfo(QString::fromStdString(p.shape.file)).fileName())
+                                    : QString::fromLatin1(toString(p.shape.type)));
+        }
+    }
     if (b.density) r.tip += tr("\ndensity %1 kg/m³").arg(*b.density, 0, 'g', 4);
     if (b.shape.type == ShapeType::Mesh && !b.shape.meshData) {
         r.meshMissing = true;
@@ -69,25 +118,40 @@ void SceneTreeModel::rebuild() {
 }
 
 QModelIndex SceneTreeModel::index(int row, int column, const QModelIndex& parent) const {
-    if (parent.isValid() || row < 0 || row >= rows_.size() || column < 0 || column >= ColumnCount) return {};
-    return createIndex(row, column);
+    if (column < 0 || column >= ColumnCount || row < 0) return {};
+    if (!parent.isValid()) return row < rows_.size() ? createIndex(row, column, quintptr(0)) : QModelIndex();
+    if (parent.internalId() || parent.row() >= rows_.size() || row >= rows_[parent.row()].parts.size())
+        return {};
+    return createIndex(row, column, quintptr(parent.row() + 1));
 }
 
-QModelIndex SceneTreeModel::parent(const QModelIndex&) const {
-    return {};
+QModelIndex SceneTreeModel::parent(const QModelIndex& child) const {
+    if (!child.isValid() || !child.internalId()) return {};
+    return createIndex(static_cast<int>(child.internalId()) - 1, 0, quintptr(0));
 }
 
 int SceneTreeModel::rowCount(const QModelIndex& parent) const {
-    return parent.isValid() ? 0 : static_cast<int>(rows_.size());
+    if (!parent.isValid()) return static_cast<int>(rows_.size());
+    if (parent.internalId() || parent.column() != 0 || parent.row() >= rows_.size()) return 0;
+    return static_cast<int>(rows_[parent.row()].parts.size());
 }
 
-int SceneTreeModel::columnCount(const QModelIndex& parent) const {
-    return parent.isValid() ? 0 : ColumnCount;
+int SceneTreeModel::columnCount(const QModelIndex&) const {
+    return ColumnCount;
 }
 
 QVariant SceneTreeModel::data(const QModelIndex& index, int role) const {
-    if (!index.isValid() || index.row() >= rows_.size()) return {};
-    const Row& r = rows_[index.row()];
+    if (!index.isValid() || bodyOf(index) >= rows_.size()) return {};
+    const Row& r = rows_[bodyOf(index)];
+    if (const int part = partOf(index); part >= 0) {
+        if (part >= r.parts.size() || (role != Qt::DisplayRole && role != Qt::EditRole)) return {};
+        switch (index.column()) {
+            case NameColumn: return r.parts[part];
+            case MotionColumn: return tr("part");
+            case ShapeColumn: return r.partShapes[part];
+        }
+        return {};
+    }
     switch (role) {
         case Qt::DisplayRole:
         case Qt::EditRole:
@@ -121,7 +185,8 @@ QVariant SceneTreeModel::headerData(int section, Qt::Orientation orientation, in
 
 Qt::ItemFlags SceneTreeModel::flags(const QModelIndex& index) const {
     if (!index.isValid()) return Qt::NoItemFlags;
-    Qt::ItemFlags f = Qt::ItemIsEnabled | Qt::ItemIsSelectable | Qt::ItemNeverHasChildren;
+    Qt::ItemFlags f = Qt::ItemIsEnabled | Qt::ItemIsSelectable;
+    if (partOf(index) >= 0 || rows_[bodyOf(index)].parts.isEmpty()) f |= Qt::ItemNeverHasChildren;
     if (index.column() == NameColumn) f |= Qt::ItemIsEditable;
     return f;
 }
@@ -137,9 +202,21 @@ QString SceneTreeModel::nameProblem(int row, const QString& name) const {
 
 bool SceneTreeModel::setData(const QModelIndex& index, const QVariant& value, int role) {
     if (role != Qt::EditRole || !index.isValid() || index.column() != NameColumn ||
-        index.row() >= rows_.size())
+        bodyOf(index) >= rows_.size())
         return false;
     const QString name = value.toString().trimmed();
+    if (const int part = partOf(index); part >= 0) {
+        BodyDesc b = doc_->body(bodyOf(index));
+        if (b.shape.type != ShapeType::Compound || part >= static_cast<int>(b.shape.parts.size()))
+            return false;
+        PartDesc& p = b.shape.parts[static_cast<size_t>(part)];
+        if (name.toStdString() == p.name) return true;
+        const QString old = QString::fromStdString(partLabel(p, part));
+        p.name = name.toStdString();
+        doc_->setBody(bodyOf(index), b,
+                      tr("Rename %1 to %2").arg(old, QString::fromStdString(partLabel(p, part))));
+        return true;
+    }
     const int row = index.row();
     const QString old = QString::fromStdString(doc_->body(row).name);
     if (name == old) return true;

@@ -191,21 +191,21 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     connect(document, &Document::sceneReset, this, [this, cancelDrag] {
         cancelDrag();
         d_->scene->rebuild(d_->doc->scene());
-        d_->scene->setSelection(d_->shownSelection());
+        d_->scene->setSelection(d_->shownSelection(), d_->shownPart());
         refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyInserted, this, [this, cancelDrag](int i) {
         cancelDrag();
         d_->scene->insert(i, d_->doc->body(i));
-        d_->scene->setSelection(d_->shownSelection());
+        d_->scene->setSelection(d_->shownSelection(), d_->shownPart());
         refreshPlayback();
         updateHandles();
     });
     connect(document, &Document::bodyRemoved, this, [this, cancelDrag](int i) {
         cancelDrag();
         d_->scene->remove(i);
-        d_->scene->setSelection(d_->shownSelection());
+        d_->scene->setSelection(d_->shownSelection(), d_->shownPart());
         refreshPlayback();
         updateHandles();
     });
@@ -219,13 +219,13 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
         if (d_->dragAxis < 0) updateHandles();  // (a drag keeps its origin: the anchor follows the pointer)
     });
     connect(document, &Document::selectionChanged, this, [this] {
-        d_->scene->setSelection(d_->shownSelection());
+        d_->scene->setSelection(d_->shownSelection(), d_->shownPart());
         updateHandles();
         refreshJoints();  // the selected joint is drawn light
     });
 
     d_->scene->rebuild(document->scene());
-    d_->scene->setSelection(d_->shownSelection());
+    d_->scene->setSelection(d_->shownSelection(), d_->shownPart());
     refreshJoints();
     syncCamera();
 }
@@ -318,7 +318,7 @@ void Viewport::rayAt(const QPoint& widgetPos, QVector3D* origin, QVector3D* dire
                           float(std::max(1, height())), origin, direction);
 }
 
-int Viewport::bodyAt(const QPoint& widgetPos) const {
+int Viewport::bodyAt(const QPoint& widgetPos, int* part) const {
     QVector3D o, dir;
     rayAt(widgetPos, &o, &dir);
     // The engine's ray cast: nearest body, ties to the lower index. At a recorded frame,
@@ -326,10 +326,12 @@ int Viewport::bodyAt(const QPoint& widgetPos) const {
     if (d_->shownFrame > 0) {
         if (const State* state = d_->frameState()) {
             const auto hit = rayCast(*d_->timeline->model(), *state, toVec(o), toVec(dir));
+            if (part) *part = hit ? hit->part : -1;
             return hit ? hit->body : -1;
         }
     }
     const auto hit = rayCastScene(d_->doc->scene(), toVec(o), toVec(dir));
+    if (part) *part = hit ? hit->part : -1;
     return hit ? hit->body : -1;
 }
 
@@ -362,7 +364,14 @@ void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers)
             return;
         }
     }
-    int hit = bodyAt(widgetPos);
+    int part = -1;
+    int hit = bodyAt(widgetPos, &part);
+    // A click on the one selected body, a compound, goes into it: the part under the
+    // pointer is selected (the Scene list's part row and the Part panel with it).
+    if (!toggle && hit >= 0 && part >= 0 && d_->doc->selection() == QList<int>{hit}) {
+        d_->doc->selectPart(hit, part);
+        return;
+    }
     // The ground (a plane) is the floor of the view, not a thing on it: a click there is a
     // click on empty space, which clears the selection (the Scene list selects the ground).
     if (hit >= 0 && d_->doc->body(hit).shape.type == ShapeType::Plane) hit = -1;

@@ -41,14 +41,14 @@ public:
     ~Viewport() override;
 
     /// The body under a widget point: the nearest hit of the ray from the camera through that
-    /// pixel against the bodies' exact shapes, or -1.
-    int bodyAt(const QPoint& widgetPos) const;
+    /// pixel against the bodies' exact shapes, or -1; `part`: the compound's part hit, or -1.
+    int bodyAt(const QPoint& widgetPos, int* part = nullptr) const;
     /// The joint drawn under a widget point (while editing, with the Joints overlay on):
     /// within a few pixels of one of its anchors or of the line between them; or -1.
     int jointAt(const QPoint& widgetPos) const;
     /// Selects the joint under the point, else the body under it (Ctrl: toggles the body in
-    /// the selection); empty space clears the selection (Ctrl: leaves it). What a left click
-    /// does.
+    /// the selection); empty space clears the selection (Ctrl: leaves it). A click on the one
+    /// selected body, a compound, selects its part under the point. What a left click does.
     void clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers = Qt::NoModifier);
     /// A poke: an impulse on dynamic body `body` at world point `point` of the frame at the
     /// playhead, along `drag` (world, m): it changes the body's velocity at that point by

@@ -56,6 +56,27 @@ BodyDesc rotated(const BodyDesc& body, const Vec3& pivot, const Vec3& axis, doub
     return b;
 }
 
+Vec3 partOrigin(const BodyDesc& body, int part) {
+    return body.position + body.orientation.normalized() * body.shape.parts.at(size_t(part)).position;
+}
+
+BodyDesc partMoved(const BodyDesc& body, int part, const Vec3& axis, double distance) {
+    BodyDesc b = body;
+    PartDesc& p = b.shape.parts.at(size_t(part));
+    p.position += body.orientation.normalized().conjugate() * (distance * axis);
+    return b;
+}
+
+BodyDesc partRotated(const BodyDesc& body, int part, const Vec3& axis, double angle) {
+    BodyDesc b = body;
+    PartDesc& p = b.shape.parts.at(size_t(part));
+    const Quat q = body.orientation.normalized();
+    // World turn r, seen in the body's frame: q^-1 r q, applied after the part's own turn.
+    const Quat r(Eigen::AngleAxisd(angle, axis));
+    p.orientation = (q.conjugate() * r * q * p.orientation).normalized();
+    return b;
+}
+
 JointDesc movedAnchor(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double distance) {
     JointDesc out = j;
     const BodyFrame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);

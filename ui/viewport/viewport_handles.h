@@ -32,6 +32,14 @@ BodyDesc moved(const BodyDesc& body, const Vec3& axis, double distance);
 /// its orientation turns, and its position turns about the pivot.
 BodyDesc rotated(const BodyDesc& body, const Vec3& pivot, const Vec3& axis, double angle);
 
+/// Where part `part` of the compound `body` stands in the world (its frame's origin).
+Vec3 partOrigin(const BodyDesc& body, int part);
+/// The body with its part `part` moved by `distance` along the world `axis` (its position
+/// kept in the body's frame), or turned by `angle` about the world `axis` through the part's
+/// own origin. The body itself stays where it is.
+BodyDesc partMoved(const BodyDesc& body, int part, const Vec3& axis, double distance);
+BodyDesc partRotated(const BodyDesc& body, int part, const Vec3& axis, double angle);
+
 /// The joint with its anchor on body A (worldAnchorA, document/joint_presets.h: where a
 /// selected joint's handles stand) moved by `distance` along `axis` (world). Both anchors move
 /// together (they describe the one point where the bodies are joined), each kept in its

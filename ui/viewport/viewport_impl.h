@@ -157,6 +157,7 @@ struct Viewport::Impl {
     double dragStartParameter = 0.0;
     Vec3 dragStartVector = Vec3::Zero();
     std::vector<std::pair<int, BodyDesc>> dragStart;
+    int dragPart = -1;   // the part the drag moves (of the one body in dragStart), or -1
     int dragJoint = -1;  // a selected joint's drag: the joint, as it was
     JointDesc dragJointStart;
     int dragMergeId = 0;
@@ -190,6 +191,12 @@ struct Viewport::Impl {
     /// Whether the selection is drawn (highlight and handles); off in an image export's view.
     bool selectionShown = true;
     QList<int> shownSelection() const { return selectionShown ? doc->selection() : QList<int>(); }
+    int shownPart() const { return selectionShown ? doc->selectedPart() : -1; }
+    /// The selected part when the handles move it (its body alone selected and movable).
+    int handledPart() const {
+        const int part = shownPart();
+        return part >= 0 && movableSelection().size() == 1 ? part : -1;
+    }
 
     /// The selected joint when its handles apply: at frame 0, shown, and (to turn) one with
     /// an axis; -1 otherwise.

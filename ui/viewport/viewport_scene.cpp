@@ -159,6 +159,7 @@ struct ViewportScene::Impl {
         Motion motion = Motion::Dynamic;
         bool plane = false;
         bool selected = false;
+        int selectedPart = -1;  // a compound's part drawn selected instead of the whole body
         bool asleep = false;
     };
     std::vector<Body> bodies;
@@ -175,7 +176,7 @@ struct ViewportScene::Impl {
 
     const ViewportInstances::Look& lookFor(const Body& b) const {
         if (b.plane) return b.selected ? selectedGroundLook : groundLook;
-        if (b.selected) return selectedLook;
+        if (b.selected && b.selectedPart < 0) return selectedLook;
         if (b.asleep) return asleepLook;
         switch (b.motion) {
             case Motion::Static: return staticLook;
@@ -206,9 +207,9 @@ struct ViewportScene::Impl {
             QMatrix4x4 pose;
             pose.translate(b.position);
             pose.rotate(b.orientation);
-            const ViewportInstances::Look& look = lookFor(b);
             // A shape drawn in the frame `frame` (the body's, or a compound's part's in it).
-            auto draw = [&](const ShapeDesc& shape, const QMatrix4x4& frame, auto& self) -> void {
+            auto draw = [&](const ShapeDesc& shape, const QMatrix4x4& frame,
+                            const ViewportInstances::Look& look, auto& self) -> void {
                 auto part = [&](K kind, const QVector3D& scale, const QVector3D& translation = QVector3D(),
                                 const QQuaternion& rotation = QQuaternion()) {
                     QMatrix4x4 m = frame;
@@ -238,17 +239,19 @@ struct ViewportScene::Impl {
                     }
                     case ShapeType::Mesh: break;  // (a compound's mesh parts are not drawn yet)
                     case ShapeType::Compound:
-                        for (const PartDesc& p : shape.parts) {
+                        for (size_t k = 0; k < shape.parts.size(); ++k) {
+                            const PartDesc& p = shape.parts[k];
                             if (p.shape.type == ShapeType::Compound) continue;  // refused by validate
                             QMatrix4x4 m = frame;
                             m.translate(toQt(p.position));
                             m.rotate(toQt(p.orientation.normalized()));
-                            self(p.shape, m, self);
+                            const bool picked = b.selected && b.selectedPart == static_cast<int>(k);
+                            self(p.shape, m, picked ? selectedLook : look, self);
                         }
                         break;
                 }
             };
-            draw(s, pose, draw);
+            draw(s, pose, lookFor(b), draw);
         }
         instances->commit();
     }
@@ -521,13 +524,15 @@ void ViewportScene::remove(int index) {
     d_->changed();
 }
 
-void ViewportScene::setSelection(const QList<int>& indices) {
+void ViewportScene::setSelection(const QList<int>& indices, int part) {
     bool any = false;
     for (int i = 0; i < count(); ++i) {
         Impl::Body& b = d_->bodies[size_t(i)];
         const bool selected = indices.contains(i);
-        if (selected == b.selected) continue;
+        const int selectedPart = selected && indices.size() == 1 ? part : -1;
+        if (selected == b.selected && selectedPart == b.selectedPart) continue;
         b.selected = selected;
+        b.selectedPart = selectedPart;
         if (b.shape.type == ShapeType::Mesh) {
             d_->setMaterial(b, d_->materialFor(b));
         } else {

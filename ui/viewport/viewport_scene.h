@@ -32,7 +32,9 @@ public:
     void update(int index, const BodyDesc& body);
     void remove(int index);
     /// Highlights exactly these bodies.
-    void setSelection(const QList<int>& indices);
+    /// Draws the bodies `indices` selected; with `part` >= 0 (one compound body selected),
+    /// that part of it instead of the whole body.
+    void setSelection(const QList<int>& indices, int part = -1);
     /// Bodies drawn (one per body of the document, however they are drawn).
     int count() const;
 

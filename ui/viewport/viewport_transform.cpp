@@ -4,6 +4,7 @@
 #include "viewport/viewport_impl.h"
 
 #include "document/joint_presets.h"
+#include "document/part_edits.h"
 
 #include <Qt3DExtras/Qt3DWindow>
 
@@ -66,8 +67,10 @@ void Viewport::updateHandles() {
         // A joint's stand on its anchor: they move it, or turn its axis.
         Vec3 sum = Vec3::Zero();
         for (int i : movable) sum += d_->doc->body(i).position;
-        d_->handlesOrigin = joint >= 0 ? worldAnchorA(d_->doc->scene(), d_->doc->joint(joint))
-                                       : Vec3(sum / double(movable.size()));
+        const int part = d_->handledPart();
+        d_->handlesOrigin = joint >= 0  ? worldAnchorA(d_->doc->scene(), d_->doc->joint(joint))
+                            : part >= 0 ? handles::partOrigin(d_->doc->body(movable.front()), part)
+                                        : Vec3(sum / double(movable.size()));
         const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
         d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
         d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
@@ -131,6 +134,7 @@ bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
     d_->dragOrigin = origin;
     d_->dragStart.clear();
     d_->dragJoint = d_->handledJoint(d_->mode);
+    d_->dragPart = d_->handledPart();
     if (d_->dragJoint >= 0)
         d_->dragJointStart = d_->doc->joint(d_->dragJoint);
     else
@@ -160,7 +164,10 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
         amount = handles::signedAngle(d_->dragStartVector, *hit - d_->dragOrigin, a);
         if (snap) amount = handles::snap(amount, qDegreesToRadians(d_->turnStepDegrees));
     }
+    const int part = d_->dragPart;
     auto apply = [&](const BodyDesc& b) {
+        if (part >= 0)
+            return move ? handles::partMoved(b, part, a, amount) : handles::partRotated(b, part, a, amount);
         return move ? handles::moved(b, a, amount) : handles::rotated(b, d_->dragOrigin, a, amount);
     };
     const QString verb = move ? tr("Move") : tr("Rotate");
@@ -183,7 +190,10 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
     } else if (d_->dragStart.size() == 1) {
         // One body: consecutive edits with this drag's merge id are one undo step.
         const auto& [index, before] = d_->dragStart.front();
-        doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(before.name)),
+        const std::string what =
+            part >= 0 ? partLabel(before.shape.parts.at(size_t(part)), part) + " of " + before.name
+                      : before.name;
+        doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(what)),
                      d_->dragMergeId);
     } else {
         // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
@@ -221,6 +231,7 @@ void Viewport::endHandleDrag() {
     d_->dragAxis = -1;
     d_->dragStart.clear();
     d_->dragJoint = -1;
+    d_->dragPart = -1;
     d_->dragCommand = nullptr;
     d_->gizmo->setHighlight(-1);
     d_->hover = -1;

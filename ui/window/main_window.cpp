@@ -167,9 +167,12 @@ void MainWindow::buildMenus() {
     // The scene tree's own actions (their shortcuts live there; a second action with the
     // same key would make both ambiguous).
     edit->addMenu(tree_->addMenu());
+    edit->addMenu(tree_->partMenu());
     edit->addAction(tree_->duplicateAction());
     edit->addAction(tree_->deleteAction());
     edit->addAction(tree_->renameAction());
+    edit->addAction(tree_->groupAction());
+    edit->addAction(tree_->ungroupAction());
     edit->addMenu(tree_->jointMenu());
     edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
         QList<int> all;
