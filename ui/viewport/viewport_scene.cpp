@@ -148,6 +148,14 @@ struct ViewportScene::Impl {
         Qt3DCore::QTransform* transform = nullptr;
         Qt3DCore::QEntity* part = nullptr;               // its mesh
         Qt3DExtras::QPhongMaterial* material = nullptr;  // the one in use
+        // A compound's mesh parts (under `entity`, each with its pose in the body's frame):
+        // the entity, the part's index, the material in use.
+        struct MeshPart {
+            Qt3DCore::QEntity* entity = nullptr;
+            int index = -1;
+            Qt3DExtras::QPhongMaterial* material = nullptr;
+        };
+        std::vector<MeshPart> meshParts;
         Qt3DCore::QEntity* wire = nullptr;               // the collision shape, when shown
         Qt3DCore::QTransform* wireTransform = nullptr;
         ShapeDesc shape;     // what is drawn
@@ -186,8 +194,8 @@ struct ViewportScene::Impl {
         return dynamicLook;
     }
 
-    Qt3DExtras::QPhongMaterial* materialFor(const Body& b) const {
-        if (b.selected) return selectedMat;
+    Qt3DExtras::QPhongMaterial* materialFor(const Body& b, int part = -1) const {
+        if (b.selected && (b.selectedPart < 0 || b.selectedPart == part)) return selectedMat;
         if (b.asleep) return asleepMat;
         switch (b.motion) {
             case Motion::Static: return staticMat;
@@ -378,6 +386,7 @@ struct ViewportScene::Impl {
         b.entity = nullptr;
         b.transform = nullptr;
         b.part = nullptr;
+        b.meshParts.clear();
         b.wire = nullptr;
         b.wireTransform = nullptr;
     }
@@ -399,18 +408,42 @@ struct ViewportScene::Impl {
                 b.part->addComponent(b.material);
             }
             if (wasInstanced) changed();  // it leaves the instances
+        } else if (s.type == ShapeType::Compound) {
+            // Its primitives are instances (flush); its meshes entities of their own.
+            for (size_t k = 0; k < s.parts.size(); ++k) {
+                const PartDesc& p = s.parts[k];
+                if (p.shape.type != ShapeType::Mesh || !p.shape.meshData) continue;
+                if (!b.entity) {
+                    b.entity = new Qt3DCore::QEntity(root);
+                    b.transform = new Qt3DCore::QTransform(b.entity);
+                    b.entity->addComponent(b.transform);
+                }
+                Body::MeshPart m{new Qt3DCore::QEntity(b.entity), int(k), materialFor(b, int(k))};
+                auto* at = new Qt3DCore::QTransform(m.entity);
+                at->setTranslation(toQt(p.position));
+                at->setRotation(toQt(p.orientation.normalized()));
+                m.entity->addComponent(at);
+                m.entity->addComponent(meshRenderer(p.shape.meshData, m.entity));
+                m.entity->addComponent(m.material);
+                b.meshParts.push_back(m);
+            }
         }
         pose(b, desc);
         setWire(b);
     }
 
-    void setMaterial(Body& b, Qt3DExtras::QPhongMaterial* m) {
-        if (b.material == m) return;
-        if (b.part) {
-            b.part->removeComponent(b.material);
-            b.part->addComponent(m);
-        }
-        b.material = m;
+    // The materials of a mesh body, or of a compound's mesh parts, as its state now says.
+    void refreshMaterials(Body& b) {
+        auto swap = [](Qt3DCore::QEntity* e, Qt3DExtras::QPhongMaterial*& in, Qt3DExtras::QPhongMaterial* m) {
+            if (in == m) return;
+            if (e) {
+                e->removeComponent(in);
+                e->addComponent(m);
+            }
+            in = m;
+        };
+        swap(b.part, b.material, materialFor(b));
+        for (Body::MeshPart& m : b.meshParts) swap(m.entity, m.material, materialFor(b, m.index));
     }
 
     void buildGridAndAxes() {
@@ -509,7 +542,7 @@ void ViewportScene::update(int index, const BodyDesc& body) {
     b.motion = body.motion;
     b.plane = body.shape.type == ShapeType::Plane;
     if (Impl::sameShape(b.shape, body.shape)) {  // a move or a turn (a drag): keep the entities
-        d_->setMaterial(b, d_->materialFor(b));
+        d_->refreshMaterials(b);
         d_->pose(b, body);
         return;
     }
@@ -533,11 +566,8 @@ void ViewportScene::setSelection(const QList<int>& indices, int part) {
         if (selected == b.selected && selectedPart == b.selectedPart) continue;
         b.selected = selected;
         b.selectedPart = selectedPart;
-        if (b.shape.type == ShapeType::Mesh) {
-            d_->setMaterial(b, d_->materialFor(b));
-        } else {
-            any = true;
-        }
+        d_->refreshMaterials(b);
+        if (b.shape.type != ShapeType::Mesh) any = true;
     }
     if (any) d_->changed();
 }
@@ -567,11 +597,8 @@ void ViewportScene::setAsleep(int index, bool asleep) {
     Impl::Body& b = d_->bodies[size_t(index)];
     if (b.asleep == asleep) return;
     b.asleep = asleep;
-    if (b.shape.type == ShapeType::Mesh) {
-        d_->setMaterial(b, d_->materialFor(b));
-    } else {
-        d_->changed();
-    }
+    d_->refreshMaterials(b);
+    if (b.shape.type != ShapeType::Mesh) d_->changed();
 }
 
 int ViewportScene::asleepCount() const {

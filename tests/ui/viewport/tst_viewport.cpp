@@ -372,6 +372,56 @@ private slots:
         QVERIFY(orangeAt(doc.body(tetra).position));
     }
 
+    // Issue 49: a compound's mesh part is drawn (the pixels at its centre take the body's
+    // orange); a click on the compound selects it, a second click goes into it and selects
+    // the part under the pointer, a click on its other part that one.
+    void aCompoundsMeshPartIsDrawnAndAClickPicksAPart() {
+        auto slab = std::make_shared<TriangleMesh>();  // a 1 x 1 x 0.25 box facing the camera
+        for (int k = 0; k < 8; ++k)
+            slab->vertices.push_back(Vec3(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.125 : -0.125));
+        slab->triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                           {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+        Document doc;
+        BodyDesc c = body("pair", ShapeType::Compound, Vec3(0, 1.5, 0));
+        c.shape.parts.resize(2);
+        c.shape.parts[0].name = "slab";
+        c.shape.parts[0].shape.type = ShapeType::Mesh;
+        c.shape.parts[0].shape.file = "slab.obj";
+        c.shape.parts[0].shape.meshData = slab;
+        c.shape.parts[0].position = Vec3(-0.8, 0, 0);
+        c.shape.parts[1].name = "block";
+        c.shape.parts[1].shape.type = ShapeType::Box;
+        c.shape.parts[1].shape.halfExtents = Vec3(0.3, 0.3, 0.3);
+        c.shape.parts[1].position = Vec3(0.8, 0, 0);
+        const int pair = doc.addBody(c);
+        Viewport view(&doc);
+        view.resize(480, 360);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        view.setCamera(QVector3D(0, 1.5f, 0), 6.0f, 0.0f, 10.0f);
+        const QPoint slabAt = projected(view, Vec3(-0.8, 1.5, 0)),
+                     blockAt = projected(view, Vec3(0.8, 1.5, 0));
+        bool orange = false;
+        for (int tries = 0; tries < 200 && !orange; ++tries) {  // until a frame with it is on screen
+            QTest::qWait(50);
+            const QColor px = view.screen()->grabWindow(view.winId()).toImage().pixelColor(slabAt);
+            orange = px.red() > px.blue() + 60;
+        }
+        QVERIFY2(orange, "the mesh part is not drawn");
+        QTest::mouseClick(view.renderWindow(), Qt::LeftButton, Qt::NoModifier, slabAt);
+        QCOMPARE(doc.selection(), QList<int>{pair});
+        QCOMPARE(doc.selectedPart(), -1);
+        QTest::mouseClick(view.renderWindow(), Qt::LeftButton, Qt::NoModifier, slabAt);
+        QCOMPARE(doc.selectedPart(), 0);
+        QTest::mouseClick(view.renderWindow(), Qt::LeftButton, Qt::NoModifier, blockAt);
+        QCOMPARE(doc.selectedPart(), 1);
+        QCOMPARE(doc.selection(), QList<int>{pair});
+        // Empty space clears both.
+        QTest::mouseClick(view.renderWindow(), Qt::LeftButton, Qt::NoModifier, QPoint(view.width() / 2, 3));
+        QVERIFY(doc.selection().isEmpty());
+        QCOMPARE(doc.selectedPart(), -1);
+    }
+
     void spheresAndCylindersGetCoarserAsTheyGrowInNumber() {
         using K = ViewportInstances::Kind;
         // A few: full detail (a sphere of 24 rings and 32 slices, a cylinder of 32 slices).
