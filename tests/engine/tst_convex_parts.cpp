@@ -204,6 +204,27 @@ private slots:
         QVERIFY2(std::abs(p.largestPokeOut - out) < 0.02, qPrintable(QString::number(p.largestPokeOut)));
     }
 
+    // The progress callback hears shares from 0 up to below 1, never falling; the same split
+    // with it gives the same parts; a callback that says stop stops it (the editor's Cancel).
+    void progressIsHeardAndCanStop() {
+        const TriangleMesh u = uBracket(1.0, 0.2, 0.6, 0.4);
+        std::vector<double> heard;
+        const ConvexParts p = convexParts(u, {}, [&](double done) {
+            heard.push_back(done);
+            return true;
+        });
+        QVERIFY(heard.size() >= 3);
+        QCOMPARE(heard.front(), 0.0);
+        QVERIFY(std::is_sorted(heard.begin(), heard.end()));
+        QVERIFY(heard.back() < 1.0);
+        const ConvexParts q = convexParts(u);
+        QCOMPARE(p.parts.size(), q.parts.size());
+        QCOMPARE(p.partsVolume, q.partsVolume);
+        int calls = 0;
+        QVERIFY_THROWS_EXCEPTION(ConvexPartsStopped, convexParts(u, {}, [&](double) { return ++calls < 2; }));
+        QCOMPARE(calls, 2);
+    }
+
     void badInput() {
         TriangleMesh open = boxMesh(Vec3(1, 1, 1));
         open.triangles.pop_back();

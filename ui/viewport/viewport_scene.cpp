@@ -334,13 +334,15 @@ struct ViewportScene::Impl {
     Qt3DRender::QGeometryRenderer* wireRenderer(const ShapeDesc& s, Qt3DCore::QNode* owner) {
         auto build = [](const ShapeDesc& shape) {
             std::vector<float> data;
-            const QColor c(70, 235, 200);
-            // A hair outside the surface, so the lines on it win the depth test and the ones
-            // behind it stay hidden.
-            for (const Vec3& q : collisionWire(shape)) {
-                const Vec3 p = q * kWireLift;
-                data.insert(data.end(), {float(p.x()), float(p.y()), float(p.z()), float(c.redF()),
-                                         float(c.greenF()), float(c.blueF())});
+            // Each piece (a compound's part, a mesh's convex part) in its own colour. A hair
+            // outside the surface, so the lines on it win the depth test and the ones behind
+            // it stay hidden.
+            std::vector<int> pieces;
+            const std::vector<Vec3> wire = collisionWire(shape, &pieces);
+            for (size_t i = 0; i < wire.size(); ++i) {
+                const Vec3 p = wire[i] * kWireLift;
+                const auto c = pieceColour(pieces[i / 2]);
+                data.insert(data.end(), {float(p.x()), float(p.y()), float(p.z()), c[0], c[1], c[2]});
             }
             return data;
         };

@@ -48,7 +48,19 @@ void triangleEdges(std::vector<Vec3>& out, const TriangleMesh& mesh) {
 
 }  // namespace
 
-std::vector<Vec3> collisionWire(const ShapeDesc& s) {
+std::array<float, 3> pieceColour(int k) {
+    if (k <= 0) return {70 / 255.0f, 235 / 255.0f, 200 / 255.0f};
+    // Hue by the golden angle from the cyan, full saturation, bright: HSV to RGB.
+    const double h = std::fmod(168.0 + 137.508 * k, 360.0) / 60.0, s = 0.75, v = 1.0;
+    const double c = v * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
+    const int sector = static_cast<int>(h) % 6;
+    const std::array<std::array<double, 3>, 6> rgb = {
+        {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}}};
+    const auto& o = rgb[static_cast<size_t>(sector)];
+    return {float(o[0] + m), float(o[1] + m), float(o[2] + m)};
+}
+
+std::vector<Vec3> collisionWire(const ShapeDesc& s, std::vector<int>* pieces) {
     std::vector<Vec3> out;
     const Vec3 x = Vec3::UnitX(), y = Vec3::UnitY(), z = Vec3::UnitZ();
     switch (s.type) {
@@ -103,12 +115,15 @@ std::vector<Vec3> collisionWire(const ShapeDesc& s) {
             }
             if (s.collision == MeshCollision::ConvexParts && s.convexParts) {
                 // Each part's hull: the split as the collision sees it.
-                for (const collision::ConvexHull& hull : s.convexParts->parts)
+                for (size_t k = 0; k < s.convexParts->parts.size(); ++k) {
+                    const collision::ConvexHull& hull = s.convexParts->parts[k];
                     for (const auto& e : hull.edges) {
                         out.push_back(hull.vertices[size_t(e[0])]);
                         out.push_back(hull.vertices[size_t(e[1])]);
+                        if (pieces) pieces->push_back(int(k));
                     }
-                break;
+                }
+                return out;
             }
             try {
                 const collision::ConvexHull hull = mesh::convexHull(s.meshData->vertices);
@@ -123,13 +138,17 @@ std::vector<Vec3> collisionWire(const ShapeDesc& s) {
         }
         case ShapeType::Compound:
             // Each part's wire placed in the body frame.
-            for (const PartDesc& p : s.parts) {
+            for (size_t k = 0; k < s.parts.size(); ++k) {
+                const PartDesc& p = s.parts[k];
                 if (p.shape.type == ShapeType::Compound) continue;  // refused by validate
                 const Mat3 R = p.orientation.normalized().toRotationMatrix();
-                for (const Vec3& q : collisionWire(p.shape)) out.push_back(R * q + p.position);
+                const std::vector<Vec3> wire = collisionWire(p.shape);
+                for (const Vec3& q : wire) out.push_back(R * q + p.position);
+                if (pieces) pieces->insert(pieces->end(), wire.size() / 2, int(k));
             }
-            break;
+            return out;
     }
+    if (pieces) pieces->assign(out.size() / 2, 0);
     return out;
 }
 

@@ -37,6 +37,8 @@
 #include <tumble/mass.h>
 
 #include <cstdint>
+#include <functional>
+#include <stdexcept>
 #include <vector>
 
 namespace tumble {
@@ -69,13 +71,23 @@ struct ConvexParts {
     double seconds = 0.0;  ///< how long they took to make (s)
 };
 
+/// Called now and then during a split with the share done (0 to 1, rising); returning false
+/// stops the split, which then throws ConvexPartsStopped. Called on the splitting thread.
+using ConvexPartsProgress = std::function<bool(double done)>;
+
+/// A split stopped by its progress callback.
+struct ConvexPartsStopped : std::runtime_error {
+    ConvexPartsStopped() : std::runtime_error("the split into convex parts was stopped") {}
+};
+
 /// Volume of a convex hull (its faces' offsets times their areas, over three).
 double hullVolume(const collision::ConvexHull& hull);
 
 /// The convex parts of the solid bounded by `mesh`, which must be closed and face outwards
 /// (isClosed; prepareMesh makes it so). Throws std::invalid_argument for an open or empty
 /// mesh, or options out of range.
-ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options = {});
+ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options = {},
+                        const ConvexPartsProgress& progress = {});
 
 /// A hash of the mesh's vertices (their bits) and triangles: equal meshes, equal hashes.
 std::uint64_t meshHash(const TriangleMesh& mesh);
@@ -89,7 +101,7 @@ bool convexPartsFit(const ConvexParts& parts, const ShapeDesc& shape);
 /// The convex parts of a mesh shape (its meshData cleaned as compile cleans it) with its
 /// options, timed, with the mesh's hash. Throws std::invalid_argument when the shape has no
 /// mesh, or the cleaned mesh is not closed (it bounds no solid to split).
-ConvexParts convexPartsOfShape(const ShapeDesc& shape);
+ConvexParts convexPartsOfShape(const ShapeDesc& shape, const ConvexPartsProgress& progress = {});
 
 /// How far each point lies outside the solid bounded by the closed `mesh` (0 inside): its
 /// distance to the nearest triangle when a ray from it crosses the surface an even number of

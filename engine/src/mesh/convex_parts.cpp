@@ -325,7 +325,8 @@ public:
         }
     }
 
-    ConvexParts run(int maxParts) {
+    // `progress` (may be empty) hears the share of the pieces made of the most there may be.
+    ConvexParts run(int maxParts, const ConvexPartsProgress& progress) {
         Piece whole;
         whole.triangles.resize(m_.triangles.size());
         for (int t = 0; t < static_cast<int>(whole.triangles.size()); ++t) whole.triangles[t] = t;
@@ -342,7 +343,11 @@ public:
         const double solid = meshVolume(m_);
         const int most = std::min(2 * maxParts, 256);
         std::vector<std::uint8_t> uncuttable(1, 0);
+        auto report = [&](double done) {
+            if (progress && !progress(done)) throw ConvexPartsStopped();
+        };
         while (static_cast<int>(pieces.size()) < most) {
+            report(0.05 + 0.9 * static_cast<double>(pieces.size() - 1) / std::max(1, most - 1));
             int worst = -1;
             for (int i = 0; i < static_cast<int>(pieces.size()); ++i)
                 if (!pieces[i].empty && !uncuttable[i] && pieces[i].pokeOut > tolerance_ &&
@@ -372,6 +377,7 @@ public:
             uncuttable.push_back(0);
         }
         std::erase_if(pieces, [](const Piece& p) { return p.empty; });
+        report(0.95);
         merge(pieces, maxParts);
         ConvexParts out;
         out.tolerance = tolerance_;
@@ -720,7 +726,8 @@ std::vector<double> distancesOutside(const TriangleMesh& mesh, const std::vector
     return out;
 }
 
-ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options) {
+ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options,
+                        const ConvexPartsProgress& progress) {
     if (mesh.triangles.empty()) throw std::invalid_argument("convex parts: the mesh has no triangles");
     if (!isClosed(mesh))
         throw std::invalid_argument("convex parts: the mesh is not closed (it bounds no solid)");
@@ -732,8 +739,9 @@ ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& opti
     for (const Vec3& v : mesh.vertices) box.add(v);
     const double tolerance = options.tolerance > 0 ? options.tolerance : 0.01 * box.extent().norm();
     if (meshVolume(mesh) <= 0) throw std::invalid_argument("convex parts: the mesh faces inwards or is flat");
+    if (progress && !progress(0.0)) throw ConvexPartsStopped();
     Decomposer d(mesh, options, tolerance);
-    return d.run(options.maxParts);
+    return d.run(options.maxParts, progress);
 }
 
 }  // namespace tumble::mesh

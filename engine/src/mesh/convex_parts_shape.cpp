@@ -46,7 +46,7 @@ bool convexPartsFit(const ConvexParts& parts, const ShapeDesc& shape) {
            parts.options.resolution == o.resolution;
 }
 
-ConvexParts convexPartsOfShape(const ShapeDesc& shape) {
+ConvexParts convexPartsOfShape(const ShapeDesc& shape, const ConvexPartsProgress& progress) {
     if (!shape.meshData) throw std::invalid_argument("the mesh '" + shape.file + "' was never loaded");
     const auto start = std::chrono::steady_clock::now();
     const PreparedMesh prepared = prepareMesh(*shape.meshData, false, false);
@@ -56,7 +56,7 @@ ConvexParts convexPartsOfShape(const ShapeDesc& shape) {
             "or "
             "\"triangles\")");
     const ConvexPartsOptions options = convexPartsOptionsOf(shape);
-    ConvexParts parts = convexParts(prepared.surface, options);
+    ConvexParts parts = convexParts(prepared.surface, options, progress);
     parts.meshHash = meshHash(*shape.meshData);
     parts.options = options;
     parts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -450,6 +450,28 @@ private slots:
         QVERIFY(collisionWire(plane).empty());
     }
 
+    // Each piece of a collision (a compound's part) is told apart, for its own colour; the
+    // first sixteen colours are far apart from each other.
+    void collisionWirePiecesAreToldApart() {
+        ShapeDesc c;
+        c.type = ShapeType::Compound;
+        c.parts.resize(2);
+        for (PartDesc& p : c.parts) p.shape.type = ShapeType::Box;
+        c.parts[1].position = Vec3(3, 0, 0);
+        std::vector<int> pieces;
+        const auto wire = collisionWire(c, &pieces);
+        QCOMPARE(wire.size(), size_t(48));
+        QCOMPARE(pieces.size(), size_t(24));
+        QVERIFY(std::all_of(pieces.begin(), pieces.begin() + 12, [](int k) { return k == 0; }));
+        QVERIFY(std::all_of(pieces.begin() + 12, pieces.end(), [](int k) { return k == 1; }));
+        for (int a = 0; a < 16; ++a)
+            for (int b = a + 1; b < 16; ++b) {
+                const auto x = pieceColour(a), y = pieceColour(b);
+                const double d = std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]);
+                QVERIFY2(d > 0.05, qPrintable(QString("pieces %1 and %2: %3").arg(a).arg(b).arg(d)));
+            }
+    }
+
     void theWireframeToggleAddsAndRemovesLineEntities() {
         auto tetra = std::make_shared<TriangleMesh>();
         tetra->vertices = {Vec3(0.6, -0.4, 0.6), Vec3(-0.6, -0.4, 0.6), Vec3(0, -0.4, -0.7), Vec3(0, 0.7, 0)};
