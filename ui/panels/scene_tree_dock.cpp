@@ -3,6 +3,7 @@
 #include "document/body_presets.h"
 #include "document/document.h"
 #include "document/joint_presets.h"
+#include "import/convex_split_dialog.h"
 #include "panels/joint_list.h"
 #include "panels/scene_tree_model.h"
 
@@ -124,6 +125,15 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
             doc_->removeBodies(doc_->selection());
     });
 
+    split_ = new QAction(tr("Split into Con&vex Parts..."), this);
+    split_->setStatusTip(
+        tr("Cut the selected mesh body into convex parts, so it collides by its own concave shape"));
+    connect(split_, &QAction::triggered, this, [this] {
+        if (doc_->selection().size() != 1) return;
+        ConvexSplitDialog dialog(doc_, doc_->selection().front(), window());
+        dialog.exec();
+    });
+
     group_ = new QAction(tr("&Group"), this);
     group_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_G));
     group_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
@@ -201,6 +211,7 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
         menu.addAction(duplicate_);
         menu.addAction(group_);
         menu.addAction(ungroup_);
+        menu.addAction(split_);
         menu.addAction(delete_);
         rename_->setEnabled(view_->indexAt(pos).isValid());
         menu.exec(view_->viewport()->mapToGlobal(pos));
@@ -311,6 +322,9 @@ void SceneTreeDock::updateActions() {
     partMenu_->setEnabled(doc_->selection().size() == 1 &&
                           doc_->body(doc_->selection().front()).shape.type != ShapeType::Plane);
     group_->setEnabled(doc_->selection().size() >= 2);
+    split_->setEnabled(doc_->selection().size() == 1 && doc_->selectedPart() < 0 &&
+                       doc_->body(doc_->selection().front()).shape.type == ShapeType::Mesh &&
+                       doc_->body(doc_->selection().front()).shape.meshData);
     ungroup_->setEnabled(doc_->selection().size() == 1 &&
                          doc_->body(doc_->selection().front()).shape.type == ShapeType::Compound);
 }

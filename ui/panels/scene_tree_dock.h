@@ -35,6 +35,9 @@ public:
     QMenu* partMenu() const { return partMenu_; }
     QAction* addPartAction(ShapeType type) const { return partActions_.value(type); }
     QAction* duplicateAction() const { return duplicate_; }
+    /// Split into Convex Parts…: the one selected mesh body's split, in a dialog
+    /// (import/convex_split_dialog.h).
+    QAction* splitAction() const { return split_; }
     QAction* groupAction() const { return group_; }
     QAction* ungroupAction() const { return ungroup_; }
     QAction* deleteAction() const { return delete_; }
@@ -77,6 +80,7 @@ private:
     QMenu* jointMenu_;
     QMap<JointType, QAction*> jointActions_;
     QAction* duplicate_;
+    QAction* split_;
     QAction* group_;
     QAction* ungroup_;
     QAction* delete_;

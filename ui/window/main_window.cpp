@@ -173,6 +173,7 @@ void MainWindow::buildMenus() {
     edit->addAction(tree_->renameAction());
     edit->addAction(tree_->groupAction());
     edit->addAction(tree_->ungroupAction());
+    edit->addAction(tree_->splitAction());
     edit->addMenu(tree_->jointMenu());
     edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
         QList<int> all;
