@@ -7,10 +7,11 @@
 // PropertySpinBox::showValue and friends), so showing a value never edits it back.
 #include "panels/property_dock_impl.h"
 
-#include "panels/joint_panel.h"
-#include "sweep/sweep_dialog.h"
-#include "panels/live_state_box.h"
+#include "import/convex_split_dialog.h"
 #include "panels/field_guard.h"
+#include "panels/joint_panel.h"
+#include "panels/live_state_box.h"
+#include "sweep/sweep_dialog.h"
 
 #include <QApplication>
 
@@ -156,13 +157,30 @@ void PropertyDock::Impl::build() {
             }
         })
         ->setSoftMinimum(0.0);
-    addChoice<MeshCollision>(
+    auto* collision = addChoice<MeshCollision>(
         form, QObject::tr("Collision"), "shape.collision", QObject::tr("Set mesh collision"),
         {{QObject::tr("Convex hull"), MeshCollision::ConvexHull},
          {QObject::tr("Triangles"), MeshCollision::Triangles},
          {QObject::tr("Convex parts"), MeshCollision::ConvexParts}},
         [mesh](const BodyDesc& b) { return mesh(b) ? std::optional(b.shape.collision) : std::nullopt; },
         [](BodyDesc& b, int, MeshCollision c) { b.shape.collision = c; });
+    // Convex parts for one loaded mesh: made in the Split dialog, in the background, seen
+    // before they are applied (several bodies at once are split under a wait cursor).
+    QObject::disconnect(collision, &QComboBox::activated, q, nullptr);
+    QObject::connect(collision, &QComboBox::activated, q, [this, collision](int i) {
+        const MeshCollision c = MeshCollision(collision->itemData(i).toInt());
+        const QList<int> sel = doc->selection();
+        if (c == MeshCollision::ConvexParts && sel.size() == 1 && doc->body(sel[0]).shape.meshData &&
+            doc->body(sel[0]).shape.collision != MeshCollision::ConvexParts) {
+            ConvexSplitDialog dialog(doc, sel[0], q->window());
+            dialog.exec();
+            refresh();  // (cancelled: the combo shows the collision as it is)
+            return;
+        }
+        apply(
+            "shape.collision", QObject::tr("Set mesh collision"),
+            [c](BodyDesc& b, int) { b.shape.collision = c; }, false);
+    });
 
     buildMass(layout);
 

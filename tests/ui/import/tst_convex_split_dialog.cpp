@@ -5,10 +5,15 @@
 #include "document/document.h"
 #include "import/convex_parts_preview.h"
 #include "import/convex_split_dialog.h"
+#include "panels/property_dock.h"
+
+#include "../panels/panel_test_util.h"
 
 #include "../../engine/test_meshes.h"
 
+#include <QApplication>
 #include <QSpinBox>
+#include <QTimer>
 #include <QUndoStack>
 #include <QtTest>
 
@@ -74,6 +79,29 @@ private slots:
         QVERIFY2(dialog.status().contains("Max parts was reached"), qPrintable(dialog.status()));
         dialog.apply();
         QCOMPARE(doc.body(i).shape.maxParts, 2);
+    }
+
+    // Convex parts chosen in the property panel for one mesh body: the dialog opens, and
+    // what it applies is the body's collision.
+    void thePanelsCollisionChoiceOpensIt() {
+        Document doc;
+        PropertyDock dock(&doc);
+        const int i = addMeshBody(doc, test::uBracket(1.0, 0.2, 0.6, 0.4));
+        doc.setSelection({i});
+        bool opened = false;
+        QTimer::singleShot(0, [&] {
+            auto* d = qobject_cast<ConvexSplitDialog*>(QApplication::activeModalWidget());
+            if (!d) return;
+            opened = true;
+            for (int k = 0; k < 3000 && d->running(); ++k) QTest::qWait(20);
+            d->apply();
+        });
+        test::choose(dock, "shape.collision", "Convex parts");
+        QVERIFY(opened);
+        QCOMPARE(doc.body(i).shape.collision, MeshCollision::ConvexParts);
+        QVERIFY(doc.body(i).shape.convexParts);
+        QCOMPARE(int(doc.body(i).shape.convexParts->parts.size()), 3);
+        QCOMPARE(doc.undoStack()->count(), 1);
     }
 
     void anOpenMeshSaysWhy() {
