@@ -52,6 +52,9 @@ struct ConvexPartsOptions {
     double tolerance =
         0.0;              ///< m: how far a part may reach out of the solid; <= 0: 1 % of the mesh's diagonal
     int resolution = 48;  ///< interior samples along the mesh's longest side
+    /// Threads that try the candidate cuts side by side (0: one per core); the parts are the
+    /// same whatever the number.
+    int threads = 0;
 };
 
 struct ConvexParts {

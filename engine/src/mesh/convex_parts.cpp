@@ -1,6 +1,7 @@
 #include <tumble/convex_parts.h>
 
 #include "common/closest_point.h"
+#include "common/workers.h"
 
 #include <tumble/convex_hull.h>
 
@@ -15,6 +16,7 @@
 #include <numbers>
 #include <queue>
 #include <stdexcept>
+#include <thread>
 
 namespace tumble::mesh {
 
@@ -241,6 +243,8 @@ class Decomposer {
 public:
     Decomposer(const TriangleMesh& m, const ConvexPartsOptions& o, double tolerance)
         : m_(m), buckets_(m), tolerance_(tolerance) {
+        const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
+        if (threads > 1) pool_ = std::make_unique<Workers>(std::min(threads, 16));
         const Vec3 extent = buckets_.box().extent();
         scale_ = extent.norm();
         // Cells no larger than a third of the tolerance (the measure of how far a hull
@@ -654,26 +658,32 @@ private:
         // hull is as large as its share of the whole), the reflex planes and the middle cuts
         // are looked at two ahead: each half cut once more, across its own principal axes
         // at their middle, the best of those counted.
+        // (Each candidate on its own, spread over the pool's threads: each writes only its
+        // own slot, so the choice is the same whatever the threads.)
+        const int count = static_cast<int>(candidates.size());
         std::vector<double> score(candidates.size(), std::numeric_limits<double>::infinity());
         std::vector<std::array<Piece, 2>> trials(candidates.size());
-        double best = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < candidates.size(); ++i) {
-            if (!halves(p, candidates[i], trials[i])) continue;
-            score[i] = trials[i][0].volume + trials[i][1].volume;
-            best = std::min(best, score[i]);
-        }
+        forEachChunk(pool_.get(), count, 1, [&](int begin, int end) {
+            for (int i = begin; i < end; ++i)
+                if (halves(p, candidates[i], trials[i])) score[i] = trials[i][0].volume + trials[i][1].volume;
+        });
+        const double best = *std::min_element(score.begin(), score.end());
         if (!std::isfinite(best)) return false;
         const bool stalled = best > (1.0 - 0.02) * p.volume;
+        auto middle = [&](std::size_t i) { return i >= reflex && (i - reflex) % 7 == 3; };
+        std::vector<double> ahead(candidates.size(), 0.0);
+        if (stalled)
+            forEachChunk(pool_.get(), count, 1, [&](int begin, int end) {
+                for (int i = begin; i < end; ++i)
+                    if (std::isfinite(score[i]) && (static_cast<std::size_t>(i) < reflex || middle(i)))
+                        for (const Piece& h : trials[i]) ahead[i] += bestMiddleCut(h);
+            });
         std::size_t chosen = 0;
         double bestScore = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             if (!std::isfinite(score[i])) continue;
             double s = score[i];
-            const bool middle = i >= reflex && (i - reflex) % 7 == 3;
-            if (stalled && (i < reflex || middle)) {
-                s = 0.0;
-                for (const Piece& h : trials[i]) s += bestMiddleCut(h);
-            }
+            if (stalled && (i < reflex || middle(i))) s = ahead[i];
             if (i < reflex)
                 s *= 1.0 - 1e-9;  // a reflex face's plane wins a tie: the part's own corner is there
             if (s < bestScore) {
@@ -693,6 +703,7 @@ private:
 
     const TriangleMesh& m_;
     Buckets buckets_;
+    std::unique_ptr<Workers> pool_;  // the candidates' cuts tried side by side
     double tolerance_;
     double h_ = 0.0;
     Vec3 origin_;

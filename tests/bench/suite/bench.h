@@ -95,6 +95,18 @@ bool runExport(const Options& opt, std::vector<ExportRow>& rows);
 int exportChildMain(int argc, char** argv);
 void writeExport(const Options& opt, const std::vector<ExportRow>& rows);
 
+// --- convex parts (convex_parts_speed.cpp) -------------------------------------------
+struct ConvexPartsRow {
+    std::string mesh;
+    bool turned = false;
+    int triangles = 0, parts = 0;
+    double volumeOver = 0.0;  ///< % the parts' hulls hold beyond the mesh's volume
+    double reachOut = 0.0, tolerance = 0.0, seconds = 0.0;
+    std::string note;  ///< why it failed, if it did
+};
+bool runConvexParts(const Options& opt, std::vector<ConvexPartsRow>& rows);
+void writeConvexParts(const Options& opt, const std::vector<ConvexPartsRow>& rows);
+
 // --- report ---------------------------------------------------------------------------
 void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows);
 void writeSpeed(const Options& opt, const std::vector<SpeedRow>& rows);

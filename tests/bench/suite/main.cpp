@@ -5,7 +5,8 @@
 //                                     shorter stress runs on Tumble alone
 //   tumble-bench --scene NAME         one scene or stress test (see --list), or a whole part:
 //                                     accuracy, speed, stress or export (the trajectory
-//                                     writers' time against the bodies); or stacks (the stress tests
+//                                     writers' time against the bodies) or convex-parts (the
+//                                     split of concave meshes, timed); or stacks (the stress tests
 //                                     STACK@1/N, with the stability-against-step plot)
 //   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
@@ -121,8 +122,8 @@ int main(int argc, char** argv) {
         }
     }
     // A part's name runs the whole part (the speed part's stage plot shows every scene).
-    const bool part =
-        opt.scene == "accuracy" || opt.scene == "speed" || opt.scene == "stress" || opt.scene == "export";
+    const bool part = opt.scene == "accuracy" || opt.scene == "speed" || opt.scene == "stress" ||
+                      opt.scene == "export" || opt.scene == "convex-parts";
     const std::string only = part ? opt.scene : std::string();
     if (part) opt.scene.clear();
     const bool all = opt.scene.empty() && !part;
@@ -161,6 +162,12 @@ int main(int argc, char** argv) {
         std::vector<ExportRow> exports;
         ok = runExport(opt, exports) && ok;
         writeExport(opt, exports);
+    }
+    if ((all && !opt.quick) || only == "convex-parts") {
+        std::printf("\n# Convex parts\n");
+        std::vector<ConvexPartsRow> parts;
+        ok = runConvexParts(opt, parts) && ok;
+        writeConvexParts(opt, parts);
     }
     std::printf("\n%s in %.1f s; CSV, plots and summary.md in %s\n", ok ? "done" : "FAILED", wallNow() - t0,
                 opt.out.c_str());
