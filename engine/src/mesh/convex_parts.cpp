@@ -239,6 +239,11 @@ std::pair<double, double> spanAlong(const std::vector<Vec3>& points, const Vec3&
     return {lo, hi};
 }
 
+// Candidate cuts are ranked on hulls of this many points at most, and this many of the best
+// then scored exactly.
+constexpr int kRankPoints = 200;
+constexpr int kExactCandidates = 4;
+
 class Decomposer {
 public:
     Decomposer(const TriangleMesh& m, const ConvexPartsOptions& o, double tolerance)
@@ -420,17 +425,25 @@ private:
         if (!p.empty) p.pokeOut = pokeOut(p.hull);
     }
 
-    void clipAndHull(Piece& p) {
+    // `cap` > 0: the hull of at most about that many of the points (the extremes along the
+    // axes and the diagonals, and an even share of the rest): a volume a little short of the
+    // whole's, to rank candidate cuts by, at a fraction of the cost.
+    void clipAndHull(Piece& p, int cap = 0) const {
         std::vector<Vec3> poly, scratch;
         std::vector<int> kept;
         p.points.clear();
+        const double eps = 1e-9 * scale_;
         for (int t : p.triangles) {
             const auto& tri = m_.triangles[t];
+            // Wholly past the newest cut (a half's, most often): clipped to nothing, cheaply.
+            if (!p.planes.empty() && std::all_of(tri.begin(), tri.end(), [&](int v) {
+                    return p.planes.back().n.dot(m_.vertices[v]) - p.planes.back().d > eps;
+                }))
+                continue;
             poly = {m_.vertices[tri[0]], m_.vertices[tri[1]], m_.vertices[tri[2]]};
             const Vec3 facing = (poly[1] - poly[0]).cross(poly[2] - poly[0]);
             for (const Plane& pl : p.planes) {
                 // A face in the cut belongs to the side its solid is on (behind its normal).
-                const double eps = 1e-9 * scale_;
                 if (std::all_of(poly.begin(), poly.end(),
                                 [&](const Vec3& x) { return std::abs(pl.n.dot(x) - pl.d) <= eps; })) {
                     if (facing.dot(pl.n) <= 0) poly.clear();
@@ -459,6 +472,7 @@ private:
             return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
         });
         p.points.erase(std::unique(p.points.begin(), p.points.end()), p.points.end());
+        if (cap > 0 && static_cast<int>(p.points.size()) > cap) thin(p.points, cap);
         try {
             p.hull = convexHull(p.points);
         } catch (const HullError&) {
@@ -466,6 +480,28 @@ private:
             return;
         }
         p.volume = hullVolume(p.hull);
+    }
+
+    // Keeps about `cap` of the points: the farthest along each axis and diagonal both ways,
+    // and every k-th of the rest in their (sorted) order.
+    static void thin(std::vector<Vec3>& points, int cap) {
+        std::vector<std::uint8_t> keep(points.size(), 0);
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    if (!dx && !dy && !dz) continue;
+                    const Vec3 u(dx, dy, dz);
+                    std::size_t far = 0;
+                    for (std::size_t i = 1; i < points.size(); ++i)
+                        if (u.dot(points[i]) > u.dot(points[far])) far = i;
+                    keep[far] = 1;
+                }
+        const std::size_t step = (points.size() + cap - 1) / static_cast<std::size_t>(cap);
+        std::vector<Vec3> out;
+        out.reserve(static_cast<std::size_t>(cap) + 26);
+        for (std::size_t i = 0; i < points.size(); ++i)
+            if (keep[i] || i % step == 0) out.push_back(points[i]);
+        points.swap(out);
     }
 
     // Whether the solid lies next to these points on the region's side: their centre moved a
@@ -503,14 +539,14 @@ private:
     }
 
     // The pieces on either side of `cut` (points, hull, volume; not yet the poke-out).
-    bool halves(const Piece& p, const Plane& cut, std::array<Piece, 2>& out) {
+    bool halves(const Piece& p, const Plane& cut, std::array<Piece, 2>& out, int cap = 0) const {
         for (int s = 0; s < 2; ++s) {
             Piece& h = out[s];
             h = Piece{};
             h.planes = p.planes;
             h.planes.push_back(s == 0 ? cut : Plane{-cut.n, -cut.d});
             h.triangles = p.triangles;
-            clipAndHull(h);
+            clipAndHull(h, cap);
             if (h.empty) return false;
         }
         return true;
@@ -574,36 +610,51 @@ private:
             out.volume = hullVolume(out.hull);
             return true;
         };
-        struct Pair {
-            double cost;
-            int a, b;
-        };
-        while (static_cast<int>(pieces.size()) > count) {
-            Pair best{std::numeric_limits<double>::infinity(), -1, -1};
-            std::vector<collision::Aabb> boxes;
-            for (const Piece& p : pieces) boxes.push_back(boxOf(p).inflated(h_));
+        // What merging each pair would add (infinite for pairs apart), kept between rounds:
+        // a merge changes only its own row and column. (The pairs scanned in the same order,
+        // the first of the least kept, as when they were all tried again each round.)
+        const double inf = std::numeric_limits<double>::infinity();
+        auto costOf = [&](int i, int j) {
+            if (!boxOf(pieces[i]).inflated(h_).overlaps(boxOf(pieces[j]).inflated(h_))) return inf;
             Piece trial;
-            for (int i = 0; i < static_cast<int>(pieces.size()); ++i)
-                for (int j = i + 1; j < static_cast<int>(pieces.size()); ++j) {
-                    if (!boxes[i].overlaps(boxes[j])) continue;
-                    if (!joined(pieces[i], pieces[j], trial)) continue;
-                    const double cost = trial.volume - pieces[i].volume - pieces[j].volume;
-                    if (cost < best.cost) best = {cost, i, j};
-                }
-            if (best.a < 0) break;  // nothing touches: the parts are as few as they can be
-            Piece m;
-            joined(pieces[best.a], pieces[best.b], m);
-            m.cells = pieces[best.a].cells;
-            m.cells.insert(m.cells.end(), pieces[best.b].cells.begin(), pieces[best.b].cells.end());
-            m.pokeOut = pokeOut(m.hull);
-            pieces[best.a] = std::move(m);
-            pieces.erase(pieces.begin() + best.b);
+            if (!joined(pieces[i], pieces[j], trial)) return inf;
+            return trial.volume - pieces[i].volume - pieces[j].volume;
+        };
+        const int n = static_cast<int>(pieces.size());
+        std::vector<std::vector<double>> cost(static_cast<std::size_t>(n), std::vector<double>(n, inf));
+        forEachChunk(pool_.get(), n, 1, [&](int begin, int end) {
+            for (int i = begin; i < end; ++i)
+                for (int j = i + 1; j < n; ++j) cost[i][j] = costOf(i, j);
+        });
+        while (static_cast<int>(pieces.size()) > count) {
+            const int m = static_cast<int>(pieces.size());
+            int a = -1, b = -1;
+            for (int i = 0; i < m; ++i)
+                for (int j = i + 1; j < m; ++j)
+                    if (std::isfinite(cost[i][j]) && (a < 0 || cost[i][j] < cost[a][b])) a = i, b = j;
+            if (a < 0) break;  // nothing touches: the parts are as few as they can be
+            Piece merged;
+            joined(pieces[a], pieces[b], merged);
+            merged.cells = pieces[a].cells;
+            merged.cells.insert(merged.cells.end(), pieces[b].cells.begin(), pieces[b].cells.end());
+            merged.pokeOut = pokeOut(merged.hull);
+            pieces[a] = std::move(merged);
+            pieces.erase(pieces.begin() + b);
+            cost.erase(cost.begin() + b);
+            for (auto& row : cost) row.erase(row.begin() + b);
+            forEachChunk(pool_.get(), m - 1, 1, [&](int begin, int end) {
+                for (int i = begin; i < end; ++i)
+                    if (i < a)
+                        cost[i][a] = costOf(i, a);
+                    else if (i > a)
+                        cost[a][i] = costOf(a, i);
+            });
         }
     }
 
     // The least hull volume of `h` cut once across one of its principal axes at its middle
     // (its own hull volume when no such cut holds solid on both sides).
-    double bestMiddleCut(const Piece& h) {
+    double bestMiddleCut(const Piece& h) const {
         const Mat3 axes = principalAxes(h.points);
         double least = h.volume;
         std::array<Piece, 2> two;
@@ -611,7 +662,8 @@ private:
             const Vec3 u = axes.col(k);
             const auto [lo, hi] = spanAlong(h.points, u);
             if (hi - lo < 2 * h_) continue;
-            if (halves(h, {u, 0.5 * (lo + hi)}, two)) least = std::min(least, two[0].volume + two[1].volume);
+            if (halves(h, {u, 0.5 * (lo + hi)}, two, kRankPoints))
+                least = std::min(least, two[0].volume + two[1].volume);
         }
         return least;
     }
@@ -658,41 +710,77 @@ private:
         // hull is as large as its share of the whole), the reflex planes and the middle cuts
         // are looked at two ahead: each half cut once more, across its own principal axes
         // at their middle, the best of those counted.
-        // (Each candidate on its own, spread over the pool's threads: each writes only its
-        // own slot, so the choice is the same whatever the threads.)
+        // Each candidate is first scored on its halves' hulls of a few hundred points each
+        // (kRankPoints: a volume a little short, the same way for every cut); the best few
+        // are then scored exactly and the cut is chosen among them. (Each candidate on its
+        // own, spread over the pool's threads: each writes only its own slot, so the choice
+        // is the same whatever the threads.)
         const int count = static_cast<int>(candidates.size());
-        std::vector<double> score(candidates.size(), std::numeric_limits<double>::infinity());
+        const double inf = std::numeric_limits<double>::infinity();
+        std::vector<double> score(candidates.size(), inf);
         std::vector<std::array<Piece, 2>> trials(candidates.size());
         forEachChunk(pool_.get(), count, 1, [&](int begin, int end) {
             for (int i = begin; i < end; ++i)
-                if (halves(p, candidates[i], trials[i])) score[i] = trials[i][0].volume + trials[i][1].volume;
+                if (halves(p, candidates[i], trials[i], kRankPoints))
+                    score[i] = trials[i][0].volume + trials[i][1].volume;
         });
-        const double best = *std::min_element(score.begin(), score.end());
-        if (!std::isfinite(best)) return false;
-        const bool stalled = best > (1.0 - 0.02) * p.volume;
-        auto middle = [&](std::size_t i) { return i >= reflex && (i - reflex) % 7 == 3; };
-        std::vector<double> ahead(candidates.size(), 0.0);
-        if (stalled)
+        auto tieBroken = [&](std::size_t i, double v) {
+            return i < reflex ? v * (1.0 - 1e-9)
+                              : v;  // a reflex face's plane wins a tie: the part's own corner is there
+        };
+        std::vector<int> order;
+        for (int i = 0; i < count; ++i)
+            if (std::isfinite(score[i])) order.push_back(i);
+        if (order.empty()) return false;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int a, int b) { return tieBroken(a, score[a]) < tieBroken(b, score[b]); });
+        const int few = std::min<int>(kExactCandidates, static_cast<int>(order.size()));
+        std::vector<std::array<Piece, 2>> exact(static_cast<std::size_t>(few));
+        std::vector<double> exactScore(static_cast<std::size_t>(few), inf);
+        forEachChunk(pool_.get(), few, 1, [&](int begin, int end) {
+            for (int k = begin; k < end; ++k)
+                if (halves(p, candidates[order[k]], exact[k]))
+                    exactScore[k] = exact[k][0].volume + exact[k][1].volume;
+        });
+        int pick = -1;
+        for (int k = 0; k < few; ++k)
+            if (std::isfinite(exactScore[k]) &&
+                (pick < 0 || tieBroken(order[k], exactScore[k]) < tieBroken(order[pick], exactScore[pick])))
+                pick = k;
+        if (pick < 0) return false;
+        std::size_t chosen = static_cast<std::size_t>(order[pick]);
+        // One ahead gains nothing (a ring's or a tube's first cuts: each half's hull is as
+        // large as its share of the whole): the reflex planes and the middle cuts are scored
+        // two ahead, each half cut once more across its own principal axes at their middle,
+        // on the ranking's halves.
+        const bool stalled = exactScore[pick] > (1.0 - 0.02) * p.volume;
+        if (stalled) {
+            auto middle = [&](std::size_t i) { return i >= reflex && (i - reflex) % 7 == 3; };
+            std::vector<double> ahead(candidates.size(), inf);
             forEachChunk(pool_.get(), count, 1, [&](int begin, int end) {
-                for (int i = begin; i < end; ++i)
-                    if (std::isfinite(score[i]) && (static_cast<std::size_t>(i) < reflex || middle(i)))
+                for (int i = begin; i < end; ++i) {
+                    if (!std::isfinite(score[i])) continue;
+                    if (static_cast<std::size_t>(i) < reflex || middle(i)) {
+                        ahead[i] = 0.0;
                         for (const Piece& h : trials[i]) ahead[i] += bestMiddleCut(h);
+                    } else {
+                        ahead[i] = score[i];
+                    }
+                }
             });
-        std::size_t chosen = 0;
-        double bestScore = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < candidates.size(); ++i) {
-            if (!std::isfinite(score[i])) continue;
-            double s = score[i];
-            if (stalled && (i < reflex || middle(i))) s = ahead[i];
-            if (i < reflex)
-                s *= 1.0 - 1e-9;  // a reflex face's plane wins a tie: the part's own corner is there
-            if (s < bestScore) {
-                bestScore = s;
-                chosen = i;
-            }
+            double bestScore = inf;
+            for (std::size_t i = 0; i < candidates.size(); ++i)
+                if (std::isfinite(ahead[i]) && tieBroken(i, ahead[i]) < bestScore) {
+                    bestScore = tieBroken(i, ahead[i]);
+                    chosen = i;
+                }
         }
-        out = std::move(trials[chosen]);
-        if (!std::isfinite(bestScore)) return false;
+        const auto ranked = std::find(order.begin(), order.begin() + few, static_cast<int>(chosen));
+        if (ranked != order.begin() + few && std::isfinite(exactScore[ranked - order.begin()])) {
+            out = std::move(exact[ranked - order.begin()]);
+        } else if (!halves(p, candidates[chosen], out)) {
+            return false;
+        }
         for (Piece& h : out) {
             for (int c : p.cells)
                 if (inRegion({h.planes.back()}, centre(static_cast<std::size_t>(c)))) h.cells.push_back(c);
