@@ -6,6 +6,9 @@ table.json          a table (a top on four legs) on the floor, a ball dropped on
 chair.json          a chair (seat, back, four legs) dropped tilted onto the floor.
 hammer.json         a hammer (a wooden handle, a steel head) thrown spinning about its centre
                     of mass: the head circles the centre while the centre flies a parabola.
+cart.json           a cart (a deck with a push handle, one compound body) on four wheels, each
+                    a cylinder on a hinge under a corner of the deck, pushed at 1 m/s: it rolls
+                    on, the wheels turning at v / r (10 rad/s).
 mug-on-board.json   a mug (mesh, split into convex parts) with a ball in it, on a board that a
                     kinematic turn tilts: the mug slides and tips, the ball stays in until the
                     mug falls over. Its parts are kept in mug-on-board.convex-parts.json.
@@ -105,6 +108,28 @@ def hammer():
     write("hammer.json", s)
 
 
+def cart():
+    v, r = 1.0, 0.1
+    deck = {"name": "cart", "density": 600, "position": [0, 0.2, 0], "velocity": [v, 0, 0], "friction": 0.6,
+            "shape": {"type": "compound", "parts": [
+                box_part("deck", [0.35, 0.015, 0.2], [0, 0, 0]),
+                box_part("post left", [0.015, 0.25, 0.015], [-0.33, 0.26, -0.18]),
+                box_part("post right", [0.015, 0.25, 0.015], [-0.33, 0.26, 0.18]),
+                {"name": "bar", "shape": {"type": "cylinder", "radius": 0.015, "half_height": 0.2},
+                 "position": [-0.33, 0.52, 0], "orientation": quat_axis([1, 0, 0], math.pi / 2)}]}}
+    bodies, joints = [floor(), deck], []
+    for k, (x, z) in enumerate([(-0.25, -0.24), (-0.25, 0.24), (0.25, -0.24), (0.25, 0.24)]):
+        wheel = "wheel %d" % (k + 1)
+        # The wheel's axis (its y) along z: turned a quarter about x.
+        bodies.append({"name": wheel, "density": 900, "position": [x, r, z], "friction": 0.8,
+                       "orientation": quat_axis([1, 0, 0], math.pi / 2),
+                       "velocity": [v, 0, 0], "angular_velocity": [0, 0, -v / r],
+                       "shape": {"type": "cylinder", "radius": r, "half_height": 0.02}})
+        joints.append({"name": "axle %d" % (k + 1), "type": "hinge", "body_a": wheel, "anchor_a": [0, 0, 0],
+                       "axis_a": [0, 1, 0], "body_b": "cart", "anchor_b": [x, r - 0.2, z], "axis_b": [0, 0, 1]})
+    write("cart.json", scene(3, bodies, joints))
+
+
 def mug_on_board():
     board = {"name": "board", "motion": "kinematic", "shape": {"type": "box", "half_extents": [0.4, 0.01, 0.2]},
              "position": [0, 0.3, 0], "angular_velocity": [0, 0, 0.15], "friction": 0.4, "restitution": 0.1}
@@ -120,4 +145,5 @@ if __name__ == "__main__":
     table()
     chair_sample()
     hammer()
+    cart()
     mug_on_board()
