@@ -44,8 +44,10 @@ bool passive(const Model& model, const collision::ManifoldList& contacts);
 /// The balance of s.moving; `before`: the state at the start of the step (or its last part).
 EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
                             const ContactSolverScratch& s);
-/// Scales the moved bodies' velocities by the largest α ≤ 1 that leaves no excess.
-void limitEnergy(EnergyBalance& e, ContactSolverScratch& s);
+/// Scales the velocities of the bodies the solve pushed by the largest α ≤ 1 that leaves no
+/// excess, and says in `e` what they leave with (a body at a point that no impulse reached
+/// keeps its own, as it is stored); `h`: the step (or its part) the balance was taken over.
+void limitEnergy(const Model& model, const State& state, EnergyBalance& e, ContactSolverScratch& s, double h);
 /// Removes the overlap left by the step without touching velocities; `limited`: within the
 /// energy the contacts took (between one and ten slops).
 void correctOverlap(const Model& model, State& state, ContactSolverScratch& s,

@@ -579,7 +579,7 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
     // The energy limit is the contacts' (they must never add energy); with joints in the
     // same solve, scaling the velocities would break the joints, so it is left out there.
     const bool limited = passive(model, contacts) && s.jointRows.empty();
-    if (limited && e.excess() > 0.0) limitEnergy(e, s);
+    if (limited && e.excess() > 0.0) limitEnergy(model, state, e, s, state.time - before.time);
     // Friction's work with the velocities the bodies leave with (after the limit, which
     // stopped a resting pyramid's last rounding: taken before it, friction booked −0.012 J).
     const double frictionLoss = frictionLost(s);
