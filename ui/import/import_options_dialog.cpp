@@ -91,7 +91,12 @@ ImportOptionsDialog::ImportOptionsDialog(const QString& fileName, std::shared_pt
     mass_->setWordWrap(true);
     form->addRow(tr("Mass"), mass_);
     collision_ = new QComboBox(this);
-    collision_->addItems({tr("Convex hull"), tr("Triangles (concave allowed)")});
+    collision_->setObjectName("collision");
+    collision_->addItem(tr("Convex hull"), int(MeshCollision::ConvexHull));
+    collision_->addItem(tr("Triangles (concave allowed)"), int(MeshCollision::Triangles));
+    collision_->addItem(tr("Convex parts (split it now, concave allowed)"), int(MeshCollision::ConvexParts));
+    collision_->setItemData(2, tr("Split into convex hulls in the background, seen before they are applied"),
+                            Qt::ToolTipRole);
     form->addRow(tr("Collision"), collision_);
     auto* note = new QLabel(tr("Placed above the scene's bodies, where the camera looks."), this);
     note->setWordWrap(true);
@@ -129,8 +134,12 @@ double ImportOptionsDialog::scale() const {
     return kUnitScale[std::clamp(units_->currentIndex(), 0, 3)];
 }
 
+MeshCollision ImportOptionsDialog::collision() const {
+    return MeshCollision(collision_->currentData().toInt());
+}
+
 bool ImportOptionsDialog::convexHull() const {
-    return collision_->currentIndex() == 0;
+    return collision() == MeshCollision::ConvexHull;
 }
 
 Vec3 ImportOptionsDialog::size() const {

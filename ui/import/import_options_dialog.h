@@ -6,6 +6,7 @@
 #pragma once
 
 #include <tumble/mass.h>
+#include <tumble/scene.h>
 
 #include <QDialog>
 
@@ -35,6 +36,9 @@ public:
     /// The factor from file units to metres the choices give.
     double scale() const;
     bool convexHull() const;
+    /// The collision chosen: convex hull, triangles, or convex parts (made after the import,
+    /// in the Split into Convex Parts dialog).
+    MeshCollision collision() const;
     /// The body's size, x × y × z in metres, and its mass at the density (what the labels show).
     Vec3 size() const;
     double mass() const;

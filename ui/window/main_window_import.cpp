@@ -5,6 +5,7 @@
 
 #include "document/body_presets.h"
 #include "document/document.h"
+#include "import/convex_split_dialog.h"
 #include "import/import_options_dialog.h"
 #include "import/mesh_import_job.h"
 #include "viewport/viewport.h"
@@ -52,6 +53,7 @@ void MainWindow::importDone() {
     }
     QStringList errors;
     std::vector<BodyDesc> bodies;
+    std::vector<bool> split;             // per body: convex parts asked for
     constexpr double kDensity = 1000.0;  // water's, until the user gives another
     double top = pileTop(doc_->scene());
     for (const MeshImportJob::Result& r : job->results()) {
@@ -60,7 +62,8 @@ void MainWindow::importDone() {
             continue;
         }
         double scale = importRequest_.scale;
-        bool hull = importRequest_.convexHull;
+        MeshCollision collision =
+            importRequest_.convexHull ? MeshCollision::ConvexHull : MeshCollision::Triangles;
         std::shared_ptr<const TriangleMesh> mesh = r.mesh;
         if (importRequest_.ask) {
             ImportOptionsDialog options(QFileInfo(r.path).fileName(), r.mesh, kDensity, this);
@@ -70,7 +73,7 @@ void MainWindow::importDone() {
                 return;
             }
             scale = options.scale();
-            hull = options.convexHull();
+            collision = options.collision();
             if (scale != 1.0) {  // read at scale 1: the vertices take the chosen one
                 auto scaled = std::make_shared<TriangleMesh>(*r.mesh);
                 for (Vec3& v : scaled->vertices) v *= scale;
@@ -80,7 +83,11 @@ void MainWindow::importDone() {
         BodyDesc body;
         body.shape.type = ShapeType::Mesh;
         body.shape.scale = Vec3::Constant(scale);
-        body.shape.collision = hull ? MeshCollision::ConvexHull : MeshCollision::Triangles;
+        // Convex parts are made after the body is in, in their own dialog (in the background,
+        // seen before they are applied); until then, and if that is cancelled, its hull.
+        split.push_back(collision == MeshCollision::ConvexParts);
+        body.shape.collision =
+            collision == MeshCollision::ConvexParts ? MeshCollision::ConvexHull : collision;
         body.shape.meshData = mesh;
         body.shape.file = QFileInfo(r.path).absoluteFilePath().toStdString();
         body.name = QFileInfo(r.path).completeBaseName().toStdString();
@@ -97,6 +104,11 @@ void MainWindow::importDone() {
     for (const BodyDesc& b : bodies) added << doc_->addBody(b);
     if (bodies.size() > 1) doc_->endMacro();
     if (!added.isEmpty()) doc_->setSelection(added);
+    for (int k = 0; k < static_cast<int>(added.size()); ++k) {
+        if (!split[static_cast<size_t>(k)]) continue;
+        ConvexSplitDialog dialog(doc_, added[k], this);
+        dialog.exec();
+    }
     statusBar()->showMessage(tr("Imported %n mesh(es)", nullptr, static_cast<int>(added.size())), 3000);
     const QString message = errors.join("\n\n");
     if (!errors.isEmpty() && importRequest_.tellUser) QMessageBox::warning(this, tr("Import mesh"), message);

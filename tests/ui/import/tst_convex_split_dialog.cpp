@@ -5,13 +5,18 @@
 #include "document/document.h"
 #include "import/convex_parts_preview.h"
 #include "import/convex_split_dialog.h"
+#include "import/import_options_dialog.h"
 #include "panels/property_dock.h"
+#include "window/main_window.h"
 
 #include "../panels/panel_test_util.h"
 
 #include "../../engine/test_meshes.h"
 
+#include <QAction>
 #include <QApplication>
+#include <QComboBox>
+#include <QFileDialog>
 #include <QSpinBox>
 #include <QTimer>
 #include <QUndoStack>
@@ -102,6 +107,45 @@ private slots:
         QVERIFY(doc.body(i).shape.convexParts);
         QCOMPARE(int(doc.body(i).shape.convexParts->parts.size()), 3);
         QCOMPARE(doc.undoStack()->count(), 1);
+    }
+
+    // File > Import Mesh with Convex parts chosen: the body comes in, then the Split dialog
+    // opens on it, and what it applies is the new body's collision (the mug sample's mesh).
+    void importWithConvexPartsSplitsTheNewBody() {
+        MainWindow w;
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        const int before = w.document()->bodyCount();
+        QAction* import = nullptr;
+        for (QAction* a : w.findChildren<QAction*>())
+            if (a->text() == "&Import Mesh...") import = a;
+        QVERIFY(import);
+        bool chose = false, split = false;
+        QTimer poll;
+        poll.setInterval(20);
+        connect(&poll, &QTimer::timeout, &w, [&] {
+            QWidget* modal = QApplication::activeModalWidget();
+            if (auto* files = qobject_cast<QFileDialog*>(modal)) {
+                files->selectFile(TUMBLE_SCENES_DIR "/../meshes/mug.obj");
+                QMetaObject::invokeMethod(files, "accept");
+            } else if (auto* options = qobject_cast<ImportOptionsDialog*>(modal); options && !chose) {
+                chose = true;
+                auto* collision = options->findChild<QComboBox*>("collision");
+                collision->setCurrentIndex(collision->findData(int(MeshCollision::ConvexParts)));
+                options->accept();
+            } else if (auto* dialog = qobject_cast<ConvexSplitDialog*>(modal); dialog && !dialog->running()) {
+                split = true;
+                dialog->apply();
+            }
+        });
+        poll.start();
+        import->trigger();
+        QTRY_VERIFY_WITH_TIMEOUT(split, 60000);
+        poll.stop();
+        QCOMPARE(w.document()->bodyCount(), before + 1);
+        const ShapeDesc& s = w.document()->body(before).shape;
+        QCOMPARE(s.collision, MeshCollision::ConvexParts);
+        QVERIFY(s.convexParts && s.convexParts->parts.size() > 1);
     }
 
     void anOpenMeshSaysWhy() {
