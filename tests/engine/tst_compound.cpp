@@ -2,6 +2,7 @@
 // of the parts'; a compound moves as one rigid body (free tumbling, a throw), rests and tips
 // on its parts as the statics say, and its parts carry their own materials. Each motion
 // test also runs in a world turned and shifted as a whole. Only the public API is used.
+#include "chair_pile.h"
 #include "ledger_checks.h"
 #include "scene_builders.h"
 #include "turned_world.h"
@@ -470,21 +471,8 @@ private slots:
     }
     void pileOfChairsLedgerCloses() {
         QFETCH(int, seed);
-        const SceneDesc one = io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath("chair.json").toStdString());
-        SceneDesc s;
-        s.settings = one.settings;
-        s.settings.impacts = ImpactTiming::EndOfStep;
-        BodyDesc chair;
-        for (const BodyDesc& b : one.bodies)
-            (b.motion == Motion::Static ? s.bodies.push_back(b) : void(chair = b));
-        for (int k = 0; k < 200; ++k) {
-            BodyDesc c = chair;
-            c.name = "chair-" + std::to_string(k);
-            const int layer = k / 25, i = (k % 25) / 5, j = k % 5;
-            c.position = Vec3((i - 2) * 0.7, 0.1 + 1.1 * layer, (j - 2) * 0.7);
-            c.orientation = Quat(Eigen::AngleAxisd(k + 0.3 * ((k * 7) % 11 - 5) / 5.0, Vec3::UnitY()));
-            s.bodies.push_back(c);
-        }
+        const SceneDesc s =
+            chairPile(io::readSceneFile(QDir(TUMBLE_SCENES_DIR).filePath("chair.json").toStdString()), 200);
         const WorldPose pose = seed == 0 ? WorldPose{} : randomWorldPose(static_cast<std::uint64_t>(seed));
         World w(turnedScene(s, pose));
         const double start = energy(w.model(), w.state()).total();

@@ -3,6 +3,8 @@
 // has its on and off variant here.
 #include "scenes.h"
 
+#include "../../engine/chair_pile.h"
+
 #include <tumble/mass.h>
 
 #include <cmath>
@@ -211,30 +213,9 @@ SceneDesc ragdollPile(int count) {
     return s;
 }
 
-// `count` chairs (resources/scenes/chair.json's: a seat, a back and four legs, one compound
-// body of 4.9 kg) in layers of 5 x 5, 0.7 m apart and 1.1 m up, each turned about the
-// vertical, dropped onto the floor; impacts at the end of the step, as the peers take them.
+// `count` chairs (resources/scenes/chair.json's) piled as tests/engine/chair_pile.h says.
 SceneDesc chairPile(int count) {
-    const SceneDesc one = sampleScene("chair.json");
-    SceneDesc s;
-    s.settings = one.settings;
-    s.settings.impacts = ImpactTiming::EndOfStep;
-    BodyDesc chair;
-    for (const BodyDesc& b : one.bodies) {
-        if (b.motion == Motion::Static)
-            s.bodies.push_back(b);
-        else
-            chair = b;
-    }
-    for (int k = 0; k < count; ++k) {
-        BodyDesc c = chair;
-        c.name = "chair-" + std::to_string(k);
-        const int layer = k / 25, i = (k % 25) / 5, j = k % 5;
-        c.position = Vec3((i - 2) * 0.7, 0.1 + 1.1 * layer, (j - 2) * 0.7);
-        c.orientation = Quat(Eigen::AngleAxisd(k + 0.3 * ((k * 7) % 11 - 5) / 5.0, Vec3::UnitY()));
-        s.bodies.push_back(c);
-    }
-    return s;
+    return test::chairPile(sampleScene("chair.json"), count);
 }
 
 // Body names must be unique: the builders above name by kind, this numbers them.
