@@ -230,6 +230,7 @@ namespace {
 struct SweptBall {
     Vec3 p0, p1;
     double radius = 0.0;  // infinite for a plane
+    Aabb box;             // all the part sweeps through (infinite for a plane)
 };
 
 // The body's poses at the step's ends and its turn, once for all its parts.
@@ -242,18 +243,34 @@ struct SweepEnds {
 
 SweptBall sweptBall(const Shape& shape, const Sweep& sw, const SweepEnds& ends, const Pose& part) {
     SweptBall b;
+    const Aabb everywhere{Vec3::Constant(-std::numeric_limits<double>::infinity()),
+                          Vec3::Constant(std::numeric_limits<double>::infinity())};
     if (shape.kind == Kind::Plane) {
         b.radius = std::numeric_limits<double>::infinity();
+        b.box = everywhere;
         return b;
     }
     b.p0 = ends.start.toWorld(part.p);
     b.p1 = ends.end.toWorld(part.p);
-    b.radius = boundingRadius(shape) + ends.turn * (part.p - sw.localCenter).norm() + 0.25 * sw.bow.norm();
+    const double own = boundingRadius(shape);
+    b.radius = own + ends.turn * (part.p - sw.localCenter).norm() + 0.25 * sw.bow.norm();
+    // The box the part sweeps: its boxes at the two ends, and how far any of its points strays
+    // from the straight line between its two places. A point at r from the centre of mass
+    // turning at a steady rate through θ accelerates by r θ² (over s in [0, 1]); a path's
+    // distance from the line through its ends is at most an eighth of its greatest
+    // acceleration, and the centre's bow adds a quarter of itself. Past a radian or two that
+    // bound outgrows the ball: the box is left infinite, the ball decides.
+    b.box = bounds(shape, ends.start * part);
+    b.box.add(bounds(shape, ends.end * part));
+    const double arm = (part.p - sw.localCenter).norm() + own;
+    const double stray = arm * ends.turn * ends.turn / 8.0 + 0.25 * sw.bow.norm();
+    b.box = ends.turn < 2.0 ? b.box.inflated(stray) : everywhere;
     return b;
 }
 
 // The two balls never come within `tol` over the step (their centres' gap is linear in s).
 bool ballsMiss(const SweptBall& a, const SweptBall& b, double tol) {
+    if (!a.box.inflated(tol).overlaps(b.box)) return true;  // (a plane's box is the whole space)
     if (!std::isfinite(a.radius) || !std::isfinite(b.radius)) return false;
     const Vec3 d0 = a.p0 - b.p0, dd = (a.p1 - b.p1) - d0;
     const double t = dd.squaredNorm() > 0 ? std::clamp(-d0.dot(dd) / dd.squaredNorm(), 0.0, 1.0) : 0.0;
@@ -273,8 +290,8 @@ std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shap
     auto sweepOf = [](const Shape& s, const Sweep& sw, int k) {
         return s.kind == Kind::Compound ? partSweep(sw, s.compound->parts[k].pose) : sw;
     };
-    // Only the pairs of parts whose swept balls meet are swept part against part: a chair
-    // landing on a chair has 36 pairs of parts, of which a few come near.
+    // Only the pairs of parts whose swept boxes and balls meet are swept part against part: a
+    // chair landing on a chair has 36 pairs of parts, of which a few come near.
     thread_local std::vector<SweptBall> ballsB;
     thread_local std::vector<Sweep> sweepsB;
     ballsB.clear();
