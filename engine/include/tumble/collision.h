@@ -123,7 +123,12 @@ struct Shape {
 /// Several shapes as one body's (a table's top and legs, a mesh's convex parts): each part
 /// a shape of any kind but a plane or a compound, placed in the body frame. A manifold
 /// between two bodies comes from one pair of parts, which it names (Manifold::partA, partB).
+/// A number no other Compound made in this process has (the engine's caches tell compounds
+/// apart by it, not by where they happen to be in memory).
+std::uint64_t newCompoundSerial();
+
 struct Compound {
+    std::uint64_t serial = newCompoundSerial();
     struct Part {
         Shape shape;
         Pose pose;  ///< the part's frame in the body frame

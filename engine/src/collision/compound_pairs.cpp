@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -279,35 +280,89 @@ bool ballsMiss(const SweptBall& a, const SweptBall& b, double tol) {
 
 }  // namespace
 
+namespace {
+
+// A body's parts' swept balls and sweeps over one step. A body meets several others in a
+// step, and each pair's moment is asked for up to twice: the last few bodies' are kept
+// (by thread, keyed by the compound and its sweep, exactly) instead of made again per pair.
+struct PartSweeps {
+    std::uint64_t epoch = 0;   // the search it was made in (forgetPartSweeps)
+    std::uint64_t serial = 0;  // the compound's (Compound::serial); 0: not kept
+    Sweep sweep;
+    std::vector<SweptBall> balls;
+    std::vector<Sweep> sweeps;
+};
+
+bool sameSweep(const Sweep& x, const Sweep& y) {
+    return x.c0 == y.c0 && x.c1 == y.c1 && x.bow == y.bow && x.q0.coeffs() == y.q0.coeffs() &&
+           x.q1.coeffs() == y.q1.coeffs() && x.localCenter == y.localCenter;
+}
+
+// The search for impacts under way (forgetPartSweeps starts a new one).
+std::atomic<std::uint64_t> searches{1};
+
+void fill(PartSweeps& e, const Shape& shape, const Sweep& sw) {
+    e.sweep = sw;
+    e.balls.clear();
+    e.sweeps.clear();
+    const SweepEnds ends(sw);
+    const int parts = shape.kind == Kind::Compound ? static_cast<int>(shape.compound->parts.size()) : 1;
+    for (int j = 0; j < parts; ++j) {
+        const Pose pose = shape.kind == Kind::Compound ? shape.compound->parts[j].pose : Pose{};
+        e.balls.push_back(sweptBall(partShape(shape, j), sw, ends, pose));
+        e.sweeps.push_back(shape.kind == Kind::Compound ? partSweep(sw, pose) : sw);
+    }
+}
+
+// The index in `cache` of the shape's part sweeps, made there if missing (never in slot
+// `keep`, which the caller still reads). A shape that is not a compound is made anew in the
+// last slot, which is never kept.
+int partSweepsOf(const Shape& shape, const Sweep& sw, std::array<PartSweeps, 18>& cache, int& next,
+                 int keep) {
+    const int kept = static_cast<int>(cache.size()) - 2;
+    if (shape.kind != Kind::Compound) {
+        const int k = keep == kept ? kept + 1 : kept;
+        cache[k].serial = 0;
+        fill(cache[k], shape, sw);
+        return k;
+    }
+    const std::uint64_t epoch = searches.load(std::memory_order_relaxed);
+    for (int k = 0; k < kept; ++k)
+        if (cache[k].epoch == epoch && cache[k].serial == shape.compound->serial &&
+            sameSweep(cache[k].sweep, sw))
+            return k;
+    if (next == keep) next = (next + 1) % kept;
+    const int k = next;
+    next = (next + 1) % kept;
+    PartSweeps& e = cache[k];
+    e.epoch = epoch;
+    e.serial = shape.compound->serial;
+    fill(e, shape, sw);
+    return k;
+}
+
+}  // namespace
+
+void forgetPartSweeps() {
+    searches.fetch_add(1, std::memory_order_relaxed);
+}
+
 std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
                                      double tolerance) {
-    auto partsOf = [](const Shape& s) {
-        return s.kind == Kind::Compound ? static_cast<int>(s.compound->parts.size()) : 1;
-    };
-    auto poseOf = [](const Shape& s, int k) {
-        return s.kind == Kind::Compound ? s.compound->parts[k].pose : Pose{};
-    };
-    auto sweepOf = [](const Shape& s, const Sweep& sw, int k) {
-        return s.kind == Kind::Compound ? partSweep(sw, s.compound->parts[k].pose) : sw;
-    };
     // Only the pairs of parts whose swept boxes and balls meet are swept part against part: a
     // chair landing on a chair has 36 pairs of parts, of which a few come near.
-    thread_local std::vector<SweptBall> ballsB;
-    thread_local std::vector<Sweep> sweepsB;
-    ballsB.clear();
-    sweepsB.clear();
-    const SweepEnds endsA(sa), endsB(sb);
-    for (int j = 0; j < partsOf(b); ++j) {
-        ballsB.push_back(sweptBall(partShape(b, j), sb, endsB, poseOf(b, j)));
-        sweepsB.push_back(sweepOf(b, sb, j));
-    }
+    thread_local std::array<PartSweeps, 18> cache;  // 16 compounds kept, two slots for the others
+    thread_local int next = 0;
+    const int ka = partSweepsOf(a, sa, cache, next, -1);
+    const int kb = partSweepsOf(b, sb, cache, next, ka);
+    const PartSweeps& A = cache[ka];
+    const PartSweeps& B = cache[kb];
     std::optional<Impact> best;
-    for (int i = 0; i < partsOf(a); ++i) {
-        const SweptBall ballA = sweptBall(partShape(a, i), sa, endsA, poseOf(a, i));
-        const Sweep si = sweepOf(a, sa, i);
-        for (int j = 0; j < partsOf(b); ++j) {
-            if (ballsMiss(ballA, ballsB[j], tolerance)) continue;
-            auto hit = timeOfImpact(partShape(a, i), si, partShape(b, j), sweepsB[j], tolerance);
+    for (size_t i = 0; i < A.balls.size(); ++i) {
+        for (size_t j = 0; j < B.balls.size(); ++j) {
+            if (ballsMiss(A.balls[i], B.balls[j], tolerance)) continue;
+            auto hit = timeOfImpact(partShape(a, static_cast<int>(i)), A.sweeps[i],
+                                    partShape(b, static_cast<int>(j)), B.sweeps[j], tolerance);
             if (hit && (!best || hit->s < best->s)) best = hit;
         }
     }

@@ -22,6 +22,11 @@ void collideCompound(const Shape& a, const Pose& pa, const Shape& b, const Pose&
 /// the centre of mass, the part's frame turned with the body.
 Sweep partSweep(const Sweep& body, const Pose& part);
 
+/// Forgets the part sweeps compoundImpact keeps between the pairs of one search (each
+/// thread's last few bodies'): called before each search for impacts, so that nothing kept
+/// from another step, scene or model is taken for this one's.
+void forgetPartSweeps();
+
 /// timeOfImpact for a pair with a compound: the earliest of its pairs of parts.
 std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
                                      double tolerance);

@@ -1,5 +1,7 @@
 #include "collision/detect.h"
 
+#include "collision/compound_pairs.h"
+
 #include "common/make_room.h"
 #include "common/resting.h"
 #include "common/workers.h"
@@ -270,6 +272,7 @@ void touchingPairs(const ManifoldList& contacts, double touchTolerance, std::vec
 void findImpacts(const Model& model, const State& before, const State& after, double t0, double h,
                  double tolerance, double minApproach, const std::vector<double>& sizes,
                  const std::vector<double>* thickness, DetectScratch& s) {
+    collision::forgetPartSweeps();  // (what compoundImpact kept is of another search)
     s.impacts.clear();
     if (thickness) {
         s.found.clear();

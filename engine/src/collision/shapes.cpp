@@ -2,6 +2,7 @@
 #include <tumble/collision.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace tumble::collision {
@@ -67,6 +68,11 @@ Aabb pointsBounds(const std::vector<Vec3>& points, const Pose& pose) {
 }
 
 }  // namespace
+
+std::uint64_t newCompoundSerial() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
 
 Aabb bounds(const Shape& s, const Pose& pose) {
     const double inf = std::numeric_limits<double>::infinity();
