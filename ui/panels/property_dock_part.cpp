@@ -48,7 +48,14 @@ const PartDesc* PropertyDock::Impl::partIn(const BodyDesc& b) const {
 }
 
 PartDesc& PropertyDock::Impl::partIn(BodyDesc& b) const {
-    return b.shape.parts.at(static_cast<size_t>(doc->selectedPart()));
+    const int k = doc->selectedPart();
+    if (b.shape.type == ShapeType::Compound && k >= 0 && k < static_cast<int>(b.shape.parts.size()))
+        return b.shape.parts[static_cast<size_t>(k)];
+    // A field's value given after its part was deselected (editingFinished comes late): it
+    // goes nowhere, and the body is left as it is.
+    static PartDesc nowhere;
+    nowhere = PartDesc{};
+    return nowhere;
 }
 
 QString PropertyDock::Impl::partKey(const QString& field) const {

@@ -15,6 +15,7 @@ SceneTreeModel::SceneTreeModel(Document* doc, QObject* parent) : QAbstractItemMo
         changing_ = true;
         beginInsertRows({}, i, i);
         rows_.insert(i, rowOf(i));
+        movePartIndexes(i, +1);  // (before the views hear of the new row)
         endInsertRows();
         changing_ = false;
     });
@@ -22,6 +23,7 @@ SceneTreeModel::SceneTreeModel(Document* doc, QObject* parent) : QAbstractItemMo
         changing_ = true;
         beginRemoveRows({}, i, i);
         rows_.removeAt(i);
+        movePartIndexes(i + 1, -1);  // (the removed body's own parts Qt lets go of)
         endRemoveRows();
         changing_ = false;
     });
@@ -33,6 +35,22 @@ SceneTreeModel::SceneTreeModel(Document* doc, QObject* parent) : QAbstractItemMo
         endResetModel();
         changing_ = false;
     });
+}
+
+// A part row's internal id is its body's row + 1: Qt moves the kept indexes of the top-level
+// rows when a body comes or goes, not those of their children, so the parts of the bodies
+// from `from` on (their rows before the change) are moved here (a selected part of a later body stayed on the
+// old row number: the wrong body's part, or past the end).
+void SceneTreeModel::movePartIndexes(int from, int delta) {
+    QModelIndexList before, after;
+    for (const QModelIndex& x : persistentIndexList()) {
+        if (!x.isValid() || !x.internalId()) continue;
+        const int body = static_cast<int>(x.internalId()) - 1;
+        if (body < from) continue;
+        before << x;
+        after << createIndex(x.row(), x.column(), quintptr(body + delta + 1));
+    }
+    if (!before.isEmpty()) changePersistentIndexList(before, after);
 }
 
 // Body rows have the internal id 0; part rows their body's row + 1.
@@ -184,7 +202,7 @@ QVariant SceneTreeModel::headerData(int section, Qt::Orientation orientation, in
 }
 
 Qt::ItemFlags SceneTreeModel::flags(const QModelIndex& index) const {
-    if (!index.isValid()) return Qt::NoItemFlags;
+    if (!index.isValid() || bodyOf(index) >= rows_.size()) return Qt::NoItemFlags;
     Qt::ItemFlags f = Qt::ItemIsEnabled | Qt::ItemIsSelectable;
     if (partOf(index) >= 0 || rows_[bodyOf(index)].parts.isEmpty()) f |= Qt::ItemNeverHasChildren;
     if (index.column() == NameColumn) f |= Qt::ItemIsEditable;

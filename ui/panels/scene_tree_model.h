@@ -63,6 +63,7 @@ private:
     };
     Row rowOf(int body) const;
     void bodyChanged(int body);
+    void movePartIndexes(int from, int delta);
     void rebuild();
 
     Document* doc_;

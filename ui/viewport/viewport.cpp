@@ -368,7 +368,9 @@ void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers)
     int hit = bodyAt(widgetPos, &part);
     // A click on the one selected body, a compound, goes into it: the part under the
     // pointer is selected (the Scene list's part row and the Part panel with it).
-    if (!toggle && hit >= 0 && part >= 0 && d_->doc->selection() == QList<int>{hit}) {
+    // (At a recorded frame the hit is the compiled model's, whose parts a mesh split into
+    // convex parts adds to: the scene's part is not known there.)
+    if (!toggle && hit >= 0 && part >= 0 && d_->shownFrame == 0 && d_->doc->selection() == QList<int>{hit}) {
         d_->doc->selectPart(hit, part);
         return;
     }

@@ -162,8 +162,8 @@ void commitPair(const fs::path& file, AtomicFile& main, AtomicFile& bin, json& d
     AtomicFile bridge(file);
     bridge.stream() << doc.dump(2);
     bridge.ready();
-    bin.keepTemporary();
     bridge.commit();
+    bin.keepTemporary();  // (the .gltf now names it)
     asBuffer([&] { bin.commitKeepingTemporary(); });
     main.commit();
     fs::remove(temporary, ec);

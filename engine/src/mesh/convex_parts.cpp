@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -272,7 +273,7 @@ public:
         }
         std::erase_if(pieces, [](const Piece& p) { return p.empty; });
         report(0.95);
-        merge(pieces, maxParts);
+        merge(pieces, maxParts, [&] { report(0.95); });
         ConvexParts out;
         out.tolerance = tolerance_;
         out.meshVolume = solid;
@@ -477,7 +478,8 @@ private:
 
     // Merges pairs of pieces whose boxes touch, the pair whose joint hull adds least volume
     // first, until there are `count` pieces.
-    void merge(std::vector<Piece>& pieces, int count) {
+    // `check` is called each round (a stop asked for is heard there too).
+    void merge(std::vector<Piece>& pieces, int count, const std::function<void()>& check) {
         auto boxOf = [](const Piece& p) {
             collision::Aabb b;
             for (const Vec3& v : p.hull.vertices) b.add(v);
@@ -512,6 +514,7 @@ private:
                 for (int j = i + 1; j < n; ++j) cost[i][j] = costOf(i, j);
         });
         while (static_cast<int>(pieces.size()) > count) {
+            check();
             const int m = static_cast<int>(pieces.size());
             int a = -1, b = -1;
             for (int i = 0; i < m; ++i)

@@ -216,6 +216,40 @@ private slots:
         QCOMPARE(doc.body(t).shape.parts[0].name, std::string("left"));
     }
 
+    // A selected part row stays on its body when a body before it goes and comes back (Qt
+    // moves only top-level rows' kept indexes), and on its part when undo changes the number
+    // of parts under it.
+    void selectedPartRowFollowsItsBody() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        QAbstractItemModelTester tester(dock.model(), QAbstractItemModelTester::FailureReportingMode::QtTest);
+        const int c = doc.addBody(crate());
+        const int t = doc.addBody(table());
+        doc.undoStack()->clear();
+        QItemSelectionModel* sm = dock.view()->selectionModel();
+        auto selectedPart = [&]() -> std::pair<int, int> {
+            const QModelIndexList rows = sm->selectedRows();
+            if (rows.size() != 1) return {-1, -1};
+            return {SceneTreeModel::bodyOf(rows[0]), SceneTreeModel::partOf(rows[0])};
+        };
+        doc.selectPart(t, 1);
+        QCOMPARE(selectedPart(), std::make_pair(t, 1));
+        doc.removeBodies({c});  // the table moves up a row; its part stays selected
+        QCOMPARE(doc.selection(), QList<int>{t - 1});
+        QCOMPARE(selectedPart(), std::make_pair(t - 1, 1));
+        doc.undoStack()->undo();  // and down again
+        QCOMPARE(doc.selection(), QList<int>{t});
+        QCOMPARE(selectedPart(), std::make_pair(t, 1));
+        QVERIFY(dock.model()->flags(sm->selectedRows().value(0)) & Qt::ItemIsSelectable);
+        // Undo of Add Part while part 0 is selected: the rows are made again, the part stays.
+        QString why;
+        QCOMPARE(doc.addPart(t, ShapeType::Box, &why), 2);
+        doc.selectPart(t, 0);
+        doc.undoStack()->undo();
+        QCOMPARE(doc.selectedPart(), 0);
+        QCOMPARE(selectedPart(), std::make_pair(t, 0));
+    }
+
     // The Part group shows the selected part; its edits go to that part (one step a field),
     // refused values name the part's field, and the body's computed mass properties follow.
     void panelEditsThePart() {
