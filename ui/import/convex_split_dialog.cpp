@@ -98,6 +98,10 @@ QString ConvexSplitDialog::status() const {
 void ConvexSplitDialog::stop() {
     if (!thread_) return;
     job_->stop = true;
+    join();
+}
+
+void ConvexSplitDialog::join() {
     thread_->wait();
     delete thread_;
     thread_ = nullptr;
@@ -141,10 +145,7 @@ void ConvexSplitDialog::split() {
 
 void ConvexSplitDialog::finished() {
     if (!thread_) return;
-    thread_->wait();
-    delete thread_;
-    thread_ = nullptr;
-    poll_->stop();
+    join();
     progress_->setValue(1000);
     if (job_->stopped) {
         status_->setText(tr("Stopped."));

@@ -50,6 +50,7 @@ public:
 private:
     void finished();
     void stop();
+    void join();  // waits for the splitting thread and lets it go
 
     Document* doc_;
     int body_;

@@ -30,7 +30,6 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -312,37 +311,6 @@ struct PropertyDock::Impl {
         QString error;
         try {
             validate(check);
-            // A compound's mass rules need its parts' volumes, which compile computes: for
-            // parts of primitives (cheap; a mesh part's would build its hull on every edit).
-            const bool compoundOfPrimitives =
-                std::any_of(bodies.begin(), bodies.end(), [](const BodyDesc& b) {
-                    return b.shape.type == ShapeType::Compound &&
-                           std::none_of(b.shape.parts.begin(), b.shape.parts.end(),
-                                        [](const PartDesc& p) { return p.shape.type == ShapeType::Mesh; });
-                });
-            if (compoundOfPrimitives) {
-                // Only they (a mesh split into convex parts would be split again), each message
-                // put back on its body's place among the selected.
-                SceneDesc compounds;
-                std::vector<size_t> place;
-                for (size_t k = 0; k < bodies.size(); ++k)
-                    if (bodies[k].shape.type == ShapeType::Compound) {
-                        compounds.bodies.push_back(bodies[k]);
-                        place.push_back(k);
-                    }
-                try {
-                    compile(compounds);
-                } catch (const SceneError& e) {
-                    std::string path = e.path();
-                    const auto open = path.find('['), close = path.find(']');
-                    if (path.rfind("bodies[", 0) == 0 && close != std::string::npos) {
-                        const size_t k = std::stoul(path.substr(open + 1, close - open - 1));
-                        if (k < place.size())
-                            path = "bodies[" + std::to_string(place[k]) + path.substr(close);
-                    }
-                    throw SceneError(path, e.message());
-                }
-            }
         } catch (const SceneError& e) {
             QString path = QString::fromStdString(e.path());
             const int dot = path.indexOf('.');

@@ -2,10 +2,12 @@
 #include "model/compile_compound.h"
 
 #include <tumble/errors.h>
+#include <tumble/mass.h>
 
 #include "common/number_text.h"
 #include "model/compile_shape.h"
 
+#include <algorithm>
 #include <optional>
 
 namespace tumble::compiling {
@@ -58,6 +60,15 @@ void validateParts(const ShapeDesc& s, Motion motion, const std::string& path) {
     }
 }
 
+namespace {
+
+std::string tooLittleMass(double fixedMass) {
+    return "is not more than the " + numberText(fixedMass) +
+           " kg of the parts with their own density: nothing is left for the others";
+}
+
+}  // namespace
+
 void validateCompoundMass(const BodyDesc& b, const std::string& path) {
     const auto& parts = b.shape.parts;
     size_t own = 0;
@@ -69,6 +80,16 @@ void validateCompoundMass(const BodyDesc& b, const std::string& path) {
         throw SceneError(path + ".mass",
                          "every part has its own density, so the mass follows from them; remove mass (or a "
                          "part's density, to give that part a share of it)");
+    // The parts of their own density must leave some of the body's mass for the others. Their
+    // volumes are known here for primitives; a mesh part's needs its hull (buildCompound says).
+    if (b.mass && std::none_of(parts.begin(), parts.end(), [](const PartDesc& part) {
+            return part.density && part.shape.type == ShapeType::Mesh;
+        })) {
+        double fixedMass = 0.0;
+        for (const PartDesc& part : parts)
+            if (part.density) fixedMass += *part.density * shapeVolume(part.shape);
+        if (!(*b.mass > fixedMass)) throw SceneError(path + ".mass", tooLittleMass(fixedMass));
+    }
     if (!b.mass && !b.density) {
         for (size_t j = 0; j < parts.size(); ++j)
             if (!parts[j].density)
@@ -152,10 +173,7 @@ BuiltCompound buildCompound(const BodyDesc& b, const std::string& path, const st
     }
     double sharedDensity = b.density.value_or(0.0);
     if (b.mass) {
-        if (!(*b.mass > fixedMass))
-            throw SceneError(path + ".mass", "is not more than the " + numberText(fixedMass) +
-                                                 " kg of the parts with their own density: nothing is left "
-                                                 "for the others");
+        if (!(*b.mass > fixedMass)) throw SceneError(path + ".mass", tooLittleMass(fixedMass));
         sharedDensity = (*b.mass - fixedMass) / sharedVolume;
     }
     // Mass and centre of mass, then the inertia about that centre (parallel axes).
