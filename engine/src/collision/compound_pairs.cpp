@@ -232,6 +232,8 @@ struct SweptBall {
     Vec3 p0, p1;
     double radius = 0.0;  // infinite for a plane
     Aabb box;             // all the part sweeps through (infinite for a plane)
+    double drift = 0.0;   // how far any point of the part strays from its origin's chord
+    double thickness = 0.0;
 };
 
 // The body's poses at the step's ends and its turn, once for all its parts.
@@ -246,6 +248,7 @@ SweptBall sweptBall(const Shape& shape, const Sweep& sw, const SweepEnds& ends, 
     SweptBall b;
     const Aabb everywhere{Vec3::Constant(-std::numeric_limits<double>::infinity()),
                           Vec3::Constant(std::numeric_limits<double>::infinity())};
+    b.thickness = thickness(shape);
     if (shape.kind == Kind::Plane) {
         b.radius = std::numeric_limits<double>::infinity();
         b.box = everywhere;
@@ -266,6 +269,10 @@ SweptBall sweptBall(const Shape& shape, const Sweep& sw, const SweepEnds& ends, 
     const double arm = (part.p - sw.localCenter).norm() + own;
     const double stray = arm * ends.turn * ends.turn / 8.0 + 0.25 * sw.bow.norm();
     b.box = ends.turn < 2.0 ? b.box.inflated(stray) : everywhere;
+    // (The origin's path leaves its chord by at most the stray; a point of the part turns
+    // about the origin through the body's angle, by at most that angle times its reach.)
+    b.drift = (part.p - sw.localCenter).norm() * ends.turn * ends.turn / 8.0 + 0.25 * sw.bow.norm() +
+              ends.turn * own;
     return b;
 }
 
@@ -278,6 +285,20 @@ bool ballsMiss(const SweptBall& a, const SweptBall& b, double tol) {
     return (d0 + t * dd).norm() - a.radius - b.radius > tol;
 }
 
+// The earliest fraction of the step at which the two balls can come within `tol` (their
+// centres' gap is linear in s): no point of the parts meets before it.
+double ballsEarliest(const SweptBall& a, const SweptBall& b, double tol) {
+    if (!std::isfinite(a.radius) || !std::isfinite(b.radius)) return 0.0;
+    const double reach = a.radius + b.radius + tol;
+    const Vec3 d0 = a.p0 - b.p0, dd = (a.p1 - b.p1) - d0;
+    // |d0 + s dd|^2 = reach^2: the smaller root, if the gap shrinks to reach at all.
+    const double c = d0.squaredNorm() - reach * reach;
+    if (c <= 0.0) return 0.0;
+    const double qa = dd.squaredNorm(), qb = d0.dot(dd);
+    const double disc = qb * qb - qa * c;
+    if (qa <= 0.0 || qb >= 0.0 || disc < 0.0) return 0.0;  // (ballsMiss has ruled these out)
+    return std::max(0.0, c / (-qb + std::sqrt(disc)));     // the smaller root, without cancellation
+}
 }  // namespace
 
 namespace {
@@ -296,6 +317,16 @@ struct PartSweeps {
 bool sameSweep(const Sweep& x, const Sweep& y) {
     return x.c0 == y.c0 && x.c1 == y.c1 && x.bow == y.bow && x.q0.coeffs() == y.q0.coeffs() &&
            x.q1.coeffs() == y.q1.coeffs() && x.localCenter == y.localCenter;
+}
+
+// Each thread's kept part sweeps: 16 compounds, and two slots for the others.
+struct SweepCache {
+    std::array<PartSweeps, 18> slots;
+    int next = 0;
+};
+SweepCache& sweepCache() {
+    thread_local SweepCache cache;
+    return cache;
 }
 
 // The search for impacts under way (forgetPartSweeps starts a new one).
@@ -343,6 +374,28 @@ int partSweepsOf(const Shape& shape, const Sweep& sw, std::array<PartSweeps, 18>
 
 }  // namespace
 
+double passLimit(double ta, double tb, bool touching) {
+    const bool solids = std::isfinite(ta) && std::isfinite(tb) && ta > 0.0 && tb > 0.0;
+    const double thinner = solids ? std::min(ta, tb) : std::numeric_limits<double>::infinity();
+    return touching ? 0.5 * thinner : ta + tb;
+}
+
+bool partsMayPass(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tolerance,
+                  bool touching) {
+    SweepCache& c = sweepCache();
+    const int ka = partSweepsOf(a, sa, c.slots, c.next, -1);
+    const int kb = partSweepsOf(b, sb, c.slots, c.next, ka);
+    for (const SweptBall& x : c.slots[ka].balls) {
+        for (const SweptBall& y : c.slots[kb].balls) {
+            const double limit = passLimit(x.thickness, y.thickness, touching);
+            if (!std::isfinite(limit)) continue;
+            const double moved = ((x.p1 - x.p0) - (y.p1 - y.p0)).norm() + x.drift + y.drift;
+            if (moved >= limit && !ballsMiss(x, y, tolerance)) return true;
+        }
+    }
+    return false;
+}
+
 void forgetPartSweeps() {
     searches.fetch_add(1, std::memory_order_relaxed);
 }
@@ -351,19 +404,44 @@ std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shap
                                      double tolerance) {
     // Only the pairs of parts whose swept boxes and balls meet are swept part against part: a
     // chair landing on a chair has 36 pairs of parts, of which a few come near.
-    thread_local std::array<PartSweeps, 18> cache;  // 16 compounds kept, two slots for the others
-    thread_local int next = 0;
-    const int ka = partSweepsOf(a, sa, cache, next, -1);
-    const int kb = partSweepsOf(b, sb, cache, next, ka);
-    const PartSweeps& A = cache[ka];
-    const PartSweeps& B = cache[kb];
-    std::optional<Impact> best;
+    SweepCache& cache = sweepCache();
+    const int ka = partSweepsOf(a, sa, cache.slots, cache.next, -1);
+    const int kb = partSweepsOf(b, sb, cache.slots, cache.next, ka);
+    const PartSweeps& A = cache.slots[ka];
+    const PartSweeps& B = cache.slots[kb];
+    // The pairs of parts in the order their balls can first meet: once one has its moment,
+    // a pair whose balls meet only later is not looked at, and the others' searches stop as
+    // soon as they pass it. The answer is the one a search of every pair in turn would give
+    // (on a tie, the first pair in part order).
+    struct Candidate {
+        double earliest;
+        int i, j;
+    };
+    thread_local std::vector<Candidate> order;
+    order.clear();
     for (size_t i = 0; i < A.balls.size(); ++i) {
         for (size_t j = 0; j < B.balls.size(); ++j) {
             if (ballsMiss(A.balls[i], B.balls[j], tolerance)) continue;
-            auto hit = timeOfImpact(partShape(a, static_cast<int>(i)), A.sweeps[i],
-                                    partShape(b, static_cast<int>(j)), B.sweeps[j], tolerance);
-            if (hit && (!best || hit->s < best->s)) best = hit;
+            // (timeOfImpact may widen a tolerance to a rounding floor of the parts' sizes.)
+            const double tol = std::max(tolerance, 1e-12 * (A.balls[i].radius + B.balls[j].radius));
+            order.push_back(
+                {ballsEarliest(A.balls[i], B.balls[j], tol), static_cast<int>(i), static_cast<int>(j)});
+        }
+    }
+    std::sort(order.begin(), order.end(), [](const Candidate& x, const Candidate& y) {
+        return x.earliest != y.earliest ? x.earliest < y.earliest
+                                        : std::make_pair(x.i, x.j) < std::make_pair(y.i, y.j);
+    });
+    std::optional<Impact> best;
+    std::pair<int, int> bestPair;
+    for (const Candidate& c : order) {
+        if (best && c.earliest > best->s) break;
+        auto hit = timeOfImpact(partShape(a, c.i), A.sweeps[c.i], partShape(b, c.j), B.sweeps[c.j], tolerance,
+                                best ? best->s : 1.0);
+        if (hit &&
+            (!best || hit->s < best->s || (hit->s == best->s && std::make_pair(c.i, c.j) < bestPair))) {
+            best = hit;
+            bestPair = {c.i, c.j};
         }
     }
     return best;

@@ -27,6 +27,19 @@ Sweep partSweep(const Sweep& body, const Pose& part);
 /// from another step, scene or model is taken for this one's.
 void forgetPartSweeps();
 
+/// How far two solids of thicknesses ta and tb (0: a surface; infinite: a plane) may move
+/// against each other in a step before one can pass through the other: their thicknesses
+/// together, or, when they touch at the step's end, half the thinner (past its middle the
+/// end's normal would point out of its far side). Surfaces touching at the end are trusted.
+double passLimit(double ta, double tb, bool touching);
+
+/// Whether some part of a may have passed through some part of b, or past its middle, over
+/// the step (the end-of-step mode's test for a moment of impact): a pair of parts whose swept
+/// balls meet, moving against each other by passLimit of their thicknesses or more. A
+/// spinning chair's leg far from the other chair's parts moves it nothing.
+bool partsMayPass(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tolerance,
+                  bool touching);
+
 /// timeOfImpact for a pair with a compound: the earliest of its pairs of parts.
 std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
                                      double tolerance);

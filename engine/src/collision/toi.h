@@ -36,8 +36,10 @@ struct Impact {
 /// skips a contact however fast or thin the bodies.
 /// Pairs: any convex-convex, convex-plane, convex-mesh, mesh-plane (per triangle the swept
 /// bounds touch), mesh-mesh (per triangle pair). Plane-plane returns nothing. If the shapes
-/// already touch at s = 0 the answer is s = 0.
+/// already touch at s = 0 the answer is s = 0. `notAfter`: the caller knows of an impact at
+/// that time, and a search that has passed it may stop with nothing (an answer it does give
+/// is the one it would give without it; meshes search on regardless).
 std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                   double tolerance);
+                                   double tolerance, double notAfter = 1.0);
 
 }  // namespace tumble::collision
