@@ -69,9 +69,12 @@ private slots:
                                  "saved.json", "--metrics", "m.json"},
                                 signal, [&] { return !temporariesUnder(dir_->path()).isEmpty(); });
         QCOMPARE(r.code, 128 + signal);
+        // (The signal may come before the first frame is done, on a loaded machine: the CSV's
+        // temporary is made before it. "frame 0" is then the truth, and the test's point, that
+        // the temporary goes with the rest, stands.)
         const QRegularExpression line(
             "^tumble: stopped by " + QRegularExpression::escape(name) +
-            " at t = [0-9.e-]+ s \\(frame [1-9][0-9]* of 1801\\); nothing was written\\n$");
+            " at t = [0-9.e-]+ s \\(frame [0-9]+ of 1801\\); nothing was written\\n$");
         QVERIFY2(line.match(r.err).hasMatch(), qPrintable(r.err));
         QCOMPARE(r.out, QString());
         QCOMPARE(entries(), QStringList({"blow.json", "box.json"}));  // no output, no temporary
