@@ -19,12 +19,6 @@ namespace tumble::collision {
 
 namespace {
 
-struct Near {
-    int part = 0;
-    Pose pose;
-    Aabb box;  // world, grown by the margin
-};
-
 // The box of a world box turned into the frame of `pose` (the box about the turned box).
 Aabb intoFrame(const Aabb& world, const Pose& pose) {
     const Vec3 c = pose.toLocal(world.center());
@@ -43,20 +37,25 @@ Aabb cullBox(const Shape& shape, const Pose& pose) {
     return {c - e, c + e};
 }
 
+PlacedPart placed(const Shape& shape, const Pose& pose, int k, double margin) {
+    if (shape.kind != Kind::Compound) return {0, pose, bounds(shape, pose).inflated(margin)};
+    const Pose at = pose * shape.compound->parts[k].pose;
+    return {k, at, bounds(shape.compound->parts[k].shape, at).inflated(margin)};
+}
+
 // The parts of `shape` at `pose` whose boxes meet `other` (world), or the shape itself as
-// part 0 when it is not a compound.
+// part 0 when it is not a compound; `ready`, if given, holds them all (placeParts).
 void nearParts(const Shape& shape, const Pose& pose, const Aabb& other, double margin,
-               std::vector<Near>& out) {
+               const PlacedPart* ready, std::vector<PlacedPart>& out) {
     out.clear();
     if (shape.kind != Kind::Compound) {
-        out.push_back({0, pose, bounds(shape, pose).inflated(margin)});
+        out.push_back(ready ? ready[0] : placed(shape, pose, 0, margin));
         return;
     }
     const Compound& c = *shape.compound;
     auto take = [&](int k) {
-        const Pose placed = pose * c.parts[k].pose;
-        const Aabb box = bounds(c.parts[k].shape, placed).inflated(margin);
-        if (box.overlaps(other)) out.push_back({k, placed, box});
+        const PlacedPart p = ready ? ready[k] : placed(shape, pose, k, margin);
+        if (p.box.overlaps(other)) out.push_back(p);
     };
     if (!other.min.allFinite() || !other.max.allFinite()) {  // a plane: every part
         for (int k = 0; k < static_cast<int>(c.parts.size()); ++k) take(k);
@@ -189,15 +188,20 @@ void mergeSamePlane(const Shape& a, const Shape& b, size_t first, ManifoldList& 
 
 }  // namespace
 
+void placeParts(const Shape& shape, const Pose& pose, double margin, std::vector<PlacedPart>& out) {
+    const int parts = shape.kind == Kind::Compound ? static_cast<int>(shape.compound->parts.size()) : 1;
+    for (int k = 0; k < parts; ++k) out.push_back(placed(shape, pose, k, margin));
+}
+
 void collideCompound(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
-                     ManifoldList& out) {
-    thread_local std::vector<Near> nearA, nearB;
-    nearParts(a, pa, cullBox(b, pb), margin, nearA);
+                     ManifoldList& out, const PlacedPart* readyA, const PlacedPart* readyB) {
+    thread_local std::vector<PlacedPart> nearA, nearB;
+    nearParts(a, pa, cullBox(b, pb), margin, readyA, nearA);
     if (nearA.empty()) return;
-    nearParts(b, pb, cullBox(a, pa), margin, nearB);
+    nearParts(b, pb, cullBox(a, pa), margin, readyB, nearB);
     const size_t first = out.size();
-    for (const Near& x : nearA) {
-        for (const Near& y : nearB) {
+    for (const PlacedPart& x : nearA) {
+        for (const PlacedPart& y : nearB) {
             if (!x.box.overlaps(y.box)) continue;
             const size_t first = out.size();
             collide(partShape(a, x.part), x.pose, partShape(b, y.part), y.pose, margin, out);
@@ -304,14 +308,19 @@ double ballsEarliest(const SweptBall& a, const SweptBall& b, double tol) {
 namespace {
 
 // A body's parts' swept balls and sweeps over one step. A body meets several others in a
-// step, and each pair's moment is asked for up to twice: the last few bodies' are kept
-// (by thread, keyed by the compound and its sweep, exactly) instead of made again per pair.
+// step, and each pair is asked up to three times (may a part pass, near the end, the
+// moment): each thread keeps every body's it has made in the search under way, by the
+// body's number, and checks the shape and the sweep exactly before it takes one.
 struct PartSweeps {
-    std::uint64_t epoch = 0;   // the search it was made in (forgetPartSweeps)
-    std::uint64_t serial = 0;  // the compound's (Compound::serial); 0: not kept
+    std::uint64_t epoch = 0;  // the search it was made in (forgetPartSweeps); 0: none
+    const Shape* shape = nullptr;
     Sweep sweep;
     std::vector<SweptBall> balls;
     std::vector<Sweep> sweeps;
+    // For partsMayPass's first look: the most any part's origin moves other than with the
+    // centre of mass, the most any part drifts from its origin's chord, and the thinnest part
+    // (zero if a part is not a finite solid).
+    double turnMove = 0.0, drift = 0.0, thinnest = 0.0;
 };
 
 bool sameSweep(const Sweep& x, const Sweep& y) {
@@ -319,20 +328,11 @@ bool sameSweep(const Sweep& x, const Sweep& y) {
            x.q1.coeffs() == y.q1.coeffs() && x.localCenter == y.localCenter;
 }
 
-// Each thread's kept part sweeps: 16 compounds, and two slots for the others.
-struct SweepCache {
-    std::array<PartSweeps, 18> slots;
-    int next = 0;
-};
-SweepCache& sweepCache() {
-    thread_local SweepCache cache;
-    return cache;
-}
-
 // The search for impacts under way (forgetPartSweeps starts a new one).
 std::atomic<std::uint64_t> searches{1};
 
 void fill(PartSweeps& e, const Shape& shape, const Sweep& sw) {
+    e.shape = &shape;
     e.sweep = sw;
     e.balls.clear();
     e.sweeps.clear();
@@ -343,33 +343,41 @@ void fill(PartSweeps& e, const Shape& shape, const Sweep& sw) {
         e.balls.push_back(sweptBall(partShape(shape, j), sw, ends, pose));
         e.sweeps.push_back(shape.kind == Kind::Compound ? partSweep(sw, pose) : sw);
     }
+    e.turnMove = e.drift = 0.0;
+    e.thinnest = std::numeric_limits<double>::infinity();
+    for (const SweptBall& b : e.balls) {
+        e.turnMove = std::max(e.turnMove, ((b.p1 - b.p0) - (sw.c1 - sw.c0)).norm());
+        e.drift = std::max(e.drift, b.drift);
+        const bool solid = std::isfinite(b.thickness) && b.thickness > 0.0;
+        e.thinnest = solid ? std::min(e.thinnest, b.thickness) : 0.0;
+    }
 }
 
-// The index in `cache` of the shape's part sweeps, made there if missing (never in slot
-// `keep`, which the caller still reads). A shape that is not a compound is made anew in the
-// last slot, which is never kept.
-int partSweepsOf(const Shape& shape, const Sweep& sw, std::array<PartSweeps, 18>& cache, int& next,
-                 int keep) {
-    const int kept = static_cast<int>(cache.size()) - 2;
-    if (shape.kind != Kind::Compound) {
-        const int k = keep == kept ? kept + 1 : kept;
-        cache[k].serial = 0;
-        fill(cache[k], shape, sw);
-        return k;
-    }
+// The part sweeps of a pair: kept by body number when it is given (>= 0), else made anew.
+struct PairSweeps {
+    const PartSweeps* a;
+    const PartSweeps* b;
+};
+PairSweeps pairSweeps(const Shape& a, const Sweep& sa, int bodyA, const Shape& b, const Sweep& sb,
+                      int bodyB) {
+    thread_local std::array<PartSweeps, 2> loose;  // for a pair asked without numbers
+    thread_local std::vector<PartSweeps> byBody;
     const std::uint64_t epoch = searches.load(std::memory_order_relaxed);
-    for (int k = 0; k < kept; ++k)
-        if (cache[k].epoch == epoch && cache[k].serial == shape.compound->serial &&
-            sameSweep(cache[k].sweep, sw))
-            return k;
-    if (next == keep) next = (next + 1) % kept;
-    const int k = next;
-    next = (next + 1) % kept;
-    PartSweeps& e = cache[k];
-    e.epoch = epoch;
-    e.serial = shape.compound->serial;
-    fill(e, shape, sw);
-    return k;
+    const size_t need = static_cast<size_t>(std::max(bodyA, bodyB) + 1);
+    if (byBody.size() < need) byBody.resize(need);  // (before any entry is taken)
+    auto of = [&](const Shape& shape, const Sweep& sw, int body, PartSweeps& spare) -> const PartSweeps* {
+        if (body < 0) {
+            fill(spare, shape, sw);
+            return &spare;
+        }
+        PartSweeps& e = byBody[static_cast<size_t>(body)];
+        if (e.epoch != epoch || e.shape != &shape || !sameSweep(e.sweep, sw)) {
+            e.epoch = epoch;
+            fill(e, shape, sw);
+        }
+        return &e;
+    };
+    return {of(a, sa, bodyA, loose[0]), of(b, sb, bodyB, loose[1])};
 }
 
 }  // namespace
@@ -381,12 +389,17 @@ double passLimit(double ta, double tb, bool touching) {
 }
 
 bool partsMayPass(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb, double tolerance,
-                  bool touching) {
-    SweepCache& c = sweepCache();
-    const int ka = partSweepsOf(a, sa, c.slots, c.next, -1);
-    const int kb = partSweepsOf(b, sb, c.slots, c.next, ka);
-    for (const SweptBall& x : c.slots[ka].balls) {
-        for (const SweptBall& y : c.slots[kb].balls) {
+                  bool touching, int bodyA, int bodyB) {
+    const PairSweeps p = pairSweeps(a, sa, bodyA, b, sb, bodyB);
+    // No pair of parts moves against each other by more than the centres do and what each
+    // body's turn adds; below the thinnest parts' limit, none can pass.
+    if (p.a->thinnest > 0.0 && p.b->thinnest > 0.0) {
+        const double most = ((sa.c1 - sa.c0) - (sb.c1 - sb.c0)).norm() + p.a->turnMove + p.b->turnMove +
+                            p.a->drift + p.b->drift;
+        if (most < passLimit(p.a->thinnest, p.b->thinnest, touching)) return false;
+    }
+    for (const SweptBall& x : p.a->balls) {
+        for (const SweptBall& y : p.b->balls) {
             const double limit = passLimit(x.thickness, y.thickness, touching);
             if (!std::isfinite(limit)) continue;
             const double moved = ((x.p1 - x.p0) - (y.p1 - y.p0)).norm() + x.drift + y.drift;
@@ -401,14 +414,12 @@ void forgetPartSweeps() {
 }
 
 std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                     double tolerance) {
+                                     double tolerance, int bodyA, int bodyB) {
     // Only the pairs of parts whose swept boxes and balls meet are swept part against part: a
     // chair landing on a chair has 36 pairs of parts, of which a few come near.
-    SweepCache& cache = sweepCache();
-    const int ka = partSweepsOf(a, sa, cache.slots, cache.next, -1);
-    const int kb = partSweepsOf(b, sb, cache.slots, cache.next, ka);
-    const PartSweeps& A = cache.slots[ka];
-    const PartSweeps& B = cache.slots[kb];
+    const PairSweeps p = pairSweeps(a, sa, bodyA, b, sb, bodyB);
+    const PartSweeps& A = *p.a;
+    const PartSweeps& B = *p.b;
     // The pairs of parts in the order their balls can first meet: once one has its moment,
     // a pair whose balls meet only later is not looked at, and the others' searches stop as
     // soon as they pass it. The answer is the one a search of every pair in turn would give

@@ -163,6 +163,24 @@ void refreshJointPairs(const Model& model, const State& state, DetectScratch& s)
     std::sort(s.jointPairs.begin(), s.jointPairs.end());
 }
 
+namespace {
+
+// The parts of each compound body in a pair, placed once at the end of the step.
+void placeCompounds(const Model& model, DetectScratch& s, double margin) {
+    s.placed.clear();
+    s.placedAt.assign(model.bodies.size(), -1);
+    for (const auto& [a, b] : s.broadphase.pairs()) {
+        for (const int i : {a, b}) {
+            const Shape& shape = model.bodies[i].collider;
+            if (shape.kind != Kind::Compound || s.placedAt[i] >= 0) continue;
+            s.placedAt[i] = static_cast<int>(s.placed.size());
+            placeParts(shape, s.end[i], margin, s.placed);
+        }
+    }
+}
+
+}  // namespace
+
 void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.contacts.clear();
     // Room for about as many as the last time and an eighth: in a scene whose contacts keep
@@ -187,6 +205,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
         return it != last.keys.end() && *it == key ? last.apart[it - last.keys.begin()] : Vec3::Zero();
     };
     s.apart.assign(s.broadphase.pairs().size(), Vec3::Zero());
+    placeCompounds(model, s, margin);
     std::atomic<long> reused{0}, provedApart{0};
     overPairs(s, s.contacts, s.chunkContacts, [&](int k, int a, int b, ManifoldList& out) {
         if (const auto* range = lastOf(a, b)) {
@@ -210,6 +229,9 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
                 return;
             }
             collide(A, s.end[a], B, s.end[b], margin, out, s.apart[k]);
+        } else if (A.kind == Kind::Compound || B.kind == Kind::Compound) {
+            auto ready = [&](int i) { return s.placedAt[i] >= 0 ? &s.placed[s.placedAt[i]] : nullptr; };
+            collideCompound(A, s.end[a], B, s.end[b], margin, out, ready(a), ready(b));
         } else {
             collide(A, s.end[a], B, s.end[b], margin, out);
         }
@@ -326,6 +348,12 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const Sweep sb = sweepOf(B, before.bodies[b], after.bodies[b], h);
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
         const double size = std::min(sizes[a], sizes[b]);
+        const bool compound = A.collider.kind == Kind::Compound || B.collider.kind == Kind::Compound;
+        // (A compound's part sweeps are kept by body number for its other pairs.)
+        auto impactWithin = [&](double tol) {
+            return compound ? compoundImpact(A.collider, sa, B.collider, sb, tol, a, b)
+                            : timeOfImpact(A.collider, sa, B.collider, sb, tol);
+        };
         int found = -1;     // the pair's first manifold at the end (end-of-step mode), if any
         bool away = false;  // ... and the pair leaves it there (`leaving`)
         if (thickness) {
@@ -341,9 +369,8 @@ void findImpacts(const Model& model, const State& before, const State& after, do
                 std::lower_bound(s.found.begin(), s.found.end(), std::make_pair(pairKey(a, b), -1));
             found = it != s.found.end() && it->first == pairKey(a, b) ? it->second : -1;
             away = found >= 0 && leaving(s.contacts[found]);
-            const bool compound = A.collider.kind == Kind::Compound || B.collider.kind == Kind::Compound;
             const bool mayPass =
-                compound ? partsMayPass(A.collider, sa, B.collider, sb, tolerance * size, found >= 0)
+                compound ? partsMayPass(A.collider, sa, B.collider, sb, tolerance * size, found >= 0, a, b)
                          : relativeTravel(a, b) >= passLimit((*thickness)[a], (*thickness)[b], found >= 0);
             if (!mayPass && !away) return;
         }
@@ -352,11 +379,11 @@ void findImpacts(const Model& model, const State& before, const State& after, do
             // exact moment. Near it (within 1e-3 of the smaller body) its normal is taken
             // when it is well inside the same-side cone (40°, 5° to spare); else the moment
             // is found as for a cut.
-            const auto near = timeOfImpact(A.collider, sa, B.collider, sb, kNearTouch * size);
+            const auto near = impactWithin(kNearTouch * size);
             if (!near) return;
             if (s.contacts[found].normal.dot(near->normal) >= kSurelySameSide) return;
         }
-        const auto hit = timeOfImpact(A.collider, sa, B.collider, sb, tolerance * size);
+        const auto hit = impactWithin(tolerance * size);
         if (!hit) return;
         // Touching at the end along much the normal of the first touch: the end's contact is
         // on the side the bodies met, not past the middle, and the contact solver resolves

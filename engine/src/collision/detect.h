@@ -8,6 +8,7 @@
 #include <tumble/profile.h>
 
 #include "collision/broadphase.h"
+#include "collision/compound_pairs.h"
 
 #include <cstdint>
 #include <limits>
@@ -56,6 +57,10 @@ struct DetectScratch {
     Workers* pool = nullptr;                  // the world's worker threads; null: this thread only
     std::vector<collision::ManifoldList> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
+    // The parts of the compound bodies in this narrowphase's pairs, placed at the end of the
+    // step once for all their pairs: body i's from placed[placedAt[i]] (-1: none).
+    std::vector<collision::PlacedPart> placed;
+    std::vector<int> placedAt;
 };
 
 /// True when the model has two bodies that could ever touch (at least one not static);
