@@ -414,7 +414,7 @@ void forgetPartSweeps() {
 }
 
 std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                     double tolerance, int bodyA, int bodyB) {
+                                     double tolerance, Window window, int bodyA, int bodyB) {
     // Only the pairs of parts whose swept boxes and balls meet are swept part against part: a
     // chair landing on a chair has 36 pairs of parts, of which a few come near.
     const PairSweeps p = pairSweeps(a, sa, bodyA, b, sb, bodyB);
@@ -435,8 +435,8 @@ std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shap
             if (ballsMiss(A.balls[i], B.balls[j], tolerance)) continue;
             // (timeOfImpact may widen a tolerance to a rounding floor of the parts' sizes.)
             const double tol = std::max(tolerance, 1e-12 * (A.balls[i].radius + B.balls[j].radius));
-            order.push_back(
-                {ballsEarliest(A.balls[i], B.balls[j], tol), static_cast<int>(i), static_cast<int>(j)});
+            order.push_back({std::max(window.from, ballsEarliest(A.balls[i], B.balls[j], tol)),
+                             static_cast<int>(i), static_cast<int>(j)});
         }
     }
     std::sort(order.begin(), order.end(), [](const Candidate& x, const Candidate& y) {
@@ -447,8 +447,9 @@ std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shap
     std::pair<int, int> bestPair;
     for (const Candidate& c : order) {
         if (best && c.earliest > best->s) break;
+        if (c.earliest > window.notAfter) break;
         auto hit = timeOfImpact(partShape(a, c.i), A.sweeps[c.i], partShape(b, c.j), B.sweeps[c.j], tolerance,
-                                best ? best->s : 1.0);
+                                {window.from, best ? std::min(best->s, window.notAfter) : window.notAfter});
         if (hit &&
             (!best || hit->s < best->s || (hit->s == best->s && std::make_pair(c.i, c.j) < bestPair))) {
             best = hit;

@@ -61,6 +61,6 @@ bool partsMayPass(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& 
 /// timeOfImpact for a pair with a compound: the earliest of its pairs of parts (bodyA, bodyB
 /// as for partsMayPass).
 std::optional<Impact> compoundImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                     double tolerance, int bodyA = -1, int bodyB = -1);
+                                     double tolerance, Window window = {}, int bodyA = -1, int bodyB = -1);
 
 }  // namespace tumble::collision

@@ -350,9 +350,9 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const double size = std::min(sizes[a], sizes[b]);
         const bool compound = A.collider.kind == Kind::Compound || B.collider.kind == Kind::Compound;
         // (A compound's part sweeps are kept by body number for its other pairs.)
-        auto impactWithin = [&](double tol) {
-            return compound ? compoundImpact(A.collider, sa, B.collider, sb, tol, a, b)
-                            : timeOfImpact(A.collider, sa, B.collider, sb, tol);
+        auto impactWithin = [&](double tol, Window window) {
+            return compound ? compoundImpact(A.collider, sa, B.collider, sb, tol, window, a, b)
+                            : timeOfImpact(A.collider, sa, B.collider, sb, tol, window);
         };
         int found = -1;     // the pair's first manifold at the end (end-of-step mode), if any
         bool away = false;  // ... and the pair leaves it there (`leaving`)
@@ -374,16 +374,20 @@ void findImpacts(const Model& model, const State& before, const State& after, do
                          : relativeTravel(a, b) >= passLimit((*thickness)[a], (*thickness)[b], found >= 0);
             if (!mayPass && !away) return;
         }
+        double from = 0.0;  // the search for the moment starts there
         if (found >= 0 && !away) {
             // Touching at the end: whether the first touch was on the same side needs no
             // exact moment. Near it (within 1e-3 of the smaller body) its normal is taken
             // when it is well inside the same-side cone (40°, 5° to spare); else the moment
             // is found as for a cut.
-            const auto near = impactWithin(kNearTouch * size);
+            const auto near = impactWithin(kNearTouch * size, {});
             if (!near) return;
             if (s.contacts[found].normal.dot(near->normal) >= kSurelySameSide) return;
+            from = near->s;
         }
-        const auto hit = impactWithin(tolerance * size);
+        // (Before the near touch the pair stays apart by half its tolerance, far more than this
+        // one: the search goes on from there.)
+        const auto hit = impactWithin(tolerance * size, {from, 1.0});
         if (!hit) return;
         // Touching at the end along much the normal of the first touch: the end's contact is
         // on the side the bodies met, not past the middle, and the contact solver resolves

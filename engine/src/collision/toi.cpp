@@ -57,12 +57,14 @@ bool turns(const Sweep& s) {
 // then early by 1e-5 tol / approach speed instead of up to tol / approach speed (a cradle's last
 // ball left 5e-8 m early), and a refinement that would overshoot is dropped, so the answer
 // is still never after the first contact.
-// Past `giveUp` the search stops with nothing (a caller that knows of an earlier impact);
-// the secant steps may still go up to sEnd, so the answer is the same whenever it is kept.
+// From window.from on; past window.notAfter the search stops with nothing (a caller that
+// knows of an earlier impact); the secant steps may still go up to sEnd, so the answer is
+// the same whenever it is kept.
 template <class DistanceAt, class Bound>
 std::optional<Impact> advance(DistanceAt&& distanceAt, Bound&& bound, double tol, double sEnd,
-                              double giveUp = 1.0) {
-    double s = 0.0, sBefore = 0.0, dBefore = 0.0;
+                              Window window = {}) {
+    const double giveUp = window.notAfter;
+    double s = window.from, sBefore = 0.0, dBefore = 0.0;
     for (int iter = 0;; ++iter) {
         const Probe p = distanceAt(s);
         // At the iteration cap the current time is still safe (never past a contact).
@@ -187,14 +189,14 @@ void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& ce
 }
 
 std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                   double tol, double giveUp) {
+                                   double tol, Window window) {
     return advance([&](double s) { return probe(proxyOf(a, sa.at(s)), proxyOf(b, sb.at(s))); },
-                   boundFor(sa, reach(a, sa), sb, reach(b, sb)), tol, 1.0, giveUp);
+                   boundFor(sa, reach(a, sa), sb, reach(b, sb)), tol, 1.0, window);
 }
 
 // A (convex or mesh) against the plane B.
 std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape& plane, const Sweep& sp,
-                                   double tol, double giveUp) {
+                                   double tol, Window window) {
     const double rA = reach(a, sa);
     const double thetaP = turn(sp);
     auto distanceAt = [&](double s) {
@@ -229,7 +231,7 @@ std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape&
         }
         return mu;
     };
-    return advance(distanceAt, bound, tol, 1.0, giveUp);
+    return advance(distanceAt, bound, tol, 1.0, window);
 }
 
 // A (convex) against the mesh B, triangle by triangle.
@@ -287,7 +289,7 @@ std::optional<Impact> flipped(std::optional<Impact> i) {
 }  // namespace
 
 std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                   double tolerance, double notAfter) {
+                                   double tolerance, Window window) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return std::nullopt;
     // A tolerance of zero would only be reached in the limit; keep a rounding-level floor.
     double scale = 0.0;
@@ -299,12 +301,12 @@ std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape&
         if (a.kind != Kind::Plane && b.kind != Kind::Plane &&
             spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol))
             return std::nullopt;
-        return compoundImpact(a, sa, b, sb, tolerance);
+        return compoundImpact(a, sa, b, sb, tolerance, window);
     }
-    if (b.kind == Kind::Plane) return againstPlane(a, sa, b, sb, tol, notAfter);
-    if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, a, sa, tol, notAfter));
+    if (b.kind == Kind::Plane) return againstPlane(a, sa, b, sb, tol, window);
+    if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, a, sa, tol, window));
     if (spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol)) return std::nullopt;
-    if (isConvex(a.kind) && isConvex(b.kind)) return convexConvex(a, sa, b, sb, tol, notAfter);
+    if (isConvex(a.kind) && isConvex(b.kind)) return convexConvex(a, sa, b, sb, tol, window);
     if (isConvex(a.kind)) return convexMesh(a, sa, b, sb, tol);
     if (isConvex(b.kind)) return flipped(convexMesh(b, sb, a, sa, tol));
     return meshMesh(a, sa, b, sb, tol);

@@ -36,10 +36,17 @@ struct Impact {
 /// skips a contact however fast or thin the bodies.
 /// Pairs: any convex-convex, convex-plane, convex-mesh, mesh-plane (per triangle the swept
 /// bounds touch), mesh-mesh (per triangle pair). Plane-plane returns nothing. If the shapes
-/// already touch at s = 0 the answer is s = 0. `notAfter`: the caller knows of an impact at
-/// that time, and a search that has passed it may stop with nothing (an answer it does give
-/// is the one it would give without it; meshes search on regardless).
+/// already touch at s = 0 the answer is s = 0.
+///
+/// `window` narrows the search when the caller knows more: the shapes stay farther apart than
+/// the tolerance before `from` (a search with a larger tolerance ended there), and there is an
+/// impact at `notAfter` (a search that has passed it may stop with nothing; an answer it does
+/// give is the one it would give without it). Meshes search from 0 regardless.
+struct Window {
+    double from = 0.0;
+    double notAfter = 1.0;
+};
 std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                   double tolerance, double notAfter = 1.0);
+                                   double tolerance, Window window = {});
 
 }  // namespace tumble::collision
