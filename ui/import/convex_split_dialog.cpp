@@ -170,6 +170,9 @@ void ConvexSplitDialog::finished() {
                        .arg(1000 * p.tolerance, 0, 'f', 2);
     if (!p.withinTolerance)
         text += tr(" Max parts was reached before the tolerance: allow more parts, or a larger tolerance.");
+    if (p.filledHoles > 0)
+        text += p.filledHoles == 1 ? tr(" The mesh was open: 1 hole filled first.")
+                                   : tr(" The mesh was open: %1 holes filled first.").arg(p.filledHoles);
     status_->setText(text);
     preview_->setParts(result_);
     applyButton_->setEnabled(true);

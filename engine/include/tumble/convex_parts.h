@@ -23,14 +23,20 @@
 // Pieces are split up to twice the parts asked for, then neighbours merged back (the pair
 // whose joint hull adds least first).
 //
+// The split is made in the solid's own frame (mesh/solid_frame.h: centre of mass, principal
+// axes), so a turned mesh splits as it does upright. A mesh of several closed pieces that
+// overlap (a spider's legs in its body) is split piece by piece and the parts merged back
+// down to the number asked for (convex_parts_shells.cpp). An open mesh is first made to bound
+// a solid by convexPartsOfShape: triangles wound against their neighbours turned, holes
+// filled with fans (mesh/mesh_holes.h).
+//
 // A scene's mesh with `"collision": "convex-parts"` is split by convexPartsOfShape, which
 // compile() calls when the shape does not carry its parts already (ShapeDesc::convexParts,
 // filled from the sidecar cache by the scene loader or by the editor in the background).
-// Tested (tst_engine_convex_parts, both poses): a
-// U-bracket in its three boxes exactly; a torus within 1.7 % of its volume in 16 parts, its
-// hole open; every solid covered. Short of the target: a mug without handle
-// (test_meshes.h mug(0.4, 1, 0.3, 0.8)) is 2.7 % over its volume in 16 parts upright but
-// 6.2 % turned (its wall wants 11 staves or more; the greedy cuts waste some).
+// Tested (tst_engine_convex_parts, tst_io_mesh_import; upright and turned): a U-bracket in its
+// three boxes exactly; a torus within 1.7 % of its volume in 16 parts, its hole open; a mug
+// without handle within 5 % in 16; a plus of two overlapping boxes in its two boxes exactly;
+// the assimp spider within 5 % and the tolerance in 48 parts; every solid covered.
 #pragma once
 
 #include <tumble/collision.h>
@@ -65,6 +71,10 @@ struct ConvexParts {
     /// The farthest any part reaches out of the solid, as measured (m); at most `tolerance`
     /// when `withinTolerance`.
     double largestPokeOut = 0.0;
+    std::vector<double> reachOut;  ///< each part's farthest reach out of the solid, as measured (m)
+    /// Holes filled to close an open mesh before it was split (convexPartsOfShape: a mesh
+    /// left open where its pieces meet still bounds a solid); 0: it was closed.
+    int filledHoles = 0;
     bool withinTolerance = false;  ///< false: maxParts was reached first
     /// What the parts were made from, when made by convexPartsOfShape: the hash of the mesh
     /// as read (meshHash of ShapeDesc::meshData) and the options asked for (tolerance 0: the
@@ -87,8 +97,10 @@ struct ConvexPartsStopped : std::runtime_error {
 double hullVolume(const collision::ConvexHull& hull);
 
 /// The convex parts of the solid bounded by `mesh`, which must be closed and face outwards
-/// (isClosed; prepareMesh makes it so). Throws std::invalid_argument for an open or empty
-/// mesh, or options out of range.
+/// (isClosed; prepareMesh makes it so). A mesh of several pieces (each closed, overlapping
+/// where they meet) is split piece by piece and the parts merged back down to maxParts.
+/// Throws std::invalid_argument for an open or empty mesh, a piece facing inwards, or
+/// options out of range.
 ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& options = {},
                         const ConvexPartsProgress& progress = {});
 
@@ -101,9 +113,10 @@ ConvexPartsOptions convexPartsOptionsOf(const ShapeDesc& shape);
 /// True when `parts` were made from this shape's mesh (meshData) with its options.
 bool convexPartsFit(const ConvexParts& parts, const ShapeDesc& shape);
 
-/// The convex parts of a mesh shape (its meshData cleaned as compile cleans it) with its
-/// options, timed, with the mesh's hash. Throws std::invalid_argument when the shape has no
-/// mesh, or the cleaned mesh is not closed (it bounds no solid to split).
+/// The convex parts of a mesh shape (its meshData cleaned as compile cleans it, an open one
+/// closed by filling its holes) with its options, timed, with the mesh's hash. Throws
+/// std::invalid_argument when the shape has no mesh, or the cleaned mesh is not closed and
+/// filling its holes does not close it (it bounds no solid to split).
 ConvexParts convexPartsOfShape(const ShapeDesc& shape, const ConvexPartsProgress& progress = {});
 
 /// How far each point lies outside the solid bounded by the closed `mesh` (0 inside): its

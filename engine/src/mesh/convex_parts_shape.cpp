@@ -49,15 +49,12 @@ bool convexPartsFit(const ConvexParts& parts, const ShapeDesc& shape) {
 ConvexParts convexPartsOfShape(const ShapeDesc& shape, const ConvexPartsProgress& progress) {
     if (!shape.meshData) throw std::invalid_argument("the mesh '" + shape.file + "' was never loaded");
     const auto start = std::chrono::steady_clock::now();
-    const PreparedMesh prepared = prepareMesh(*shape.meshData, false, false);
-    if (!prepared.closed)
-        throw std::invalid_argument(
-            "the mesh is not closed, so it bounds no solid to split into convex parts (use \"convex-hull\" "
-            "or "
-            "\"triangles\")");
+    const PreparedMesh prepared = prepareMesh(*shape.meshData, false, false, true);
+    if (!prepared.closed) throw std::invalid_argument(notClosedForParts(prepared.filling));
     const ConvexPartsOptions options = convexPartsOptionsOf(shape);
     ConvexParts parts = convexParts(prepared.surface, options, progress);
     parts.meshHash = meshHash(*shape.meshData);
+    parts.filledHoles = prepared.filling.closed ? prepared.filling.holes : 0;
     parts.options = options;
     parts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return parts;

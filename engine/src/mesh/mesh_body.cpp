@@ -36,11 +36,18 @@ TriangleMesh hullSurface(const collision::ConvexHull& hull) {
     return m;
 }
 
-PreparedMesh prepareMesh(const TriangleMesh& raw, bool wantHull, bool wantMass) {
+PreparedMesh prepareMesh(const TriangleMesh& raw, bool wantHull, bool wantMass, bool fillOpen) {
     PreparedMesh p;
     const double tolerance = weldTolerance(raw.vertices);
     p.surface = cleanMesh(raw, tolerance, &p.stats);
     p.closed = isClosed(p.surface);
+    if (!p.closed && fillOpen && !p.surface.triangles.empty()) {
+        TriangleMesh filled = fillHoles(p.surface, &p.filling);
+        if (p.filling.closed) {
+            p.surface = std::move(filled);
+            p.closed = true;
+        }
+    }
     if (p.closed) {
         double volume = 0.0;
         meshMassProperties(p.surface, 1.0, &volume);

@@ -89,7 +89,8 @@ mesh::PreparedMesh prepareMeshShape(const ShapeDesc& s, bool wantMass, const std
     }
     mesh::PreparedMesh p;
     try {
-        p = mesh::prepareMesh(*s.meshData, s.collision == MeshCollision::ConvexHull, wantMass);
+        p = mesh::prepareMesh(*s.meshData, s.collision == MeshCollision::ConvexHull, wantMass,
+                              s.collision == MeshCollision::ConvexParts);
     } catch (const std::invalid_argument& e) {
         throw SceneError(field, s.file + ": " + e.what());
     }
@@ -97,17 +98,21 @@ mesh::PreparedMesh prepareMeshShape(const ShapeDesc& s, bool wantMass, const std
         throw SceneError(field, s.file + ": has no triangles with an area (every one is degenerate)");
     }
     if (s.collision == MeshCollision::ConvexParts && !p.closed) {
-        throw SceneError(path + ".collision",
-                         s.file +
-                             ": the mesh is not closed, so it bounds no solid to split into "
-                             "convex parts; use \"convex-hull\" or \"triangles\"");
+        throw SceneError(path + ".collision", s.file + ": " + mesh::notClosedForParts(p.filling));
     }
     return p;
 }
 
 void noteMesh(const ShapeDesc& s, bool dynamic, const std::string& who, const mesh::PreparedMesh& p,
               std::vector<std::string>& notes) {
-    if (dynamic) {
+    const bool filled = p.filling.holes > 0 && p.filling.closed;
+    if (filled) {
+        notes.push_back(who + "the mesh was open: its " + std::to_string(p.filling.holes) +
+                        (p.filling.holes == 1 ? " hole was" : " holes were") + " filled (in " +
+                        std::to_string(p.filling.openShells) + " of its " + std::to_string(p.filling.shells) +
+                        (p.filling.shells == 1 ? " piece" : " pieces") + ") to split it into convex parts" +
+                        (dynamic ? "; mass properties come from the filled surface" : ""));
+    } else if (dynamic) {
         notes.push_back(who + (p.closed
                                    ? "the mesh is closed; mass properties come from its surface"
                                    : "the mesh is not closed; mass properties come from its convex hull"));

@@ -148,11 +148,29 @@ private slots:
         QVERIFY(s.convexParts && s.convexParts->parts.size() > 1);
     }
 
-    void anOpenMeshSaysWhy() {
+    // A bracket with a face left out: its hole is filled and it splits as the closed one,
+    // and the status says so.
+    void anOpenMeshIsFilledAndSplit() {
         Document doc;
         TriangleMesh open = test::uBracket(1.0, 0.2, 0.6, 0.4);
         open.triangles.pop_back();
         open.triangles.pop_back();
+        const int i = addMeshBody(doc, open);
+        ConvexSplitDialog dialog(&doc, i);
+        QTRY_VERIFY_WITH_TIMEOUT(!dialog.running(), 60000);
+        QVERIFY(dialog.result());
+        QCOMPARE(int(dialog.result()->parts.size()), 3);
+        QVERIFY2(dialog.status().contains("1 hole filled"), qPrintable(dialog.status()));
+    }
+
+    // A fin (a triangle on an edge two others already share) cannot be closed: the dialog
+    // says why and applies nothing.
+    void anUnclosableMeshSaysWhy() {
+        Document doc;
+        TriangleMesh open = test::uBracket(1.0, 0.2, 0.6, 0.4);
+        const auto edge = open.triangles.front();
+        open.vertices.push_back(Vec3(5, 5, 5));
+        open.triangles.push_back({edge[0], edge[1], static_cast<int>(open.vertices.size()) - 1});
         const int i = addMeshBody(doc, open);
         ConvexSplitDialog dialog(&doc, i);
         QTRY_VERIFY_WITH_TIMEOUT(!dialog.running(), 60000);
