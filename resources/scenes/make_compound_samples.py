@@ -12,6 +12,12 @@ cart.json           a cart (a deck with a push handle, one compound body) on fou
 mug-on-board.json   a mug (mesh, split into convex parts) with a ball in it, on a board that a
                     kinematic turn tilts: the mug slides and tips, the ball stays in until the
                     mug falls over. Its parts are kept in mug-on-board.convex-parts.json.
+chair-pile.json     200 chairs in eight layers of 5 x 5, each turned about the vertical,
+                    dropped in a heap onto the floor (tumble-bench's chair-pile); impacts at
+                    the end of the step, as the peers take them.
+
+`python3 make_compound_samples.py NAME ...` writes only those (table, chair, hammer, cart,
+mug-on-board, chair-pile).
 
 The chair: a seat 0.44 x 0.04 x 0.44 m at
 0.45 m, a back 0.44 x 0.5 x 0.04 m on its rear edge, legs 0.04 x 0.45 x 0.04 m under its
@@ -141,9 +147,21 @@ def mug_on_board():
     write("mug-on-board.json", scene(6, [floor(), board, mug, ball]))
 
 
+def chair_pile():
+    chairs = []
+    for k in range(200):
+        layer, i, j = k // 25, (k % 25) // 5, k % 5
+        turn = k + 0.3 * ((k * 7) % 11 - 5) / 5.0
+        chairs.append(chair("chair-%d" % k, [round((i - 2) * 0.7, 6), round(0.1 + 1.1 * layer, 6),
+                                              round((j - 2) * 0.7, 6)], quat_axis([0, 1, 0], turn)))
+    s = scene(8, [floor()] + chairs)
+    s["settings"]["impacts"] = "end-of-step"
+    write("chair-pile.json", s)
+
+
 if __name__ == "__main__":
-    table()
-    chair_sample()
-    hammer()
-    cart()
-    mug_on_board()
+    import sys
+    samples = {"table": table, "chair": chair_sample, "hammer": hammer, "cart": cart,
+               "mug-on-board": mug_on_board, "chair-pile": chair_pile}
+    for name in sys.argv[1:] or samples:
+        samples[name]()

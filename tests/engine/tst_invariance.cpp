@@ -298,6 +298,14 @@ private slots:
         // a threshold of the contact solve, not of the compound (its manifolds agree).
         if (file == "chair.json") bound = 1e-2;
         if (file == "ragdoll.json") seconds = 0.5, bound = 1e-5;
+        // The pile of 200 chairs: its first layer lands level on the floor and bounces alike
+        // in any pose (1e-15 m apart at 0.2 s). At 0.21 s the second layer lands on the
+        // first's backs, 25 pairs meeting within one step at moments found to 1e-6 of a
+        // chair's size; which are taken first at the cut is rounding's choice, and which
+        // chairs tip which way with it (0.5 cm apart at 0.22 s, the same in a world only
+        // shifted); from there the heap is chaotic. What holds in any pose after: its energy
+        // ledger (tst_engine_compound pileOfChairsLedgerCloses, upright and turned).
+        if (file == "chair-pile.json") seconds = 0.2;
         const WorldPose pose = randomWorldPose(seed);
         const SceneDesc turned = turnedScene(scene, pose);
         const int frames = static_cast<int>(

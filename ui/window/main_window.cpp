@@ -51,11 +51,29 @@ namespace tumble::ui {
 
 namespace {
 
-const char* const kSamples[] = {"tumbling-box",   "spring-pendulum",   "projectile",       "bouncing-ball",
-                                "head-on",        "tilted-box-impact", "newtons-cradle",   "newtons-cradle-strings",
-                                "chain",          "hinged-door",       "ragdoll",          "sliding-block",
-                                "incline",        "rolling-sphere",    "tower-20",         "pyramid-15",
-                                "mass-ratio-stack", "sleeping-wake"};
+const char* const kSamples[] = {"tumbling-box",
+                                "spring-pendulum",
+                                "projectile",
+                                "bouncing-ball",
+                                "head-on",
+                                "tilted-box-impact",
+                                "newtons-cradle",
+                                "newtons-cradle-strings",
+                                "chain",
+                                "hinged-door",
+                                "ragdoll",
+                                "sliding-block",
+                                "incline",
+                                "rolling-sphere",
+                                "tower-20",
+                                "pyramid-15",
+                                "mass-ratio-stack",
+                                "sleeping-wake",
+                                "table",
+                                "chair",
+                                "hammer",
+                                "cart",
+                                "chair-pile"};
 
 bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);

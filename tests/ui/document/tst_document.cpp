@@ -261,6 +261,10 @@ private slots:
         QCOMPARE(doc.bodyCount(), 21);
         QVERIFY(doc.filePath().isEmpty());  // Save must ask where
         QVERIFY(!doc.undoStack()->canUndo());
+        // The compound samples are there too: the pile of 200 chairs, each of six parts.
+        QVERIFY2(doc.open(":/scenes/chair-pile.json", &error), qPrintable(error));
+        QCOMPARE(doc.bodyCount(), 201);
+        QCOMPARE(int(doc.body(200).shape.parts.size()), 6);
     }
 
     // A save that cannot be written says which file and why, leaves what was on disk, and
