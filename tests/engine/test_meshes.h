@@ -140,4 +140,23 @@ inline TriangleMesh uBracket(double w, double t, double h, double d) {
     return m;
 }
 
+/// Closed box of half extents `half` about `at`, counter-clockwise from outside.
+inline TriangleMesh boxMesh(const Vec3& half, const Vec3& at = Vec3::Zero()) {
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.push_back(
+            at + Vec3((i & 1 ? 1 : -1) * half.x(), (i & 2 ? 1 : -1) * half.y(), (i & 4 ? 1 : -1) * half.z()));
+    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    return m;
+}
+
+/// The signed volume a closed surface bounds (each triangle's tetrahedron with the origin).
+inline double signedVolume(const TriangleMesh& m) {
+    double v = 0.0;
+    for (const auto& t : m.triangles)
+        v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    return v;
+}
+
 }  // namespace tumble::test

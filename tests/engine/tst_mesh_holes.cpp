@@ -6,22 +6,15 @@
 
 #include "mesh/mesh_holes.h"
 
+#include "test_meshes.h"
+
 #include <numbers>
 
 using namespace tumble;
 using namespace tumble::mesh;
+using namespace tumble::test;
 
 namespace {
-
-TriangleMesh boxMesh(const Vec3& half, const Vec3& at = Vec3::Zero()) {
-    TriangleMesh m;
-    for (int i = 0; i < 8; ++i)
-        m.vertices.push_back(
-            at + Vec3((i & 1 ? 1 : -1) * half.x(), (i & 2 ? 1 : -1) * half.y(), (i & 4 ? 1 : -1) * half.z()));
-    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-    return m;
-}
 
 // An open tube: n sides of radius r about y from 0 to h, no ends.
 TriangleMesh tube(double r, double h, int n) {
@@ -37,13 +30,6 @@ TriangleMesh tube(double r, double h, int n) {
         m.triangles.push_back({2 * k, 2 * j + 1, 2 * k + 1});
     }
     return m;
-}
-
-double volume(const TriangleMesh& m) {
-    double v = 0.0;
-    for (const auto& t : m.triangles)
-        v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
-    return v;
 }
 
 TriangleMesh posed(TriangleMesh m, bool turn) {
@@ -80,7 +66,8 @@ private slots:
             QCOMPARE(f.holes, 1);
             QCOMPARE(f.shells, 1);
             QCOMPARE(f.openShells, 1);
-            QVERIFY2(std::abs(volume(filled) - 1.0) < 1e-12, qPrintable(QString::number(volume(filled))));
+            QVERIFY2(std::abs(signedVolume(filled) - 1.0) < 1e-12,
+                     qPrintable(QString::number(signedVolume(filled))));
         }
     }
 
@@ -95,8 +82,8 @@ private slots:
         QVERIFY(f.closed);
         QCOMPARE(f.holes, 2);
         const double prism = 0.5 * n * r * r * std::sin(2 * std::numbers::pi / n) * h;
-        QVERIFY2(std::abs(volume(filled) - prism) < 1e-12 * prism,
-                 qPrintable(QString::number(volume(filled))));
+        QVERIFY2(std::abs(signedVolume(filled) - prism) < 1e-12 * prism,
+                 qPrintable(QString::number(signedVolume(filled))));
     }
 
     // Triangles wound against their neighbours are turned back; a shell facing inwards is
@@ -118,7 +105,8 @@ private slots:
         QCOMPARE(f.turned, 2);
         QCOMPARE(f.holes, 0);
         QCOMPARE(f.shells, 2);
-        QVERIFY2(std::abs(volume(fixed) - 9.0) < 1e-12, qPrintable(QString::number(volume(fixed))));
+        QVERIFY2(std::abs(signedVolume(fixed) - 9.0) < 1e-12,
+                 qPrintable(QString::number(signedVolume(fixed))));
     }
 
     // A fin on an edge two triangles already share cannot be closed, and the message says so.
@@ -146,8 +134,8 @@ private slots:
             QCOMPARE(int(s.triangles.size()), 12);
             QVERIFY(isClosed(s));
         }
-        QCOMPARE(volume(shells[0]), 8.0);
-        QCOMPARE(volume(shells[1]), 1.0);
+        QCOMPARE(signedVolume(shells[0]), 8.0);
+        QCOMPARE(signedVolume(shells[1]), 1.0);
     }
 };
 

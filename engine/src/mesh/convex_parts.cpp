@@ -24,16 +24,14 @@
 
 namespace tumble::mesh {
 
-namespace {
-
-// ---- Triangle geometry ------------------------------------------------------------------
-
 double meshVolume(const TriangleMesh& m) {
     double v = 0.0;
     for (const auto& t : m.triangles)
         v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
     return v;
 }
+
+namespace {
 
 // ---- Pieces -----------------------------------------------------------------------------
 

@@ -23,13 +23,6 @@ namespace tumble::mesh {
 
 namespace {
 
-double volumeOf(const TriangleMesh& m) {
-    double v = 0.0;
-    for (const auto& t : m.triangles)
-        v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
-    return v;
-}
-
 struct Part {
     collision::ConvexHull hull;
     double volume = 0.0;
@@ -147,7 +140,7 @@ ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& opti
         throw std::invalid_argument("convex parts: the resolution must be from 8 to 256");
     const std::vector<TriangleMesh> shells = shellsOf(mesh);
     for (std::size_t k = 0; k < shells.size(); ++k)
-        if (volumeOf(shells[k]) <= 0)
+        if (meshVolume(shells[k]) <= 0)
             throw std::invalid_argument(
                 shells.size() == 1 ? std::string("convex parts: the mesh faces inwards or is flat")
                                    : "convex parts: piece " + std::to_string(k + 1) + " of the mesh's " +
@@ -164,13 +157,13 @@ ConvexParts convexParts(const TriangleMesh& mesh, const ConvexPartsOptions& opti
         tolerance = 0.01 * box.extent().norm();
     }
     double total = 0.0;
-    for (const TriangleMesh& s : shells) total += volumeOf(s);
+    for (const TriangleMesh& s : shells) total += meshVolume(s);
     ConvexParts out;
     out.tolerance = tolerance;
     std::vector<Part> parts;
     double done = 0.0;  // of the split's share of the progress
     for (const TriangleMesh& shell : shells) {
-        const double share = volumeOf(shell) / total;
+        const double share = meshVolume(shell) / total;
         const ConvexParts split = splitShell(shell, options, tolerance, [&](double d) {
             return !progress || progress(0.9 * (done + share * d));
         });

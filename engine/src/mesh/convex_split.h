@@ -6,6 +6,9 @@
 
 namespace tumble::mesh {
 
+/// The signed volume the closed surface bounds (positive facing outwards).
+double meshVolume(const TriangleMesh& mesh);
+
 /// The convex parts of the solid bounded by the closed, outward `shell`, split in its own
 /// frame (solidFrame) so that they do not depend on its pose; `tolerance` <= 0: 1 % of the
 /// diagonal of its box in that frame. The options are taken as checked.
