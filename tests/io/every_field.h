@@ -23,6 +23,8 @@ inline SceneDesc everyField() {
     s.settings.sleeping = false;
     s.settings.solverIterations = 7;
     s.settings.impacts = ImpactTiming::EndOfStep;
+    s.settings.collisionGroups = {"debris", "default", "fence"};
+    s.settings.groupsApart = {{"debris", "fence"}, {"debris", "debris"}};
 
     BodyDesc ground;
     ground.name = "ground";
@@ -122,6 +124,7 @@ inline SceneDesc everyField() {
     post.shape.type = ShapeType::Box;
     post.shape.halfExtents = Vec3(0.1, 1, 0.1);
     post.position = Vec3(0, 1, 5);
+    post.collisionGroup = "fence";
     s.bodies.push_back(post);
 
     BodyDesc cart;  // a compound: every part field, a mesh part among them
@@ -200,7 +203,9 @@ inline SceneDesc everyField() {
     weld.bodyA = "crate";
     weld.bodyB = "can";
     weld.breakForce = 1500;
+    weld.collideConnected = true;
     s.joints.push_back(weld);
+    s.noCollide = {{"pill", "bunny"}};
     return s;
 }
 

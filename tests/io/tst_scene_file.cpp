@@ -505,6 +505,29 @@ private slots:
             R"("type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1)",
             R"("type": "torque", "vector": [0, 1, 0], "frame": "local")", "bodies[1].forces[0].frame",
             "drop.json: bodies[1].forces[0].frame: 'local' is not one of world, body");
+
+        // Collision groups (issue 50 item 3).
+        row("groups not names", R"("frame_rate": 30})", R"("frame_rate": 30, "collision_groups": ["a", 3]})",
+            "settings.collision_groups[1]", "drop.json: settings.collision_groups[1]: must be a string");
+        row("groups apart not pairs", R"("frame_rate": 30})", R"("frame_rate": 30, "groups_apart": [["a"]]})",
+            "settings.groups_apart[0]",
+            "drop.json: settings.groups_apart[0]: must be a pair of names, [\"a\", \"b\"]");
+        row("unknown group", R"("density": 1000})", R"("density": 1000, "collision_group": "fence"})",
+            "bodies[2].collision_group",
+            "drop.json: bodies[2].collision_group: 'fence' is not a collision group ('default'; name it in "
+            "settings.collision_groups)");
+        row("groups apart unknown", R"("frame_rate": 30})",
+            R"("frame_rate": 30, "collision_groups": ["fence"], "groups_apart": [["fence", "debris"]]})",
+            "settings.groups_apart[0][1]",
+            "drop.json: settings.groups_apart[0][1]: 'debris' is not a collision group ('default', 'fence')");
+        row("no_collide not a body", R"("frame_rate": 30},)",
+            R"("frame_rate": 30}, "no_collide": [["ball", "box"]],)", "no_collide[0][1]",
+            "drop.json: no_collide[0][1]: 'box' is not a body");
+        row("no_collide not pairs", R"("frame_rate": 30},)", R"("frame_rate": 30}, "no_collide": "ball",)",
+            "no_collide", "drop.json: no_collide: must be an array of pairs of names, [[\"a\", \"b\"], ...]");
+        row("collide_connected not a boolean", R"("anchor_b": [0, -0.5, 0])",
+            R"("anchor_b": [0, -0.5, 0], "collide_connected": 1)", "joints[1].collide_connected",
+            "drop.json: joints[1].collide_connected: must be true or false");
     }
 
     void badInput() {

@@ -51,6 +51,7 @@ struct BodyModel {
     double friction = 0.5;
     double linearDamping = 0.0;
     double angularDamping = 0.0;
+    int group = 0;  ///< its collision group's index (Model::groupCollides; 0: "default")
     Vec3 kinematicVelocity = Vec3::Zero();         ///< kinematic bodies: constant, world
     Vec3 kinematicAngularVelocity = Vec3::Zero();  ///< kinematic bodies: constant, world
 
@@ -91,6 +92,7 @@ struct JointModel {
     bool motor = false;
     double motorSpeed = 0.0, motorMax = 0.0;
     double breakForce = HUGE_VAL;  ///< N
+    bool collideConnected = false;  ///< its two bodies still collide with each other
     int index = 0;                 ///< in Model::joints
 };
 
@@ -103,6 +105,14 @@ struct Model {
     /// The pairs of bodies a joint joins, as sorted pair keys (pair_key.h): they do not
     /// collide with each other (a chain's links overlap at their joints).
     std::vector<std::uint64_t> jointPairs;
+    /// Collision filtering (Settings::collisionGroups, groupsApart, SceneDesc::noCollide):
+    /// per group, the groups it collides with as bits; the body pairs kept apart by name as
+    /// sorted pair keys. `filtered`: some pair is kept apart (else every pair may collide).
+    std::vector<std::uint64_t> groupCollides;
+    std::vector<std::uint64_t> pairsApart;
+    bool filtered = false;
+    /// Whether bodies a and b may collide (their groups, the pairs kept apart; joints aside).
+    bool mayCollide(int a, int b) const;
     std::vector<ForceTerm> forces;   ///< grouped by body, in scene order
     std::vector<int> dynamicBodies;  ///< indices; the only bodies forces act on
     std::vector<int> kinematicBodies;

@@ -117,6 +117,8 @@ struct BodyDesc {
     double linearDamping = 0.0;                  ///< 1/s
     double angularDamping = 0.0;                 ///< 1/s
     std::vector<ForceDesc> forces;
+    /// The collision group it is in (Settings::collisionGroups; "default" is always one).
+    std::string collisionGroup = "default";
 
     bool operator==(const BodyDesc& o) const;
 };
@@ -148,6 +150,12 @@ struct Settings {
     /// in a step; only bodies whose paths crossed without touching at the end (a fast body
     /// through a thin one) still cut the step. Much faster in big piles; bounces first order.
     ImpactTiming impacts = ImpactTiming::Exact;
+    /// Named collision groups (at most 64 with "default", which is always one, listed or
+    /// not): each body is in one (BodyDesc::collisionGroup).
+    std::vector<std::string> collisionGroups;
+    /// Pairs of groups whose bodies do not collide (a group with itself: its bodies pass
+    /// through each other); every other pair of groups collides.
+    std::vector<std::array<std::string, 2>> groupsApart;
 
     bool operator==(const Settings&) const = default;
 };
@@ -202,6 +210,9 @@ struct JointDesc {
     /// Any joint: it breaks (for good, at the end of the step) when the force it carries
     /// passes this (N); none: it never breaks.
     std::optional<double> breakForce;
+    /// The two bodies still collide with each other (false: a joint's bodies pass through
+    /// each other, as a chain's links overlap at their joints).
+    bool collideConnected = false;
 
     bool operator==(const JointDesc&) const = default;
 };
@@ -210,6 +221,8 @@ struct SceneDesc {
     Settings settings;
     std::vector<BodyDesc> bodies;
     std::vector<JointDesc> joints;
+    /// Pairs of bodies (by name) that do not collide, whatever their groups.
+    std::vector<std::array<std::string, 2>> noCollide;
 
     bool operator==(const SceneDesc&) const = default;
 };

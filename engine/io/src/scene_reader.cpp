@@ -99,6 +99,27 @@ public:
         return m;
     }
 
+    // An array of strings.
+    std::vector<std::string> strings(const json& j, const std::string& path) const {
+        if (!j.is_array()) fail(path, "must be an array of names");
+        std::vector<std::string> out;
+        for (size_t k = 0; k < j.size(); ++k)
+            out.push_back(string(j[k], path + "[" + std::to_string(k) + "]"));
+        return out;
+    }
+
+    // An array of pairs of names: [["a", "b"], ...].
+    std::vector<std::array<std::string, 2>> namePairs(const json& j, const std::string& path) const {
+        if (!j.is_array()) fail(path, "must be an array of pairs of names, [[\"a\", \"b\"], ...]");
+        std::vector<std::array<std::string, 2>> out;
+        for (size_t k = 0; k < j.size(); ++k) {
+            const std::string at = path + "[" + std::to_string(k) + "]";
+            if (!j[k].is_array() || j[k].size() != 2) fail(at, "must be a pair of names, [\"a\", \"b\"]");
+            out.push_back({string(j[k][0], at + "[0]"), string(j[k][1], at + "[1]")});
+        }
+        return out;
+    }
+
     // Reads `key` into `out` when present.
     template <typename F>
     void optional(const json& j, const std::string& path, const char* key, F&& read) const {
@@ -133,7 +154,7 @@ Settings readSettings(const Reader& r, const json& j) {
     r.object(j, p);
     r.onlyKeys(j, p,
                {"gravity", "dt", "duration", "integrator", "frame_rate", "sleeping", "solver_iterations",
-                "energy_guard", "impacts"});
+                "energy_guard", "impacts", "collision_groups", "groups_apart"});
     Settings s;
     r.optional(j, p, "gravity", [&](const json& v, const std::string& f) { s.gravity = r.vector<3>(v, f); });
     r.optional(j, p, "dt", [&](const json& v, const std::string& f) { s.dt = r.number(v, f); });
@@ -150,6 +171,10 @@ Settings readSettings(const Reader& r, const json& j) {
     r.optional(j, p, "impacts", [&](const json& v, const std::string& f) {
         s.impacts = enumValue(r, v, f, {ImpactTiming::Exact, ImpactTiming::EndOfStep});
     });
+    r.optional(j, p, "collision_groups",
+               [&](const json& v, const std::string& f) { s.collisionGroups = r.strings(v, f); });
+    r.optional(j, p, "groups_apart",
+               [&](const json& v, const std::string& f) { s.groupsApart = r.namePairs(v, f); });
     return s;
 }
 
@@ -291,13 +316,15 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     r.onlyKeys(j, p,
                {"name", "motion", "shape", "mass", "density", "inertia", "center_of_mass", "position",
                 "orientation", "velocity", "angular_velocity", "restitution", "friction", "linear_damping",
-                "angular_damping", "forces"});
+                "angular_damping", "forces", "collision_group"});
     BodyDesc b;
     b.name = r.string(r.require(j, p, "name"), p + ".name");
     r.optional(j, p, "motion", [&](const json& v, const std::string& f) {
         b.motion = enumValue(r, v, f, {Motion::Dynamic, Motion::Static, Motion::Kinematic});
     });
     b.shape = readShape(r, r.require(j, p, "shape"), p + ".shape");
+    r.optional(j, p, "collision_group",
+               [&](const json& v, const std::string& f) { b.collisionGroup = r.string(v, f); });
     auto vec = [&](Vec3& out) {
         return [&](const json& v, const std::string& f) { out = r.vector<3>(v, f); };
     };
@@ -331,8 +358,8 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
 JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
     r.onlyKeys(j, p,
-               {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length", "limits",
-                "motor", "break_force"});
+               {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length",
+                "limits", "motor", "break_force", "collide_connected"});
     JointDesc d;
     d.name = r.string(r.require(j, p, "name"), p + ".name");
     d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
@@ -370,6 +397,8 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         d.motor = m;
     });
     r.optional(j, p, "break_force", [&](const json& v, const std::string& f) { d.breakForce = r.number(v, f); });
+    r.optional(j, p, "collide_connected",
+               [&](const json& v, const std::string& f) { d.collideConnected = r.boolean(v, f); });
     r.optional(j, p, "length", [&](const json& v, const std::string& f) {
         d.length = r.number(v, f);
         if (!(d.length >= 0.0))
@@ -475,7 +504,7 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName,
     const Reader r(fileName);
     const json j = parseJson(text, r);
     r.object(j, "(top level)");
-    r.onlyKeys(j, "", {"format", "version", "settings", "bodies", "joints"});
+    r.onlyKeys(j, "", {"format", "version", "settings", "bodies", "joints", "no_collide"});
     if (r.string(r.require(j, "", "format"), "format") != "tumble-scene") {
         r.fail("format", "must be \"tumble-scene\"");
     }
@@ -497,6 +526,8 @@ SceneDesc parseScene(std::string_view text, const std::string& fileName,
         for (size_t i = 0; i < v.size(); ++i)
             scene.joints.push_back(readJoint(r, v[i], f + "[" + std::to_string(i) + "]"));
     });
+    r.optional(j, "", "no_collide",
+               [&](const json& v, const std::string& f) { scene.noCollide = r.namePairs(v, f); });
     const std::vector<SceneError> problems = sceneProblems(scene);
     if (!problems.empty()) {
         InputError e(fileName, problems.front().path(), problems.front().message());

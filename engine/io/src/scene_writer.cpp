@@ -117,7 +117,14 @@ ojson bodyJson(const BodyDesc& b) {
     j["angular_damping"] = b.angularDamping;
     j["forces"] = ojson::array();
     for (const ForceDesc& f : b.forces) j["forces"].push_back(forceJson(f));
+    if (b.collisionGroup != "default") j["collision_group"] = b.collisionGroup;
     return j;
+}
+
+ojson namePairs(const std::vector<std::array<std::string, 2>>& pairs) {
+    ojson out = ojson::array();
+    for (const auto& p : pairs) out.push_back(ojson::array({p[0], p[1]}));
+    return out;
 }
 
 ojson jointJson(const JointDesc& d) {
@@ -133,6 +140,7 @@ ojson jointJson(const JointDesc& d) {
     if (d.length >= 0.0) j["length"] = d.length;  // absent: the anchors' distance at the start
     if (d.limits) j["limits"] = ojson::array({(*d.limits)[0], (*d.limits)[1]});
     if (d.breakForce) j["break_force"] = *d.breakForce;
+    if (d.collideConnected) j["collide_connected"] = true;
     if (d.motor) {
         ojson& m = j["motor"];
         m["speed"] = d.motor->speed;
@@ -159,6 +167,8 @@ std::string sceneToJson(const SceneDesc& scene) {
     s["energy_guard"] = scene.settings.energyGuard;
     // Written only when not the default: files of scenes that keep it stay as they were.
     if (scene.settings.impacts != ImpactTiming::Exact) s["impacts"] = toString(scene.settings.impacts);
+    if (!scene.settings.collisionGroups.empty()) s["collision_groups"] = scene.settings.collisionGroups;
+    if (!scene.settings.groupsApart.empty()) s["groups_apart"] = namePairs(scene.settings.groupsApart);
     j["bodies"] = ojson::array();
     for (const BodyDesc& b : scene.bodies) j["bodies"].push_back(bodyJson(b));
     // Only when there are joints: files of scenes without them stay as they were.
@@ -166,6 +176,7 @@ std::string sceneToJson(const SceneDesc& scene) {
         j["joints"] = ojson::array();
         for (const JointDesc& d : scene.joints) j["joints"].push_back(jointJson(d));
     }
+    if (!scene.noCollide.empty()) j["no_collide"] = namePairs(scene.noCollide);
     return j.dump(2) + "\n";
 }
 

@@ -64,6 +64,11 @@ public:
 
     /// Sorted ascending by (i, j), no duplicates: deterministic whatever the input history.
     const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
+    /// Removes the pairs (a, b) for which drop(a, b) holds, keeping the others' order.
+    template <class Drop>
+    void dropPairs(Drop&& drop) {
+        std::erase_if(pairs_, [&](const std::pair<int, int>& p) { return drop(p.first, p.second); });
+    }
 
     /// Calls visit(j) for every body j whose box in the trees (as of the last update: swept
     /// and fattened; a sleeping body's with the static ones) overlaps `box`, and for every

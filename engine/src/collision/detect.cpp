@@ -70,6 +70,9 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
         }
     }
     s.broadphase.update(s.swept, s.moving, s.halfSpaces);
+    // Pairs that collision groups or the scene's no_collide keep apart go before any
+    // narrowphase work.
+    if (model.filtered) s.broadphase.dropPairs([&](int a, int b) { return !model.mayCollide(a, b); });
 }
 
 namespace {
@@ -158,7 +161,7 @@ void refreshJointPairs(const Model& model, const State& state, DetectScratch& s)
     s.jointPairsBroken = broken;
     s.jointPairs.clear();
     for (const JointModel& j : model.joints)
-        if (j.b >= 0 && !state.jointBroken(j.index))
+        if (j.b >= 0 && !j.collideConnected && !state.jointBroken(j.index))
             s.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
     std::sort(s.jointPairs.begin(), s.jointPairs.end());
 }

@@ -9,6 +9,7 @@
 #include "common/number_text.h"
 #include "mesh/mesh_body.h"
 #include "model/compile_compound.h"
+#include "model/compile_groups.h"
 #include "model/compile_joints.h"
 #include "model/compile_shape.h"
 
@@ -245,6 +246,7 @@ std::vector<SceneError> sceneProblems(const SceneDesc& scene) {
         });
     }
     check([&] { validateJoints(scene); });
+    check([&] { validateCollisionGroups(scene); });
     return found;
 }
 
@@ -357,6 +359,7 @@ Model compile(const SceneDesc& scene) {
     std::sort(m.forceSwitchTimes.begin(), m.forceSwitchTimes.end());
     m.forceSwitchTimes.erase(std::unique(m.forceSwitchTimes.begin(), m.forceSwitchTimes.end()),
                              m.forceSwitchTimes.end());
+    compileCollisionGroups(scene, m);
     if (!scene.joints.empty()) compileJoints(scene, initialState(m, scene), m);
     return m;
 }

@@ -122,6 +122,7 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
         }
         j.index = static_cast<int>(i);
         if (d.breakForce) j.breakForce = *d.breakForce;
+        j.collideConnected = d.collideConnected;
         if (d.motor) {
             j.motor = true;
             j.motorSpeed = d.motor->speed;
@@ -151,7 +152,7 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
         m.jointed[j.a] = 1;
         if (j.b >= 0) {
             m.jointed[j.b] = 1;
-            m.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
+            if (!j.collideConnected) m.jointPairs.push_back(pairKey(std::min(j.a, j.b), std::max(j.a, j.b)));
         }
         m.joints.push_back(j);
     }

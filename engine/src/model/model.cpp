@@ -1,7 +1,17 @@
 // Quantities derived from a body's state: velocities, world inertia, energy.
 #include <tumble/model.h>
 
+#include "common/pair_key.h"
+
+#include <algorithm>
+
 namespace tumble {
+
+bool Model::mayCollide(int a, int b) const {
+    if (!filtered) return true;
+    if (!(groupCollides[bodies[a].group] >> bodies[b].group & 1)) return false;
+    return !std::binary_search(pairsApart.begin(), pairsApart.end(), pairKey(std::min(a, b), std::max(a, b)));
+}
 
 Derived derive(const BodyModel& b, const BodyState& s) {
     Derived d;

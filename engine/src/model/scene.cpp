@@ -82,7 +82,7 @@ bool BodyDesc::operator==(const BodyDesc& o) const {
            position == o.position && orientation.coeffs() == o.orientation.coeffs() &&
            velocity == o.velocity && angularVelocity == o.angularVelocity && restitution == o.restitution &&
            friction == o.friction && linearDamping == o.linearDamping && angularDamping == o.angularDamping &&
-           forces == o.forces;
+           forces == o.forces && collisionGroup == o.collisionGroup;
 }
 
 }  // namespace tumble

@@ -273,6 +273,7 @@ SettleResult settleOverlap(const Model& model, State& state, const std::vector<c
                 if (j == i || s.looked[j] == 1) return;  // (a body looked at was tested with i)
                 const int a = std::min(i, j), b = std::max(i, j);
                 if (std::binary_search(jointPairs.begin(), jointPairs.end(), pairKey(a, b))) return;
+                if (!model.mayCollide(a, b)) return;
                 if (!s.movable[a] && !s.movable[b]) return;
                 s.found.clear();
                 const BodyModel &A = model.bodies[a], &B = model.bodies[b];

@@ -33,6 +33,7 @@ bool composable(const Model& m) {
     for (int a = 0; a < static_cast<int>(m.bodies.size()); ++a)
         for (int b = a + 1; b < static_cast<int>(m.bodies.size()); ++b) {
             if (m.bodies[a].motion == Motion::Static && m.bodies[b].motion == Motion::Static) continue;
+            if (!m.mayCollide(a, b)) continue;
             if (!std::binary_search(m.jointPairs.begin(), m.jointPairs.end(), pairKey(a, b))) return false;
         }
     return true;
