@@ -85,6 +85,16 @@ bool SetJointsCommand::mergeWith(const QUndoCommand* other) {
     return true;
 }
 
+SetNoCollideCommand::SetNoCollideCommand(Document* doc, Pairs before, Pairs after, const QString& text)
+    : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)) {}
+
+void SetNoCollideCommand::undo() {
+    doc_->applyNoCollide(before_);
+}
+void SetNoCollideCommand::redo() {
+    doc_->applyNoCollide(after_);
+}
+
 ReplaceSceneCommand::ReplaceSceneCommand(Document* doc, SceneDesc before, SceneDesc after,
                                          const QString& text)
     : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)) {}

@@ -80,6 +80,20 @@ private:
     int mergeId_;
 };
 
+/// Replaces the scene's pairs of bodies kept apart (SceneDesc::noCollide: a body renamed or
+/// removed takes its pairs along).
+class SetNoCollideCommand : public QUndoCommand {
+public:
+    using Pairs = std::vector<std::array<std::string, 2>>;
+    SetNoCollideCommand(Document* doc, Pairs before, Pairs after, const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* doc_;
+    Pairs before_, after_;
+};
+
 /// Replaces the whole scene (revert, recovery).
 class ReplaceSceneCommand : public QUndoCommand {
 public:

@@ -355,14 +355,17 @@ void Document::setBody(int index, const BodyDesc& given, const QString& text, in
         if (j.bodyA == old) j.bodyA = body.name;
         if (j.bodyB == old) j.bodyB = body.name;
     }
-    const bool renamesJoints = joints != scene_.joints;
-    if (renamesJoints) undo_->beginMacro(text);
+    auto pairs = scene_.noCollide;
+    for (auto& pair : pairs)
+        for (std::string& name : pair)
+            if (name == old) name = body.name;
+    const bool renamesJoints = joints != scene_.joints, renamesPairs = pairs != scene_.noCollide;
+    if (renamesJoints || renamesPairs) undo_->beginMacro(text);
     undo_->push(
         new SetBodyCommand(this, index, scene_.bodies[static_cast<size_t>(index)], body, text, mergeId));
-    if (renamesJoints) {
-        undo_->push(new SetJointsCommand(this, scene_.joints, joints, text));
-        undo_->endMacro();
-    }
+    if (renamesJoints) undo_->push(new SetJointsCommand(this, scene_.joints, joints, text));
+    if (renamesPairs) undo_->push(new SetNoCollideCommand(this, scene_.noCollide, pairs, text));
+    if (renamesJoints || renamesPairs) undo_->endMacro();
 }
 
 void Document::setSettings(const Settings& settings, const QString& text, int mergeId) {
@@ -442,6 +445,14 @@ void Document::removeBodies(QList<int> indices) {
         if (!named) joints.push_back(j);
     }
     if (joints != scene_.joints) undo_->push(new SetJointsCommand(this, scene_.joints, joints, QString()));
+    // And the pairs kept apart that name them.
+    auto pairs = scene_.noCollide;
+    std::erase_if(pairs, [&](const auto& pair) {
+        return std::any_of(indices.begin(), indices.end(),
+                           [&](int i) { return body(i).name == pair[0] || body(i).name == pair[1]; });
+    });
+    if (pairs != scene_.noCollide)
+        undo_->push(new SetNoCollideCommand(this, scene_.noCollide, pairs, QString()));
     // From the last, so the earlier indices stay valid.
     for (auto it = indices.rbegin(); it != indices.rend(); ++it)
         undo_->push(new InsertBodyCommand(this, *it, body(*it), true, QString()));
@@ -629,6 +640,11 @@ void Document::applyJoints(const std::vector<JointDesc>& joints) {
         selectedJoint_ = -1;
         emit selectionChanged();
     }
+}
+
+void Document::applyNoCollide(const std::vector<std::array<std::string, 2>>& pairs) {
+    scene_.noCollide = pairs;
+    emit settingsChanged();
 }
 
 void Document::applyScene(const SceneDesc& scene) {

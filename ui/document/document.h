@@ -135,6 +135,7 @@ public:
     void applyRemove(int index);
     void applyScene(const SceneDesc& scene);
     void applyJoints(const std::vector<JointDesc>& joints);
+    void applyNoCollide(const std::vector<std::array<std::string, 2>>& pairs);
 
 signals:
     void bodyChanged(int index);

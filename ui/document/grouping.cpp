@@ -158,6 +158,7 @@ std::optional<Regrouped> groupBodies(const SceneDesc& scene, std::vector<int> in
     for (const BodyDesc& b : scene.bodies)
         if (!grouped.count(b.name)) others.insert(b.name);
     group.name = uniqueName(group.name, others);
+    group.collisionGroup = scene.bodies[static_cast<size_t>(indices.front())].collisionGroup;
     Regrouped out;
     out.scene = scene;
     out.scene.bodies.clear();
@@ -199,6 +200,15 @@ std::optional<Regrouped> groupBodies(const SceneDesc& scene, std::vector<int> in
             j.bodyB = group.name;
         }
         out.scene.joints.push_back(j);
+    }
+    // Pairs kept apart: a grouped body's name becomes the group's; a pair inside it goes.
+    out.scene.noCollide.clear();
+    for (auto pair : scene.noCollide) {
+        for (std::string& name : pair)
+            if (grouped.count(name)) name = group.name;
+        if (pair[0] != pair[1] && std::find(out.scene.noCollide.begin(), out.scene.noCollide.end(), pair) ==
+                                      out.scene.noCollide.end())
+            out.scene.noCollide.push_back(pair);
     }
     return out;
 }
@@ -250,6 +260,7 @@ std::optional<Regrouped> ungroupBody(const SceneDesc& scene, int index, std::str
         b.restitution = p.part.restitution.value_or(g.restitution);
         b.linearDamping = g.linearDamping;
         b.angularDamping = g.angularDamping;
+        b.collisionGroup = g.collisionGroup;
         // The velocity of the compound's point where the part's centre of mass is.
         b.velocity = g.velocity +
                      g.angularVelocity.cross(
@@ -261,6 +272,16 @@ std::optional<Regrouped> ungroupBody(const SceneDesc& scene, int index, std::str
     for (size_t k = 0; k < made.size(); ++k) {
         out.scene.bodies.insert(out.scene.bodies.begin() + index + static_cast<long>(k), made[k]);
         out.bodies.push_back(index + static_cast<int>(k));
+    }
+    // A pair kept apart with the compound: each of its bodies kept apart from the other.
+    out.scene.noCollide.clear();
+    for (const auto& pair : scene.noCollide) {
+        if (pair[0] != g.name && pair[1] != g.name) {
+            out.scene.noCollide.push_back(pair);
+            continue;
+        }
+        const std::string& other = pair[0] == g.name ? pair[1] : pair[0];
+        for (const BodyDesc& b : made) out.scene.noCollide.push_back({b.name, other});
     }
     return out;
 }

@@ -13,6 +13,8 @@
 #include "panels/live_state_box.h"
 #include "sweep/sweep_dialog.h"
 
+#include <tumble/collision_groups.h>
+
 #include <QApplication>
 
 namespace tumble::ui {
@@ -204,6 +206,28 @@ void PropertyDock::Impl::build() {
         form, QObject::tr("Angular damping"), "angular_damping", " 1/s", 0.0, 0.01,
         QObject::tr("Set angular damping"), [](const BodyDesc& b) { return std::optional(b.angularDamping); },
         [](BodyDesc& b, double v) { b.angularDamping = v; });
+
+    // Its collision group, one of the scene's (Simulation > Collision Groups names them).
+    auto* groupCombo = new QComboBox;
+    groupCombo->setObjectName("collision_group");
+    groupCombo->setToolTip(QObject::tr("Which bodies it collides with: Simulation > Collision Groups"));
+    QWidget* groupRow = withError(groupCombo, "collision_group");
+    form->addRow(QObject::tr("Collision group"), groupRow);
+    QObject::connect(groupCombo, &QComboBox::activated, q, [this, groupCombo](int i) {
+        const std::string name = groupCombo->itemText(i).toStdString();
+        apply(
+            "collision_group", QObject::tr("Set collision group"),
+            [&](BodyDesc& b, int) { b.collisionGroup = name; }, false);
+    });
+    refreshers.push_back([this, groupCombo](const std::vector<const BodyDesc*>& bodies) {
+        const QSignalBlocker block(groupCombo);
+        groupCombo->clear();
+        for (const std::string& name : collisionGroupNames(doc->scene().settings))
+            groupCombo->addItem(QString::fromStdString(name));
+        const auto s =
+            sharedOf<std::string>(bodies, [](const BodyDesc& b) { return std::optional(b.collisionGroup); });
+        groupCombo->setCurrentIndex(s.value ? groupCombo->findText(QString::fromStdString(*s.value)) : -1);
+    });
 
     // ---- Initial state
     form = group(layout, QObject::tr("Initial state"));

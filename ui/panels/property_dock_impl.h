@@ -307,6 +307,7 @@ struct PropertyDock::Impl {
     QString refusal(const QString& key, const std::vector<BodyDesc>& bodies) const {
         const QList<int> sel = doc->selection();
         SceneDesc check;
+        check.settings = doc->scene().settings;  // (its collision groups, for a body's)
         check.bodies = bodies;
         QString error;
         try {

@@ -1,5 +1,7 @@
 #include "window/main_window.h"
 
+#include "panels/collision_groups_dialog.h"
+
 #include "import/mesh_import_job.h"
 
 #include "document/document.h"
@@ -211,6 +213,14 @@ void MainWindow::buildMenus() {
         simulation->addAction(a);
     simulation->addSeparator();
     simulation->addAction(timelineDock_->useFrameAction());
+    simulation->addSeparator();
+    simulation
+        ->addAction(tr("Collision &Groups..."), this,
+                    [this] {
+                        CollisionGroupsDialog dialog(doc_, this);
+                        dialog.exec();
+                    })
+        ->setObjectName("collisionGroups");
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
     // The viewport's own keys (W, E, F, A) work while it has the focus; these are the same

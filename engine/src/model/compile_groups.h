@@ -2,22 +2,16 @@
 // compiled into the model's filter (Model::groupCollides, pairsApart, mayCollide).
 #pragma once
 
+#include <tumble/collision_groups.h>
 #include <tumble/model.h>
 #include <tumble/scene.h>
 
 namespace tumble {
 
-/// The most collision groups a scene may name, "default" included (one bit each).
-inline constexpr int kMostCollisionGroups = 64;
-
 /// Throws SceneError naming the field: settings.collision_groups[k] empty, repeated or past
 /// the 64th; settings.groups_apart[k][m] not a group; bodies[i].collision_group not a group;
 /// no_collide[k][m] not a body, or a body with itself.
 void validateCollisionGroups(const SceneDesc& scene);
-
-/// The groups' indices, in the order the file names them with "default" first when it
-/// does not: body i's group is groupIndex(scene, scene.bodies[i].collisionGroup).
-std::vector<std::string> collisionGroupNames(const Settings& settings);
 
 /// Fills the model's filter from a validated scene (after its bodies are compiled).
 void compileCollisionGroups(const SceneDesc& scene, Model& m);
