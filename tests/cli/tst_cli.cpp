@@ -149,9 +149,9 @@ private slots:
     // went: energy_end = energy_start - lost + correction, and the end is never above the start.
     void samplesBalanceTheirEnergy_data() {
         QTest::addColumn<QString>("scene");
-        for (const char* name :
-             {"bouncing-ball", "head-on", "tilted-box-impact", "newtons-cradle", "sliding-block",
-              "rolling-sphere", "incline", "mass-ratio-stack", "sleeping-wake", "chain", "newtons-cradle-strings"})
+        for (const char* name : {"bouncing-ball", "head-on", "tilted-box-impact", "newtons-cradle",
+                                 "sliding-block", "rolling-sphere", "incline", "mass-ratio-stack",
+                                 "sleeping-wake", "chain", "newtons-cradle-strings", "sieve"})
             QTest::newRow(name) << QString(TUMBLE_SCENES_DIR "/%1.json").arg(name);
     }
     void samplesBalanceTheirEnergy() {
