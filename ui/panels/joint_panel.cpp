@@ -309,6 +309,16 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         });
     });
 
+    collide_ = new QCheckBox(tr("its bodies collide"));
+    collide_->setObjectName("joint.collide_connected");
+    collide_->setToolTip(tr("Off: the joint's two bodies pass through each other, as a chain's links do"));
+    addRow(tr("Collision"), "collide_connected", collide_);
+    connect(collide_, &QCheckBox::toggled, this, [this](bool on) {
+        apply(
+            "collide_connected", on ? tr("Let joined bodies collide") : tr("Let joined bodies pass through"),
+            [&](JointDesc& j) { j.collideConnected = on; }, false);
+    });
+
     connect(doc_, &Document::jointsChanged, this, &JointPanel::refresh);
     connect(doc_, &Document::bodyChanged, this, &JointPanel::refresh);
     connect(doc_, &Document::bodyInserted, this, &JointPanel::refresh);
@@ -523,6 +533,10 @@ void JointPanel::refresh() {
     }
     breakForce_->setEnabled(j.breakForce.has_value());
     if (j.breakForce) breakForce_->showValue(*j.breakForce);
+    {
+        const QSignalBlocker b(collide_);
+        collide_->setChecked(j.collideConnected);
+    }
 }
 
 }  // namespace tumble::ui

@@ -80,6 +80,7 @@ private:
     PropertySpinBox* motorSpeed_ = nullptr;
     PropertySpinBox* motorMax_ = nullptr;
     QCheckBox* breaks_ = nullptr;
+    QCheckBox* collide_ = nullptr;  // collide_connected
     PropertySpinBox* breakForce_ = nullptr;
 };
 

@@ -131,6 +131,20 @@ private slots:
         QVERIFY(!f.find<QCheckBox>("joint.motor.on")->isChecked());
     }
 
+    // Issue 50: "its bodies collide" is the joint's collide_connected, one undo step.
+    void collideConnectedIsATick() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        auto* collide = f.find<QCheckBox>("joint.collide_connected");
+        QVERIFY(!collide->isChecked());
+        collide->setChecked(true);
+        QVERIFY(f.joint().collideConnected);
+        QCOMPARE(f.doc.undoStack()->count(), 1);
+        f.doc.undoStack()->undo();
+        QVERIFY(!f.joint().collideConnected);
+        QVERIFY(!collide->isChecked());
+    }
+
     void hingeLimitsInDegreesAndInvertedOnesHeld() {
         Fixture f;
         f.doc.selectJoint(0);
