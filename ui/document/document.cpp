@@ -514,6 +514,26 @@ bool Document::group(QList<int> indices, QString* why) {
     return true;
 }
 
+bool Document::keepApart(QList<int> indices, bool apart) {
+    auto pairs = scene_.noCollide;
+    auto same = [](const std::array<std::string, 2>& p, const std::string& a, const std::string& b) {
+        return (p[0] == a && p[1] == b) || (p[0] == b && p[1] == a);
+    };
+    for (int x = 0; x < indices.size(); ++x)
+        for (int y = x + 1; y < indices.size(); ++y) {
+            const std::string &a = body(indices[x]).name, &b = body(indices[y]).name;
+            const bool listed =
+                std::any_of(pairs.begin(), pairs.end(), [&](const auto& p) { return same(p, a, b); });
+            if (apart && !listed) pairs.push_back({a, b});
+            if (!apart) std::erase_if(pairs, [&](const auto& p) { return same(p, a, b); });
+        }
+    if (pairs == scene_.noCollide) return false;
+    undo_->push(new SetNoCollideCommand(this, scene_.noCollide, pairs,
+                                        apart ? tr("Keep %n bodies apart", nullptr, int(indices.size()))
+                                              : tr("Let %n bodies collide", nullptr, int(indices.size()))));
+    return true;
+}
+
 bool Document::ungroup(int index, QString* why) {
     std::string reason;
     const auto done = ungroupBody(scene_, index, &reason);

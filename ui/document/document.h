@@ -89,6 +89,9 @@ public:
     /// Makes the bodies one compound body (one undo step; ui::groupBodies says how) and
     /// selects it; false, with the reason in `why`, when they cannot be grouped.
     bool group(QList<int> indices, QString* why);
+    /// Keeps every two of the bodies apart (`apart`: they pass through each other; the scene's
+    /// no_collide) or lets them collide again; one undo step; false when nothing changes.
+    bool keepApart(QList<int> indices, bool apart);
     /// Makes the compound body `index` a body per part (one undo step; ui::ungroupBody) and
     /// selects them; false, with the reason in `why`, when it cannot be.
     bool ungroup(int index, QString* why);

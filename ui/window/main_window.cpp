@@ -195,6 +195,19 @@ void MainWindow::buildMenus() {
     edit->addAction(tree_->ungroupAction());
     edit->addAction(tree_->splitAction());
     edit->addMenu(tree_->jointMenu());
+    // Pairs of single bodies kept apart (the file's no_collide), for two or more selected.
+    QAction* apart = edit->addAction(tr("&Keep Selected Apart"), this,
+                                     [this] { doc_->keepApart(doc_->selection(), true); });
+    apart->setObjectName("keepApart");
+    QAction* collide = edit->addAction(tr("&Let Selected Collide"), this,
+                                       [this] { doc_->keepApart(doc_->selection(), false); });
+    collide->setObjectName("letCollide");
+    auto enablePairs = [this, apart, collide] {
+        apart->setEnabled(doc_->selection().size() >= 2);
+        collide->setEnabled(doc_->selection().size() >= 2);
+    };
+    connect(doc_, &Document::selectionChanged, this, enablePairs);
+    enablePairs();
     edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
         QList<int> all;
         for (int i = 0; i < doc_->bodyCount(); ++i) all.append(i);

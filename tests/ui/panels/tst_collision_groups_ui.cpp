@@ -107,6 +107,25 @@ private slots:
         QCOMPARE(doc.undoStack()->count(), 0);
     }
 
+    // Edit > Keep Selected Apart: every two of the selected bodies, one undo step; Let
+    // Selected Collide takes them away; the scene compiles with the pairs filtered.
+    void selectedBodiesAreKeptApart() {
+        Document doc;
+        SceneDesc s;
+        s.bodies = {ball("a", 0), ball("b", 1), ball("c", 2)};
+        doc.replaceScene(s, "", false);
+        QVERIFY(doc.keepApart({0, 1, 2}, true));
+        QCOMPARE(doc.scene().noCollide.size(), size_t(3));
+        QCOMPARE(doc.undoStack()->count(), 1);
+        QVERIFY(!doc.keepApart({0, 1}, true));  // already so: nothing
+        const Model m = compile(doc.scene());
+        QVERIFY(m.filtered && !m.mayCollide(0, 2));
+        QVERIFY(doc.keepApart({1, 0}, false));
+        QCOMPARE(doc.scene().noCollide.size(), size_t(2));
+        doc.undoStack()->undo();
+        QCOMPARE(doc.scene().noCollide.size(), size_t(3));
+    }
+
     // A body renamed takes its pairs kept apart along; a body deleted takes them away; each
     // undone with its edit. Grouping two bodies gives the group their pairs.
     void pairsKeptApartFollowTheirBodies() {
