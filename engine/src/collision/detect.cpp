@@ -316,16 +316,10 @@ void findImpacts(const Model& model, const State& before, const State& after, do
     // motion relative to each other can carry one through the other (two chairs falling side
     // by side at 10 m/s move 17 cm a step each, and nothing against each other). Their
     // centres' relative path is the chord of their displacements' difference, sagging from
-    // it by at most a quarter of the difference of their bows.
-    auto relativeTravel = [&](int a, int b) {
-        const auto moved = [&](int i) { return Vec3(after.bodies[i].x - before.bodies[i].x); };
-        const auto bow = [&](int i) {
-            const BodyModel& body = model.bodies[i];
-            return body.motion == Motion::Dynamic
-                       ? Vec3(0.5 * h * body.invMass * (after.bodies[i].P - before.bodies[i].P))
-                       : Vec3(Vec3::Zero());
-        };
-        return (moved(a) - moved(b)).norm() + 0.25 * (bow(a) - bow(b)).norm() + turnTravel(a) + turnTravel(b);
+    // it by at most a quarter of the difference of their bows (the pair's sweeps hold both).
+    auto relativeTravel = [&](int a, int b, const Sweep& sa, const Sweep& sb) {
+        return ((sa.c1 - sa.c0) - (sb.c1 - sb.c0)).norm() + 0.25 * (sa.bow - sb.bow).norm() + turnTravel(a) +
+               turnTravel(b);
     };
     // A pair overlapping at the end by more than a thousandth of the smaller body but not
     // approaching there: it met within the step and is on its way out (a ball grazing a
@@ -373,8 +367,9 @@ void findImpacts(const Model& model, const State& before, const State& after, do
             found = it != s.found.end() && it->first == pairKey(a, b) ? it->second : -1;
             away = found >= 0 && leaving(s.contacts[found]);
             const bool mayPass =
-                compound ? partsMayPass(A.collider, sa, B.collider, sb, tolerance * size, found >= 0, a, b)
-                         : relativeTravel(a, b) >= passLimit((*thickness)[a], (*thickness)[b], found >= 0);
+                compound
+                    ? partsMayPass(A.collider, sa, B.collider, sb, tolerance * size, found >= 0, a, b)
+                    : relativeTravel(a, b, sa, sb) >= passLimit((*thickness)[a], (*thickness)[b], found >= 0);
             if (!mayPass && !away) return;
         }
         double from = 0.0;  // the search for the moment starts there

@@ -15,6 +15,15 @@ int root(std::vector<int>& parent, int x) {
     return x;
 }
 
+// Each vertex's piece, as a union-find forest over the triangles' shared vertices.
+std::vector<int> piecesOf(const TriangleMesh& mesh) {
+    std::vector<int> parent(mesh.vertices.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const auto& t : mesh.triangles)
+        for (int k = 1; k < 3; ++k) parent[root(parent, t[k])] = root(parent, t[0]);
+    return parent;
+}
+
 std::pair<int, int> undirected(int a, int b) {
     return {std::min(a, b), std::max(a, b)};
 }
@@ -38,11 +47,11 @@ int windAlike(TriangleMesh& m) {
     for (int first = 0; first < static_cast<int>(m.triangles.size()); ++first) {
         if (seen[first]) continue;
         seen[first] = 1;
-        std::queue<int> todo;
-        todo.push(first);
-        while (!todo.empty()) {
-            const int t = todo.front();
-            todo.pop();
+        std::queue<int> frontier;
+        frontier.push(first);
+        while (!frontier.empty()) {
+            const int t = frontier.front();
+            frontier.pop();
             for (int k = 0; k < 3; ++k) {
                 const int a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
                 const auto& two = byEdge[undirected(a, b)];
@@ -54,7 +63,7 @@ int windAlike(TriangleMesh& m) {
                     std::swap(m.triangles[o][1], m.triangles[o][2]);
                     ++turned;
                 }
-                todo.push(o);
+                frontier.push(o);
             }
         }
     }
@@ -68,10 +77,7 @@ TriangleMesh fillHoles(const TriangleMesh& mesh, HoleFilling* filling) {
     TriangleMesh out = mesh;
     f.turned = windAlike(out);
     // The connected pieces, through shared vertices.
-    std::vector<int> parent(mesh.vertices.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    for (const auto& t : out.triangles)
-        for (int k = 1; k < 3; ++k) parent[root(parent, t[k])] = root(parent, t[0]);
+    std::vector<int> parent = piecesOf(out);
     std::set<int> shells, open;
     for (const auto& t : out.triangles) shells.insert(root(parent, t[0]));
     // The open edges: a -> b with no b -> a.
@@ -82,7 +88,6 @@ TriangleMesh fillHoles(const TriangleMesh& mesh, HoleFilling* filling) {
     for (const auto& [a, b] : directed)
         if (!directed.contains({b, a})) openFrom.emplace(a, b);
     // Follow each loop: from b, the open edge that leaves b.
-    std::vector<int> shellOfVertex(out.vertices.size(), -1);
     while (!openFrom.empty()) {
         auto it = openFrom.begin();
         const int start = it->first;
@@ -126,10 +131,7 @@ TriangleMesh fillHoles(const TriangleMesh& mesh, HoleFilling* filling) {
 }
 
 std::vector<TriangleMesh> shellsOf(const TriangleMesh& mesh) {
-    std::vector<int> parent(mesh.vertices.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    for (const auto& t : mesh.triangles)
-        for (int k = 1; k < 3; ++k) parent[root(parent, t[k])] = root(parent, t[0]);
+    std::vector<int> parent = piecesOf(mesh);
     std::map<int, int> shellOf;                // root -> shell
     std::vector<std::map<int, int>> renumber;  // per shell: the mesh's vertex -> the shell's
     std::vector<TriangleMesh> out;
