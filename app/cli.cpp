@@ -561,6 +561,7 @@ int headless(const Options& o, std::ostream& out, std::ostream& err) {
                << "energy_lost_friction: " << number(world->ledger().lostInFriction) << "\n"
                << "energy_position_correction: " << number(world->ledger().positionCorrection) << "\n"
                << "energy_lost_joints: " << number(world->ledger().lostInJoints) << "\n"
+               << "energy_by_kinematic: " << number(world->ledger().doneByKinematic) << "\n"
                << "forces_seconds: " << p.forces << "\n"
                << "integrate_seconds: " << p.integrate << "\n"
                << "broadphase_seconds: " << p.broadphase << "\n"

@@ -58,13 +58,15 @@ std::string RunMetrics::json(const World& world, long steps, double wall, double
                 {"wall_seconds", wall}};
     // The ledger's names mean here what they mean on stdout (issue 47 item 7: contacts
     // were normal impulses and friction here, normal impulses alone there), and its parts
-    // add up: start - end = contacts + friction + joints + damping - position correction.
+    // add up: start - end = contacts + friction + joints + damping - position correction
+    // - work by kinematic bodies.
     j["scene"] = {{"energy_lost_contacts", l.lostInContacts},
                   {"energy_lost_friction", l.lostInFriction},
                   {"energy_position_correction", l.positionCorrection},
                   {"energy_lost_joints", l.lostInJoints},
+                  {"energy_by_kinematic", l.doneByKinematic},
                   {"energy_lost_damping", energyStart - energyEnd - l.lostInContacts - l.lostInFriction -
-                                              l.lostInJoints + l.positionCorrection},
+                                              l.lostInJoints + l.positionCorrection + l.doneByKinematic},
                   {"deepest_overlap", deepest_}};
     ojson& bodies = j["bodies"];
     bodies = ojson::object();

@@ -49,6 +49,10 @@ inline SceneDesc turnedScene(SceneDesc s, const WorldPose& pose) {
         b.orientation = pose.orientation(b.orientation);
         b.velocity = pose.direction(b.velocity);
         b.angularVelocity = pose.direction(b.angularVelocity);
+        for (BodyKey& k : b.keys) {
+            k.position = pose.point(k.position);
+            k.orientation = pose.orientation(k.orientation);
+        }
         for (ForceDesc& f : b.forces) {
             if (f.frame == Frame::World && f.type != ForceType::Spring) f.vector = pose.direction(f.vector);
             if (f.type == ForceType::Spring) f.anchor = pose.point(f.anchor);

@@ -127,6 +127,7 @@ inline SceneDesc everyField() {
     post.collisionGroup = "fence";
     s.bodies.push_back(post);
 
+
     BodyDesc cart;  // a compound: every part field, a mesh part among them
     cart.name = "cart";
     cart.shape.type = ShapeType::Compound;
@@ -152,6 +153,18 @@ inline SceneDesc everyField() {
     cart.mass = 50.0;  // more than the deck's own 36 kg (0.06 m³ at 600 kg/m³): the lump takes the rest
     cart.position = Vec3(4, 0.5, 4);
     s.bodies.push_back(cart);
+
+    BodyDesc paddle;  // animated: keys of every field, smooth
+    paddle.name = "paddle";
+    paddle.motion = Motion::Animated;
+    paddle.shape.type = ShapeType::Box;
+    paddle.shape.halfExtents = Vec3(0.05, 0.3, 0.4);
+    paddle.position = Vec3(-1, 0.5, 2);
+    paddle.interpolation = KeyInterpolation::Smooth;
+    paddle.keys = {{0.25, Vec3(-1, 0.5, 2), Quat::Identity()},
+                   {1.5, Vec3(0.5, 0.75, 2), Quat(0.5, 0.5, -0.5, 0.5)},
+                   {2.0, Vec3(1, 0.5, 2.5), Quat(0, 0, 1, 0)}};
+    s.bodies.push_back(paddle);
 
     JointDesc rope;  // to the world, with its length
     rope.name = "string";

@@ -64,7 +64,8 @@ void PropertyDock::Impl::build() {
         form, QObject::tr("Motion"), "motion", QObject::tr("Set motion"),
         {{QObject::tr("Dynamic"), Motion::Dynamic},
          {QObject::tr("Static"), Motion::Static},
-         {QObject::tr("Kinematic"), Motion::Kinematic}},
+         {QObject::tr("Kinematic"), Motion::Kinematic},
+         {QObject::tr("Animated"), Motion::Animated}},
         [](const BodyDesc& b) { return std::optional<Motion>(b.motion); },
         [this](BodyDesc& b, int index, Motion m) { setMotion(b, index, m); });
 

@@ -135,6 +135,8 @@ struct PropertyDock::Impl {
         std::vector<ForceDesc> forces;
         bool hasVelocity = false;
         Vec3 velocity = Vec3::Zero(), angularVelocity = Vec3::Zero();
+        std::vector<BodyKey> keys;  // an animated body's, while it is something else
+        KeyInterpolation interpolation = KeyInterpolation::Linear;
     };
     QHash<int, Stash> stash;
 
@@ -248,14 +250,28 @@ struct PropertyDock::Impl {
             b.centerOfMass.reset();
             b.forces.clear();
         }
-        if (m == Motion::Static) {
+        // Static and animated bodies have no velocity of their own; only animated ones keys.
+        const auto still = [](Motion x) { return x == Motion::Static || x == Motion::Animated; };
+        if (still(m) && !still(b.motion)) {
             s.hasVelocity = true;
             s.velocity = b.velocity;
             s.angularVelocity = b.angularVelocity;
             b.velocity = b.angularVelocity = Vec3::Zero();
-        } else if (b.motion == Motion::Static && s.hasVelocity) {
+        } else if (!still(m) && still(b.motion) && s.hasVelocity) {
             b.velocity = s.velocity;
             b.angularVelocity = s.angularVelocity;
+        }
+        if (b.motion == Motion::Animated) {
+            s.keys = std::move(b.keys);
+            s.interpolation = b.interpolation;
+            b.keys.clear();
+        }
+        if (m == Motion::Animated) {
+            b.keys = std::move(s.keys);
+            b.interpolation = s.interpolation;
+            s.keys.clear();
+            // Its first key: where it stands, at the start.
+            if (b.keys.empty()) b.keys.push_back({0.0, b.position, b.orientation});
         }
         if (m == Motion::Dynamic) {
             if (s.hasMass) {

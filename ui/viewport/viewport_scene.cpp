@@ -188,7 +188,8 @@ struct ViewportScene::Impl {
         if (b.asleep) return asleepLook;
         switch (b.motion) {
             case Motion::Static: return staticLook;
-            case Motion::Kinematic: return kinematicLook;
+            case Motion::Kinematic:
+            case Motion::Animated: return kinematicLook;
             case Motion::Dynamic: break;
         }
         return dynamicLook;
@@ -199,7 +200,8 @@ struct ViewportScene::Impl {
         if (b.asleep) return asleepMat;
         switch (b.motion) {
             case Motion::Static: return staticMat;
-            case Motion::Kinematic: return kinematicMat;
+            case Motion::Kinematic:
+            case Motion::Animated: return kinematicMat;
             case Motion::Dynamic: break;
         }
         return dynamicMat;

@@ -75,7 +75,11 @@ const char* const kSamples[] = {"tumbling-box",
                                 "chair",
                                 "hammer",
                                 "cart",
-                                "chair-pile"};
+                                "chair-pile",
+                                "sieve",
+                                "paddle-dominoes",
+                                "lift",
+                                "turntable"};
 
 bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);

@@ -5,11 +5,13 @@
 #include <tumble/collision.h>
 #include <tumble/errors.h>
 #include <tumble/integrators.h>
+#include <tumble/key_path.h>
 #include <tumble/math.h>
 #include <tumble/scene.h>
 #include <tumble/state.h>
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,7 +35,9 @@ struct ForceTerm {
 };
 
 /// The fixed data of one body. Mass and inertia are meaningful for dynamic bodies only;
-/// static and kinematic bodies have invMass = 0 and invInertia = 0.
+/// static and kinematic bodies have invMass = 0 and invInertia = 0. An animated body is
+/// compiled as a kinematic one with a `path`: every stage that moves nothing of its own
+/// treats the two alike, and its velocities are in its state (placeOnPath).
 struct BodyModel {
     std::string name;
     Motion motion = Motion::Dynamic;
@@ -54,6 +58,8 @@ struct BodyModel {
     int group = 0;  ///< its collision group's index (Model::groupCollides; 0: "default")
     Vec3 kinematicVelocity = Vec3::Zero();         ///< kinematic bodies: constant, world
     Vec3 kinematicAngularVelocity = Vec3::Zero();  ///< kinematic bodies: constant, world
+    /// Animated bodies (motion Kinematic here): the path of the body frame its keys give.
+    std::shared_ptr<const KeyPath> path;
 
     /// The friction and restitution of a contact on `part` (a compound's part, which may
     /// have its own; any other shape's part is 0, the body's).
@@ -68,8 +74,15 @@ struct BodyModel {
 
     /// Static, or kinematic at zero velocity: never moves, so never wakes or pairs like a moving body.
     bool standsStill() const {
-        return motion == Motion::Static ||
-               (motion == Motion::Kinematic && kinematicVelocity.isZero(0.0) && kinematicAngularVelocity.isZero(0.0));
+        return motion == Motion::Static || (motion == Motion::Kinematic && !path && kinematicVelocity.isZero(0.0) &&
+                                            kinematicAngularVelocity.isZero(0.0));
+    }
+
+    /// A kinematic or animated body: the most |v| + |ω| r its points within `reach` of the
+    /// centre of mass reach over the run.
+    double topSpeed(double reach) const {
+        if (path) return path->fastest(reach + centerOfMass.norm());
+        return kinematicVelocity.norm() + kinematicAngularVelocity.norm() * reach;
     }
 };
 
@@ -116,7 +129,8 @@ struct Model {
     std::vector<ForceTerm> forces;   ///< grouped by body, in scene order
     std::vector<int> dynamicBodies;  ///< indices; the only bodies forces act on
     std::vector<int> kinematicBodies;
-    std::vector<double> forceSwitchTimes;  ///< sorted start and end times the stepper lands on
+    /// Sorted times the stepper lands on: forces' starts and ends, animated bodies' keys.
+    std::vector<double> forceSwitchTimes;
     /// Things the user should know that are not errors, e.g. "bodies[3] (rock): the mesh is
     /// not closed; mass properties come from its convex hull". The CLI prints them.
     std::vector<std::string> notes;
@@ -155,6 +169,11 @@ Derived derive(const BodyModel& body, const BodyState& s);
 /// ω of a dynamic body, bit for bit derive()'s, without the rotation matrix for a ball or a
 /// cube (three equal moments: I⁻¹ is c·1 in every frame).
 Vec3 angularVelocity(const BodyModel& body, const BodyState& s);
+
+/// An animated body (BodyModel::path) where its path has it at time t: its centre x and
+/// orientation q, and its centre's velocity in P and its angular velocity in L (an animated
+/// body has no momentum; its state holds its motion instead).
+void placeOnPath(const BodyModel& body, double t, BodyState& s);
 
 /// World pose of the body frame (not the centre of mass): what the CSV and the viewport show.
 Vec3 bodyFramePosition(const BodyModel& body, const BodyState& s);

@@ -48,6 +48,11 @@ struct EnergyLedger {
     /// projections that put the bodies back on them. Negative when a joint gave energy: a
     /// motor driving its bodies, a joint to a moving kinematic body.
     double lostInJoints = 0.0;
+    /// Work moving kinematic and animated bodies did on the others through contacts and
+    /// impacts (J): each impulse they gave times the velocity of their point it acted at. A
+    /// paddle that throws a ball did positive work; a lift letting a box down, negative. The
+    /// contact and friction losses above are net of it (what the contacts dissipated).
+    double doneByKinematic = 0.0;
 };
 
 }  // namespace tumble

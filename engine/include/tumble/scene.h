@@ -17,7 +17,14 @@ namespace mesh {
 struct ConvexParts;  // tumble/convex_parts.h
 }
 
-enum class Motion { Dynamic, Static, Kinematic };
+/// Kinematic: moves at a constant velocity and angular velocity; animated: on the path its
+/// keys give (BodyDesc::keys). Neither has mass or is moved by anything else.
+enum class Motion { Dynamic, Static, Kinematic, Animated };
+/// How an animated body moves between its keys (tumble/key_path.h).
+enum class KeyInterpolation {
+    Linear,  ///< straight at constant speed, turning at a constant rate about a fixed axis
+    Smooth,  ///< C1 in position and rotation, easing in at the first key and out at the last
+};
 enum class ShapeType { Sphere, Box, Capsule, Cylinder, Plane, Mesh, Compound };
 enum class MeshCollision { ConvexHull, Triangles, ConvexParts };
 enum class ForceType { Force, Torque, Spring };
@@ -34,6 +41,7 @@ const char* toString(MeshCollision c);
 const char* toString(ForceType t);
 const char* toString(Frame f);
 const char* toString(ImpactTiming t);
+const char* toString(KeyInterpolation k);
 
 struct PartDesc;  // below: one part of a compound shape
 
@@ -100,6 +108,18 @@ struct ForceDesc {
     bool operator==(const ForceDesc&) const = default;
 };
 
+/// One key of an animated body: where its frame is (as BodyDesc::position and orientation)
+/// at `time`.
+struct BodyKey {
+    double time = 0.0;                   ///< s
+    Vec3 position = Vec3::Zero();        ///< world position of the body frame origin
+    Quat orientation = Quat::Identity(); ///< body to world
+
+    bool operator==(const BodyKey& o) const {
+        return time == o.time && position == o.position && orientation.coeffs() == o.orientation.coeffs();
+    }
+};
+
 struct BodyDesc {
     std::string name;
     Motion motion = Motion::Dynamic;
@@ -119,6 +139,10 @@ struct BodyDesc {
     std::vector<ForceDesc> forces;
     /// The collision group it is in (Settings::collisionGroups; "default" is always one).
     std::string collisionGroup = "default";
+    /// Animated bodies: the keys, times strictly increasing (held before the first and after
+    /// the last); `position` and `orientation` are where the editor shows it at rest.
+    std::vector<BodyKey> keys;
+    KeyInterpolation interpolation = KeyInterpolation::Linear;
 
     bool operator==(const BodyDesc& o) const;
 };

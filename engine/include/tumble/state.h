@@ -11,7 +11,9 @@
 namespace tumble {
 
 /// The paper's state vector (17): centre of mass x, orientation q (unit quaternion,
-/// body to world), linear momentum P, angular momentum L, all in world coordinates.
+/// body to world), linear momentum P, angular momentum L, all in world coordinates. An
+/// animated body has no momentum: its P is its centre's velocity and its L its angular
+/// velocity, where its path has it (placeOnPath).
 struct BodyState {
     Vec3 x = Vec3::Zero();
     Quat q = Quat::Identity();

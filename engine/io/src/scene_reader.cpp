@@ -311,16 +311,29 @@ ForceDesc readForce(const Reader& r, const json& j, const std::string& p) {
     return f;
 }
 
+// One key of an animated body (docs/scene-format.md "Animated bodies"): its order and
+// values are checked with the rest of the scene (validate).
+BodyKey readKey(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    r.onlyKeys(j, p, {"time", "position", "orientation"});
+    BodyKey k;
+    k.time = r.number(r.require(j, p, "time"), p + ".time");
+    k.position = r.vector<3>(r.require(j, p, "position"), p + ".position");
+    r.optional(j, p, "orientation",
+               [&](const json& v, const std::string& f) { k.orientation = readOrientation(r, v, f); });
+    return k;
+}
+
 BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
     r.onlyKeys(j, p,
                {"name", "motion", "shape", "mass", "density", "inertia", "center_of_mass", "position",
                 "orientation", "velocity", "angular_velocity", "restitution", "friction", "linear_damping",
-                "angular_damping", "forces", "collision_group"});
+                "angular_damping", "forces", "collision_group", "keys", "interpolation"});
     BodyDesc b;
     b.name = r.string(r.require(j, p, "name"), p + ".name");
     r.optional(j, p, "motion", [&](const json& v, const std::string& f) {
-        b.motion = enumValue(r, v, f, {Motion::Dynamic, Motion::Static, Motion::Kinematic});
+        b.motion = enumValue(r, v, f, {Motion::Dynamic, Motion::Static, Motion::Kinematic, Motion::Animated});
     });
     b.shape = readShape(r, r.require(j, p, "shape"), p + ".shape");
     r.optional(j, p, "collision_group",
@@ -349,6 +362,13 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
         if (!v.is_array()) r.fail(f, "must be an array");
         for (size_t k = 0; k < v.size(); ++k)
             b.forces.push_back(readForce(r, v[k], f + "[" + std::to_string(k) + "]"));
+    });
+    r.optional(j, p, "keys", [&](const json& v, const std::string& f) {
+        if (!v.is_array()) r.fail(f, "must be an array of keys ({\"time\", \"position\", \"orientation\"})");
+        for (size_t k = 0; k < v.size(); ++k) b.keys.push_back(readKey(r, v[k], f + "[" + std::to_string(k) + "]"));
+    });
+    r.optional(j, p, "interpolation", [&](const json& v, const std::string& f) {
+        b.interpolation = enumValue(r, v, f, {KeyInterpolation::Linear, KeyInterpolation::Smooth});
     });
     return b;
 }

@@ -118,6 +118,13 @@ ojson bodyJson(const BodyDesc& b) {
     j["forces"] = ojson::array();
     for (const ForceDesc& f : b.forces) j["forces"].push_back(forceJson(f));
     if (b.collisionGroup != "default") j["collision_group"] = b.collisionGroup;
+    if (b.motion == Motion::Animated || !b.keys.empty()) {
+        j["interpolation"] = toString(b.interpolation);
+        j["keys"] = ojson::array();
+        for (const BodyKey& k : b.keys)
+            j["keys"].push_back(
+                ojson{{"time", k.time}, {"position", vec(k.position)}, {"orientation", quatJson(k.orientation)}});
+    }
     return j;
 }
 

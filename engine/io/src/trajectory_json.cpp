@@ -84,8 +84,10 @@ Trajectory parseTrajectoryJson(std::string_view text, const std::string& fileNam
             b.motion = Motion::Static;
         else if (motion == "kinematic")
             b.motion = Motion::Kinematic;
+        else if (motion == "animated")
+            b.motion = Motion::Animated;
         else
-            r.fail(path + ".motion", "must be dynamic, static or kinematic");
+            r.fail(path + ".motion", "must be dynamic, static, kinematic or animated");
         t.bodies.push_back(std::move(b));
     }
 

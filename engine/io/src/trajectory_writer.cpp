@@ -191,7 +191,8 @@ protected:
             const BodyModel& b = model().bodies[bodies()[n]];
             const std::string name =
                 nlohmann::json(b.name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-            out << (n ? ",\n" : "\n") << "    {\"name\": " << name << ", \"motion\": \"" << toString(b.motion)
+            out << (n ? ",\n" : "\n") << "    {\"name\": " << name << ", \"motion\": \""
+                << (b.path ? toString(Motion::Animated) : toString(b.motion))
                 << "\"}";
         }
         out << (bodies().empty() ? "],\n" : "\n  ],\n");

@@ -263,6 +263,7 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
     w.c0 = before.x;
     w.c1 = after.x;
     if (body.motion == Motion::Dynamic) w.bow = 0.5 * h * body.invMass * (after.P - before.P);
+    if (body.path) w.bow = 0.5 * h * (after.P - before.P);  // (an animated body's P is its velocity)
     w.q0 = before.q;
     w.q1 = after.q;
     w.localCenter = body.centerOfMass;
@@ -276,7 +277,7 @@ double approachSpeed(const Model& model, const State& before, const State& after
     auto pointVelocity = [&](int i) -> Vec3 {
         const BodyModel& body = model.bodies[i];
         if (body.motion == Motion::Static) return Vec3::Zero();
-        if (body.motion == Motion::Kinematic)
+        if (body.motion == Motion::Kinematic && !body.path)
             return body.kinematicVelocity + body.kinematicAngularVelocity.cross(point - after.bodies[i].x);
         const Derived d0 = derive(body, before.bodies[i]), d1 = derive(body, after.bodies[i]);
         const Vec3 x = (1.0 - s) * before.bodies[i].x + s * after.bodies[i].x;

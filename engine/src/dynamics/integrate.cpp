@@ -302,6 +302,10 @@ void integrate(const Model& model, State& state, double h, IntegrateScratch& scr
     for (int i : model.kinematicBodies) {
         const BodyModel& b = model.bodies[i];
         BodyState& s = state.bodies[i];
+        if (b.path) {
+            placeOnPath(b, state.time + h, s);
+            continue;
+        }
         s.x += h * b.kinematicVelocity;
         s.q = (expMap(h * b.kinematicAngularVelocity) * s.q).normalized();
     }

@@ -140,8 +140,7 @@ void armEnergyGuard(const Model& m, const State& state, EnergyGuard& g) {
     g.kinematicSpeed = 0.0;
     for (int k : m.kinematicBodies) {
         const BodyModel& b = m.bodies[k];
-        g.kinematicSpeed = std::max(
-            g.kinematicSpeed, b.kinematicVelocity.norm() + b.kinematicAngularVelocity.norm() * radius(b));
+        g.kinematicSpeed = std::max(g.kinematicSpeed, b.topSpeed(radius(b)));
     }
     g.scale = 0.0;
     for (int i : m.dynamicBodies) {

@@ -137,10 +137,11 @@ std::string likelyCause(const Model& m, const State& state, int body) {
         const BodyModel& b = m.bodies[k];
         if (b.standsStill()) continue;
         const double reach = std::isfinite(sizeOf(m, k)) ? sizeOf(m, k) : 0.0;
-        const double speed = b.kinematicVelocity.norm() + b.kinematicAngularVelocity.norm() * reach;
+        const double speed = b.topSpeed(reach);
         const double smaller = std::min(own, reach > 0.0 ? reach : own);
         if (speed * dt > 0.1 * smaller)
-            return "kinematic " + bodyRef(m, k) + " moves " + numberText(speed * dt, 3) + " m per step (" +
+            return std::string(b.path ? "animated " : "kinematic ") + bodyRef(m, k) + " moves " +
+                   numberText(speed * dt, 3) + " m per step (" +
                    numberText(speed, 3) + " m/s), more than a tenth of " +
                    (smaller == own ? "the size of " + bodyRef(m, body) : "its own size") + " (" +
                    numberText(smaller, 3) + " m): use a smaller step";

@@ -88,6 +88,15 @@ void collectIsland(const Model& model, const State& state, const ManifoldList& c
         if (s.taken[k]) s.manifolds.push_back(static_cast<int>(k));
 }
 
+// Applies the impulse J at a pair's points, booking what it dissipated in `lost` and what a
+// moving kinematic or animated body gave in `driven` (drivenWork, taken at the velocities
+// before: a body that no impulse moves keeps them).
+void book(double& lost, double& driven, SolverBody& A, const Vec3& rA, SolverBody& B, const Vec3& rB,
+          const Vec3& J) {
+    driven += drivenWork(A, rA, B, rB, J);
+    lost += applyPairImpulse(A, rA, B, rB, J);
+}
+
 constexpr int kJointRounds = 100;   // a manifold's rounds with the joints (below)
 constexpr double kMostRound = 4.0;  // a round adds at most this many times the impact's impulse
 
@@ -148,7 +157,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
     Eigen::Vector4d target = Eigen::Vector4d::Zero();  // the normal velocities restitution asks
     for (int i = 0; i < k; ++i) target[i] = n.dot(relativeVelocity(A, rA[i], B, rB[i])) + gain[i];
     for (int i = 0; i < k; ++i)
-        if (lambda[i] > 0.0) ledger.lostInContacts += applyPairImpulse(A, rA[i], B, rB[i], lambda[i] * n);
+        if (lambda[i] > 0.0) book(ledger.lostInContacts, ledger.doneByKinematic, A, rA[i], B, rB[i], lambda[i] * n);
     const double first = lambda.head(k).sum();  // the impact's own impulse
     double before = HUGE_VAL;
     for (int round = 0; joints && round < kJointRounds; ++round) {
@@ -177,7 +186,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
         for (int i = 0; i < k; ++i) {
             if (more[i] == 0.0) continue;
             lambda[i] += more[i];
-            ledger.lostInContacts += applyPairImpulse(A, rA[i], B, rB[i], more[i] * n);
+            book(ledger.lostInContacts, ledger.doneByKinematic, A, rA[i], B, rB[i], more[i] * n);
         }
     }
 
@@ -192,7 +201,7 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
             if (speed <= approachTol) continue;
             const Vec3 t = -vt / speed;
             const double jt = std::min(speed / inverseEffectiveMass(A, rA[i], B, rB[i], t), mu * lambda[i]);
-            ledger.lostInFriction += applyPairImpulse(A, rA[i], B, rB[i], jt * t);
+            book(ledger.lostInFriction, ledger.doneByKinematic, A, rA[i], B, rB[i], jt * t);
         }
     }
     return true;

@@ -11,6 +11,7 @@
 #include "model/compile_compound.h"
 #include "model/compile_groups.h"
 #include "model/compile_joints.h"
+#include "model/compile_keys.h"
 #include "model/compile_shape.h"
 
 #include <Eigen/Eigenvalues>
@@ -148,6 +149,7 @@ void validateBody(const BodyDesc& b, int i) {
     }
     requireFinite(b.velocity, p + ".velocity");
     requireFinite(b.angularVelocity, p + ".angular_velocity");
+    validateKeys(b, p);
     if (b.motion == Motion::Static && (b.velocity != Vec3::Zero() || b.angularVelocity != Vec3::Zero())) {
         throw SceneError(p + (b.velocity != Vec3::Zero() ? ".velocity" : ".angular_velocity"),
                          "a static body cannot move; make it kinematic");
@@ -331,6 +333,10 @@ Model compile(const SceneDesc& scene) {
                 b.kinematicAngularVelocity = d.angularVelocity;
                 m.kinematicBodies.push_back(index);
                 break;
+            case Motion::Animated:
+                compileAnimated(d, b, m.forceSwitchTimes);
+                m.kinematicBodies.push_back(index);
+                break;
             case Motion::Static: break;
         }
         for (const ForceDesc& f : d.forces) {
@@ -374,6 +380,7 @@ State initialState(const Model& model, const SceneDesc& scene) {
         st.q = d.orientation.normalized();
         if (!st.q.coeffs().allFinite()) st.q.coeffs() = d.orientation.coeffs().stableNormalized();
         st.x = d.position + st.q * b.centerOfMass;
+        if (b.path) placeOnPath(b, s.time, st);
         if (b.motion == Motion::Dynamic) {
             st.P = b.mass * d.velocity;
             const Mat3 R = st.q.toRotationMatrix();

@@ -1,4 +1,4 @@
-#include "model/key_path.h"
+#include <tumble/key_path.h>
 
 #include <algorithm>
 #include <cmath>
@@ -53,20 +53,20 @@ struct Hermite {
 
 }  // namespace
 
-KeyPath::KeyPath(std::vector<PathKey> keys, PathInterpolation interpolation)
+KeyPath::KeyPath(std::vector<BodyKey> keys, KeyInterpolation interpolation)
     : keys_(std::move(keys)), interpolation_(interpolation) {
     for (size_t k = 0; k < keys_.size(); ++k) {
         keys_[k].orientation.normalize();
         if (k > 0 && keys_[k].orientation.dot(keys_[k - 1].orientation) < 0.0)
             keys_[k].orientation.coeffs() *= -1.0;
     }
-    if (interpolation_ != PathInterpolation::Smooth) return;
+    if (interpolation_ != KeyInterpolation::Smooth) return;
     const size_t n = keys_.size();
     velocity_.assign(n, Vec3::Zero());
     spin_.assign(n, Vec3::Zero());
     // (The first and last keys keep zero: the path eases in and out of its holds.)
     auto segmentSpin = [&](size_t k) {  // the constant-rate angular velocity over segment k
-        const PathKey &a = keys_[k], &b = keys_[k + 1];
+        const BodyKey &a = keys_[k], &b = keys_[k + 1];
         return Vec3(a.orientation * logOf(a.orientation.conjugate() * b.orientation) / (b.time - a.time));
     };
     for (size_t k = 1; k + 1 < n; ++k) {
@@ -78,7 +78,7 @@ KeyPath::KeyPath(std::vector<PathKey> keys, PathInterpolation interpolation)
 
 PathPoint KeyPath::at(double t) const {
     PathPoint p;
-    if (t <= keys_.front().time || keys_.size() == 1) {
+    if (t < keys_.front().time || keys_.size() == 1) {
         p.position = keys_.front().position;
         p.orientation = keys_.front().orientation;
         return p;
@@ -89,12 +89,12 @@ PathPoint KeyPath::at(double t) const {
         return p;
     }
     const auto next = std::upper_bound(keys_.begin(), keys_.end(), t,
-                                       [](double time, const PathKey& key) { return time < key.time; });
+                                       [](double time, const BodyKey& key) { return time < key.time; });
     const size_t k = static_cast<size_t>(next - keys_.begin()) - 1;
-    const PathKey &a = keys_[k], &b = keys_[k + 1];
+    const BodyKey &a = keys_[k], &b = keys_[k + 1];
     const double span = b.time - a.time, u = (t - a.time) / span;
     const Vec3 turn = logOf(a.orientation.conjugate() * b.orientation);  // in a's body frame
-    if (interpolation_ == PathInterpolation::Linear) {
+    if (interpolation_ == KeyInterpolation::Linear) {
         p.position = a.position + u * (b.position - a.position);
         p.velocity = (b.position - a.position) / span;
         p.orientation = (a.orientation * expOf(u * turn)).normalized();
@@ -115,6 +115,18 @@ PathPoint KeyPath::at(double t) const {
     p.orientation = (a.orientation * expOf(h)).normalized();
     p.angularVelocity = p.orientation * (rightJacobian(h) * dh);
     return p;
+}
+
+double KeyPath::fastest(double reach) const {
+    double top = 0.0;
+    for (size_t k = 0; k + 1 < keys_.size(); ++k) {
+        const double t0 = keys_[k].time, span = keys_[k + 1].time - t0;
+        for (int n = 0; n <= 32; ++n) {
+            const PathPoint p = at(n == 32 ? std::nextafter(t0 + span, t0) : t0 + span * n / 32.0);
+            top = std::max(top, p.velocity.norm() + p.angularVelocity.norm() * reach);
+        }
+    }
+    return top;
 }
 
 }  // namespace tumble

@@ -25,9 +25,10 @@ Derived derive(const BodyModel& b, const BodyState& s) {
             d.omega = b.sphericalInertia ? Vec3(b.invInertia(0, 0) * s.L) : Vec3(d.invInertiaWorld * s.L);
             break;
         case Motion::Kinematic:
+        case Motion::Animated:  // (compiled as kinematic with a path)
             d.invInertiaWorld.setZero();
-            d.v = b.kinematicVelocity;
-            d.omega = b.kinematicAngularVelocity;
+            d.v = b.path ? s.P : b.kinematicVelocity;
+            d.omega = b.path ? s.L : b.kinematicAngularVelocity;
             break;
         case Motion::Static:
             d.invInertiaWorld.setZero();
@@ -40,6 +41,15 @@ Derived derive(const BodyModel& b, const BodyState& s) {
 
 Vec3 angularVelocity(const BodyModel& b, const BodyState& s) {
     return b.sphericalInertia ? Vec3(b.invInertia(0, 0) * s.L) : derive(b, s).omega;
+}
+
+void placeOnPath(const BodyModel& b, double t, BodyState& s) {
+    const PathPoint p = b.path->at(t);
+    const Vec3 arm = p.orientation * b.centerOfMass;
+    s.x = p.position + arm;
+    s.q = p.orientation;
+    s.P = p.velocity + p.angularVelocity.cross(arm);
+    s.L = p.angularVelocity;
 }
 
 Vec3 bodyFramePosition(const BodyModel& b, const BodyState& s) {

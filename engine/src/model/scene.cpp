@@ -7,6 +7,7 @@ const char* toString(Motion m) {
         case Motion::Dynamic: return "dynamic";
         case Motion::Static: return "static";
         case Motion::Kinematic: return "kinematic";
+        case Motion::Animated: return "animated";
     }
     return "?";
 }
@@ -50,6 +51,10 @@ const char* toString(ImpactTiming t) {
     return t == ImpactTiming::Exact ? "exact" : "end-of-step";
 }
 
+const char* toString(KeyInterpolation k) {
+    return k == KeyInterpolation::Linear ? "linear" : "smooth";
+}
+
 const char* toString(JointType t) {
     switch (t) {
         case JointType::Ball: return "ball";
@@ -82,7 +87,8 @@ bool BodyDesc::operator==(const BodyDesc& o) const {
            position == o.position && orientation.coeffs() == o.orientation.coeffs() &&
            velocity == o.velocity && angularVelocity == o.angularVelocity && restitution == o.restitution &&
            friction == o.friction && linearDamping == o.linearDamping && angularDamping == o.angularDamping &&
-           forces == o.forces && collisionGroup == o.collisionGroup;
+           forces == o.forces && collisionGroup == o.collisionGroup && keys == o.keys &&
+           interpolation == o.interpolation;
 }
 
 }  // namespace tumble

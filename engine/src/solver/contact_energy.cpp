@@ -172,6 +172,26 @@ double frictionLost(ContactSolverScratch& s) {
     return lost;
 }
 
+double kinematicWork(const ContactSolverScratch& s) {
+    double work = 0.0;
+    for (const auto& block : s.blocks) {
+        const Point& p = s.points[block.begin];
+        const SolverBody &A = s.bodies[p.a], &B = s.bodies[p.b];
+        if (A.invMass > 0.0 && B.invMass > 0.0) continue;
+        for (int k = block.begin; k < block.begin + block.count; ++k) {
+            const Vec3& at = s.geometry[k].position;
+            work += drivenWork(A, at - A.x, B, at - B.x, s.points[k].lambdaN * s.points[k].n);
+        }
+        const Eigen::Vector2d T = block.frictionApplied();
+        work += drivenWork(A, block.rA, B, block.rB, T[0] * block.t1 + T[1] * block.t2);
+        // The twist about n: a couple, whose work is its moment times the giver's spin.
+        const double twist = block.twistApplied();
+        if (A.invMass == 0.0) work -= twist * p.n.dot(A.w);
+        if (B.invMass == 0.0) work += twist * p.n.dot(B.w);
+    }
+    return work;
+}
+
 // Whether the contacts of this step may only take energy out: none of them is with a
 // kinematic body that moves (a conveyor or a paddle does work on what it touches).
 bool passive(const Model& model, const ManifoldList& contacts) {

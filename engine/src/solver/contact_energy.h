@@ -39,6 +39,9 @@ double solvedKinetic(const Model& model, const State& state, const ContactSolver
                      const std::vector<BodyVelocity>& bodies);
 /// Gravity's potential energy of the dynamic bodies `which` as they stand in `state`.
 double gravityPotential(const Model& model, const State& state, const std::vector<int>& which);
+/// The work the moving kinematic and animated bodies did through this solve's impulses
+/// (normal, friction, twist; EnergyLedger::doneByKinematic), at their constant velocities.
+double kinematicWork(const ContactSolverScratch& s);
 /// Whether the contacts may only take energy out (no moving kinematic body among them).
 bool passive(const Model& model, const collision::ManifoldList& contacts);
 /// The balance of s.moving; `before`: the state at the start of the step (or its last part).

@@ -535,6 +535,7 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
     bodiesOf(contacts, s.seen, s.involved);
     addJointBodies(model, state, s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
+    chordVelocities(model, state, before, s.bodies, s.involved);
     if (s.still)
         s.stillBodies += static_cast<int>(
             std::count_if(s.involved.begin(), s.involved.end(), [&](int i) { return isStill(s, i); }));
@@ -587,7 +588,9 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
     // contacts the rest of what the solve took beyond friction.
     ledger.lostInFriction += frictionLoss;
     ledger.lostInJoints -= s.jointWork;
-    ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss + s.jointWork;
+    const double driven = limited ? 0.0 : kinematicWork(s);
+    ledger.doneByKinematic += driven;
+    ledger.lostInContacts += e.kineticIn - e.kineticOut - frictionLoss + s.jointWork + driven;
 
     storeSolverBodies(model, s.bodies, state, s.involved);
     // Re-placing turns bodies. Their spin is carried along in body axes (ω_body fixed), so

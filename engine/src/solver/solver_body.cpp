@@ -20,8 +20,8 @@ void loadBody(const Model& model, const State& state, int i, SolverBody& o) {
     o.touched = false;
     o.x = s.x;
     if (b.motion == Motion::Kinematic) {
-        o.v = b.kinematicVelocity;
-        o.w = b.kinematicAngularVelocity;
+        o.v = b.path ? s.P : b.kinematicVelocity;
+        o.w = b.path ? s.L : b.kinematicAngularVelocity;
     } else if (b.motion == Motion::Dynamic && !state.isAsleep(i) && b.sphericalInertia) {
         // derive() without the rotation matrix, which a ball's or a cube's I⁻¹ does not need.
         o.v = b.invMass * s.P;
@@ -88,6 +88,19 @@ void loadSolverBodies(const Model& model, const State& state, std::vector<Solver
     // pile half a megabyte of writes per call, several calls per look at the step.
     if (out.size() != model.bodies.size()) sizeSolverBodies(model, out);
     for (int i : only) loadBody(model, state, i, out[i]);
+}
+
+void chordVelocities(const Model& model, const State& state, const State& before, std::vector<SolverBody>& out,
+                     const std::vector<int>& only) {
+    const double h = state.time - before.time;
+    if (!(h > 0.0) || model.kinematicBodies.empty()) return;
+    for (int i : only) {
+        if (!model.bodies[i].path) continue;
+        const BodyState &b0 = before.bodies[i], &b1 = state.bodies[i];
+        out[i].v = (b1.x - b0.x) / h;
+        const Eigen::AngleAxisd turn(b1.q * b0.q.conjugate());  // (the short way: an angle within [0, π])
+        out[i].w = (turn.angle() / h) * turn.axis();
+    }
 }
 
 void loadVelocities(const Model& model, const State& state, std::vector<BodyVelocity>& out,

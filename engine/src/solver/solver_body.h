@@ -49,6 +49,13 @@ void sizeSolverBodies(const Model& model, std::vector<SolverBody>& out);
 SolverBody solverBody(const Model& model, const State& state, int i);
 void loadSolverBodies(const Model& model, const State& state, std::vector<SolverBody>& out,
                       const std::vector<int>& only);
+/// The animated bodies among `only`: the velocities of their path's chord from `before` to
+/// `state`, what the solve over that interval must match (a box carried by a keyed lift
+/// then moves exactly as far as the lift: at the step's end velocity it gained a h² / 2 a
+/// step while the lift sped up, and came off it). The impacts keep the path's own velocity
+/// at their moment.
+void chordVelocities(const Model& model, const State& state, const State& before, std::vector<SolverBody>& out,
+                     const std::vector<int>& only);
 /// The same for the velocities alone (`out` sized to the body count once, as above).
 void loadVelocities(const Model& model, const State& state, std::vector<BodyVelocity>& out,
                     const std::vector<int>& only);
@@ -97,6 +104,16 @@ inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, con
     applyImpulse(b, rB, -J);
     const Vec3 after = relativeVelocity(a, rA, b, rB);
     return -0.5 * J.dot(before + after);
+}
+
+/// The work the impulse J (on a at rA, −J on b at rB) draws from a body that no impulse
+/// moves (no mass here: a kinematic or animated one; a static or sleeping one stands still
+/// and gives 0): the impulse it gives times its point's velocity (EnergyLedger::doneByKinematic).
+inline double drivenWork(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB, const Vec3& J) {
+    double w = 0.0;
+    if (a.invMass == 0.0) w -= J.dot(a.v + a.w.cross(rA));
+    if (b.invMass == 0.0) w += J.dot(b.v + b.w.cross(rB));
+    return w;
 }
 
 /// The pseudo-inverse of the symmetric positive semi-definite K (the normal responses of
