@@ -69,7 +69,7 @@ def lift():
               animated("lift", {"type": "box", "half_extents": [0.8, 0.05, 0.8]},
                        [key(1, [0, 0.05, 0]), key(4, [0, 2.05, 0])], "smooth", friction=0.6, restitution=0.0)]
     for n in range(3):
-        bodies.append(box("box-%d" % n, [0.2, 0.2, 0.2], [0.02 * n, 0.3 + 0.4 * n, 0], restitution=0.0))
+        bodies.append(box("box-%d" % n, [0.2, 0.2, 0.2], [0, 0.3 + 0.4 * n, 0], restitution=0.0))
     return scene(6, bodies)
 
 

@@ -104,13 +104,13 @@ private slots:
         const auto kv = report(r.out);
         const QJsonObject m = QJsonDocument::fromJson(read("m.json")).object()["scene"].toObject();
         for (const char* name : {"energy_lost_contacts", "energy_lost_friction", "energy_position_correction",
-                                 "energy_lost_joints"})
+                                 "energy_lost_joints", "energy_by_kinematic"})
             QCOMPARE(m[name].toDouble(), kv.value(name).toDouble());
         QVERIFY(kv.value("energy_lost_friction").toDouble() != 0.0);  // the two names differ here
         const double start = kv.value("energy_start").toDouble(), end = kv.value("energy_end").toDouble();
         const double parts = m["energy_lost_contacts"].toDouble() + m["energy_lost_friction"].toDouble() +
                              m["energy_lost_joints"].toDouble() + m["energy_lost_damping"].toDouble() -
-                             m["energy_position_correction"].toDouble();
+                             m["energy_position_correction"].toDouble() - m["energy_by_kinematic"].toDouble();
         QVERIFY(std::abs(start - end - parts) <= 1e-9 * std::abs(start));
     }
 

@@ -28,25 +28,28 @@ inline double weightTimesHeight(const World& w) {
 
 /// The energy the ledger does not account for: the change of the scene's energy (kinetic,
 /// gravity, springs) since `start`, plus what it booked as lost, less its position
-/// correction. Zero, up to rounding and the integrator's own error, in a scene where nothing
-/// drives the bodies (no applied force but gravity and springs, no damping, no moving
-/// kinematic body, no motor).
+/// correction and what moving kinematic and animated bodies did through contacts. Zero, up
+/// to rounding and the integrator's own error, in a scene where nothing else drives the
+/// bodies (no applied force but gravity and springs, no damping, no motor, no joint to a
+/// moving kinematic body).
 inline double ledgerGap(const World& w, double start) {
     const EnergyLedger& l = w.ledger();
     return energy(w.model(), w.state()).total() - start + l.lostInContacts + l.lostInFriction +
-           l.lostInJoints - l.positionCorrection;
+           l.lostInJoints - l.positionCorrection - l.doneByKinematic;
 }
 
 inline QString describeLedger(const World& w, double start) {
     const EnergyLedger& l = w.ledger();
-    return QString("energy %1 -> %2 J; contacts %3, friction %4, joints %5, correction %6 J; gap %7 J")
+    return QString("energy %1 -> %2 J; contacts %3, friction %4, joints %5, correction %6 J, by kinematic "
+                   "bodies %8 J; gap %7 J")
         .arg(start, 0, 'g', 10)
         .arg(energy(w.model(), w.state()).total(), 0, 'g', 10)
         .arg(l.lostInContacts, 0, 'g', 4)
         .arg(l.lostInFriction, 0, 'g', 4)
         .arg(l.lostInJoints, 0, 'g', 4)
         .arg(l.positionCorrection, 0, 'g', 4)
-        .arg(ledgerGap(w, start), 0, 'g', 3);
+        .arg(ledgerGap(w, start), 0, 'g', 3)
+        .arg(l.doneByKinematic, 0, 'g', 6);
 }
 
 }  // namespace tumble::test

@@ -237,7 +237,7 @@ private slots:
             R"("forces": [{"type": "spring", "anchor": [0, 3, 0], "stiffness": 10, "start": 0, "end": 1}])",
             R"("forces": {})", "bodies[1].forces", "drop.json: bodies[1].forces: must be an array");
         row("unknown motion", R"("motion": "static")", R"("motion": "frozen")", "bodies[0].motion",
-            "drop.json: bodies[0].motion: 'frozen' is not one of dynamic, static, kinematic");
+            "drop.json: bodies[0].motion: 'frozen' is not one of dynamic, static, kinematic, animated");
         row("unknown impact timing", R"("frame_rate": 30})", R"("frame_rate": 30, "impacts": "later"})",
             "settings.impacts", "drop.json: settings.impacts: 'later' is not one of exact, end-of-step");
         row("impact timing not a string", R"("frame_rate": 30})", R"("frame_rate": 30, "impacts": true})",

@@ -352,7 +352,7 @@ private slots:
                                  << "t.json: version: must be 1 (this build reads up to version 1)";
         QTest::newRow("motion") << R"({"format": "tumble-trajectory", "version": 1, "frame_rate": 30,
                                        "bodies": [{"name": "a", "motion": "flying"}], "frames": []})"
-                                << "t.json: bodies[0].motion: must be dynamic, static or kinematic";
+                                << "t.json: bodies[0].motion: must be dynamic, static, kinematic or animated";
         QTest::newRow("count") << R"({"format": "tumble-trajectory", "version": 1, "frame_rate": 30,
                                       "bodies": [{"name": "a", "motion": "static"}],
                                       "frames": [{"frame": 0, "time": 0, "bodies": []}]})"

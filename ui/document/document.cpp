@@ -1,5 +1,6 @@
 #include "document/document.h"
 
+#include "document/body_keys.h"
 #include "document/commands.h"
 #include "document/grouping.h"
 #include "document/part_edits.h"
@@ -172,6 +173,7 @@ bool Document::open(const QString& path, QString* error) {
     }
     undo_->clear();
     scene_ = std::move(scene);
+    for (BodyDesc& b : scene_.bodies) followKeys(b, b);  // animated bodies where their paths start
     openWarnings_ = warnings;
     meshStamps_.clear();
     stampMeshes();
@@ -348,7 +350,9 @@ BodyDesc withConvexParts(BodyDesc body) {
 
 void Document::setBody(int index, const BodyDesc& given, const QString& text, int mergeId) {
     if (index < 0 || index >= bodyCount() || given == scene_.bodies[static_cast<size_t>(index)]) return;
-    const BodyDesc body = withConvexParts(given);
+    BodyDesc body = withConvexParts(given);
+    followKeys(scene_.bodies[static_cast<size_t>(index)], body);  // an animated body's pose is its path's at 0
+    if (body == scene_.bodies[static_cast<size_t>(index)]) return;
     const std::string& old = scene_.bodies[static_cast<size_t>(index)].name;
     std::vector<JointDesc> joints = scene_.joints;
     for (JointDesc& j : joints) {
@@ -387,6 +391,7 @@ int Document::addBody(const BodyDesc& body, int index) {
     if (index < 0 || index > bodyCount()) index = bodyCount();
     BodyDesc b = body;
     b.name = uniqueName(QString::fromStdString(body.name.empty() ? "body" : body.name)).toStdString();
+    followKeys(b, b);  // an animated body is shown where its path starts
     undo_->push(
         new InsertBodyCommand(this, index, b, false, tr("Add %1").arg(QString::fromStdString(b.name))));
     stampMeshes();  // an imported mesh: as read just now
@@ -669,6 +674,7 @@ void Document::applyNoCollide(const std::vector<std::array<std::string, 2>>& pai
 
 void Document::applyScene(const SceneDesc& scene) {
     scene_ = scene;
+    for (BodyDesc& b : scene_.bodies) followKeys(b, b);  // animated bodies where their paths start
     selection_.clear();
     selectedJoint_ = -1;
     selectedPart_ = -1;

@@ -104,6 +104,8 @@ std::optional<Regrouped> groupBodies(const SceneDesc& scene, std::vector<int> in
         if (b.motion != first.motion)
             return fail(who(scene, i) + " is " + toString(b.motion) + " and " + who(scene, indices.front()) +
                         " " + toString(first.motion) + "; group bodies that move alike");
+        if (b.motion == Motion::Animated)
+            return fail(who(scene, i) + " is animated; group the bodies first, then key the group");
         if (b.motion == Motion::Kinematic &&
             (b.velocity != first.velocity || b.angularVelocity != first.angularVelocity))
             return fail(who(scene, i) + " moves otherwise than " + who(scene, indices.front()) +
@@ -222,6 +224,10 @@ std::optional<Regrouped> ungroupBody(const SceneDesc& scene, int index, std::str
     const BodyDesc& g = scene.bodies[static_cast<size_t>(index)];
     if (g.shape.type != ShapeType::Compound)
         return fail(who(scene, index) + " is not a compound; nothing to ungroup");
+    // (Its parts' own keys would not move them as one: between keys that turn it, each
+    // part's straight line is not the arc the group's turn takes it along.)
+    if (g.motion == Motion::Animated)
+        return fail(who(scene, index) + " is animated; make it dynamic, static or kinematic first");
     for (const JointDesc& j : scene.joints)
         if (j.bodyA == g.name || j.bodyB == g.name)
             return fail(who(scene, index) + " is held by the joint '" + j.name +

@@ -263,6 +263,7 @@ void PropertyDock::Impl::build() {
         ->setToolTip(QObject::tr("World frame"));
 
     buildForces(layout);
+    buildKeys(layout);
 
     // Editing a field anew (after Enter or leaving it) is a new undo step; a scrub is one.
     for (auto* spin : q->findChildren<PropertySpinBox*>())

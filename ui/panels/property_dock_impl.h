@@ -7,6 +7,7 @@
 #include "document/document.h"
 #include "panels/field_guard.h"
 #include "panels/forces_edit.h"
+#include "panels/keys_edit.h"
 #include "panels/inertia_edit.h"
 #include "panels/property_euler.h"
 #include "panels/property_spin_box.h"
@@ -165,6 +166,8 @@ struct PropertyDock::Impl {
     VectorEdit* com = nullptr;
     InertiaEdit* inertia = nullptr;
     ForcesEdit* forces = nullptr;
+    KeysEdit* keys = nullptr;  // an animated body's (property_dock_keys.cpp)
+    QWidget* keysBox = nullptr;
     QLabel* forcesNote = nullptr;
     QLineEdit* name = nullptr;
 
@@ -541,6 +544,7 @@ struct PropertyDock::Impl {
                      const std::function<std::optional<double>(const BodyDesc&)>& inherited, const char* tip);
     void buildMass(QVBoxLayout* layout);
     void buildForces(QVBoxLayout* layout);
+    void buildKeys(QVBoxLayout* layout);
 };
 
 }  // namespace tumble::ui

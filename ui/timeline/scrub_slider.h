@@ -1,6 +1,8 @@
 // The timeline's scrub slider, with marks on it: a short red line above the groove at each
-// marked frame (a joint that broke), its text shown when the pointer rests near it. A click
-// on the track jumps to the frame there.
+// marked frame (a joint that broke), an amber one below it at a key of the selected animated
+// body, its text shown when the pointer rests near it. A click
+// on the track jumps to the frame there. A key's mark can be dragged to another frame, or
+// deleted with a right click.
 #pragma once
 
 #include <QRect>
@@ -17,6 +19,7 @@ public:
     struct Mark {
         int frame = 0;
         QString text;
+        int key = -1;  ///< an animated body's key (its index; amber, below the groove), or -1
     };
     explicit ScrubSlider(QWidget* parent = nullptr);
 
@@ -30,9 +33,17 @@ public:
     /// The marks' texts within a few pixels of x, one per line (empty: none there).
     QString textNear(int x) const;
 
+signals:
+    /// A key's mark dragged to `frame` (released there).
+    void keyMoved(int key, int frame);
+    /// A right click on a key's mark.
+    void keyDeleteRequested(int key);
+
 protected:
     void paintEvent(QPaintEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
+    void mouseMoveEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
     bool event(QEvent* event) override;
 
 private:
@@ -44,7 +55,13 @@ private:
     };
     Track track() const;
 
+    /// The key mark at x in the lower third (where key marks are drawn), or -1: its index
+    /// in marks_.
+    int keyMarkAt(const QPoint& at) const;
+
     std::vector<Mark> marks_;
+    int dragged_ = -1;  // the key mark being dragged (index in marks_), or -1
+    int draggedFrom_ = 0;  // its frame when pressed
 };
 
 }  // namespace tumble::ui

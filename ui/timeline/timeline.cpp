@@ -450,7 +450,10 @@ bool Timeline::useCurrentFrameAsStart() {
         const BodyModel& bm = m->bodies[static_cast<std::size_t>(i)];
         const BodyState& st = s.bodies[static_cast<std::size_t>(i)];
         BodyDesc b = doc_->body(i);
-        if (bm.motion != Motion::Static) {
+        if (b.motion == Motion::Animated) {
+            // Its path keeps its times relative to the motion (the pose follows: body_keys.h).
+            for (BodyKey& k : b.keys) k.time -= t;
+        } else if (bm.motion != Motion::Static) {
             b.position = bodyFramePosition(bm, st);
             b.orientation = st.q;
         }

@@ -17,6 +17,8 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include <cmath>
+
 namespace tumble::ui {
 
 namespace {
@@ -85,6 +87,11 @@ TimelineDock::TimelineDock(Timeline* timeline, QWidget* parent)
     connect(slider_, &QSlider::valueChanged, timeline_, [this](int v) {
         if (v != timeline_->currentFrame()) timeline_->seek(v);
     });
+    connect(slider_, &ScrubSlider::keyMoved, this, [this](int key, int frame) {
+        const double rate = timeline_->frameRate();
+        if (rate > 0.0) emit keyMoved(key, frame / rate);
+    });
+    connect(slider_, &ScrubSlider::keyDeleteRequested, this, &TimelineDock::keyDeleteRequested);
     position_ = new QLabel;
     position_->setObjectName(QStringLiteral("position"));
     position_->setMinimumWidth(
@@ -205,7 +212,21 @@ void TimelineDock::updateRange() {
                                  : QString::number(b.joint);
         marks.push_back({b.frame, tr("joint %1 broke at t = %2 s (frame %3)").arg(name).arg(b.time, 0, 'f', 3).arg(b.frame)});
     }
+    // The selected animated body's keys: ticks at their frames.
+    const double rate = timeline_->frameRate();
+    for (size_t k = 0; k < keyTimes_.size() && rate > 0.0; ++k) {
+        const double t = keyTimes_[k];
+        marks.push_back({int(std::lround(t * rate)),
+                         tr("%1: key at t = %2 s (drag to move, right-click to delete)").arg(keyBody_).arg(t, 0, 'g', 6),
+                         int(k)});
+    }
     slider_->setMarks(std::move(marks));
+}
+
+void TimelineDock::setKeyTimes(const std::vector<double>& times, const QString& body) {
+    keyTimes_ = times;  // (the same again redraws them: a refused drag's tick goes back)
+    keyBody_ = body;
+    updateRange();
 }
 
 void TimelineDock::updatePosition() {

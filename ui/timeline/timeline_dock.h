@@ -5,6 +5,8 @@
 // they work anywhere in the window.
 #pragma once
 
+#include <vector>
+
 #include "timeline/scrub_slider.h"
 
 #include <QDockWidget>
@@ -47,12 +49,23 @@ public:
     /// The progress line: frames done, simulated time, speed, stale or failed.
     QString statusText() const;
 
+    /// The keys of the selected animated body (`body`: its name), drawn as amber ticks on the
+    /// slider at their frames; none when `times` is empty.
+    void setKeyTimes(const std::vector<double>& times, const QString& body);
+
+signals:
+    /// Key `key` (of setKeyTimes' list) dragged on the slider to `time`, or asked deleted.
+    void keyMoved(int key, double time);
+    void keyDeleteRequested(int key);
+
 private:
     void updateRange();
     void updatePosition();
     void updateStatus();
 
     Timeline* timeline_;
+    std::vector<double> keyTimes_;
+    QString keyBody_;
     QAction* play_;
     QAction* back_;
     QAction* forward_;

@@ -482,6 +482,7 @@ bool Viewport::handleKey(QKeyEvent* event) {
         case Qt::Key_W: setTransformMode(TransformMode::Move); return true;
         case Qt::Key_E: setTransformMode(TransformMode::Rotate); return true;
         case Qt::Key_A: frameAll(); return true;
+        case Qt::Key_I: emit insertKeyRequested(); return true;
         case Qt::Key_Left:
             if (!shift) return false;
             cam.orbit(-step, 0);

@@ -161,6 +161,8 @@ signals:
     void transformModeChanged(tumble::ui::Viewport::TransformMode mode);
     void showCollisionShapesChanged(bool show);
     void overlayChanged(tumble::ui::Viewport::Overlay overlay, bool on);
+    /// I: key the selected body's pose at the playhead (the main window does it).
+    void insertKeyRequested();
 
 protected:
     bool eventFilter(QObject* watched, QEvent* event) override;

@@ -6,6 +6,7 @@
 
 #include <tumble/contact_query.h>
 #include <tumble/forces.h>
+#include <tumble/key_path.h>
 
 #include <Qt3DCore/QEntity>
 #include <Qt3DExtras/QPerVertexColorMaterial>
@@ -35,6 +36,8 @@ constexpr Rgb kCentre{1.0f, 1.0f, 1.0f};
 constexpr Rgb kJoint{1.0f, 0.75f, 0.2f};
 constexpr Rgb kJointAxis{0.95f, 0.55f, 0.1f};
 constexpr Rgb kJointSelected{1.0f, 0.95f, 0.7f};
+constexpr Rgb kPath{0.6f, 0.6f, 0.65f};
+constexpr Rgb kPathSelected{1.0f, 0.63f, 0.0f};
 
 void vertex(std::vector<float>& out, const Vec3& p, Rgb c) {
     out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z()), c.r, c.g, c.b});
@@ -254,6 +257,38 @@ Lines joints(const SceneDesc& scene, int selected) {
             limitLines(lines, j.type, pa, pb, axis, towards(pa, a->position, axis), (*j.limits)[0], (*j.limits)[1],
                        0.6 * boundingRadius(a->shape), int(k) == selected ? kJointSelected : kJointAxis);
         }
+    }
+    return lines;
+}
+
+Lines paths(const SceneDesc& scene, const std::vector<int>& selected) {
+    Lines lines;
+    constexpr int kPerSegment = 24;
+    for (size_t i = 0; i < scene.bodies.size(); ++i) {
+        const BodyDesc& b = scene.bodies[i];
+        if (b.motion != Motion::Animated || b.keys.empty()) continue;
+        // Keys the engine would refuse draw nothing (the panel says why).
+        bool valid = true;
+        for (size_t k = 0; k < b.keys.size(); ++k)
+            valid = valid && b.keys[k].position.allFinite() && b.keys[k].orientation.coeffs().norm() > 1e-12 &&
+                    (k == 0 || b.keys[k].time > b.keys[k - 1].time);
+        if (!valid) continue;
+        const bool chosen = std::find(selected.begin(), selected.end(), int(i)) != selected.end();
+        const Rgb c = chosen ? kPathSelected : kPath;
+        const KeyPath path(b.keys, b.interpolation);
+        for (size_t k = 0; k + 1 < b.keys.size(); ++k) {
+            const double t0 = b.keys[k].time, span = b.keys[k + 1].time - t0;
+            Vec3 from = path.at(t0).position;
+            for (int n = 1; n <= kPerSegment; ++n) {
+                const Vec3 to = path.at(n == kPerSegment ? std::nextafter(t0 + span, t0) : t0 + span * n / kPerSegment)
+                                    .position;
+                segment(lines.xyzrgb, from, to, c);
+                from = to;
+            }
+        }
+        const double size = 0.15 * std::min(boundingRadius(b.shape), 1.0);
+        for (const BodyKey& k : b.keys) cross(lines.xyzrgb, k.position, size, c);
+        ++lines.items;
     }
     return lines;
 }

@@ -67,6 +67,10 @@ Lines centresOfMass(const Model& model, const State& state);
 /// scene's joints, -1: none) is drawn light and larger.
 Lines joints(const Model& model, const State& state, int selected = -1);
 Lines joints(const SceneDesc& scene, int selected = -1);
+/// Each animated body's path as its keys give it (the body frame's origin, 24 points a
+/// segment from the first key to the last) and a cross at each key: amber for the bodies in
+/// `selected` (indices in the scene), grey for the others. items: paths.
+Lines paths(const SceneDesc& scene, const std::vector<int>& selected);
 /// One polyline per track of two points or more. items: polylines.
 Lines trails(const std::vector<std::vector<Vec3>>& tracks);
 
@@ -77,7 +81,7 @@ std::vector<Vec3> thinned(const std::vector<Vec3>& points, int cap);
 
 class ViewportOverlays {
 public:
-    enum Kind { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Joints, KindCount };
+    enum Kind { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Joints, Paths, KindCount };
 
     /// Under `root`; the caller puts entity() in its overlay layer.
     explicit ViewportOverlays(Qt3DCore::QEntity* root);

@@ -135,6 +135,13 @@ void Viewport::refreshOverlays() {
 void Viewport::refreshJoints() {
     ViewportOverlays& o = *d_->overlays;
     using K = ViewportOverlays::Kind;
+    // The animated bodies' paths, as the document's keys give them (the selected one amber).
+    if (d_->doc) {
+        const QList<int>& selection = d_->doc->selection();
+        o.set(K::Paths, overlays::paths(d_->doc->scene(), std::vector<int>(selection.begin(), selection.end())));
+    } else {
+        o.clear(K::Paths);
+    }
     if (!d_->overlayOn[size_t(Overlay::Joints)] || !d_->doc || d_->doc->scene().joints.empty()) {
         o.clear(K::Joints);
         return;

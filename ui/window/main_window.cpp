@@ -4,6 +4,7 @@
 
 #include "import/mesh_import_job.h"
 
+#include "document/body_keys.h"
 #include "document/document.h"
 #include "editor_main.h"
 #include "panels/plots_dock.h"
@@ -212,6 +213,53 @@ void MainWindow::buildMenus() {
     };
     connect(doc_, &Document::selectionChanged, this, enablePairs);
     enablePairs();
+    QAction* key = edit->addAction(tr("Insert &Key") + "\tI", this, &MainWindow::insertKey);
+    key->setObjectName("insertKey");
+    key->setToolTip(tr("Key the selected body's pose at the playhead (it becomes animated)"));
+    connect(viewport_, &Viewport::insertKeyRequested, this, &MainWindow::insertKey);
+    // The selected animated body's keys, ticked on the timeline.
+    auto showKeys = [this] {
+        const QList<int>& sel = doc_->selection();
+        std::vector<double> times;
+        QString name;
+        if (sel.size() == 1 && doc_->body(sel.front()).motion == Motion::Animated) {
+            const BodyDesc& b = doc_->body(sel.front());
+            for (const BodyKey& k : b.keys) times.push_back(k.time);
+            name = QString::fromStdString(b.name);
+        }
+        timelineDock_->setKeyTimes(times, name);
+    };
+    for (auto signal : {&Document::selectionChanged, &Document::sceneReset})
+        connect(doc_, signal, this, showKeys);
+    connect(doc_, &Document::bodyChanged, this, showKeys);
+    connect(timeline_, &Timeline::recordingReset, this, showKeys);
+    // A key's tick dragged on the timeline moves the key (refused onto another key's time);
+    // a right click deletes it (the last key stays).
+    auto keyedBody = [this]() -> int {
+        const QList<int>& sel = doc_->selection();
+        return sel.size() == 1 && doc_->body(sel.front()).motion == Motion::Animated ? sel.front() : -1;
+    };
+    connect(timelineDock_, &TimelineDock::keyMoved, this, [this, keyedBody, showKeys](int key, double time) {
+        const int i = keyedBody();
+        if (i < 0 || key >= int(doc_->body(i).keys.size())) return;
+        BodyDesc b = doc_->body(i);
+        if (!moveKey(b, key, time)) {
+            statusBar()->showMessage(tr("A key is already at t = %1 s").arg(time, 0, 'g', 6), 4000);
+            showKeys();  // the tick back where its key is
+            return;
+        }
+        doc_->setBody(i, b, tr("Move key"));
+    });
+    connect(timelineDock_, &TimelineDock::keyDeleteRequested, this, [this, keyedBody](int key) {
+        const int i = keyedBody();
+        if (i < 0) return;
+        BodyDesc b = doc_->body(i);
+        if (!removeKey(b, key)) {
+            statusBar()->showMessage(tr("An animated body keeps at least one key"), 4000);
+            return;
+        }
+        doc_->setBody(i, b, tr("Delete key"));
+    });
     edit->addAction(tr("Select &All"), QKeySequence::SelectAll, this, [this] {
         QList<int> all;
         for (int i = 0; i < doc_->bodyCount(); ++i) all.append(i);
@@ -335,6 +383,46 @@ bool MainWindow::openScene(const QString& path, QString* error) {
     updateTitle();
     viewport_->frameAll();
     return true;
+}
+
+void MainWindow::insertKey() {
+    const QList<int>& selection = doc_->selection();
+    if (selection.size() != 1) {
+        statusBar()->showMessage(tr("Insert Key: select one body"), 4000);
+        return;
+    }
+    const int index = selection.front();
+    BodyDesc body = doc_->body(index);
+    if (body.shape.type == ShapeType::Plane) {
+        statusBar()->showMessage(tr("Insert Key: a plane cannot move"), 4000);
+        return;
+    }
+    double time = 0.0;
+    Vec3 position = body.position;
+    Quat orientation = body.orientation;
+    const int frame = timeline_->currentFrame();
+    if (frame > 0) {
+        // The pose the run has at the playhead: of this scene's run, recorded that far.
+        State state;
+        const auto model = timeline_->model();
+        if (timeline_->isStale() || !model || !timeline_->frameState(frame, &state) ||
+            index >= int(state.bodies.size())) {
+            statusBar()->showMessage(tr("Insert Key: the run has not reached frame %1 since the last edit; "
+                                        "key it when the timeline has it")
+                                         .arg(frame),
+                                     5000);
+            return;
+        }
+        time = state.time;
+        position = bodyFramePosition(model->bodies[size_t(index)], state.bodies[size_t(index)]);
+        orientation = state.bodies[size_t(index)].q;
+        // A body made animated here starts where it was placed: its first key at t = 0.
+        if (body.motion != Motion::Animated) ui::insertKey(body, 0.0, body.position, body.orientation);
+    }
+    ui::insertKey(body, time, position, orientation);
+    doc_->setBody(index, body, tr("Insert key"));
+    statusBar()->showMessage(tr("Keyed %1 at t = %2 s").arg(QString::fromStdString(body.name)).arg(time, 0, 'g', 6),
+                             3000);
 }
 
 void MainWindow::openPath(const QString& path) {

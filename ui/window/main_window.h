@@ -139,6 +139,9 @@ private:
     void addRecent(const QString& path);
     void fillRecentMenu();
     void openPath(const QString& path);
+    /// Keys the one selected body's pose at the playhead (Edit > Insert Key, I in the
+    /// viewport): at frame 0 the pose it is placed at, later the recorded one.
+    void insertKey();
 
     Document* doc_ = nullptr;
     Timeline* timeline_ = nullptr;

@@ -258,12 +258,21 @@ constexpr double kNearTouch = 1e-3;         // of the smaller body
 // A body's path over the step h: its centre on the parabola of the constant acceleration
 // that takes its velocity from the start's to the end's (exact for a free flight under
 // gravity, which the splitting step integrates exactly), its orientation by slerp.
-Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& after, double h) {
+// An animated body as its path arrives at time t: a step that lands on a key ends on the
+// segment before it (its state there, KeyPath::at(t), already has the next segment's
+// velocity: a paddle turning back at a key would bow the step's straight path).
+BodyState arriving(const BodyModel& body, double t) {
+    BodyState s;
+    placeOnPath(body, std::nextafter(t, -HUGE_VAL), s);
+    return s;
+}
+
+Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& after, double h, double end) {
     Sweep w;
     w.c0 = before.x;
     w.c1 = after.x;
     if (body.motion == Motion::Dynamic) w.bow = 0.5 * h * body.invMass * (after.P - before.P);
-    if (body.path) w.bow = 0.5 * h * (after.P - before.P);  // (an animated body's P is its velocity)
+    if (body.path) w.bow = 0.5 * h * (arriving(body, end).P - before.P);  // (an animated body's P is its velocity)
     w.q0 = before.q;
     w.q1 = after.q;
     w.localCenter = body.centerOfMass;
@@ -279,7 +288,8 @@ double approachSpeed(const Model& model, const State& before, const State& after
         if (body.motion == Motion::Static) return Vec3::Zero();
         if (body.motion == Motion::Kinematic && !body.path)
             return body.kinematicVelocity + body.kinematicAngularVelocity.cross(point - after.bodies[i].x);
-        const Derived d0 = derive(body, before.bodies[i]), d1 = derive(body, after.bodies[i]);
+        const Derived d0 = derive(body, before.bodies[i]),
+                      d1 = derive(body, body.path ? arriving(body, after.time) : after.bodies[i]);
         const Vec3 x = (1.0 - s) * before.bodies[i].x + s * after.bodies[i].x;
         return (1.0 - s) * d0.v + s * d1.v + ((1.0 - s) * d0.omega + s * d1.omega).cross(point - x);
     };
@@ -342,8 +352,8 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
-        const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a], h);
-        const Sweep sb = sweepOf(B, before.bodies[b], after.bodies[b], h);
+        const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a], h, after.time);
+        const Sweep sb = sweepOf(B, before.bodies[b], after.bodies[b], h, after.time);
         // The tolerance: a small fraction of the smaller body, so that thin bodies are resolved.
         const double size = std::min(sizes[a], sizes[b]);
         const bool compound = A.collider.kind == Kind::Compound || B.collider.kind == Kind::Compound;

@@ -219,13 +219,21 @@ void approachingBodies(const Model& model, const State& before, const State& sta
         SolverBody A, B, A0, B0;
         for (int i = 0; i < m.count; ++i) {
             if (m.points[i].depth < -tol) continue;
-            if (!loaded)
+            // An animated body moves as the step's solve has it: its chord over the step (its
+            // instant velocity, a lift speeding up, would approach what rides it by a h / 2).
+            if (!loaded) {
                 A = solverBody(model, state, m.bodyA), B = solverBody(model, state, m.bodyB), loaded = true;
+                chordVelocity(model, state, before, m.bodyA, A);
+                chordVelocity(model, state, before, m.bodyB, B);
+            }
             const Vec3& p = m.points[i].position;
             if (m.normal.dot(relativeVelocity(A, p - A.x, B, p - B.x)) >= -speed) continue;
-            if (!loadedStart)
+            if (!loadedStart) {
                 A0 = solverBody(model, before, m.bodyA), B0 = solverBody(model, before, m.bodyB),
                 loadedStart = true;
+                chordVelocity(model, state, before, m.bodyA, A0);
+                chordVelocity(model, state, before, m.bodyB, B0);
+            }
             if (m.normal.dot(relativeVelocity(A0, p - A.x, B0, p - B.x)) >= -speed) continue;
             seeds.push_back(m.bodyA);
             seeds.push_back(m.bodyB);
@@ -238,7 +246,7 @@ namespace {
 
 ImpactResult resolve(const Model& model, State& state, const ManifoldList& contacts,
                      const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
-                     ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints) {
+                     ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints, const State* chordFrom) {
     ImpactResult result;
     collectIsland(model, state, contacts, seeds, touchTolerance, s);
     if (s.manifolds.empty()) return result;
@@ -254,6 +262,7 @@ ImpactResult resolve(const Model& model, State& state, const ManifoldList& conta
     }
     uniqueBodies(s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);
+    if (chordFrom) chordVelocities(model, state, *chordFrom, s.bodies, s.involved);
     // The joints' rows work on the contact solver's scratch: its bodies are these while the
     // impact lasts (swapped in and out, no copy).
     if (jointed) {
@@ -357,13 +366,14 @@ ImpactResult resolve(const Model& model, State& state, const ManifoldList& conta
 
 ImpactResult resolveImpacts(const Model& model, State& state, const ManifoldList& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
-                            ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints) {
+                            ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints,
+                            const State* chordFrom) {
     // With the contact solver's scratch, the impact borrows its per-body array (each loads
     // the entries of the bodies it indexes before reading them): one array of solver bodies
     // a world, not two (48 KB of hull-rain's 300 rocks).
     if (joints) std::swap(joints->bodies, s.bodies);
     const ImpactResult result =
-        resolve(model, state, contacts, seeds, touchTolerance, restingSpeed, s, ledger, joints);
+        resolve(model, state, contacts, seeds, touchTolerance, restingSpeed, s, ledger, joints, chordFrom);
     if (joints) std::swap(joints->bodies, s.bodies);
     return result;
 }

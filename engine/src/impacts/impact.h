@@ -69,9 +69,12 @@ void approachingBodies(const Model& model, const State& before, const State& sta
 /// moves, so that an impact passes through a joint as through a contact; `joints`: the
 /// contact solver's scratch, whose joint rows this uses (its bodies are swapped in); given
 /// one, the impact works on that scratch's solver bodies too.
+/// `chordFrom`: the state at the start of the step whose end this is (the end-of-step
+/// bounces): animated bodies move as over the step's solve, by their chords from it; none
+/// (a moment of impact): at their paths' velocities there.
 ImpactResult resolveImpacts(const Model& model, State& state, const collision::ManifoldList& contacts,
                             const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
                             ImpactScratch& scratch, EnergyLedger& ledger,
-                            ContactSolverScratch* joints = nullptr);
+                            ContactSolverScratch* joints = nullptr, const State* chordFrom = nullptr);
 
 }  // namespace tumble

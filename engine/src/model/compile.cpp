@@ -132,7 +132,7 @@ void validateBody(const BodyDesc& b, int i) {
         const char* key = b.mass ? ".mass" : b.density ? ".density" : b.inertia ? ".inertia" : nullptr;
         if (key) {
             throw SceneError(
-                p + key, std::string("a ") + toString(b.motion) + " body has no mass properties; remove it");
+                p + key, std::string(b.motion == Motion::Animated ? "an " : "a ") + toString(b.motion) + " body has no mass properties; remove it");
         }
     }
     if (b.inertia) {

@@ -193,11 +193,14 @@ double kinematicWork(const ContactSolverScratch& s) {
 }
 
 // Whether the contacts of this step may only take energy out: none of them is with a
-// kinematic body that moves (a conveyor or a paddle does work on what it touches).
-bool passive(const Model& model, const ManifoldList& contacts) {
+// kinematic body that moves in this solve (a conveyor or a paddle does work on what it
+// touches; an animated body holding still between its keys does none).
+bool passive(const Model& model, const ManifoldList& contacts, const ContactSolverScratch& s) {
     for (const Manifold& m : contacts)
         for (int b : {m.bodyA, m.bodyB})
-            if (model.bodies[b].motion == Motion::Kinematic && !model.bodies[b].standsStill()) return false;
+            if (model.bodies[b].motion == Motion::Kinematic && !model.bodies[b].standsStill() &&
+                !(s.bodies[b].v.isZero(0.0) && s.bodies[b].w.isZero(0.0)))
+                return false;
     return true;
 }
 

@@ -42,8 +42,9 @@ double gravityPotential(const Model& model, const State& state, const std::vecto
 /// The work the moving kinematic and animated bodies did through this solve's impulses
 /// (normal, friction, twist; EnergyLedger::doneByKinematic), at their constant velocities.
 double kinematicWork(const ContactSolverScratch& s);
-/// Whether the contacts may only take energy out (no moving kinematic body among them).
-bool passive(const Model& model, const collision::ManifoldList& contacts);
+/// Whether the contacts may only take energy out (no kinematic body among them that moves
+/// in this solve: s.bodies' velocities, an animated body's over the solve's interval).
+bool passive(const Model& model, const collision::ManifoldList& contacts, const ContactSolverScratch& s);
 /// The balance of s.moving; `before`: the state at the start of the step (or its last part).
 EnergyBalance energyBalance(const Model& model, const State& state, const State& before,
                             const ContactSolverScratch& s);

@@ -91,6 +91,7 @@ void prepare(const Model& model, const State& state, const State& before, const 
     makeRoom(s.geometry, points);
     makeRoom(s.blocks, contacts.size());
     loadVelocities(model, before, s.start, s.involved);
+    chordVelocities(model, state, before, s.start, s.involved);
     s.stillMoving.clear();
     for (const Manifold& m : contacts) {
         SolverBody& A = s.bodies[m.bodyA];
@@ -579,7 +580,7 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
     EnergyBalance e = energyBalance(model, state, before, s);
     // The energy limit is the contacts' (they must never add energy); with joints in the
     // same solve, scaling the velocities would break the joints, so it is left out there.
-    const bool limited = passive(model, contacts) && s.jointRows.empty();
+    const bool limited = passive(model, contacts, s) && s.jointRows.empty();
     if (limited && e.excess() > 0.0) limitEnergy(model, state, e, s, state.time - before.time);
     // Friction's work with the velocities the bodies leave with (after the limit, which
     // stopped a resting pyramid's last rounding: taken before it, friction booked −0.012 J).

@@ -90,18 +90,27 @@ void loadSolverBodies(const Model& model, const State& state, std::vector<Solver
     for (int i : only) loadBody(model, state, i, out[i]);
 }
 
-void chordVelocities(const Model& model, const State& state, const State& before, std::vector<SolverBody>& out,
-                     const std::vector<int>& only) {
+bool chordVelocity(const Model& model, const State& state, const State& before, int i, BodyVelocity& out) {
     const double h = state.time - before.time;
-    if (!(h > 0.0) || model.kinematicBodies.empty()) return;
-    for (int i : only) {
-        if (!model.bodies[i].path) continue;
-        const BodyState &b0 = before.bodies[i], &b1 = state.bodies[i];
-        out[i].v = (b1.x - b0.x) / h;
-        const Eigen::AngleAxisd turn(b1.q * b0.q.conjugate());  // (the short way: an angle within [0, π])
-        out[i].w = (turn.angle() / h) * turn.axis();
-    }
+    if (!model.bodies[i].path || !(h > 0.0)) return false;
+    const BodyState &b0 = before.bodies[i], &b1 = state.bodies[i];
+    out.v = (b1.x - b0.x) / h;
+    const Eigen::AngleAxisd turn(b1.q * b0.q.conjugate());  // (the short way: an angle within [0, π])
+    out.w = (turn.angle() / h) * turn.axis();
+    return true;
 }
+
+template <class Body>
+void chordVelocities(const Model& model, const State& state, const State& before, std::vector<Body>& out,
+                     const std::vector<int>& only) {
+    if (model.kinematicBodies.empty()) return;
+    for (int i : only) chordVelocity(model, state, before, i, out[i]);
+}
+
+template void chordVelocities(const Model&, const State&, const State&, std::vector<SolverBody>&,
+                              const std::vector<int>&);
+template void chordVelocities(const Model&, const State&, const State&, std::vector<BodyVelocity>&,
+                              const std::vector<int>&);
 
 void loadVelocities(const Model& model, const State& state, std::vector<BodyVelocity>& out,
                     const std::vector<int>& only) {

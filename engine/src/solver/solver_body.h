@@ -54,7 +54,13 @@ void loadSolverBodies(const Model& model, const State& state, std::vector<Solver
 /// then moves exactly as far as the lift: at the step's end velocity it gained a h² / 2 a
 /// step while the lift sped up, and came off it). The impacts keep the path's own velocity
 /// at their moment.
-void chordVelocities(const Model& model, const State& state, const State& before, std::vector<SolverBody>& out,
+/// Body i's chord velocities over [before, state] into `out`, when it is animated and the
+/// interval not empty; else false, `out` as it was.
+bool chordVelocity(const Model& model, const State& state, const State& before, int i, BodyVelocity& out);
+/// (For the solver's bodies, and for the velocities it starts from: friction's work is taken
+/// against the same motion of the lift.)
+template <class Body>
+void chordVelocities(const Model& model, const State& state, const State& before, std::vector<Body>& out,
                      const std::vector<int>& only);
 /// The same for the velocities alone (`out` sized to the body count once, as above).
 void loadVelocities(const Model& model, const State& state, std::vector<BodyVelocity>& out,

@@ -408,7 +408,7 @@ void World::finishStep(const State& before, const collision::ManifoldList& conta
     approachingBodies(model_, before, state_, contacts, s.touchTolerance, s.resting, s.seeds);
     if (!s.seeds.empty()) {
         const ImpactResult r = resolveImpacts(model_, state_, contacts, s.seeds, s.touchTolerance, s.resting,
-                                              s.impact, ledger_, &s.solver);
+                                              s.impact, ledger_, &s.solver, &before);
         ++profile_.impactMoments;
         if (r.limited) ++profile_.impactSweepLimits;
     }

@@ -167,6 +167,68 @@ private slots:
         QCOMPARE(t.currentFrame(), 50);
     }
 
+    // Issue 50 item 2: the selected animated body's keys are amber ticks under the groove;
+    // Edit > Insert Key keys its pose at the playhead; a tick dragged moves its key, a right
+    // click deletes it (the playhead stays); each is one undo step.
+    void keysAreTicksToDragAndDelete() {
+        MainWindow w;
+        Document& doc = *w.document();
+        BodyDesc paddle;
+        paddle.name = "paddle";
+        paddle.motion = Motion::Animated;
+        paddle.shape.type = ShapeType::Box;
+        paddle.shape.halfExtents = Vec3(0.1, 0.3, 0.3);
+        paddle.keys = {{0.0, Vec3(0, 1, 0), Quat::Identity()}, {1.0, Vec3(1, 1, 0), Quat::Identity()}};
+        const int i = doc.addBody(paddle);
+        doc.setSelection({i});
+        w.resize(1200, 800);
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        Timeline& t = *w.timeline();
+        QVERIFY(runToEnd(t));
+        ScrubSlider* slider = w.timelineDock()->slider();
+        const double rate = t.frameRate();
+        auto keyMarks = [&] {
+            std::vector<int> frames;
+            for (const ScrubSlider::Mark& m : slider->marks())
+                if (m.key >= 0) frames.push_back(m.frame);
+            return frames;
+        };
+        QCOMPARE(keyMarks(), std::vector<int>({0, int(std::lround(rate))}));
+        // Insert Key at frame 30: the pose the run has there, between the two keys.
+        t.seek(30);
+        QAction* insert = w.findChild<QAction*>("insertKey");
+        QVERIFY(insert);
+        const int steps = doc.undoStack()->count();
+        insert->trigger();
+        QCOMPARE(doc.undoStack()->count(), steps + 1);
+        QCOMPARE(int(doc.body(i).keys.size()), 3);
+        QVERIFY(std::abs(doc.body(i).keys[1].time - 30 / rate) < 1e-12);
+        QVERIFY((doc.body(i).keys[1].position - Vec3(30 / rate, 1, 0)).norm() < 1e-9);
+        QVERIFY(runToEnd(t));
+        QCOMPARE(keyMarks().size(), size_t(3));
+        // Drag the tick of the key at 1 s to frame 45: it is then the middle key's neighbour.
+        t.seek(10);
+        const int y = slider->height() - 2;
+        const int from = slider->xOf(int(std::lround(rate))), to = slider->xOf(45);
+        QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, QPoint(from, y));
+        QMouseEvent move(QEvent::MouseMove, QPointF(to, y), slider->mapToGlobal(QPointF(to, y)), Qt::NoButton,
+                         Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(slider, &move);
+        QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, QPoint(to, y));
+        QVERIFY(std::abs(doc.body(i).keys[2].time - 45 / rate) < 1e-12);
+        QCOMPARE(doc.body(i).keys[2].position, Vec3(1, 1, 0));
+        QCOMPARE(doc.undoStack()->count(), steps + 2);
+        QVERIFY(runToEnd(t));
+        t.seek(10);
+        // A right click on the middle key's tick deletes it; the playhead stays.
+        QTest::mouseClick(slider, Qt::RightButton, Qt::NoModifier, QPoint(slider->xOf(30), y));
+        QCOMPARE(int(doc.body(i).keys.size()), 2);
+        QCOMPARE(t.currentFrame(), 10);
+        doc.undoStack()->undo();
+        QCOMPARE(int(doc.body(i).keys.size()), 3);
+    }
+
     void editMarksStaleInTheStatus() {
         Document doc;
         QString error;
