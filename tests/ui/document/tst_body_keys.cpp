@@ -36,6 +36,17 @@ bool runToEnd(Timeline& t) {
     return QTest::qWaitFor([&] { return t.status() == Timeline::Status::Complete; }, kWaitMs);
 }
 
+// A 1 s scene: the ground, and a paddle keyed from (0, 1, 0) at t = 0 to (1, 1, 0) at 1 s.
+SceneDesc paddleAlongX() {
+    SceneDesc s = emptyScene();
+    s.settings.duration = 1.0;
+    BodyDesc b = box("paddle");
+    insertKey(b, 0.0, Vec3(0, 1, 0), Quat::Identity());
+    insertKey(b, 1.0, Vec3(1, 1, 0), Quat::Identity());
+    s.bodies.push_back(b);
+    return s;
+}
+
 // Where the run has body i at its last frame (the body frame's origin).
 Vec3 lastPosition(const Timeline& t, int i) {
     State s;
@@ -108,13 +119,7 @@ private slots:
     // old path back.
     void aKeyEditRedoesTheRun() {
         Document doc;
-        SceneDesc s = emptyScene();
-        s.settings.duration = 1.0;
-        BodyDesc b = box("paddle");
-        insertKey(b, 0.0, Vec3(0, 1, 0), Quat::Identity());
-        insertKey(b, 1.0, Vec3(1, 1, 0), Quat::Identity());
-        s.bodies.push_back(b);
-        doc.replaceScene(s, "Scene", false);
+        doc.replaceScene(paddleAlongX(), "Scene", false);
         Timeline t(&doc);
         QVERIFY(runToEnd(t));
         const double end = double(t.frameCount() - 1) / t.frameRate();
@@ -133,13 +138,7 @@ private slots:
     // "Use this frame as the start" keeps the path: the keys move back by the frame's time.
     void useFrameAsStartShiftsTheKeys() {
         Document doc;
-        SceneDesc s = emptyScene();
-        s.settings.duration = 1.0;
-        BodyDesc b = box("paddle");
-        insertKey(b, 0.0, Vec3(0, 1, 0), Quat::Identity());
-        insertKey(b, 1.0, Vec3(1, 1, 0), Quat::Identity());
-        s.bodies.push_back(b);
-        doc.replaceScene(s, "Scene", false);
+        doc.replaceScene(paddleAlongX(), "Scene", false);
         Timeline t(&doc);
         t.setAutoSimulate(false);
         QVERIFY(runToEnd(t));
