@@ -6,7 +6,7 @@ namespace tumble::ui {
 
 void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
     QFormLayout* form = group(layout, QObject::tr("Mass"), &massGroup);
-    noMass = new QLabel(QObject::tr("Static and kinematic bodies have no mass."));
+    noMass = new QLabel(QObject::tr("Static, kinematic and animated bodies have no mass."));
     noMass->setObjectName("mass.none");
     form->addRow(noMass);
 
