@@ -163,6 +163,12 @@ struct Viewport::Impl {
     int dragMergeId = 0;
     int dragCounter = 0;
     const QUndoCommand* dragCommand = nullptr;  // the drag's undo step so far (null: none yet)
+    // Keying an animated body at a later frame (its handles show there too): the drag moves
+    // its drawn pose only, and its end keys that pose at the frame's time (one undo step).
+    bool dragKeying = false;
+    bool dragKeyMoved = false;
+    double dragKeyTime = 0.0;
+    BodyDesc dragKeyPose;  // the body as the drag has it (its position and orientation)
 
     // Playback.
     QPointer<Timeline> timeline;

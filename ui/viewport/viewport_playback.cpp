@@ -60,13 +60,12 @@ void Viewport::refreshPlayback() {
         d_->scene->clearShownPoses();
     }
     if (frame != d_->shownFrame) {
-        const bool handlesChange = (frame > 0) != (d_->shownFrame > 0);
         d_->shownFrame = frame;
-        if (handlesChange) {
-            if (frame > 0 && d_->dragAxis >= 0) cancelHandleDrag();  // playback began mid-drag
-            updateHandles();
-        }
+        if (d_->dragAxis >= 0) cancelHandleDrag();  // the frame changed mid-drag (playback)
     }
+    // (At a later frame an animated body's handles follow it, and show once its run has
+    // come that far again.)
+    if (d_->dragAxis < 0) updateHandles();
     refreshOverlays();
 }
 

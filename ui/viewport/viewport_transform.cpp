@@ -3,6 +3,7 @@
 #include "viewport/viewport_handles.h"
 #include "viewport/viewport_impl.h"
 
+#include "document/body_keys.h"
 #include "document/joint_presets.h"
 #include "document/part_edits.h"
 
@@ -61,9 +62,21 @@ void Viewport::updateHandles() {
     if (!d_->gizmo) return;
     const QList<int> movable = d_->movableSelection();
     const int joint = d_->handledJoint(d_->mode);
-    // Edits are to the initial state: no handles while a later frame is drawn.
-    d_->handlesShown = (!movable.isEmpty() || joint >= 0) && d_->shownFrame == 0;
-    if (d_->handlesShown) {
+    // Edits are to the initial state: no handles while a later frame is drawn, but for one
+    // animated body, which a drag there keys at that frame.
+    const State* state = d_->shownFrame > 0 ? d_->frameState() : nullptr;
+    const bool keying = state && movable.size() == 1 && joint < 0 && d_->handledPart() < 0 &&
+                        d_->doc->body(movable.front()).motion == Motion::Animated && !d_->timeline->isStale();
+    d_->handlesShown = ((!movable.isEmpty() || joint >= 0) && d_->shownFrame == 0) || keying;
+    if (keying) {
+        const int i = movable.front();
+        d_->handlesOrigin = d_->dragKeying && d_->dragAxis >= 0
+                                ? d_->dragOrigin
+                                : bodyFramePosition(d_->timeline->model()->bodies[size_t(i)], state->bodies[size_t(i)]);
+        const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
+        d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
+        d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
+    } else if (d_->handlesShown) {
         // A joint's stand on its anchor: they move it, or turn its axis.
         Vec3 sum = Vec3::Zero();
         for (int i : movable) sum += d_->doc->body(i).position;
@@ -135,10 +148,24 @@ bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
     d_->dragStart.clear();
     d_->dragJoint = d_->handledJoint(d_->mode);
     d_->dragPart = d_->handledPart();
-    if (d_->dragJoint >= 0)
+    d_->dragKeying = false;
+    d_->dragKeyMoved = false;
+    const State* state = d_->shownFrame > 0 ? d_->frameState() : nullptr;
+    if (d_->dragJoint >= 0) {
         d_->dragJointStart = d_->doc->joint(d_->dragJoint);
-    else
+    } else if (state) {
+        // (The handles show at a later frame for one animated body only: updateHandles.)
+        const int i = d_->movableSelection().front();
+        BodyDesc drawn = d_->doc->body(i);
+        const BodyState& s = state->bodies[size_t(i)];
+        drawn.position = bodyFramePosition(d_->timeline->model()->bodies[size_t(i)], s);
+        drawn.orientation = s.q;
+        d_->dragStart.emplace_back(i, drawn);
+        d_->dragKeying = true;
+        d_->dragKeyTime = state->time;
+    } else {
         for (int i : d_->movableSelection()) d_->dragStart.emplace_back(i, d_->doc->body(i));
+    }
     d_->dragMergeId = kDragMergeBase + (++d_->dragCounter & 0xffffff);
     d_->dragCommand = nullptr;
     d_->gizmo->setHighlight(axis);
@@ -170,6 +197,13 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
             return move ? handles::partMoved(b, part, a, amount) : handles::partRotated(b, part, a, amount);
         return move ? handles::moved(b, a, amount) : handles::rotated(b, d_->dragOrigin, a, amount);
     };
+    if (d_->dragKeying) {  // drawn as it goes; keyed when the drag ends
+        const auto& [index, before] = d_->dragStart.front();
+        d_->dragKeyPose = apply(before);
+        d_->dragKeyMoved = true;
+        d_->scene->setShownPose(index, toQt(d_->dragKeyPose.position), toQt(d_->dragKeyPose.orientation));
+        return;
+    }
     const QString verb = move ? tr("Move") : tr("Rotate");
     Document* doc = d_->doc;
     QUndoStack* stack = doc->undoStack();
@@ -214,6 +248,13 @@ bool Viewport::dragCommandOnTop() const {
 
 void Viewport::cancelHandleDrag() {
     if (d_->dragAxis < 0) return;
+    if (d_->dragKeying) {  // nothing was keyed: the frame is drawn as recorded again
+        d_->dragKeyMoved = false;
+        d_->dragButton = Qt::NoButton;
+        endHandleDrag();
+        refreshPlayback();
+        return;
+    }
     // The drag's step is undone (the bodies go back) and then dropped from the stack: an
     // obsolete command is deleted by QUndoStack::redo() instead of being redone, so neither
     // an undo nor a redo step is left behind.
@@ -228,6 +269,16 @@ void Viewport::cancelHandleDrag() {
 }
 
 void Viewport::endHandleDrag() {
+    if (d_->dragKeying && d_->dragKeyMoved && !d_->dragStart.empty()) {
+        const int index = d_->dragStart.front().first;
+        BodyDesc b = d_->doc->body(index);
+        insertKey(b, d_->dragKeyTime, d_->dragKeyPose.position, d_->dragKeyPose.orientation);
+        d_->dragKeying = false;  // (the edit below redraws the handles: not mid-drag any more)
+        d_->doc->setBody(index, b,
+                         tr("Key %1 at %2 s").arg(QString::fromStdString(b.name)).arg(d_->dragKeyTime, 0, 'g', 6));
+    }
+    d_->dragKeying = false;
+    d_->dragKeyMoved = false;
     d_->dragAxis = -1;
     d_->dragStart.clear();
     d_->dragJoint = -1;

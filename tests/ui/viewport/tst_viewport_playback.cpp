@@ -34,6 +34,9 @@ using O = Viewport::Overlay;
 QVector3D toQt(const Vec3& v) {
     return QVector3D(float(v.x()), float(v.y()), float(v.z()));
 }
+Vec3 toVec(const QVector3D& v) {
+    return Vec3(v.x(), v.y(), v.z());
+}
 QQuaternion toQt(const Quat& q) {
     const Quat n = q.normalized();
     return QQuaternion(float(n.w()), float(n.x()), float(n.y()), float(n.z()));
@@ -197,6 +200,46 @@ private slots:
         QVERIFY(f.view->handlesVisible());
         QCOMPARE(f.view->bodyAt(projected(*f.view, start)), 1);
         QVERIFY(f.view->bodyAt(projected(*f.view, now)) != 1);
+    }
+
+    // Issue 50 item 2: at a later frame an animated body's handles show where it is drawn;
+    // a drag moves it there and its end keys that pose at the frame's time (one undo step);
+    // the run is redone and passes through the key.
+    void anAnimatedBodyIsKeyedByDraggingItAtAFrame() {
+        Fixture f(":/scenes/lift.json");
+        QVERIFY(f.ok);
+        QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
+        f.view->setCamera(QVector3D(0, 1, 0), 8.0f, 20.0f, 15.0f);
+        f.doc.setSelection({1});  // the lift
+        f.timeline->seek(150);    // 2.5 s: on its way up
+        QVERIFY(f.view->handlesVisible());
+        const State s = f.frame(150);
+        const Vec3 drawn = bodyFramePosition(f.model().bodies[1], s.bodies[1]);
+        QVERIFY((toVec(f.view->handlesOrigin()) - drawn).norm() < 1e-5);
+        // Drag the x arrow by about half its length.
+        const double size = f.view->handlesSize();
+        const QPoint from = projected(*f.view, drawn + Vec3(0.8 * size, 0, 0));
+        const QPoint to = projected(*f.view, drawn + Vec3(1.3 * size, 0, 0));
+        const int steps = f.doc.undoStack()->count();
+        QWindow* w = f.view->renderWindow();
+        QTest::mousePress(w, Qt::LeftButton, Qt::NoModifier, from);
+        for (int i = 1; i <= 4; ++i) QTest::mouseMove(w, from + (to - from) * i / 4);
+        QCOMPARE(f.doc.undoStack()->count(), steps);  // nothing keyed while it moves
+        QTest::mouseRelease(w, Qt::LeftButton, Qt::NoModifier, to);
+        QCOMPARE(f.doc.undoStack()->count(), steps + 1);
+        const BodyDesc& lift = f.doc.body(1);
+        QCOMPARE(int(lift.keys.size()), 3);
+        QVERIFY(std::abs(lift.keys[1].time - 2.5) < 1e-12);
+        const Vec3 keyed = lift.keys[1].position;
+        QVERIFY2(keyed.x() > 0.2 * size && std::abs(keyed.y() - drawn.y()) < 1e-9 && std::abs(keyed.z()) < 1e-9,
+                 qPrintable(QString("keyed at %1 %2 %3").arg(keyed.x()).arg(keyed.y()).arg(keyed.z())));
+        // The new run passes through it.
+        f.timeline->simulate();
+        QVERIFY(QTest::qWaitFor([&] { return f.timeline->status() == Timeline::Status::Complete; }, kWaitMs));
+        const State after = f.frame(150);
+        QVERIFY((bodyFramePosition(f.model().bodies[1], after.bodies[1]) - keyed).norm() < 1e-9);
+        f.doc.undoStack()->undo();
+        QCOMPARE(int(f.doc.body(1).keys.size()), 2);
     }
 
     void aRecordingOfOtherBodiesFallsBackToTheDocument() {
