@@ -31,9 +31,13 @@ constexpr double kMoving = 1e-3;  // × the resting speed: a body slower is at r
 // How far a surface point of body i can have moved from the free step's end: the frame's
 // shift and, turned by θ, at most θ r more (r its bounding radius; 2 sin(θ/2) r exactly).
 double moveFromFreeEnd(const collision::Pose& now, const collision::Pose& end, double r) {
-    // trace(R Rₑᵀ) = 1 + 2 cos θ, the sum of the two matrices' products entry by entry.
-    const double c = std::clamp(0.5 * ((now.R.array() * end.R.array()).sum() - 1.0), -1.0, 1.0);
-    return (now.p - end.p).norm() + std::acos(c) * r;
+    // θ of R Rₑᵀ by atan2 of its sine and cosine (its skew part, its trace: 1 + 2 cos θ):
+    // acos of the cosine alone turned rounding of 1e-16 into 1e-8 rad at θ = 0 (sqrt of it),
+    // so that a world turned as a whole, whose matrices are not exact, saw bodies move.
+    const Mat3 rel = now.R * end.R.transpose();
+    const Vec3 skew(rel(2, 1) - rel(1, 2), rel(0, 2) - rel(2, 0), rel(1, 0) - rel(0, 1));
+    const double angle = std::atan2(0.5 * skew.norm(), 0.5 * (rel.trace() - 1.0));
+    return (now.p - end.p).norm() + angle * r;
 }
 
 // Whether a point of body i moves faster than `speed`, by a bound: |v| + |ω| r.
