@@ -301,35 +301,6 @@ private slots:
         QVERIFY(std::abs((pose.R.conjugate() * (fixed.state().bodies[1].x - pose.t)).y() - 2) > 0.1);
     }
 
-    // A box on a lift holding still before its first key falls asleep there; the lift
-    // wakes it as it starts, and it rides up at the lift's speed.
-    void aBoxSleepsOnAHeldLiftAndWakesAsItMoves_data() {
-        QTest::addColumn<int>("interpolation");
-        QTest::newRow("linear") << int(KeyInterpolation::Linear);
-        QTest::newRow("smooth") << int(KeyInterpolation::Smooth);
-    }
-    void aBoxSleepsOnAHeldLiftAndWakesAsItMoves() {
-        QFETCH(int, interpolation);
-        const double dt = 1.0 / 60;
-        BodyDesc lift = animated(boxBody("lift", Vec3(1, 0.1, 1), 1.0),
-                                 {{2.0, Vec3::Zero(), Quat::Identity()}, {4.0, Vec3(0, 1, 0), Quat::Identity()}},
-                                 KeyInterpolation(interpolation));
-        BodyDesc box = boxBody("box", Vec3(0.2, 0.2, 0.2), 2.0);
-        box.position = Vec3(0, 0.3, 0);
-        SceneDesc scene = sceneOf({material(lift, 0.0, 0.5), material(box, 0.0, 0.5)});
-        scene.settings.sleeping = true;
-        World w(scene);
-        while (w.state().time < 2.0 - 0.5 * dt) w.step(dt);
-        QVERIFY(w.state().isAsleep(1));
-        while (w.state().time < 3.0 - 0.5 * dt) w.step(dt);
-        QVERIFY(!w.state().isAsleep(1));
-        const Vec3 liftV = derive(w.model().bodies[0], w.state().bodies[0]).v;
-        QVERIFY2((velocityOf(w, 1) - liftV).norm() <= (interpolation ? 1.5 * dt : 1e-9),
-                 qPrintable(QString("box %1, lift %2 m/s up").arg(velocityOf(w, 1).y()).arg(liftV.y())));
-        const double above = w.state().bodies[1].x.y() - w.state().bodies[0].x.y();
-        QVERIFY2(above > 0.3 - 1e-3 && above < 0.3 + 1e-9, qPrintable(QString("%1 m above").arg(above, 0, 'g', 12)));
-    }
-
     // Bad keys are refused naming the field.
     void badKeysAreRefused_data() {
         QTest::addColumn<int>("problem");

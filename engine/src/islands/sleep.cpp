@@ -11,15 +11,6 @@ using collision::ManifoldList;
 
 namespace {
 
-// A kinematic body that moves at the state's time: at a constant velocity, or an animated
-// one not holding still (its state's P and L are its velocities; a step that ends where its
-// path starts to move has them already: it wakes what rests on it before it moves).
-bool movesNow(const BodyModel& b, const BodyState& s) {
-    if (b.motion != Motion::Kinematic || b.standsStill()) return false;
-    return !b.path || !(s.P.isZero(0.0) && s.L.isZero(0.0));
-}
-
-
 bool touches(const Manifold& m, double tol) {
     for (int i = 0; i < m.count; ++i)
         if (m.points[i].depth >= -tol) return true;
@@ -79,10 +70,10 @@ bool updateSleep(const Model& model, State& state, const ManifoldList& contacts,
         if (dynamicBody(model, a) && dynamicBody(model, b)) {
             s.parent[islandRoot(s.parent, a)] = islandRoot(s.parent, b);
         } else {
-            // Resting on a moving kinematic body keeps the island awake (on an animated one
-            // holding still between its keys it may sleep, and wakes when the body moves).
+            // Resting on a moving kinematic body keeps the island awake.
             for (int k : {a, b})
-                if (movesNow(model.bodies[k], state.bodies[k])) s.blocked[a == k ? b : a] = 1;
+                if (model.bodies[k].motion == Motion::Kinematic && !model.bodies[k].standsStill())
+                    s.blocked[a == k ? b : a] = 1;
         }
     }
     // Joints are island edges too: a jointed assembly sleeps and wakes as one. A running
@@ -125,10 +116,7 @@ bool wakeTouched(const Model& model, State& state, const ManifoldList& contacts,
     // it neither wakes nor wakes others.
     auto isParked = [&](int b) { return !parked.empty() && parked[b] != 0; };
     auto sleeps = [&](int b) { return state.isAsleep(b) && !isParked(b); };
-    auto active = [&](int b) {
-        return !model.bodies[b].standsStill() && !state.isAsleep(b) &&
-               (model.bodies[b].motion != Motion::Kinematic || movesNow(model.bodies[b], state.bodies[b]));
-    };
+    auto active = [&](int b) { return !model.bodies[b].standsStill() && !state.isAsleep(b); };
     auto touchPair = [&](int a, int b) {
         if (sleeps(a) && active(b)) stack.push_back(a);
         if (sleeps(b) && active(a)) stack.push_back(b);
