@@ -588,7 +588,24 @@ void Document::endMacro() {
     undo_->endMacro();
 }
 
+QList<int> Document::selectionInPickOrder() const {
+    QList<int> order;
+    for (int i : picked_)
+        if (selection_.contains(i) && !order.contains(i)) order.append(i);
+    for (int i : selection_)  // (selected otherwise: a part, a new body)
+        if (!order.contains(i)) order.append(i);
+    return order;
+}
+
 void Document::setSelection(QList<int> indices) {
+    // The pick order: those still selected as they were picked, then the new ones as given
+    // (a Ctrl+click appends the body it adds).
+    QList<int> order;
+    for (int i : picked_)
+        if (indices.contains(i) && selection_.contains(i)) order.append(i);
+    for (int i : indices)
+        if (!order.contains(i) && i >= 0 && i < bodyCount()) order.append(i);
+    picked_ = order;
     std::sort(indices.begin(), indices.end());
     indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
     indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
@@ -640,8 +657,9 @@ void Document::applySettings(const Settings& settings) {
 
 void Document::applyInsert(int index, const BodyDesc& body) {
     scene_.bodies.insert(scene_.bodies.begin() + index, body);
-    for (int& s : selection_)
-        if (s >= index) ++s;
+    for (QList<int>* list : {&selection_, &picked_})
+        for (int& s : *list)
+            if (s >= index) ++s;
     emit bodyInserted(index);
 }
 
@@ -649,8 +667,10 @@ void Document::applyRemove(int index) {
     scene_.bodies.erase(scene_.bodies.begin() + index);
     const qsizetype before = selection_.size();
     selection_.removeAll(index);
-    for (int& s : selection_)
-        if (s > index) --s;
+    picked_.removeAll(index);
+    for (QList<int>* list : {&selection_, &picked_})
+        for (int& s : *list)
+            if (s > index) --s;
     if (selection_.size() != 1) selectedPart_ = -1;
     emit bodyRemoved(index);
     if (selection_.size() != before) emit selectionChanged();

@@ -121,6 +121,9 @@ public:
     // A joint can be selected instead (the scene tree's joint list, the property panel's
     // joint page): selecting bodies deselects it and selecting it deselects the bodies.
     const QList<int>& selection() const { return selection_; }
+    /// The selection in the order its bodies were picked (the first picked first): the
+    /// joint a selection makes has the first picked body as its base (presetJoint).
+    QList<int> selectionInPickOrder() const;
     void setSelection(QList<int> indices);
     /// The selected part of the one selected (compound) body, or -1: the scene tree's part
     /// rows and the part panel. Selecting bodies or a joint deselects it.
@@ -169,6 +172,7 @@ private:
     // "(removed)", "(changed)" or "" for the body's mesh file.
     QString meshFileChange(const ShapeDesc& shape) const;
     QList<int> selection_;
+    QList<int> picked_;  // the selection's bodies in the order they were picked (maybe stale: selectionInPickOrder)
     int selectedJoint_ = -1;
     int selectedPart_ = -1;
     QUndoStack* undo_ = nullptr;

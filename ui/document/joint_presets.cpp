@@ -12,7 +12,9 @@ std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, con
     if (selection.empty() || selection.size() > 2) return refuse("select one body (joined to the world) or two");
     for (int i : selection)
         if (i < 0 || i >= n) return refuse("select one body (joined to the world) or two");
-    int a = selection[0], b = selection.size() == 2 ? selection[1] : -1;
+    // Two bodies: the first picked is the base (B), the second the part that moves on it (A):
+    // a hinge's motor at +1 rad/s turns the second picked the right-hand way about the axis.
+    int a = selection.size() == 2 ? selection[1] : selection[0], b = selection.size() == 2 ? selection[0] : -1;
     const auto dynamic = [&](int i) { return i >= 0 && scene.bodies[i].motion == Motion::Dynamic; };
     if (!dynamic(a) && !dynamic(b)) return refuse("a joint needs a dynamic body among those selected");
     if (!dynamic(a)) std::swap(a, b);  // body_a is one that moves
@@ -35,6 +37,23 @@ std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, con
     if (type == JointType::Hinge) j.axisA = A.orientation.conjugate() * Vec3::UnitY();
     if (type == JointType::Slider) j.axisA = A.orientation.conjugate() * Vec3::UnitX();
     return j;
+}
+
+std::optional<JointDesc> swappedJoint(const SceneDesc& scene, const JointDesc& j) {
+    if (j.bodyB.empty()) return std::nullopt;  // the world cannot be body A
+    JointDesc s = j;
+    std::swap(s.bodyA, s.bodyB);
+    std::swap(s.anchorA, s.anchorB);
+    if (j.axisA) {
+        // The new A's axis: B's as given, else A's as it lies at the start, in B's frame.
+        const BodyFrame a = frameOf(scene, j.bodyA), b = frameOf(scene, j.bodyB);
+        s.axisA = j.axisB ? *j.axisB : Vec3(b.q.conjugate() * (a.q * *j.axisA));
+        s.axisB = *j.axisA;
+    }
+    // The coordinate is the other body's against this one: the same motion, the other sign.
+    if (j.limits) s.limits = std::array<double, 2>{-(*j.limits)[1], -(*j.limits)[0]};
+    if (j.motor) s.motor->speed = -j.motor->speed;
+    return s;
 }
 
 BodyFrame frameOf(const SceneDesc& scene, const std::string& name) {

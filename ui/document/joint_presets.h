@@ -12,9 +12,12 @@
 namespace tumble::ui {
 
 /// A joint of `type` for `selection` (body indices of `scene`):
-/// - two bodies: between them; ball, hinge, slider and fixed anchored at the midpoint of
-///   their positions, distance and rope at each body's origin (their length: the distance
-///   in the scene). body_a is the dynamic one when only the other cannot move;
+/// - two bodies (`selection` in the order they were picked): between them; the first picked
+///   is the base (body_b) and the second the moving part (body_a), so that a positive motor
+///   turns or slides the second picked the right-hand way along the axis; but body_a is the
+///   dynamic one when only the other cannot move. Ball, hinge, slider and fixed anchored at
+///   the midpoint of their positions, distance and rope at each body's origin (their
+///   length: the distance in the scene);
 /// - one body: to the world; ball, hinge, slider and fixed anchored at its position,
 ///   distance and rope at a world point 1 m above it (a pendulum's string).
 /// A hinge turns about the world's y axis (a door, a turntable) and a slider slides along
@@ -23,6 +26,11 @@ namespace tumble::ui {
 /// one. The name is the type's (the document makes it unique).
 std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, const std::vector<int>& selection,
                                      std::string* why);
+
+/// Joint `j` with its bodies swapped (A the base's place, B the moving part's), meaning the
+/// same: anchors and axes follow their bodies, a hinge's or slider's limits and motor speed
+/// change sign (its coordinate is A's against B). Nothing for a joint to the world.
+std::optional<JointDesc> swappedJoint(const SceneDesc& scene, const JointDesc& j);
 
 /// Where body `name` is placed (the world's frame for an empty name or one no body has).
 struct BodyFrame {

@@ -16,6 +16,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
+#include <QPushButton>
 #include <QSignalBlocker>
 #include <QVBoxLayout>
 
@@ -124,12 +125,33 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     });
 
     // The bodies: a change keeps the anchor (and the axis) where it is in the world.
+    // The coordinate (a hinge's angle, a slider's offset) is A's against B: B is the base,
+    // A the part that moves on it; Swap exchanges them, meaning the same.
     bodyA_ = new QComboBox;
     bodyA_->setObjectName("joint.body_a");
-    addRow(tr("Body A"), "body_a", bodyA_);
+    bodyA_->setToolTip(tr("The part that moves: a positive motor turns it the right-hand way about the axis"));
+    addRow(tr("Moving (A)"), "body_a", bodyA_);
     bodyB_ = new QComboBox;
     bodyB_->setObjectName("joint.body_b");
-    addRow(tr("Body B"), "body_b", bodyB_);
+    bodyB_->setToolTip(tr("The base the part moves on, or the world"));
+    swap_ = new QPushButton(tr("Swap"));
+    swap_->setObjectName("joint.swap");
+    swap_->setToolTip(tr("Make the base the moving part and the moving part the base: the same joint "
+                         "(its limits and motor speed change sign)"));
+    auto* base = new QWidget;
+    auto* baseLayout = new QHBoxLayout(base);
+    baseLayout->setContentsMargins(0, 0, 0, 0);
+    baseLayout->addWidget(bodyB_, 1);
+    baseLayout->addWidget(swap_);
+    addRow(tr("Base (B)"), "body_b", base);
+    connect(swap_, &QPushButton::clicked, this, [this] {
+        apply(
+            "body_b", tr("Swap joint bodies"),
+            [this](JointDesc& j) {
+                if (const auto s = swappedJoint(doc_->scene(), j)) j = *s;
+            },
+            false);
+    });
     auto rebind = [this](bool first, const std::string& name) {
         return [this, first, name](JointDesc& j) {
             const SceneDesc& scene = doc_->scene();
@@ -482,6 +504,7 @@ void JointPanel::refresh() {
     anchorA_->showValue(held_.value("anchor_a", j.anchorA));
     anchorB_->showValue(held_.value("anchor_b", j.anchorB));
     anchorB_->setToolTip(j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
+    swap_->setEnabled(!j.bodyB.empty());
     const bool ax = axial(j.type);
     form_->setRowVisible(rows_["axis_a"], ax);
     form_->setRowVisible(rows_["axis_b"], ax);

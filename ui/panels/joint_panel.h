@@ -15,6 +15,7 @@
 
 class QCheckBox;
 class QComboBox;
+class QPushButton;
 class QFormLayout;
 class QLabel;
 class QLineEdit;
@@ -66,6 +67,7 @@ private:
     QComboBox* type_ = nullptr;
     QComboBox* bodyA_ = nullptr;
     QComboBox* bodyB_ = nullptr;
+    QPushButton* swap_ = nullptr;
     VectorEdit* anchorA_ = nullptr;
     VectorEdit* anchorB_ = nullptr;
     VectorEdit* axisA_ = nullptr;

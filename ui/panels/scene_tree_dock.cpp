@@ -330,7 +330,7 @@ void SceneTreeDock::updateActions() {
 }
 
 void SceneTreeDock::addJoint(JointType type) {
-    const QList<int>& sel = doc_->selection();
+    const QList<int> sel = doc_->selectionInPickOrder();
     std::string why;
     const auto joint = presetJoint(type, doc_->scene(), std::vector<int>(sel.begin(), sel.end()), &why);
     if (!joint) {

@@ -16,6 +16,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QLineEdit>
+#include <QPushButton>
 #include <QTreeWidget>
 #include <QUndoStack>
 #include <QtTest>
@@ -89,6 +90,35 @@ struct Fixture {
 class TestJointPanel : public QObject {
     Q_OBJECT
 private slots:
+    // Issue 51 item 2: the panel names the base and the moving part, and Swap exchanges them
+    // in one undo step, meaning the same (anchors with their bodies, limits and motor speed
+    // of the other sign); a joint to the world has nothing to swap with.
+    void swapExchangesTheBaseAndTheMovingPart() {
+        Fixture f;
+        JointDesc j = f.joint();
+        j.limits = std::array<double, 2>{0.0, 1.5};
+        j.motor = JointDesc::Motor{1.0, 20.0};
+        f.doc.setJoint(0, j, "Limits and motor");
+        f.doc.selectJoint(0);
+        auto* swap = f.find<QPushButton>("joint.swap");
+        QVERIFY(swap && swap->isEnabled());
+        const int steps = f.doc.undoStack()->count();
+        swap->click();
+        QCOMPARE(f.doc.undoStack()->count(), steps + 1);
+        const JointDesc& s = f.joint();
+        QCOMPARE(s.bodyA, std::string("post"));
+        QCOMPARE(s.bodyB, std::string("door"));
+        QCOMPARE(s.anchorA, j.anchorB);
+        QCOMPARE(s.anchorB, j.anchorA);
+        QVERIFY(*s.limits == (std::array<double, 2>{-1.5, 0.0}));
+        QCOMPARE(s.motor->speed, -1.0);
+        QCOMPARE(f.find<QComboBox>("joint.body_a")->currentText(), QString("post"));
+        f.doc.undoStack()->undo();
+        QCOMPARE(f.joint().bodyA, std::string("door"));
+        f.choose("joint.body_b", "(world)");
+        QVERIFY(!swap->isEnabled());
+    }
+
     void listSelectsTheJointAndTheBodiesBack() {
         Fixture f;
         auto* list = f.tree.findChild<QTreeWidget*>("jointListView");

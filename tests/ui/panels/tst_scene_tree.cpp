@@ -2,6 +2,7 @@
 // undo; a taken or empty name is refused; the selection is the document's, both ways.
 #include "document/body_presets.h"
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "panels/scene_tree_dock.h"
 #include "panels/scene_tree_model.h"
 
@@ -251,12 +252,13 @@ private slots:
         QCOMPARE(doc.scene().joints.size(), size_t(1));
         JointDesc j = doc.scene().joints[0];
         QCOMPARE(j.name, std::string("hinge"));
-        QCOMPARE(j.bodyA, std::string("left"));
-        QCOMPARE(j.bodyB, std::string("right"));
+        // The first picked is the base (B), the second the part that moves on it (A).
+        QCOMPARE(j.bodyA, std::string("right"));
+        QCOMPARE(j.bodyB, std::string("left"));
         // Both anchors at the midpoint (0, 2, 0), the axes along the world's y.
-        QVERIFY((a.position + a.orientation * j.anchorA - Vec3(0, 2, 0)).norm() < 1e-12);
-        QVERIFY((b.position + b.orientation * j.anchorB - Vec3(0, 2, 0)).norm() < 1e-12);
-        QVERIFY(j.axisA && (a.orientation * *j.axisA - Vec3::UnitY()).norm() < 1e-12);
+        QVERIFY((b.position + b.orientation * j.anchorA - Vec3(0, 2, 0)).norm() < 1e-12);
+        QVERIFY((a.position + a.orientation * j.anchorB - Vec3(0, 2, 0)).norm() < 1e-12);
+        QVERIFY(j.axisA && (b.orientation * *j.axisA - Vec3::UnitY()).norm() < 1e-12);
         QCOMPARE(doc.undoStack()->undoText(), QString("Add hinge joint"));
 
         doc.setSelection({2});
@@ -277,7 +279,7 @@ private slots:
         for (int k = 0; k < 15; ++k) w.step(1.0 / 60.0);
         const Vec3 wa = derive(w.model().bodies[1], w.state().bodies[1]).omega;
         const Vec3 wb = derive(w.model().bodies[2], w.state().bodies[2]).omega;
-        const Vec3 axis = w.state().bodies[1].q * *j.axisA;
+        const Vec3 axis = w.state().bodies[2].q * *j.axisA;
         const Vec3 across = (wa - wb) - (wa - wb).dot(axis) * axis;
         QVERIFY2(across.norm() < 1e-9 && std::abs((wa - wb).dot(axis)) > 0.1, qPrintable(QString::number(across.norm())));
 
@@ -289,6 +291,62 @@ private slots:
         auto* message = dock.findChild<QLabel*>("sceneTreeMessage");
         QVERIFY(message && !message->isHidden());
         QCOMPARE(message->text(), QString("No joint added: a joint needs a dynamic body among those selected."));
+    }
+
+    // Issue 51 item 2: the base is the body picked first, whatever the bodies' order in the
+    // scene; a hinge's motor at +1 rad/s then turns the part picked second at +1 rad/s the
+    // right-hand way about the axis (no gravity; the base static). Swapping the bodies keeps
+    // the motion: the same run to rounding.
+    void theFirstPickedIsTheBaseAndSwapKeepsTheMotion() {
+        Document doc;
+        SceneTreeDock dock(&doc, nullptr);
+        BodyDesc wheel = presetBody(ShapeType::Cylinder, doc.scene()), post = presetBody(ShapeType::Box, doc.scene());
+        wheel.name = "wheel";
+        wheel.position = Vec3(0, 2, 0);
+        post.name = "post";
+        post.motion = Motion::Static;
+        post.mass.reset();
+        post.density.reset();
+        post.position = Vec3(0, 1, 0);
+        doc.addBody(wheel);  // 1
+        doc.addBody(post);   // 2
+        Settings settings = doc.scene().settings;
+        settings.gravity = Vec3::Zero();
+        doc.setSettings(settings, "No gravity");
+        doc.setSelection({2});     // the post first,
+        doc.setSelection({2, 1});  // then the wheel
+        QCOMPARE(doc.selectionInPickOrder(), QList<int>({2, 1}));
+        dock.addJointAction(JointType::Hinge)->trigger();
+        JointDesc hinge = doc.scene().joints.at(0);
+        QCOMPARE(hinge.bodyA, std::string("wheel"));
+        QCOMPARE(hinge.bodyB, std::string("post"));
+        hinge.motor = JointDesc::Motor{1.0, 100.0};
+        hinge.limits = std::array<double, 2>{-0.5, 2.0};
+        doc.setJoint(0, hinge, "Motor");
+        auto spin = [](const SceneDesc& scene) {  // the wheel's spin about the world's y after 1 s
+            World w(scene);
+            for (int k = 0; k < 60; ++k) w.step(1.0 / 60);
+            return derive(w.model().bodies[1], w.state().bodies[1]).omega;
+        };
+        SceneDesc run = doc.scene();
+        run.settings.dt = 1.0 / 60;
+        const Vec3 w = spin(run);
+        QVERIFY2((w - Vec3(0, 1, 0)).norm() < 1e-9, qPrintable(QString("%1 %2 %3").arg(w.x()).arg(w.y()).arg(w.z())));
+        // Swapped: the post is A, the wheel the base; the motor and limits change sign.
+        const std::optional<JointDesc> swapped = swappedJoint(doc.scene(), hinge);
+        QVERIFY(swapped);
+        QCOMPARE(swapped->bodyA, std::string("post"));
+        QCOMPARE(swapped->motor->speed, -1.0);
+        QVERIFY(*swapped->limits == (std::array<double, 2>{-2.0, 0.5}));
+        run.joints[0] = *swapped;
+        QVERIFY2((spin(run) - w).norm() < 1e-12, "the same motion");
+        // With the wheel picked first, it is the base, and the hinge's bodies go the other way.
+        doc.setSelection({});
+        doc.setSelection({1});
+        doc.setSelection({1, 2});
+        dock.addJointAction(JointType::Hinge)->trigger();
+        QCOMPARE(doc.scene().joints.at(1).bodyA, std::string("wheel"));  // the post cannot move
+        QVERIFY(!swappedJoint(doc.scene(), JointDesc{}));                // nothing to swap with the world
     }
 
     void aTakenOrEmptyNameIsRefused() {
