@@ -16,10 +16,10 @@ using ojson = nlohmann::ordered_json;
 
 namespace {
 
-const std::vector<std::string> kSceneMeasures = {"energy_lost_contacts",       "energy_lost_friction",
-                                                 "energy_position_correction", "energy_lost_joints",
-                                                 "energy_by_kinematic",        "energy_lost_damping",
-                                                 "deepest_overlap"};
+const std::vector<std::string> kSceneMeasures = {
+    "energy_lost_contacts", "energy_lost_friction", "energy_position_correction",
+    "energy_lost_joints",   "energy_by_kinematic",  "energy_lost_damping",
+    "deepest_overlap"};
 const std::vector<std::string> kBodyMeasures = {"final_x", "final_y", "final_z", "final_speed", "highest", "rest_time"};
 
 ojson readJson(const fs::path& file) {

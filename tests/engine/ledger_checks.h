@@ -40,8 +40,9 @@ inline double ledgerGap(const World& w, double start) {
 
 inline QString describeLedger(const World& w, double start) {
     const EnergyLedger& l = w.ledger();
-    return QString("energy %1 -> %2 J; contacts %3, friction %4, joints %5, correction %6 J, by kinematic "
-                   "bodies %8 J; gap %7 J")
+    return QString(
+               "energy %1 -> %2 J; contacts %3, friction %4, joints %5, correction %6 J, by kinematic "
+               "bodies %8 J; gap %7 J")
         .arg(start, 0, 'g', 10)
         .arg(energy(w.model(), w.state()).total(), 0, 'g', 10)
         .arg(l.lostInContacts, 0, 'g', 4)

@@ -42,7 +42,8 @@ WorldPose poseOf(int seed) {
 void addRows(const char* name, std::initializer_list<double> rates) {
     for (double rate : rates)
         for (int seed : {0, 7})
-            QTest::newRow(qPrintable(QString("%1 1/%2 %3").arg(name).arg(rate).arg(seed ? "turned" : "as built")))
+            QTest::newRow(
+                qPrintable(QString("%1 1/%2 %3").arg(name).arg(rate).arg(seed ? "turned" : "as built")))
                 << 1.0 / rate << seed;
 }
 
@@ -50,8 +51,9 @@ void addRows(const char* name, std::initializer_list<double> rates) {
 // t = 0 at speed v for 2 s, and a 1 kg ball of radius 0.2 at rest at x = 0.5, no gravity,
 // no friction; restitution e on both.
 SceneDesc paddleScene(double v, double e, double x0 = -1.0, double halfThickness = 0.05) {
-    BodyDesc paddle = animated(boxBody("paddle", Vec3(halfThickness, 0.5, 0.5), 1.0),
-                               {{0.0, Vec3(x0, 0, 0), Quat::Identity()}, {2.0, Vec3(x0 + 2 * v, 0, 0), Quat::Identity()}});
+    BodyDesc paddle =
+        animated(boxBody("paddle", Vec3(halfThickness, 0.5, 0.5), 1.0),
+                 {{0.0, Vec3(x0, 0, 0), Quat::Identity()}, {2.0, Vec3(x0 + 2 * v, 0, 0), Quat::Identity()}});
     BodyDesc ball = sphereBody("ball", 0.2, 1.0);
     ball.position = Vec3(0.5, 0, 0);
     return sceneOf({material(paddle, e, 0.0), material(ball, e, 0.0)}, Vec3::Zero());
@@ -72,7 +74,8 @@ private slots:
         for (double e : {1.0, 0.0})
             for (double rate : {240.0, 60.0, 30.0})
                 for (int seed : {0, 7})
-                    QTest::newRow(qPrintable(QString("e %1 1/%2 %3").arg(e).arg(rate).arg(seed ? "turned" : "as built")))
+                    QTest::newRow(qPrintable(
+                        QString("e %1 1/%2 %3").arg(e).arg(rate).arg(seed ? "turned" : "as built")))
                         << 1.0 / rate << seed << e;
     }
     void paddleThrowsBall() {
@@ -86,17 +89,19 @@ private slots:
         const Vec3 ball = velocityOf(w, 1);
         const Vec3 want = pose.direction(Vec3((e == 1.0 ? 2.0 : 1.0) * v, 0, 0));
         QVERIFY2((ball - want).norm() < 1e-9, qPrintable(QString("ball at %1 %2 %3 m/s")
-                                                                 .arg(ball.x(), 0, 'g', 12)
-                                                                 .arg(ball.y(), 0, 'g', 12)
-                                                                 .arg(ball.z(), 0, 'g', 12)));
+                                                             .arg(ball.x(), 0, 'g', 12)
+                                                             .arg(ball.y(), 0, 'g', 12)
+                                                             .arg(ball.z(), 0, 'g', 12)));
         // The paddle is where its keys say, moving as they say.
         const BodyState& paddle = w.state().bodies[0];
         QVERIFY((paddle.x - pose.point(Vec3(-1.0 + 1.5 * v, 0, 0))).norm() < 1e-12);
         QVERIFY((derive(w.model().bodies[0], paddle).v - pose.direction(Vec3(v, 0, 0))).norm() < 1e-12);
         const EnergyLedger& l = w.ledger();
         const double work = (e == 1.0 ? 2.0 : 1.0) * v * v, lost = e == 1.0 ? 0.0 : 0.5 * v * v;
-        QVERIFY2(std::abs(l.doneByKinematic - work) < 1e-9 * work && std::abs(l.lostInContacts - lost) < 1e-9 * work,
-                 qPrintable(QString("by the paddle %1 J, lost %2 J").arg(l.doneByKinematic, 0, 'g', 12)
+        QVERIFY2(std::abs(l.doneByKinematic - work) < 1e-9 * work &&
+                     std::abs(l.lostInContacts - lost) < 1e-9 * work,
+                 qPrintable(QString("by the paddle %1 J, lost %2 J")
+                                .arg(l.doneByKinematic, 0, 'g', 12)
                                 .arg(l.lostInContacts, 0, 'g', 12)));
     }
 
@@ -132,8 +137,9 @@ private slots:
         QFETCH(double, dt);
         QFETCH(int, seed);
         const WorldPose pose = poseOf(seed);
-        BodyDesc lift = animated(boxBody("lift", Vec3(1, 0.1, 1), 1.0), {{0.5, Vec3::Zero(), Quat::Identity()},
-                                                                          {2.5, Vec3(0, 2, 0), Quat::Identity()}});
+        BodyDesc lift =
+            animated(boxBody("lift", Vec3(1, 0.1, 1), 1.0),
+                     {{0.5, Vec3::Zero(), Quat::Identity()}, {2.5, Vec3(0, 2, 0), Quat::Identity()}});
         BodyDesc box = boxBody("box", Vec3(0.2, 0.2, 0.2), 2.0);
         box.position = Vec3(0, 0.3, 0);
         World w(turnedScene(sceneOf({material(lift, 0.0, 0.5), material(box, 0.0, 0.5)}), pose));
@@ -146,10 +152,12 @@ private slots:
             highest = std::max(highest, height());
         }
         // Sitting on it, 0.3 m above its centre, within the contact slop (1 mm here).
-        QVERIFY2(lowest > 0.3 - 1e-3 && highest < 0.3 + 1e-9,
-                 qPrintable(QString("from %1 to %2 m above").arg(lowest, 0, 'g', 12).arg(highest, 0, 'g', 12)));
+        QVERIFY2(
+            lowest > 0.3 - 1e-3 && highest < 0.3 + 1e-9,
+            qPrintable(QString("from %1 to %2 m above").arg(lowest, 0, 'g', 12).arg(highest, 0, 'g', 12)));
         const Vec3 v = back * velocityOf(w, 1);
-        QVERIFY2((v - Vec3(0, 1, 0)).norm() < 1e-9, qPrintable(QString("box at %1 m/s up").arg(v.y(), 0, 'g', 12)));
+        QVERIFY2((v - Vec3(0, 1, 0)).norm() < 1e-9,
+                 qPrintable(QString("box at %1 m/s up").arg(v.y(), 0, 'g', 12)));
         while (w.state().time < 2.5 - 0.5 * dt) w.step(dt);
         w.step(dt);  // the first step after the stop: thrown up at 1 m/s less g dt
         const Vec3 thrown = back * velocityOf(w, 1);
@@ -174,9 +182,10 @@ private slots:
         QFETCH(double, dt);
         QFETCH(int, seed);
         const WorldPose pose = poseOf(seed);
-        BodyDesc lift = animated(boxBody("lift", Vec3(1, 0.1, 1), 1.0),
-                                 {{0.0, Vec3::Zero(), Quat::Identity()}, {2.0, Vec3(0, 2, 0), Quat::Identity()}},
-                                 KeyInterpolation::Smooth);
+        BodyDesc lift =
+            animated(boxBody("lift", Vec3(1, 0.1, 1), 1.0),
+                     {{0.0, Vec3::Zero(), Quat::Identity()}, {2.0, Vec3(0, 2, 0), Quat::Identity()}},
+                     KeyInterpolation::Smooth);
         BodyDesc box = boxBody("box", Vec3(0.2, 0.2, 0.2), 2.0);
         box.position = Vec3(0, 0.3, 0);
         World w(turnedScene(sceneOf({material(lift, 0.0, 0.5), material(box, 0.0, 0.5)}), pose));
@@ -188,18 +197,23 @@ private slots:
             const double h = (back * (w.state().bodies[1].x - w.state().bodies[0].x)).y();
             lowest = std::min(lowest, h);
             highest = std::max(highest, h);
-            slip = std::max(slip, (velocityOf(w, 1) - derive(w.model().bodies[0], w.state().bodies[0]).v).norm());
+            slip = std::max(slip,
+                            (velocityOf(w, 1) - derive(w.model().bodies[0], w.state().bodies[0]).v).norm());
         }
-        QVERIFY2(lowest > 0.3 - 1e-3 && highest < 0.3 + 1e-9,
-                 qPrintable(QString("from %1 to %2 m above").arg(lowest, 0, 'g', 12).arg(highest, 0, 'g', 12)));
-        QVERIFY2(slip <= 3.0 * dt + 1e-9, qPrintable(QString("box and lift %1 m/s apart").arg(slip, 0, 'g', 6)));
+        QVERIFY2(
+            lowest > 0.3 - 1e-3 && highest < 0.3 + 1e-9,
+            qPrintable(QString("from %1 to %2 m above").arg(lowest, 0, 'g', 12).arg(highest, 0, 'g', 12)));
+        QVERIFY2(slip <= 3.0 * dt + 1e-9,
+                 qPrintable(QString("box and lift %1 m/s apart").arg(slip, 0, 'g', 6)));
         // The lift did the work of raising the box 2 m (m g h = 39.24 J; it ends at rest):
         // the ledger books it, and closes with it.
         const double lifted = 2.0 * 9.81 * 2.0;
         const EnergyLedger& l = w.ledger();
         const double gap = ledgerGap(w, start);
         QVERIFY2(std::abs(l.doneByKinematic - lifted) < 1e-2 * lifted && std::abs(gap) < 1e-3 * lifted,
-                 qPrintable(QString("by the lift %1 J, %2").arg(l.doneByKinematic, 0, 'g', 8).arg(describeLedger(w, start))));
+                 qPrintable(QString("by the lift %1 J, %2")
+                                .arg(l.doneByKinematic, 0, 'g', 8)
+                                .arg(describeLedger(w, start))));
     }
 
     // A turntable at ω = 2 rad/s (keyed every quarter turn) with boxes (μ = 0.5) turning
@@ -229,7 +243,8 @@ private slots:
         const double inner = 0.9, outer = 1.1;
         for (double share : {inner, outer}) {
             const double r = share * reach, side = share < 1.0 ? 1.0 : -1.0;
-            BodyDesc box = material(boxBody("box " + std::to_string(share), Vec3(0.1, 0.1, 0.1), 1.0), 0.0, mu);
+            BodyDesc box =
+                material(boxBody("box " + std::to_string(share), Vec3(0.1, 0.1, 0.1), 1.0), 0.0, mu);
             box.position = Vec3(side * r, 0.2, 0);
             box.velocity = Vec3(0, 0, -side * omega * r);  // ω ŷ × r
             box.angularVelocity = Vec3(0, omega, 0);
@@ -248,7 +263,8 @@ private slots:
         const Vec3 kept = at(1), lost = at(2);
         const double r = std::hypot(kept.x(), kept.z());
         const double drift = std::numbers::pi * omega * inner * reach * dt;
-        QVERIFY2(slip < 8 * omega * omega * inner * reach * dt * dt, qPrintable(QString("the inner box slipped at %1 m/s").arg(slip, 0, 'g', 3)));
+        QVERIFY2(slip < 8 * omega * omega * inner * reach * dt * dt,
+                 qPrintable(QString("the inner box slipped at %1 m/s").arg(slip, 0, 'g', 3)));
         QVERIFY2(r < inner * reach && r > inner * reach - 1.2 * drift && std::abs(kept.y() - 0.2) < 1e-3,
                  qPrintable(QString("the inner box at %1 %2 %3 m: radius %4 m, drawn in %5 (π ω r h: %6)")
                                 .arg(kept.x(), 0, 'g', 8)
@@ -258,7 +274,8 @@ private slots:
                                 .arg(inner * reach - r, 0, 'g', 3)
                                 .arg(drift, 0, 'g', 3)));
         QVERIFY2(std::hypot(lost.x(), lost.z()) > 1.5 * outer * reach,
-                 qPrintable(QString("the outer box at radius %1 m").arg(std::hypot(lost.x(), lost.z()), 0, 'g', 8)));
+                 qPrintable(
+                     QString("the outer box at radius %1 m").arg(std::hypot(lost.x(), lost.z()), 0, 'g', 8)));
     }
 
     // A pendulum hung from a carriage keyed to move at a constant 1 m/s swings as it would
@@ -274,8 +291,9 @@ private slots:
         QFETCH(int, seed);
         const WorldPose pose = poseOf(seed);
         auto scene = [&](double v) {
-            BodyDesc pivot = animated(boxBody("carriage", Vec3(0.1, 0.1, 0.1), 1.0),
-                                      {{0.0, Vec3(0, 2, 0), Quat::Identity()}, {10.0, Vec3(10 * v, 2, 0), Quat::Identity()}});
+            BodyDesc pivot = animated(
+                boxBody("carriage", Vec3(0.1, 0.1, 0.1), 1.0),
+                {{0.0, Vec3(0, 2, 0), Quat::Identity()}, {10.0, Vec3(10 * v, 2, 0), Quat::Identity()}});
             BodyDesc bob = sphereBody("bob", 0.1, 1.0);
             bob.position = Vec3(1, 2, 0);
             bob.velocity = Vec3(v, 0, 0);
@@ -295,8 +313,9 @@ private slots:
         const Vec3 travel = pose.direction(Vec3(n * dt, 0, 0));
         const Vec3 gap = moving.state().bodies[1].x - travel - fixed.state().bodies[1].x;
         const Vec3 dv = velocityOf(moving, 1) - pose.direction(Vec3(1, 0, 0)) - velocityOf(fixed, 1);
-        QVERIFY2(gap.norm() < 1e-6 && dv.norm() < 1e-6,
-                 qPrintable(QString("%1 m, %2 m/s apart").arg(gap.norm(), 0, 'g', 3).arg(dv.norm(), 0, 'g', 3)));
+        QVERIFY2(
+            gap.norm() < 1e-6 && dv.norm() < 1e-6,
+            qPrintable(QString("%1 m, %2 m/s apart").arg(gap.norm(), 0, 'g', 3).arg(dv.norm(), 0, 'g', 3)));
         // It swung: a quarter swing down from level is 0.45 s for a 1 m pendulum.
         QVERIFY(std::abs((pose.R.conjugate() * (fixed.state().bodies[1].x - pose.t)).y() - 2) > 0.1);
     }
@@ -317,9 +336,10 @@ private slots:
     void badKeysAreRefused() {
         QFETCH(int, problem);
         QFETCH(QString, field);
-        BodyDesc b = animated(boxBody("paddle", Vec3(0.1, 0.1, 0.1), 1.0),
-                              {{0, Vec3::Zero(), Quat::Identity()}, {1, Vec3(1, 0, 0), Quat::Identity()},
-                               {2, Vec3(2, 0, 0), Quat::Identity()}});
+        BodyDesc b =
+            animated(boxBody("paddle", Vec3(0.1, 0.1, 0.1), 1.0), {{0, Vec3::Zero(), Quat::Identity()},
+                                                                   {1, Vec3(1, 0, 0), Quat::Identity()},
+                                                                   {2, Vec3(2, 0, 0), Quat::Identity()}});
         switch (problem) {
             case 0: b.keys.clear(); break;
             case 1: b.keys[1].time = 0; break;
@@ -344,8 +364,9 @@ private slots:
     // Before its first key and after its last it holds still; the run starts where the path
     // has it at t = 0, whatever `position` says.
     void holdsBeforeAndAfter() {
-        BodyDesc b = animated(boxBody("paddle", Vec3(0.1, 0.1, 0.1), 1.0),
-                              {{0.5, Vec3(1, 0, 0), Quat::Identity()}, {1.0, Vec3(2, 0, 0), Quat::Identity()}});
+        BodyDesc b =
+            animated(boxBody("paddle", Vec3(0.1, 0.1, 0.1), 1.0),
+                     {{0.5, Vec3(1, 0, 0), Quat::Identity()}, {1.0, Vec3(2, 0, 0), Quat::Identity()}});
         b.position = Vec3(7, 7, 7);
         World w(sceneOf({b}, Vec3::Zero()));
         QVERIFY((w.state().bodies[0].x - Vec3(1, 0, 0)).norm() == 0.0);

@@ -478,9 +478,9 @@ private slots:
         World w(s);
         const double start = energy(w.model(), w.state()).total();
         double scale = weightTimesHeight(w), worstLoss = 0.0, worstJoints = 0.0;
-        const bool carried = std::any_of(w.model().bodies.begin(), w.model().bodies.end(), [](const BodyModel& b) {
-            return b.motion == Motion::Kinematic && !b.standsStill();
-        });
+        const bool carried =
+            std::any_of(w.model().bodies.begin(), w.model().bodies.end(),
+                        [](const BodyModel& b) { return b.motion == Motion::Kinematic && !b.standsStill(); });
         for (int k = 1; k <= 3 * rate; ++k) {
             advanceFrame(w, k);
             scale = std::max(scale, weightTimesHeight(w) + energy(w.model(), w.state()).kinetic);

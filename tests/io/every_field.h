@@ -127,7 +127,6 @@ inline SceneDesc everyField() {
     post.collisionGroup = "fence";
     s.bodies.push_back(post);
 
-
     BodyDesc cart;  // a compound: every part field, a mesh part among them
     cart.name = "cart";
     cart.shape.type = ShapeType::Compound;

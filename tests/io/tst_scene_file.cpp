@@ -529,27 +529,34 @@ private slots:
         row("key times out of order", R"("density": 1000})",
             R"("motion": "animated", "keys": [{"time": 1, "position": [0, 0, 0]}, {"time": 0.5, "position": [1, 0, 0]}]})",
             "bodies[2].keys[1].time",
-            "drop.json: bodies[2].keys[1].time: must be later than the key before (1 s); this one is at 0.5 s");
+            "drop.json: bodies[2].keys[1].time: must be later than the key before (1 s); this one is at 0.5 "
+            "s");
         row("zero key quaternion", R"("density": 1000})",
             R"("motion": "animated", "keys": [{"time": 0, "position": [0, 0, 0], "orientation": [0, 0, 0, 0]}]})",
-            "bodies[2].keys[0].orientation", "drop.json: bodies[2].keys[0].orientation: must not be the zero quaternion");
-        row("key without a position", R"("density": 1000})", R"("motion": "animated", "keys": [{"time": 0}]})",
-            "bodies[2].keys[0].position", "drop.json: bodies[2].keys[0].position: is missing");
+            "bodies[2].keys[0].orientation",
+            "drop.json: bodies[2].keys[0].orientation: must not be the zero quaternion");
+        row("key without a position", R"("density": 1000})",
+            R"("motion": "animated", "keys": [{"time": 0}]})", "bodies[2].keys[0].position",
+            "drop.json: bodies[2].keys[0].position: is missing");
         row("unknown key field", R"("density": 1000})",
-            R"("motion": "animated", "keys": [{"time": 0, "position": [0, 0, 0], "speed": 2}]})", "bodies[2].keys[0].speed",
-            "drop.json: bodies[2].keys[0].speed: unknown key");
+            R"("motion": "animated", "keys": [{"time": 0, "position": [0, 0, 0], "speed": 2}]})",
+            "bodies[2].keys[0].speed", "drop.json: bodies[2].keys[0].speed: unknown key");
         row("animated with a density", R"("density": 1000})",
-            R"("density": 1000, "motion": "animated", "keys": [{"time": 0, "position": [0, 0, 0]}]})", "bodies[2].density",
+            R"("density": 1000, "motion": "animated", "keys": [{"time": 0, "position": [0, 0, 0]}]})",
+            "bodies[2].density",
             "drop.json: bodies[2].density: an animated body has no mass properties; remove it");
         row("animated without keys", R"("density": 1000})", R"("motion": "animated"})", "bodies[2].keys",
-            "drop.json: bodies[2].keys: an animated body needs at least one key (time, position, orientation)");
+            "drop.json: bodies[2].keys: an animated body needs at least one key (time, position, "
+            "orientation)");
         row("keys on a dynamic body", R"("density": 1000})",
             R"("density": 1000, "keys": [{"time": 0, "position": [0, 0, 0]}]})", "bodies[2].keys",
-            "drop.json: bodies[2].keys: only an animated body has keys (this one is dynamic); set motion to animated "
+            "drop.json: bodies[2].keys: only an animated body has keys (this one is dynamic); set motion to "
+            "animated "
             "or remove them");
         row("unknown interpolation", R"("density": 1000})",
             R"("motion": "animated", "interpolation": "cubic", "keys": [{"time": 0, "position": [0, 0, 0]}]})",
-            "bodies[2].interpolation", "drop.json: bodies[2].interpolation: 'cubic' is not one of linear, smooth");
+            "bodies[2].interpolation",
+            "drop.json: bodies[2].interpolation: 'cubic' is not one of linear, smooth");
         row("collide_connected not a boolean", R"("anchor_b": [0, -0.5, 0])",
             R"("anchor_b": [0, -0.5, 0], "collide_connected": 1)", "joints[1].collide_connected",
             "drop.json: joints[1].collide_connected: must be true or false");

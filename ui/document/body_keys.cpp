@@ -61,7 +61,8 @@ bool removeKey(BodyDesc& b, int k) {
 
 void followKeys(const BodyDesc& before, BodyDesc& after) {
     if (after.motion != Motion::Animated || after.keys.empty()) return;
-    const bool moved = before.motion == Motion::Animated && before.keys == after.keys && !samePose(before, after);
+    const bool moved =
+        before.motion == Motion::Animated && before.keys == after.keys && !samePose(before, after);
     if (moved) insertKey(after, 0.0, after.position, after.orientation);
     // Keys that cannot make a path (out of order, a zero quaternion) are left for the
     // document's check to refuse; the pose stays as given.

@@ -351,7 +351,8 @@ BodyDesc withConvexParts(BodyDesc body) {
 void Document::setBody(int index, const BodyDesc& given, const QString& text, int mergeId) {
     if (index < 0 || index >= bodyCount() || given == scene_.bodies[static_cast<size_t>(index)]) return;
     BodyDesc body = withConvexParts(given);
-    followKeys(scene_.bodies[static_cast<size_t>(index)], body);  // an animated body's pose is its path's at 0
+    followKeys(scene_.bodies[static_cast<size_t>(index)],
+               body);  // an animated body's pose is its path's at 0
     if (body == scene_.bodies[static_cast<size_t>(index)]) return;
     const std::string& old = scene_.bodies[static_cast<size_t>(index)].name;
     std::vector<JointDesc> joints = scene_.joints;

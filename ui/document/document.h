@@ -172,7 +172,8 @@ private:
     // "(removed)", "(changed)" or "" for the body's mesh file.
     QString meshFileChange(const ShapeDesc& shape) const;
     QList<int> selection_;
-    QList<int> picked_;  // the selection's bodies in the order they were picked (maybe stale: selectionInPickOrder)
+    QList<int>
+        picked_;  // the selection's bodies in the order they were picked (maybe stale: selectionInPickOrder)
     int selectedJoint_ = -1;
     int selectedPart_ = -1;
     QUndoStack* undo_ = nullptr;

@@ -14,7 +14,8 @@ std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, con
         if (i < 0 || i >= n) return refuse("select one body (joined to the world) or two");
     // Two bodies: the first picked is the base (B), the second the part that moves on it (A):
     // a hinge's motor at +1 rad/s turns the second picked the right-hand way about the axis.
-    int a = selection.size() == 2 ? selection[1] : selection[0], b = selection.size() == 2 ? selection[0] : -1;
+    int a = selection.size() == 2 ? selection[1] : selection[0],
+        b = selection.size() == 2 ? selection[0] : -1;
     const auto dynamic = [&](int i) { return i >= 0 && scene.bodies[i].motion == Motion::Dynamic; };
     if (!dynamic(a) && !dynamic(b)) return refuse("a joint needs a dynamic body among those selected");
     if (!dynamic(a)) std::swap(a, b);  // body_a is one that moves

@@ -129,15 +129,17 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     // A the part that moves on it; Swap exchanges them, meaning the same.
     bodyA_ = new QComboBox;
     bodyA_->setObjectName("joint.body_a");
-    bodyA_->setToolTip(tr("The part that moves: a positive motor turns it the right-hand way about the axis"));
+    bodyA_->setToolTip(
+        tr("The part that moves: a positive motor turns it the right-hand way about the axis"));
     addRow(tr("Moving (A)"), "body_a", bodyA_);
     bodyB_ = new QComboBox;
     bodyB_->setObjectName("joint.body_b");
     bodyB_->setToolTip(tr("The base the part moves on, or the world"));
     swap_ = new QPushButton(tr("Swap"));
     swap_->setObjectName("joint.swap");
-    swap_->setToolTip(tr("Make the base the moving part and the moving part the base: the same joint "
-                         "(its limits and motor speed change sign)"));
+    swap_->setToolTip(
+        tr("Make the base the moving part and the moving part the base: the same joint "
+           "(its limits and motor speed change sign)"));
     auto* base = new QWidget;
     auto* baseLayout = new QHBoxLayout(base);
     baseLayout->setContentsMargins(0, 0, 0, 0);

@@ -28,8 +28,9 @@ KeysEdit::KeysEdit(QWidget* parent) : QWidget(parent) {
     auto* buttons = new QHBoxLayout;
     add_ = new QPushButton(tr("Add"), this);
     add_->setObjectName("keys.add");
-    add_->setToolTip(tr("A key 1 s after the last one, where that one is (Edit > Insert Key, I, keys the "
-                        "pose at the playhead)"));
+    add_->setToolTip(
+        tr("A key 1 s after the last one, where that one is (Edit > Insert Key, I, keys the "
+           "pose at the playhead)"));
     remove_ = new QPushButton(tr("Remove"), this);
     remove_->setObjectName("keys.remove");
     buttons->addWidget(add_);
@@ -129,7 +130,8 @@ void KeysEdit::edit(const QString& field, const QString& text, const std::functi
     change(next[static_cast<size_t>(row)]);
     // In time order: a key moved past another takes its place (and stays the current one).
     const BodyKey moved = next[static_cast<size_t>(row)];
-    std::stable_sort(next.begin(), next.end(), [](const BodyKey& a, const BodyKey& b) { return a.time < b.time; });
+    std::stable_sort(next.begin(), next.end(),
+                     [](const BodyKey& a, const BodyKey& b) { return a.time < b.time; });
     const int at = static_cast<int>(std::find(next.begin(), next.end(), moved) - next.begin());
     emit keysEdited(next, text, QStringLiteral("keys[%1].%2").arg(at).arg(field));
     if (at != row && keys_ == next) setCurrentIndex(at);

@@ -18,7 +18,8 @@ void PropertyDock::Impl::buildKeys(QVBoxLayout* layout) {
     v->addLayout(form);
     addChoice<KeyInterpolation>(
         form, QObject::tr("Interpolation"), "interpolation", QObject::tr("Set interpolation"),
-        {{QObject::tr("Linear"), KeyInterpolation::Linear}, {QObject::tr("Smooth"), KeyInterpolation::Smooth}},
+        {{QObject::tr("Linear"), KeyInterpolation::Linear},
+         {QObject::tr("Smooth"), KeyInterpolation::Smooth}},
         [](const BodyDesc& b) { return std::optional<KeyInterpolation>(b.interpolation); },
         [](BodyDesc& b, int, KeyInterpolation k) { b.interpolation = k; })
         ->setToolTip(QObject::tr("Linear: straight at constant speed between keys; smooth: eased in and out, "

@@ -56,7 +56,8 @@ int ScrubSlider::keyMarkAt(const QPoint& at) const {
     if (at.y() < height() - height() / 3 - kNear) return -1;
     for (size_t k = 0; k < marks_.size(); ++k) {
         const Mark& m = marks_[k];
-        if (m.key >= 0 && m.frame >= minimum() && m.frame <= maximum() && std::abs(xOf(m.frame) - at.x()) <= kNear)
+        if (m.key >= 0 && m.frame >= minimum() && m.frame <= maximum() &&
+            std::abs(xOf(m.frame) - at.x()) <= kNear)
             return int(k);
     }
     return -1;
@@ -67,7 +68,8 @@ void ScrubSlider::mouseMoveEvent(QMouseEvent* event) {
         QSlider::mouseMoveEvent(event);
         return;
     }
-    marks_[size_t(dragged_)].frame = std::clamp(valueAt(event->position().toPoint().x()), minimum(), maximum());
+    marks_[size_t(dragged_)].frame =
+        std::clamp(valueAt(event->position().toPoint().x()), minimum(), maximum());
     update();
 }
 

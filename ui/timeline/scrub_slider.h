@@ -60,7 +60,7 @@ private:
     int keyMarkAt(const QPoint& at) const;
 
     std::vector<Mark> marks_;
-    int dragged_ = -1;  // the key mark being dragged (index in marks_), or -1
+    int dragged_ = -1;     // the key mark being dragged (index in marks_), or -1
     int draggedFrom_ = 0;  // its frame when pressed
 };
 

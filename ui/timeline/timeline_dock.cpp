@@ -216,9 +216,10 @@ void TimelineDock::updateRange() {
     const double rate = timeline_->frameRate();
     for (size_t k = 0; k < keyTimes_.size() && rate > 0.0; ++k) {
         const double t = keyTimes_[k];
-        marks.push_back({int(std::lround(t * rate)),
-                         tr("%1: key at t = %2 s (drag to move, right-click to delete)").arg(keyBody_).arg(t, 0, 'g', 6),
-                         int(k)});
+        marks.push_back(
+            {int(std::lround(t * rate)),
+             tr("%1: key at t = %2 s (drag to move, right-click to delete)").arg(keyBody_).arg(t, 0, 'g', 6),
+             int(k)});
     }
     slider_->setMarks(std::move(marks));
 }

@@ -270,7 +270,8 @@ Lines paths(const SceneDesc& scene, const std::vector<int>& selected) {
         // Keys the engine would refuse draw nothing (the panel says why).
         bool valid = true;
         for (size_t k = 0; k < b.keys.size(); ++k)
-            valid = valid && b.keys[k].position.allFinite() && b.keys[k].orientation.coeffs().norm() > 1e-12 &&
+            valid = valid && b.keys[k].position.allFinite() &&
+                    b.keys[k].orientation.coeffs().norm() > 1e-12 &&
                     (k == 0 || b.keys[k].time > b.keys[k - 1].time);
         if (!valid) continue;
         const bool chosen = std::find(selected.begin(), selected.end(), int(i)) != selected.end();
@@ -280,8 +281,9 @@ Lines paths(const SceneDesc& scene, const std::vector<int>& selected) {
             const double t0 = b.keys[k].time, span = b.keys[k + 1].time - t0;
             Vec3 from = path.at(t0).position;
             for (int n = 1; n <= kPerSegment; ++n) {
-                const Vec3 to = path.at(n == kPerSegment ? std::nextafter(t0 + span, t0) : t0 + span * n / kPerSegment)
-                                    .position;
+                const Vec3 to =
+                    path.at(n == kPerSegment ? std::nextafter(t0 + span, t0) : t0 + span * n / kPerSegment)
+                        .position;
                 segment(lines.xyzrgb, from, to, c);
                 from = to;
             }

@@ -81,7 +81,17 @@ std::vector<Vec3> thinned(const std::vector<Vec3>& points, int cap);
 
 class ViewportOverlays {
 public:
-    enum Kind { Trails, Contacts, Velocities, AngularVelocities, Forces, CentresOfMass, Joints, Paths, KindCount };
+    enum Kind {
+        Trails,
+        Contacts,
+        Velocities,
+        AngularVelocities,
+        Forces,
+        CentresOfMass,
+        Joints,
+        Paths,
+        KindCount
+    };
 
     /// Under `root`; the caller puts entity() in its overlay layer.
     explicit ViewportOverlays(Qt3DCore::QEntity* root);

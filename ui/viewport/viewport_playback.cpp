@@ -137,7 +137,8 @@ void Viewport::refreshJoints() {
     // The animated bodies' paths, as the document's keys give them (the selected one amber).
     if (d_->doc) {
         const QList<int>& selection = d_->doc->selection();
-        o.set(K::Paths, overlays::paths(d_->doc->scene(), std::vector<int>(selection.begin(), selection.end())));
+        o.set(K::Paths,
+              overlays::paths(d_->doc->scene(), std::vector<int>(selection.begin(), selection.end())));
     } else {
         o.clear(K::Paths);
     }

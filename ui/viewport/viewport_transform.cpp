@@ -70,9 +70,10 @@ void Viewport::updateHandles() {
     d_->handlesShown = ((!movable.isEmpty() || joint >= 0) && d_->shownFrame == 0) || keying;
     if (keying) {
         const int i = movable.front();
-        d_->handlesOrigin = d_->dragKeying && d_->dragAxis >= 0
-                                ? d_->dragOrigin
-                                : bodyFramePosition(d_->timeline->model()->bodies[size_t(i)], state->bodies[size_t(i)]);
+        d_->handlesOrigin =
+            d_->dragKeying && d_->dragAxis >= 0
+                ? d_->dragOrigin
+                : bodyFramePosition(d_->timeline->model()->bodies[size_t(i)], state->bodies[size_t(i)]);
         const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
         d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
         d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
@@ -274,8 +275,9 @@ void Viewport::endHandleDrag() {
         BodyDesc b = d_->doc->body(index);
         insertKey(b, d_->dragKeyTime, d_->dragKeyPose.position, d_->dragKeyPose.orientation);
         d_->dragKeying = false;  // (the edit below redraws the handles: not mid-drag any more)
-        d_->doc->setBody(index, b,
-                         tr("Key %1 at %2 s").arg(QString::fromStdString(b.name)).arg(d_->dragKeyTime, 0, 'g', 6));
+        d_->doc->setBody(
+            index, b,
+            tr("Key %1 at %2 s").arg(QString::fromStdString(b.name)).arg(d_->dragKeyTime, 0, 'g', 6));
     }
     d_->dragKeying = false;
     d_->dragKeyMoved = false;

@@ -421,8 +421,8 @@ void MainWindow::insertKey() {
     }
     ui::insertKey(body, time, position, orientation);
     doc_->setBody(index, body, tr("Insert key"));
-    statusBar()->showMessage(tr("Keyed %1 at t = %2 s").arg(QString::fromStdString(body.name)).arg(time, 0, 'g', 6),
-                             3000);
+    statusBar()->showMessage(
+        tr("Keyed %1 at t = %2 s").arg(QString::fromStdString(body.name)).arg(time, 0, 'g', 6), 3000);
 }
 
 void MainWindow::openPath(const QString& path) {

@@ -74,8 +74,9 @@ struct BodyModel {
 
     /// Static, or kinematic at zero velocity: never moves, so never wakes or pairs like a moving body.
     bool standsStill() const {
-        return motion == Motion::Static || (motion == Motion::Kinematic && !path && kinematicVelocity.isZero(0.0) &&
-                                            kinematicAngularVelocity.isZero(0.0));
+        return motion == Motion::Static ||
+               (motion == Motion::Kinematic && !path && kinematicVelocity.isZero(0.0) &&
+                kinematicAngularVelocity.isZero(0.0));
     }
 
     /// A kinematic or animated body: the most |v| + |ω| r its points within `reach` of the

@@ -111,9 +111,9 @@ struct ForceDesc {
 /// One key of an animated body: where its frame is (as BodyDesc::position and orientation)
 /// at `time`.
 struct BodyKey {
-    double time = 0.0;                   ///< s
-    Vec3 position = Vec3::Zero();        ///< world position of the body frame origin
-    Quat orientation = Quat::Identity(); ///< body to world
+    double time = 0.0;                    ///< s
+    Vec3 position = Vec3::Zero();         ///< world position of the body frame origin
+    Quat orientation = Quat::Identity();  ///< body to world
 
     bool operator==(const BodyKey& o) const {
         return time == o.time && position == o.position && orientation.coeffs() == o.orientation.coeffs();

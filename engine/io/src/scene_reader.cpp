@@ -365,7 +365,8 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     });
     r.optional(j, p, "keys", [&](const json& v, const std::string& f) {
         if (!v.is_array()) r.fail(f, "must be an array of keys ({\"time\", \"position\", \"orientation\"})");
-        for (size_t k = 0; k < v.size(); ++k) b.keys.push_back(readKey(r, v[k], f + "[" + std::to_string(k) + "]"));
+        for (size_t k = 0; k < v.size(); ++k)
+            b.keys.push_back(readKey(r, v[k], f + "[" + std::to_string(k) + "]"));
     });
     r.optional(j, p, "interpolation", [&](const json& v, const std::string& f) {
         b.interpolation = enumValue(r, v, f, {KeyInterpolation::Linear, KeyInterpolation::Smooth});

@@ -122,8 +122,8 @@ ojson bodyJson(const BodyDesc& b) {
         j["interpolation"] = toString(b.interpolation);
         j["keys"] = ojson::array();
         for (const BodyKey& k : b.keys)
-            j["keys"].push_back(
-                ojson{{"time", k.time}, {"position", vec(k.position)}, {"orientation", quatJson(k.orientation)}});
+            j["keys"].push_back(ojson{
+                {"time", k.time}, {"position", vec(k.position)}, {"orientation", quatJson(k.orientation)}});
     }
     return j;
 }

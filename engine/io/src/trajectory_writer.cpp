@@ -192,8 +192,7 @@ protected:
             const std::string name =
                 nlohmann::json(b.name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
             out << (n ? ",\n" : "\n") << "    {\"name\": " << name << ", \"motion\": \""
-                << (b.path ? toString(Motion::Animated) : toString(b.motion))
-                << "\"}";
+                << (b.path ? toString(Motion::Animated) : toString(b.motion)) << "\"}";
         }
         out << (bodies().empty() ? "],\n" : "\n  ],\n");
         if (joints_) {

@@ -272,7 +272,8 @@ Sweep sweepOf(const BodyModel& body, const BodyState& before, const BodyState& a
     w.c0 = before.x;
     w.c1 = after.x;
     if (body.motion == Motion::Dynamic) w.bow = 0.5 * h * body.invMass * (after.P - before.P);
-    if (body.path) w.bow = 0.5 * h * (arriving(body, end).P - before.P);  // (an animated body's P is its velocity)
+    if (body.path)
+        w.bow = 0.5 * h * (arriving(body, end).P - before.P);  // (an animated body's P is its velocity)
     w.q0 = before.q;
     w.q1 = after.q;
     w.localCenter = body.centerOfMass;

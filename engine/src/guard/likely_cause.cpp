@@ -141,8 +141,8 @@ std::string likelyCause(const Model& m, const State& state, int body) {
         const double smaller = std::min(own, reach > 0.0 ? reach : own);
         if (speed * dt > 0.1 * smaller)
             return std::string(b.path ? "animated " : "kinematic ") + bodyRef(m, k) + " moves " +
-                   numberText(speed * dt, 3) + " m per step (" +
-                   numberText(speed, 3) + " m/s), more than a tenth of " +
+                   numberText(speed * dt, 3) + " m per step (" + numberText(speed, 3) +
+                   " m/s), more than a tenth of " +
                    (smaller == own ? "the size of " + bodyRef(m, body) : "its own size") + " (" +
                    numberText(smaller, 3) + " m): use a smaller step";
     }

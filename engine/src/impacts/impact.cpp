@@ -157,7 +157,8 @@ bool solveManifold(const Model& model, const Manifold& m, std::vector<SolverBody
     Eigen::Vector4d target = Eigen::Vector4d::Zero();  // the normal velocities restitution asks
     for (int i = 0; i < k; ++i) target[i] = n.dot(relativeVelocity(A, rA[i], B, rB[i])) + gain[i];
     for (int i = 0; i < k; ++i)
-        if (lambda[i] > 0.0) book(ledger.lostInContacts, ledger.doneByKinematic, A, rA[i], B, rB[i], lambda[i] * n);
+        if (lambda[i] > 0.0)
+            book(ledger.lostInContacts, ledger.doneByKinematic, A, rA[i], B, rB[i], lambda[i] * n);
     const double first = lambda.head(k).sum();  // the impact's own impulse
     double before = HUGE_VAL;
     for (int round = 0; joints && round < kJointRounds; ++round) {
@@ -246,7 +247,8 @@ namespace {
 
 ImpactResult resolve(const Model& model, State& state, const ManifoldList& contacts,
                      const std::vector<int>& seeds, double touchTolerance, double restingSpeed,
-                     ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints, const State* chordFrom) {
+                     ImpactScratch& s, EnergyLedger& ledger, ContactSolverScratch* joints,
+                     const State* chordFrom) {
     ImpactResult result;
     collectIsland(model, state, contacts, seeds, touchTolerance, s);
     if (s.manifolds.empty()) return result;

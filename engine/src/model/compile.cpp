@@ -131,8 +131,8 @@ void validateBody(const BodyDesc& b, int i) {
     } else {
         const char* key = b.mass ? ".mass" : b.density ? ".density" : b.inertia ? ".inertia" : nullptr;
         if (key) {
-            throw SceneError(
-                p + key, std::string(b.motion == Motion::Animated ? "an " : "a ") + toString(b.motion) + " body has no mass properties; remove it");
+            throw SceneError(p + key, std::string(b.motion == Motion::Animated ? "an " : "a ") +
+                                          toString(b.motion) + " body has no mass properties; remove it");
         }
     }
     if (b.inertia) {

@@ -53,7 +53,8 @@ void validateParts(const ShapeDesc& s, Motion motion, const std::string& path) {
         }
         if (part.density) {
             if (motion != Motion::Dynamic)
-                throw SceneError(p + ".density", std::string(motion == Motion::Animated ? "an " : "a ") + toString(motion) +
+                throw SceneError(p + ".density", std::string(motion == Motion::Animated ? "an " : "a ") +
+                                                     toString(motion) +
                                                      " body has no mass properties; remove it");
             requirePositive(*part.density, p + ".density");
         }

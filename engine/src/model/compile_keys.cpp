@@ -22,11 +22,13 @@ void validateKeys(const BodyDesc& b, const std::string& p) {
     if (b.motion != Motion::Animated) {
         if (!b.keys.empty())
             throw SceneError(p + ".keys", std::string("only an animated body has keys (this one is ") +
-                                              toString(b.motion) + "); set motion to animated or remove them");
+                                              toString(b.motion) +
+                                              "); set motion to animated or remove them");
         return;
     }
     if (b.keys.empty())
-        throw SceneError(p + ".keys", "an animated body needs at least one key (time, position, orientation)");
+        throw SceneError(p + ".keys",
+                         "an animated body needs at least one key (time, position, orientation)");
     if (b.velocity != Vec3::Zero())
         throw SceneError(p + ".velocity", "an animated body moves as its keys say; remove its velocity");
     if (b.angularVelocity != Vec3::Zero())
@@ -42,7 +44,8 @@ void validateKeys(const BodyDesc& b, const std::string& p) {
         }
         requireFinite(key.position, at + ".position");
         if (!(key.position.stableNorm() <= kLargestHeld))
-            throw SceneError(at + ".position", "is farther than a run can carry in double precision (1e150 m)");
+            throw SceneError(at + ".position",
+                             "is farther than a run can carry in double precision (1e150 m)");
         if (!key.orientation.coeffs().allFinite())
             throw SceneError(at + ".orientation", "must be finite numbers");
         if (!(key.orientation.coeffs().stableNorm() > 1e-12))

@@ -115,7 +115,8 @@ inline double applyPairImpulse(SolverBody& a, const Vec3& rA, SolverBody& b, con
 /// The work the impulse J (on a at rA, −J on b at rB) draws from a body that no impulse
 /// moves (no mass here: a kinematic or animated one; a static or sleeping one stands still
 /// and gives 0): the impulse it gives times its point's velocity (EnergyLedger::doneByKinematic).
-inline double drivenWork(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB, const Vec3& J) {
+inline double drivenWork(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB,
+                         const Vec3& J) {
     double w = 0.0;
     if (a.invMass == 0.0) w -= J.dot(a.v + a.w.cross(rA));
     if (b.invMass == 0.0) w += J.dot(b.v + b.w.cross(rB));

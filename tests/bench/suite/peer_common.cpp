@@ -63,7 +63,10 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
         if (b.shape.type == ShapeType::Mesh && b.shape.collision == MeshCollision::ConvexHull &&
             !b.collider.hull)
             return fail(who + "the mesh has no convex hull");
-        if (b.path) return fail(who + "an animated body (keyed path) is Tumble's own; the peers move kinematic bodies at constant velocity");
+        if (b.path)
+            return fail(who +
+                        "an animated body (keyed path) is Tumble's own; the peers move kinematic bodies at "
+                        "constant velocity");
         out->q[i] = d.orientation.normalized();
         out->com[i] = d.position + out->q[i] * b.centerOfMass;
         if (b.motion == Motion::Dynamic) {

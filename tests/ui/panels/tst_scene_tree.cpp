@@ -300,7 +300,8 @@ private slots:
     void theFirstPickedIsTheBaseAndSwapKeepsTheMotion() {
         Document doc;
         SceneTreeDock dock(&doc, nullptr);
-        BodyDesc wheel = presetBody(ShapeType::Cylinder, doc.scene()), post = presetBody(ShapeType::Box, doc.scene());
+        BodyDesc wheel = presetBody(ShapeType::Cylinder, doc.scene()),
+                 post = presetBody(ShapeType::Box, doc.scene());
         wheel.name = "wheel";
         wheel.position = Vec3(0, 2, 0);
         post.name = "post";
@@ -331,7 +332,8 @@ private slots:
         SceneDesc run = doc.scene();
         run.settings.dt = 1.0 / 60;
         const Vec3 w = spin(run);
-        QVERIFY2((w - Vec3(0, 1, 0)).norm() < 1e-9, qPrintable(QString("%1 %2 %3").arg(w.x()).arg(w.y()).arg(w.z())));
+        QVERIFY2((w - Vec3(0, 1, 0)).norm() < 1e-9,
+                 qPrintable(QString("%1 %2 %3").arg(w.x()).arg(w.y()).arg(w.z())));
         // Swapped: the post is A, the wheel the base; the motor and limits change sign.
         const std::optional<JointDesc> swapped = swappedJoint(doc.scene(), hinge);
         QVERIFY(swapped);

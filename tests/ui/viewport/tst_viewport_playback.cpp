@@ -231,8 +231,9 @@ private slots:
         QCOMPARE(int(lift.keys.size()), 3);
         QVERIFY(std::abs(lift.keys[1].time - 2.5) < 1e-12);
         const Vec3 keyed = lift.keys[1].position;
-        QVERIFY2(keyed.x() > 0.2 * size && std::abs(keyed.y() - drawn.y()) < 1e-9 && std::abs(keyed.z()) < 1e-9,
-                 qPrintable(QString("keyed at %1 %2 %3").arg(keyed.x()).arg(keyed.y()).arg(keyed.z())));
+        QVERIFY2(
+            keyed.x() > 0.2 * size && std::abs(keyed.y() - drawn.y()) < 1e-9 && std::abs(keyed.z()) < 1e-9,
+            qPrintable(QString("keyed at %1 %2 %3").arg(keyed.x()).arg(keyed.y()).arg(keyed.z())));
         // The new run passes through it.
         f.timeline->simulate();
         QVERIFY(QTest::qWaitFor([&] { return f.timeline->status() == Timeline::Status::Complete; }, kWaitMs));
