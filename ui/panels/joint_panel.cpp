@@ -173,22 +173,39 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         apply("body_b", tr("Set joint body"), rebind(false, bodyB_->itemData(i).toString().toStdString()), false);
     });
 
+    // The anchors in their bodies' frames (as the file has them), or as world points (the
+    // toggle: typed there, kept in the bodies' frames as they are placed).
+    anchorsInWorld_ = new QCheckBox(tr("World coordinates"));
+    anchorsInWorld_->setObjectName("joint.anchors_world");
+    anchorsInWorld_->setToolTip(tr("Type the anchors as world points (kept in each body's frame as placed)"));
+    addRow(QString(), "anchors_world", anchorsInWorld_);
+    connect(anchorsInWorld_, &QCheckBox::toggled, this, [this] {
+        dropHeld();
+        refresh();
+    });
+    // An anchor as shown: in its body's frame, or in the world's with the toggle on.
+    auto shown = [this](bool first) {
+        return [this, first](const JointDesc& j) {
+            const Vec3& local = first ? j.anchorA : j.anchorB;
+            if (!anchorsInWorld_->isChecked()) return std::optional<Vec3>(local);
+            return std::optional<Vec3>(frameOf(doc_->scene(), first ? j.bodyA : j.bodyB).toWorld(local));
+        };
+    };
+    auto stored = [this](bool first) {
+        return [this, first](JointDesc& j, const Vec3& a) {
+            Vec3& local = first ? j.anchorA : j.anchorB;
+            local = anchorsInWorld_->isChecked() ? frameOf(doc_->scene(), first ? j.bodyA : j.bodyB).toLocal(a) : a;
+        };
+    };
     anchorA_ = vector("joint.anchor_a", " m");
-    anchorA_->setToolTip(tr("In body A's frame"));
     addRow(tr("Anchor A"), "anchor_a", anchorA_);
-    connect(anchorA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
-        editVector(
-            "anchor_a", tr("Move joint anchor"), k, v,
-            [](const JointDesc& j) { return std::optional<Vec3>(j.anchorA); },
-            [](JointDesc& j, const Vec3& a) { j.anchorA = a; });
+    connect(anchorA_, &VectorEdit::componentEdited, this, [this, shown, stored](int k, double v) {
+        editVector("anchor_a", tr("Move joint anchor"), k, v, shown(true), stored(true));
     });
     anchorB_ = vector("joint.anchor_b", " m");
     addRow(tr("Anchor B"), "anchor_b", anchorB_);
-    connect(anchorB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
-        editVector(
-            "anchor_b", tr("Move joint anchor"), k, v,
-            [](const JointDesc& j) { return std::optional<Vec3>(j.anchorB); },
-            [](JointDesc& j, const Vec3& a) { j.anchorB = a; });
+    connect(anchorB_, &VectorEdit::componentEdited, this, [this, shown, stored](int k, double v) {
+        editVector("anchor_b", tr("Move joint anchor"), k, v, shown(false), stored(false));
     });
 
     axisA_ = vector("joint.axis_a", QString());
@@ -503,9 +520,12 @@ void JointPanel::refresh() {
             combo->addItem(QString::fromStdString(body.name), QString::fromStdString(body.name));
         combo->setCurrentIndex(combo->findData(QString::fromStdString(combo == bodyA_ ? j.bodyA : j.bodyB)));
     }
-    anchorA_->showValue(held_.value("anchor_a", j.anchorA));
-    anchorB_->showValue(held_.value("anchor_b", j.anchorB));
-    anchorB_->setToolTip(j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
+    const bool world = anchorsInWorld_->isChecked();
+    const BodyFrame frameA = frameOf(scene, j.bodyA), frameB = frameOf(scene, j.bodyB);
+    anchorA_->showValue(held_.value("anchor_a", world ? frameA.toWorld(j.anchorA) : j.anchorA));
+    anchorB_->showValue(held_.value("anchor_b", world ? frameB.toWorld(j.anchorB) : j.anchorB));
+    anchorA_->setToolTip(world ? tr("A world point, as the bodies are placed") : tr("In body A's frame"));
+    anchorB_->setToolTip(world || j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
     swap_->setEnabled(!j.bodyB.empty());
     const bool ax = axial(j.type);
     form_->setRowVisible(rows_["axis_a"], ax);

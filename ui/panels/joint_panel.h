@@ -68,6 +68,7 @@ private:
     QComboBox* bodyA_ = nullptr;
     QComboBox* bodyB_ = nullptr;
     QPushButton* swap_ = nullptr;
+    QCheckBox* anchorsInWorld_ = nullptr;
     VectorEdit* anchorA_ = nullptr;
     VectorEdit* anchorB_ = nullptr;
     VectorEdit* axisA_ = nullptr;

@@ -219,6 +219,27 @@ private slots:
     // which is refused. The typed values are held (the field marked, the reason in plain
     // words), the next field completes the vector and it goes in as typed, never a mix of
     // typed and old components; Esc gives a held edit up.
+    // Issue 51 item 3: anchors typed as world points (the toggle), kept in each body's
+    // frame as the bodies are placed. The door is turned a quarter about y at (0, 1, 0): its
+    // anchor (-0.4, 0, 0) is the world point (0, 1, 0.4); typed there as x = 0.1, it is
+    // (-0.4, 0, 0.1) in the door's frame.
+    void anchorsTypedAsWorldPoints() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        VectorEdit* a = f.find<VectorEdit>("joint.anchor_a");
+        QVERIFY((a->value() - Vec3(-0.4, 0, 0)).norm() < 1e-12);
+        f.find<QCheckBox>("joint.anchors_world")->setChecked(true);
+        QVERIFY2((a->value() - Vec3(0, 1, 0.4)).norm() < 1e-12,
+                 qPrintable(QString("%1 %2 %3").arg(a->value().x()).arg(a->value().y()).arg(a->value().z())));
+        const Vec3 b = f.find<VectorEdit>("joint.anchor_b")->value();
+        QVERIFY((b - Vec3(0, 1, 0.4)).norm() < 1e-12);  // the same point on the post
+        f.spin("joint.anchor_a.x")->setValue(0.1);
+        QVERIFY((f.joint().anchorA - Vec3(-0.4, 0, 0.1)).norm() < 1e-12);
+        QVERIFY((a->value() - Vec3(0.1, 1, 0.4)).norm() < 1e-12);
+        f.find<QCheckBox>("joint.anchors_world")->setChecked(false);
+        QVERIFY((a->value() - Vec3(-0.4, 0, 0.1)).norm() < 1e-12);
+    }
+
     void aVectorIsEditedAsOneValue() {
         Fixture f;
         f.doc.selectJoint(0);
