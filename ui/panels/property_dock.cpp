@@ -17,6 +17,8 @@
 
 #include <QApplication>
 
+#include <algorithm>
+
 namespace tumble::ui {
 
 void PropertyDock::Impl::build() {
@@ -250,17 +252,27 @@ void PropertyDock::Impl::build() {
     orientation->setToolTip(
         QObject::tr("Euler angles (x, y, z) in degrees: rotate about z, then the new y, then the new x "
                     "(intrinsic Z-Y'-X''; q = Rz(z) Ry(y) Rx(x))"));
-    addVector(
+    auto* velocity = addVector(
         form, QObject::tr("Velocity"), "velocity", " m/s", QObject::tr("Set velocity"),
         [](const BodyDesc& b) { return std::optional(b.velocity); },
-        [](BodyDesc& b, int k, double v) { b.velocity[k] = v; })
-        ->setToolTip(QObject::tr("World velocity of the centre of mass; a static body cannot move"));
-    addVector(
-        form, QObject::tr("Angular velocity"), "angular_velocity", " rad/s",
-        QObject::tr("Set angular velocity"),
+        [](BodyDesc& b, int k, double v) { b.velocity[k] = v; });
+    velocity->setToolTip(QObject::tr("World velocity of the centre of mass; a static body cannot move"));
+    auto* spin = addVector(
+        form, QObject::tr("Angular velocity"), "angular_velocity", " rad/s", QObject::tr("Set angular velocity"),
         [](const BodyDesc& b) { return std::optional(b.angularVelocity); },
-        [](BodyDesc& b, int k, double v) { b.angularVelocity[k] = v; })
-        ->setToolTip(QObject::tr("World frame"));
+        [](BodyDesc& b, int k, double v) { b.angularVelocity[k] = v; });
+    spin->setToolTip(QObject::tr("World frame"));
+    // An animated body moves as its keys say: no velocity of its own to type.
+    refreshers.push_back([velocity, spin](const std::vector<const BodyDesc*>& bodies) {
+        const bool keyed = std::any_of(bodies.begin(), bodies.end(),
+                                       [](const BodyDesc* b) { return b->motion == Motion::Animated; });
+        for (VectorEdit* e : {velocity, spin}) {
+            e->setEnabled(!keyed);
+            e->setToolTip(keyed ? QObject::tr("An animated body moves as its keys say (Keys, below)")
+                          : e == velocity ? QObject::tr("World velocity of the centre of mass; a static body cannot move")
+                                          : QObject::tr("World frame"));
+        }
+    });
 
     buildForces(layout);
     buildKeys(layout);

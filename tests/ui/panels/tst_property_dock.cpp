@@ -482,6 +482,21 @@ private slots:
         QCOMPARE(f.ballBody().angularVelocity, Vec3::Zero());
     }
 
+    // An animated body moves as its keys say: its velocity fields are off, and the Keys box
+    // shows its keys.
+    void anAnimatedBodyHasNoVelocityFields() {
+        Fixture f;
+        QVERIFY(f.spin("velocity.x")->isEnabled());
+        f.choose("motion", "Animated");
+        QCOMPARE(f.ballBody().motion, Motion::Animated);
+        QCOMPARE(int(f.ballBody().keys.size()), 1);  // its first key, where it stands, at 0
+        QVERIFY(!f.spin("velocity.x")->isEnabled() && !f.spin("angular_velocity.z")->isEnabled());
+        QVERIFY(f.dock.findChild<QWidget*>("keys.box")->isVisibleTo(&f.dock));
+        f.choose("motion", "Dynamic");
+        QVERIFY(f.spin("velocity.x")->isEnabled());
+        QVERIFY(f.ballBody().keys.empty());
+    }
+
     void forceAddedEditedRemoved() {
         Fixture f;
         auto* forces = f.find<ForcesEdit>("forces");
