@@ -59,19 +59,24 @@ bool removeKey(BodyDesc& b, int k) {
     return true;
 }
 
+bool keysMakeAPath(const BodyDesc& b) {
+    for (size_t k = 0; k < b.keys.size(); ++k) {
+        const BodyKey& key = b.keys[k];
+        if (!std::isfinite(key.time) || !key.position.allFinite() || !key.orientation.coeffs().allFinite() ||
+            !(key.orientation.coeffs().norm() > 1e-12) || (k > 0 && !(key.time > b.keys[k - 1].time)))
+            return false;
+    }
+    return !b.keys.empty();
+}
+
 void followKeys(const BodyDesc& before, BodyDesc& after) {
     if (after.motion != Motion::Animated || after.keys.empty()) return;
     const bool moved =
         before.motion == Motion::Animated && before.keys == after.keys && !samePose(before, after);
     if (moved) insertKey(after, 0.0, after.position, after.orientation);
-    // Keys that cannot make a path (out of order, a zero quaternion) are left for the
-    // document's check to refuse; the pose stays as given.
-    for (size_t k = 0; k < after.keys.size(); ++k) {
-        const BodyKey& key = after.keys[k];
-        if (!key.position.allFinite() || !(key.orientation.coeffs().norm() > 1e-12) ||
-            (k > 0 && !(key.time > after.keys[k - 1].time)))
-            return;
-    }
+    // Keys that cannot make a path are left for the document's check to refuse; the pose
+    // stays as given.
+    if (!keysMakeAPath(after)) return;
     const PathPoint p = KeyPath(after.keys, after.interpolation).at(0.0);
     after.position = p.position;
     after.orientation = p.orientation;

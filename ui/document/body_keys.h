@@ -7,6 +7,10 @@
 
 namespace tumble::ui {
 
+/// Whether an animated body's keys make a path (times in order, finite positions, non-zero
+/// orientations): what the engine checks in full (compile_keys.cpp), for the editor's drawing.
+bool keysMakeAPath(const BodyDesc& b);
+
 /// `after` is `before` edited. For an animated body with keys: a new pose (position or
 /// orientation) with the keys as they were is a move at frame 0: the key at t = 0 takes it,
 /// or a key is added there. Then the pose is set to the path's at t = 0 (the keys may have

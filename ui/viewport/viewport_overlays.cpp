@@ -2,6 +2,7 @@
 
 #include "viewport/viewport_overlay.h"
 
+#include "document/body_keys.h"
 #include "document/body_presets.h"
 
 #include <tumble/contact_query.h>
@@ -266,14 +267,7 @@ Lines paths(const SceneDesc& scene, const std::vector<int>& selected) {
     constexpr int kPerSegment = 24;
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         const BodyDesc& b = scene.bodies[i];
-        if (b.motion != Motion::Animated || b.keys.empty()) continue;
-        // Keys the engine would refuse draw nothing (the panel says why).
-        bool valid = true;
-        for (size_t k = 0; k < b.keys.size(); ++k)
-            valid = valid && b.keys[k].position.allFinite() &&
-                    b.keys[k].orientation.coeffs().norm() > 1e-12 &&
-                    (k == 0 || b.keys[k].time > b.keys[k - 1].time);
-        if (!valid) continue;
+        if (b.motion != Motion::Animated || !keysMakeAPath(b)) continue;  // (bad keys: the panel says why)
         const bool chosen = std::find(selected.begin(), selected.end(), int(i)) != selected.end();
         const Rgb c = chosen ? kPathSelected : kPath;
         const KeyPath path(b.keys, b.interpolation);

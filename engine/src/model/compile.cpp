@@ -34,11 +34,6 @@ std::string at(int i) {
     return "bodies[" + std::to_string(i) + "]";
 }
 
-// The largest energy, momentum or reach a body may start with: a run squares and sums them
-// (contact impulses, the energy guard), so 1e308 loaded and then stopped as "ran away ...
-// energy rose by -nan J"; refused here, naming the field, whatever the options.
-constexpr double kLargestHeld = 1e150;
-
 void requireHoldable(double v, const std::string& path, const std::string& what, const std::string& unit,
                      const std::string& given = {}) {
     if (!(std::abs(v) <= kLargestHeld)) {

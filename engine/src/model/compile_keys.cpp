@@ -11,13 +11,6 @@ namespace tumble {
 
 using namespace compiling;
 
-namespace {
-
-// What double precision carries through a run (compile.cpp's kLargestHeld).
-constexpr double kLargestHeld = 1e150;
-
-}  // namespace
-
 void validateKeys(const BodyDesc& b, const std::string& p) {
     if (b.motion != Motion::Animated) {
         if (!b.keys.empty())

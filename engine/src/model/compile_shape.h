@@ -14,6 +14,11 @@
 
 namespace tumble::compiling {
 
+/// The largest energy, momentum or reach a body may start with, or a key may place it at: a
+/// run squares and sums them (contact impulses, the energy guard), so 1e308 loaded and then
+/// stopped as "ran away ... energy rose by -nan J"; refused, naming the field.
+inline constexpr double kLargestHeld = 1e150;
+
 /// The most parts a mesh may be split into (max_parts).
 inline constexpr int kMostConvexParts = 256;
 
