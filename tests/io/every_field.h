@@ -1,6 +1,6 @@
 // A scene that sets every field of the scene format to something other than its default
 // (tst_scene_file's round trips): bodies of every shape, forces of every kind, joints of
-// every type with limits, a motor and a breaking force.
+// every type with limits, a motor, springs, servos and a breaking force.
 #pragma once
 
 #include <tumble/scene.h>
@@ -200,6 +200,7 @@ inline SceneDesc everyField() {
     door.axisB = Vec3(0, 2, 0);
     door.limits = std::array<double, 2>{-1.25, 0.5};
     door.motor = JointDesc::Motor{0.75, 12.5};
+    door.spring = JointDesc::Spring{3.5, 0.25, 0.125};
     s.joints.push_back(door);
     JointDesc rail;  // a slider to the world, its world axis from the start
     rail.name = "rail";
@@ -209,6 +210,22 @@ inline SceneDesc everyField() {
     rail.limits = std::array<double, 2>{-0.5, 2};
     rail.motor = JointDesc::Motor{-0.25, 40};
     s.joints.push_back(rail);
+    JointDesc shock;  // a slider's servo by gains, unbounded; a spring at rest at 0
+    shock.name = "shock";
+    shock.type = JointType::Slider;
+    shock.bodyA = "can";
+    shock.bodyB = "post";
+    shock.axisA = Vec3(0, 1, 0);
+    shock.spring = JointDesc::Spring{400, 0, 0};
+    shock.servo = JointDesc::Servo{-0.25, HUGE_VAL, 400, 20, 0};
+    s.joints.push_back(shock);
+    JointDesc arm;  // a hinge's servo by its time constant, bounded
+    arm.name = "arm";
+    arm.type = JointType::Hinge;
+    arm.bodyA = "crate";
+    arm.axisA = Vec3(0, 0, 1);
+    arm.servo = JointDesc::Servo{0.5, 30, 0, 0, 0.2};
+    s.joints.push_back(arm);
     JointDesc weld;
     weld.name = "weld";
     weld.type = JointType::Fixed;

@@ -4,6 +4,7 @@
 #include <tumble/world.h>
 
 #include "every_field.h"
+#include "joint_drive_rows.h"
 
 #include <QtTest>
 
@@ -499,6 +500,7 @@ private slots:
         row("motor without its speed", R"("type": "ball", "body_a": "crate")",
             R"("type": "hinge", "axis_a": [0, 1, 0], "motor": {"max_torque": 2}, "body_a": "crate")",
             "joints[1].motor.speed", "drop.json: joints[1].motor.speed: is missing");
+        test::jointDriveRows(row);
         row("zero break force", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "break_force": 0)",
             "joints[1].break_force", "drop.json: joints[1].break_force: must be a finite number greater than 0");
         row("unknown frame",

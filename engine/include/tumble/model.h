@@ -105,6 +105,13 @@ struct JointModel {
     double lower = 0.0, upper = 0.0;
     bool motor = false;
     double motorSpeed = 0.0, motorMax = 0.0;
+    /// Hinge and slider: a spring on the coordinate (JointDesc::spring) and a servo
+    /// (JointDesc::servo; timeConstant > 0 replaces its stiffness and damping).
+    bool spring = false;
+    double springStiffness = 0.0, springDamping = 0.0, springRest = 0.0;
+    bool servo = false;
+    double servoTarget = 0.0, servoMax = HUGE_VAL, servoStiffness = 0.0, servoDamping = 0.0,
+           servoTimeConstant = 0.0;
     double breakForce = HUGE_VAL;  ///< N
     bool collideConnected = false;  ///< its two bodies still collide with each other
     int index = 0;                 ///< in Model::joints

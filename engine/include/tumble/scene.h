@@ -5,6 +5,7 @@
 #include <tumble/math.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -231,6 +232,29 @@ struct JointDesc {
         bool operator==(const Motor&) const = default;
     };
     std::optional<Motor> motor;
+    /// Hinge and slider: a spring and damper on the coordinate, pulling it towards `rest`
+    /// with stiffness × (rest − coordinate) − damping × rate (N m/rad and N m s/rad for a
+    /// hinge, N/m and N s/m for a slider). Solved implicitly in the step: stable at any
+    /// stiffness and step (docs/architecture.md "Joint springs and servos").
+    struct Spring {
+        double stiffness = 0.0;
+        double damping = 0.0;
+        double rest = 0.0;
+        bool operator==(const Spring&) const = default;
+    };
+    std::optional<Spring> spring;
+    /// Hinge and slider: a position motor that drives the coordinate to `target` (rad or m)
+    /// with at most `maxForce` (N m or N; infinite: no bound), either as a spring and damper
+    /// of the given `stiffness` and `damping` or, with `timeConstant` (s) > 0, critically
+    /// damped with that time constant whatever the bodies' masses.
+    struct Servo {
+        double target = 0.0;
+        double maxForce = HUGE_VAL;
+        double stiffness = 0.0, damping = 0.0;
+        double timeConstant = 0.0;  ///< > 0: used instead of stiffness and damping
+        bool operator==(const Servo&) const = default;
+    };
+    std::optional<Servo> servo;
     /// Any joint: it breaks (for good, at the end of the step) when the force it carries
     /// passes this (N); none: it never breaks.
     std::optional<double> breakForce;

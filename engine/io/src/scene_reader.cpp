@@ -380,7 +380,7 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
     r.onlyKeys(j, p,
                {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length",
-                "limits", "motor", "break_force", "collide_connected"});
+                "limits", "motor", "spring", "servo", "break_force", "collide_connected"});
     JointDesc d;
     d.name = r.string(r.require(j, p, "name"), p + ".name");
     d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
@@ -416,6 +416,29 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         }
         m.maxForce = r.number(r.require(v, f, key), Reader::join(f, key));
         d.motor = m;
+    });
+    r.optional(j, p, "spring", [&](const json& v, const std::string& f) {
+        r.object(v, f);
+        r.onlyKeys(v, f, {"stiffness", "damping", "rest"});
+        JointDesc::Spring s;
+        s.stiffness = r.number(r.require(v, f, "stiffness"), f + ".stiffness");
+        r.optional(v, f, "damping", [&](const json& x, const std::string& g) { s.damping = r.number(x, g); });
+        r.optional(v, f, "rest", [&](const json& x, const std::string& g) { s.rest = r.number(x, g); });
+        d.spring = s;
+    });
+    r.optional(j, p, "servo", [&](const json& v, const std::string& f) {
+        r.object(v, f);
+        const bool slider = d.type == JointType::Slider;
+        const char* most = slider ? "max_force" : "max_torque";
+        r.onlyKeys(v, f, {"target", most, "stiffness", "damping", "time_constant"});
+        JointDesc::Servo s;
+        s.target = r.number(r.require(v, f, "target"), f + ".target");
+        r.optional(v, f, most, [&](const json& x, const std::string& g) { s.maxForce = r.number(x, g); });
+        r.optional(v, f, "stiffness", [&](const json& x, const std::string& g) { s.stiffness = r.number(x, g); });
+        r.optional(v, f, "damping", [&](const json& x, const std::string& g) { s.damping = r.number(x, g); });
+        r.optional(v, f, "time_constant",
+                   [&](const json& x, const std::string& g) { s.timeConstant = r.number(x, g); });
+        d.servo = s;
     });
     r.optional(j, p, "break_force", [&](const json& v, const std::string& f) { d.breakForce = r.number(v, f); });
     r.optional(j, p, "collide_connected",

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -152,6 +153,24 @@ ojson jointJson(const JointDesc& d) {
         ojson& m = j["motor"];
         m["speed"] = d.motor->speed;
         m[d.type == JointType::Slider ? "max_force" : "max_torque"] = d.motor->maxForce;
+    }
+    if (d.spring) {
+        ojson& s = j["spring"];
+        s["stiffness"] = d.spring->stiffness;
+        if (d.spring->damping != 0.0) s["damping"] = d.spring->damping;
+        if (d.spring->rest != 0.0) s["rest"] = d.spring->rest;
+    }
+    if (d.servo) {
+        ojson& s = j["servo"];
+        s["target"] = d.servo->target;
+        if (std::isfinite(d.servo->maxForce))
+            s[d.type == JointType::Slider ? "max_force" : "max_torque"] = d.servo->maxForce;
+        if (d.servo->timeConstant > 0.0) {
+            s["time_constant"] = d.servo->timeConstant;
+        } else {
+            s["stiffness"] = d.servo->stiffness;
+            s["damping"] = d.servo->damping;
+        }
     }
     return j;
 }

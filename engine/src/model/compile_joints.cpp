@@ -23,6 +23,41 @@ std::string at(size_t i) {
     return "joints[" + std::to_string(i) + "]";
 }
 
+void finiteAtLeast0(double v, const std::string& field) {
+    if (!std::isfinite(v) || v < 0.0) throw SceneError(field, "must be a finite number, at least 0");
+}
+
+// A hinge's or slider's spring and servo (the motor is checked with the limits).
+void validateDrives(const JointDesc& j, const std::string& p) {
+    if (j.spring) {
+        finiteAtLeast0(j.spring->stiffness, p + ".spring.stiffness");
+        finiteAtLeast0(j.spring->damping, p + ".spring.damping");
+        if (!std::isfinite(j.spring->rest)) throw SceneError(p + ".spring.rest", "must be a finite number");
+    }
+    if (!j.servo) return;
+    const JointDesc::Servo& v = *j.servo;
+    if (j.motor)
+        throw SceneError(p + ".servo",
+                         "a joint has one drive: a motor (a speed) or a servo (a target), not both");
+    if (!std::isfinite(v.target)) throw SceneError(p + ".servo.target", "must be a finite number");
+    const std::string most = p + (j.type == JointType::Slider ? ".servo.max_force" : ".servo.max_torque");
+    if (std::isnan(v.maxForce) || !(v.maxForce > 0.0))
+        throw SceneError(most, "must be greater than 0 (leave it out for no bound)");
+    if (v.timeConstant != 0.0) {
+        if (!std::isfinite(v.timeConstant) || v.timeConstant < 0.0)
+            throw SceneError(p + ".servo.time_constant", "must be a finite number greater than 0");
+        if (v.stiffness != 0.0 || v.damping != 0.0)
+            throw SceneError(p + ".servo.time_constant",
+                             "give either time_constant or stiffness and damping, not both");
+        return;
+    }
+    finiteAtLeast0(v.stiffness, p + ".servo.stiffness");
+    finiteAtLeast0(v.damping, p + ".servo.damping");
+    if (!(v.stiffness > 0.0))
+        throw SceneError(p + ".servo.stiffness",
+                         "must be greater than 0 (or give time_constant instead of stiffness and damping)");
+}
+
 }  // namespace
 
 void validateJoints(const SceneDesc& scene) {
@@ -62,10 +97,11 @@ void validateJoints(const SceneDesc& scene) {
             throw SceneError(p + (j.axisA ? ".axis_a" : ".axis_b"),
                              std::string("a ") + toString(j.type) +
                                  " joint has no axis (only hinge and slider joints have one)");
-        if (!axial && (j.limits || j.motor))
+        if (!axial && (j.limits || j.motor || j.spring || j.servo))
             throw SceneError(
-                p + (j.limits ? ".limits" : ".motor"),
+                p + (j.limits ? ".limits" : j.motor ? ".motor" : j.spring ? ".spring" : ".servo"),
                 std::string("a ") + toString(j.type) + " joint has none (only hinge and slider joints do)");
+        validateDrives(j, p);
         if (j.limits) {
             const auto [lower, upper] = *j.limits;
             if (!std::isfinite(lower) || !std::isfinite(upper))
@@ -127,6 +163,20 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.motor = true;
             j.motorSpeed = d.motor->speed;
             j.motorMax = d.motor->maxForce;
+        }
+        if (d.spring) {
+            j.spring = true;
+            j.springStiffness = d.spring->stiffness;
+            j.springDamping = d.spring->damping;
+            j.springRest = d.spring->rest;
+        }
+        if (d.servo) {
+            j.servo = true;
+            j.servoTarget = d.servo->target;
+            j.servoMax = d.servo->maxForce;
+            j.servoStiffness = d.servo->stiffness;
+            j.servoDamping = d.servo->damping;
+            j.servoTimeConstant = d.servo->timeConstant;
         }
         if (j.type == JointType::Rope && !(j.length > 0.0))
             throw SceneError(at(i) + ".length", "a rope must be longer than 0");

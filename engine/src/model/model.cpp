@@ -2,6 +2,7 @@
 #include <tumble/model.h>
 
 #include "common/pair_key.h"
+#include "solver/joint_general.h"
 
 #include <algorithm>
 
@@ -71,6 +72,7 @@ Energy energy(const Model& model, const State& state) {
         const double stretch = (s.x + s.q * f.arm - f.anchor).norm() - f.restLength;
         e.potential += 0.5 * f.stiffness * stretch * stretch;
     }
+    if (!model.joints.empty()) e.potential += joint::jointSpringEnergy(model, state);
     return e;
 }
 

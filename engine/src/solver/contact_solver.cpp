@@ -6,6 +6,7 @@
 #include "islands/islands.h"
 #include "solver/contact_energy.h"
 #include "solver/contact_rows.h"
+#include "solver/joint_general.h"
 #include "solver/joint_math.h"
 #include "solver/joints.h"
 #include "solver/place_bodies.h"
@@ -610,8 +611,12 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
     ledger.positionCorrection += potentialChange(model, state, s);
     if (!s.jointRows.empty()) {
         keepPoses(state, s);
+        nudgeDrives(model, state, s, cfg.h);
         projectJoints(model, state, s, 0.0);
         ledger.lostInJoints -= potentialChange(model, state, s);
+        // The springs' energy: what their rows gave the bodies is in jointWork; what the
+        // step's moves stored in them is theirs too, not lost.
+        ledger.lostInJoints -= joint::jointSpringEnergy(model, state) - joint::jointSpringEnergy(model, before);
     }
     for (int i : s.involved) {
         if (model.bodies[i].motion != Motion::Dynamic || !s.bodies[i].touched || state.isAsleep(i)) continue;

@@ -137,6 +137,14 @@ struct ContactSolverScratch {
         bool motor = false, lowerOn = false, upperOn = false;
         double motorSpeed = 0.0, motorMax = 0.0, motorLambda = 0.0;
         double lowerTarget = 0.0, lowerLambda = 0.0, upperTarget = 0.0, upperLambda = 0.0;
+        // Its spring and servo (joint_drive.h): the rate after is κ v* + target, solved as
+        // the soft row (1 − κ) v + (κ / mass) λ = target, `mass` the axis's with the joint's
+        // other rows held, λ within ±most.
+        struct Drive {
+            double kappa = 1.0, target = 0.0, mass = 0.0, gain = 0.0, lambda = 0.0, most = HUGE_VAL;
+        };
+        int drives = 0;
+        Drive drive[2];
     };
     std::vector<GeneralRow> generalRows;
     /// The kinetic energy the joints' rows gave their bodies since prepareJoints (negative:

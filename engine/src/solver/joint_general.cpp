@@ -1,4 +1,6 @@
 #include "solver/joint_general.h"
+
+#include "solver/joint_math.h"
 #include <algorithm>
 
 #include <cmath>
@@ -48,6 +50,19 @@ void trackHingeAngles(const Model& model, State& state) {
         state.hingeAngles[j.index] =
             hingeAngle(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, near);
     }
+}
+
+double jointSpringEnergy(const Model& model, const State& state) {
+    double energy = 0.0;
+    for (const JointModel& j : model.joints) {
+        if (!j.spring || j.springStiffness == 0.0 || !active(model, state, j)) continue;
+        ContactSolverScratch::GeneralRow g;
+        generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g, nullptr,
+                    hingeNear(state, j));
+        const double stretch = g.coord - j.springRest;
+        energy += 0.5 * j.springStiffness * stretch * stretch;
+    }
+    return energy;
 }
 
 void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,

@@ -50,6 +50,9 @@ inline double hingeNear(const State& state, const JointModel& j) {
                                                                 : std::numeric_limits<double>::quiet_NaN();
 }
 
+/// The energy the joints' springs hold in `state`: ½ k (coordinate − rest)² each.
+double jointSpringEnergy(const Model& model, const State& state);
+
 /// Sets state.hingeAngles from the poses now (World, at the end of every step).
 void trackHingeAngles(const Model& model, State& state);
 

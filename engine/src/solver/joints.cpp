@@ -1,6 +1,7 @@
 #include "solver/joints.h"
 
 #include "solver/contact_energy.h"
+#include "solver/joint_drive.h"
 #include "solver/joint_general.h"
 #include "solver/joint_math.h"
 #include "solver/joint_projection.h"
@@ -80,6 +81,47 @@ double warmSpan(const State& state, int k, double h, double most) {
     return last > 0.0 ? std::min(h, most * last) : h;
 }
 
+// The mass along a hinge's or slider's free axis with its other rows held: the inverse of
+// Jx M⁻¹ Jxᵀ − aᵀ K⁻¹ a, a = J M⁻¹ Jxᵀ (0: nothing can move along it).
+double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const SolverBody& A, const SolverBody& B) {
+    auto moved = [](const SolverBody& body, const Vector6& J) {
+        Vector6 out;
+        out << body.invMass * J.head<3>(), body.invI * J.tail<3>();
+        return out;
+    };
+    const Vector6 mA = moved(A, g.JAx), mB = moved(B, g.JBx);
+    Vector6 a = g.JA.transpose() * mA + g.JB.transpose() * mB;
+    a.tail(6 - g.m).setZero();
+    const double inv = g.JAx.dot(mA) + g.JBx.dot(mB) - a.dot(g.Kinv * a);
+    return inv > 1e-12 * (g.JAx.dot(mA) + g.JBx.dot(mB)) ? 1.0 / inv : 0.0;
+}
+
+// A hinge's or slider's spring and servo as soft rows along its free axis (joint_drive.h);
+// `start` the coordinate's rate at the step's start.
+void prepareDrives(const JointModel& j, double h, double start, const SolverBody& A, const SolverBody& B,
+                   ContactSolverScratch::GeneralRow& g) {
+    g.drives = 0;
+    if (!(j.spring || j.servo) || !(h > 0.0)) return;
+    const double mass = heldAxisMass(g, A, B);
+    if (!(mass > 0.0)) return;
+    auto add = [&](double p, double q, double error, double most) {
+        const DriveStep step = driveStep(p, q, h);
+        ContactSolverScratch::GeneralRow::Drive& d = g.drive[g.drives++];
+        d.kappa = step.kappa;
+        d.target = step.b / h * error + (step.alpha - step.kappa) * start;
+        d.mass = mass;
+        d.gain = 1.0 / ((1.0 - step.kappa) / g.kAxis + step.kappa / mass);
+        d.most = most;
+    };
+    if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, g.coord - j.springRest, HUGE_VAL);
+    if (!j.servo) return;
+    const double tau = j.servoTimeConstant;
+    if (tau > 0.0)
+        add(2.0 / tau, 1.0 / (tau * tau), g.coord - j.servoTarget, j.servoMax * h);
+    else
+        add(j.servoDamping / mass, j.servoStiffness / mass, g.coord - j.servoTarget, j.servoMax * h);
+}
+
 // A hinge's, slider's or fixed joint's rows at the bodies' poses now, warm-started; false
 // when nothing here can move.
 bool prepareGeneral(const JointModel& j, int k, const State& state, double h, double span, bool remembered,
@@ -100,8 +142,14 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, do
             g.lambda.dot(generalVelocity(g, A, B ? *B : kStill)) + 0.5 * g.lambda.dot(K * g.lambda);
         applyGeneral(g, A, B, g.lambda);
     }
-    if (g.axial && (j.motor || j.limited)) {
+    if (g.axial && (j.motor || j.limited || j.spring || j.servo)) {
         g.kAxis = axisMass(g, A, B ? *B : kStill);
+        if (g.kAxis > 0.0 && !impulsive && (j.spring || j.servo)) {
+            SolverBody A0, B0;  // the bodies' velocities at the step's start
+            static_cast<BodyVelocity&>(A0) = s.start[j.a];
+            if (B) static_cast<BodyVelocity&>(B0) = s.start[j.b];
+            prepareDrives(j, h, axisVelocity(g, A0, B0), A, B ? *B : kStill, g);
+        }
         if (g.kAxis > 0.0 && !impulsive) {
             g.motor = j.motor;
             g.motorSpeed = j.motorSpeed;
@@ -213,15 +261,23 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         s.jointWork += 0.5 * d.dot(v);         // (the rows' velocity after is v + Kd = 0)
         change = v.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
         // The motor's and the limits' rows along the free axis.
-        auto row = [&](double& lambda, double target, double low, double high) {
-            const double vx = axisVelocity(g, A, B ? *B : kStill);
-            const double next = std::clamp(lambda - g.kAxis * (vx - target), low, high);
+        auto take = [&](double& lambda, double next, double vx) {
             if (next == lambda) return;
             s.jointWork += (next - lambda) * (vx + 0.5 * (next - lambda) / g.kAxis);
             applyAxis(g, A, B, next - lambda);
             change = std::max(change, std::abs(next - lambda) / g.kAxis);
             lambda = next;
         };
+        auto row = [&](double& lambda, double target, double low, double high) {
+            const double vx = axisVelocity(g, A, B ? *B : kStill);
+            take(lambda, std::clamp(lambda - g.kAxis * (vx - target), low, high), vx);
+        };
+        for (int i = 0; i < g.drives; ++i) {  // spring, servo: soft rows
+            ContactSolverScratch::GeneralRow::Drive& d = g.drive[i];
+            const double vx = axisVelocity(g, A, B ? *B : kStill);
+            const double residual = (1.0 - d.kappa) * vx + d.kappa / d.mass * d.lambda - d.target;
+            take(d.lambda, std::clamp(d.lambda - d.gain * residual, -d.most, d.most), vx);
+        }
         if (g.motor) row(g.motorLambda, g.motorSpeed, -g.motorMax, g.motorMax);
         if (g.lowerOn) row(g.lowerLambda, g.lowerTarget, 0.0, HUGE_VAL);
         if (g.upperOn) row(g.upperLambda, g.upperTarget, -HUGE_VAL, 0.0);
@@ -249,6 +305,22 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
     if (A.invMass > 0.0) s.changedAt[r.a] = tick;
     if (B && B->invMass > 0.0) s.changedAt[r.b] = tick;
     return true;
+}
+
+void nudgeDrives(const Model& model, State& state, const ContactSolverScratch& s, double h) {
+    for (const JointRow& r : s.jointRows) {
+        if (r.general < 0) continue;
+        const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
+        double lambda = 0.0;
+        for (int i = 0; i < g.drives; ++i) lambda += g.drive[i].lambda;
+        if (lambda == 0.0) continue;
+        const JointModel& j = model.joints[r.joint];
+        const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+        // The rate it added is λ / mass (the axis's, the other rows held); moved along the
+        // free axis (whose mass is kAxis) by as much, the projection after keeps the rest.
+        nudgeAxis(g, moveA ? s.bodies[j.a] : kStill, state.bodies[j.a], moveA, moveB ? s.bodies[j.b] : kStill,
+                  j.b >= 0 ? &state.bodies[j.b] : nullptr, moveB, 0.5 * h * lambda * g.kAxis / g.drive[0].mass);
+    }
 }
 
 void rememberJoints(const Model& model, const ContactSolverScratch& s, double h, State& state) {
@@ -296,7 +368,8 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
             // A motor's and the limits' push along the free axis: a couple about a hinge's
             // axis, a force along a slider's (reported; breaking is the constraint's alone).
             if (g.axial) {
-                const double axial = (g.motorLambda + g.lowerLambda + g.upperLambda) / h;
+                double axial = (g.motorLambda + g.lowerLambda + g.upperLambda) / h;
+                for (int i = 0; i < g.drives; ++i) axial += g.drive[i].lambda / h;
                 state.jointCouples[r.joint] += axial * g.JAx.tail<3>();
                 reported += axial * g.JAx.head<3>();
             }

@@ -16,15 +16,16 @@ namespace tumble {
 namespace {
 
 // Whether the model is a mechanism the composed step is exact for: the fourth-order
-// integrator; joints that hold both ways (no rope, limit, motor or breaking: one-sided or
-// driven rows, and a breaking force met within a piece, are not symmetric in time); no
+// integrator; joints that hold both ways (no rope, limit, motor, spring, servo or breaking:
+// one-sided, soft or driven rows, and a breaking force met within a piece, are not symmetric in time); no
 // damping and no force switched on or off (the middle piece runs backwards in time); and no
 // two bodies that could touch (every pair that is not static-static is a joint's pair), so
 // that no contact or impact is ever met backwards.
 bool composable(const Model& m) {
     if (m.integrator->id != Integrator::Splitting4 || m.joints.empty() || m.bodies.size() > 64) return false;
     for (const JointModel& j : m.joints)
-        if (j.type == JointType::Rope || j.limited || j.motor || std::isfinite(j.breakForce)) return false;
+        if (j.type == JointType::Rope || j.limited || j.motor || j.spring || j.servo || std::isfinite(j.breakForce))
+            return false;
     for (const BodyModel& b : m.bodies)
         if (b.linearDamping != 0.0 || b.angularDamping != 0.0 ||
             (b.motion == Motion::Kinematic && !b.standsStill()))
@@ -50,7 +51,9 @@ void World::prepareJointedSteps() {
             if (b.motion == Motion::Dynamic) s.jointedBodies.push_back(i);
             if (b.motion == Motion::Kinematic && !b.standsStill()) s.jointsPassive = false;
         }
-    for (const JointModel& j : model_.joints) s.jointsPassive = s.jointsPassive && !j.motor;
+    // (A spring's energy comes back as the step's rounding of its oscillation: not a gain
+    // the halves would mend; a servo drives.)
+    for (const JointModel& j : model_.joints) s.jointsPassive = s.jointsPassive && !j.motor && !j.spring && !j.servo;
     // (Every group's energy counts since a chain of ball joints of any length is solved as
     // one (joint_projection.cpp): a 100-link chain let go level at 1/60 s gained up to 4e-4
     // of its energy without the check, 3e-5 with it (49 of 301 steps split, 20 % more
@@ -67,7 +70,7 @@ void World::prepareJointedSteps() {
     if (model_.integrator->id == Integrator::Splitting4 && !model_.joints.empty() && !s.composed) {
         model_.notes.push_back(
             "splitting-4: the joints here are stepped at second order (the fourth-order composition "
-            "needs a mechanism alone: no rope, limit, motor or breaking force, no damping, no force "
+            "needs a mechanism alone: no rope, limit, motor, spring, servo or breaking force, no damping, no force "
             "switched on or off, no two bodies that could touch, at most 64 bodies); free "
             "rotations are still fourth order");
     }
