@@ -188,6 +188,10 @@ inline SceneDesc everyField() {
     hinge.anchorA = Vec3(-0.5, 0.25, 0);
     hinge.bodyB = "post";
     hinge.anchorB = Vec3(0, 1, 0);
+    hinge.axisA = Vec3(0, -1, 0);  // a shoulder: an elliptical cone and a twist range
+    hinge.axisB = Vec3(0, -1, 0.5);
+    hinge.swingLimit = std::array<double, 2>{0.75, 0.25};
+    hinge.twistLimits = std::array<double, 2>{-0.5, 0.25};
     s.joints.push_back(hinge);
     JointDesc door;  // a hinge with both axes given
     door.name = "door";

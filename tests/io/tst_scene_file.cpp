@@ -4,7 +4,7 @@
 #include <tumble/world.h>
 
 #include "every_field.h"
-#include "joint_drive_rows.h"
+#include "joint_rows.h"
 
 #include <QtTest>
 
@@ -479,8 +479,10 @@ private slots:
         row("zero axis", R"("type": "ball", "body_a": "crate")",
             R"("type": "slider", "axis_a": [0, 0, 0], "body_a": "crate")", "joints[1].axis_a",
             "drop.json: joints[1].axis_a: must not be the zero vector");
-        row("ball joint with an axis", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "axis_b": [0, 1, 0])",
-            "joints[1].axis_b", "drop.json: joints[1].axis_b: a ball joint has no axis (only hinge and slider joints have one)");
+        row("ball joint's axis_b alone", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "axis_b": [0, 1, 0])",
+            "joints[1].axis_a", "drop.json: joints[1].axis_a: is missing (a ball joint's axis_b goes with its axis_a)");
+        row("rope with an axis", R"("length": 1.5)", R"("length": 1.5, "axis_a": [0, 1, 0])", "joints[0].axis_a",
+            "drop.json: joints[0].axis_a: a rope joint has no axis (hinge, slider and ball joints have one)");
         row("anchor not a vector", R"("anchor_a": [0.5, 0, 0])", R"("anchor_a": [0.5, 0])", "joints[1].anchor_a",
             "drop.json: joints[1].anchor_a: must be an array of 3 numbers");
         row("inverted limits", R"("type": "ball", "body_a": "crate")",
@@ -500,7 +502,7 @@ private slots:
         row("motor without its speed", R"("type": "ball", "body_a": "crate")",
             R"("type": "hinge", "axis_a": [0, 1, 0], "motor": {"max_torque": 2}, "body_a": "crate")",
             "joints[1].motor.speed", "drop.json: joints[1].motor.speed: is missing");
-        test::jointDriveRows(row);
+        test::jointFeatureRows(row);
         row("zero break force", R"("anchor_b": [0, -0.5, 0])", R"("anchor_b": [0, -0.5, 0], "break_force": 0)",
             "joints[1].break_force", "drop.json: joints[1].break_force: must be a finite number greater than 0");
         row("unknown frame",

@@ -10,6 +10,8 @@
 #include <tumble/scene.h>
 #include <tumble/state.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
@@ -105,6 +107,13 @@ struct JointModel {
     double lower = 0.0, upper = 0.0;
     bool motor = false;
     double motorSpeed = 0.0, motorMax = 0.0;
+    /// Ball: its swing cone (half-angles towards `swingCross`, A's first frame axis across
+    /// its axis as placed, and axisB × it, in B's frame)
+    /// and twist range (JointDesc::swingLimit, twistLimits; joint_cone.h).
+    bool swingLimited = false, twistLimited = false;
+    std::array<double, 2> swingLimit{M_PI, M_PI};
+    Vec3 swingCross = Vec3::UnitX();
+    double twistLower = -M_PI, twistUpper = M_PI;
     /// Hinge and slider: a spring on the coordinate (JointDesc::spring) and a servo
     /// (JointDesc::servo; timeConstant > 0 replaces its stiffness and damping).
     bool spring = false;

@@ -224,6 +224,13 @@ struct JointDesc {
     /// by the right hand about A's axis) or the slider's offset of A's anchor from B's along
     /// the axis (m). A stop is inelastic.
     std::optional<std::array<double, 2>> limits;
+    /// Ball: a swing cone about B's axis (`axisB`, or `axisA` as placed) that A's axis stays
+    /// in, as half-angles (rad, in (0, π)) towards A's first frame axis across its axis (of
+    /// x, y, z, the one most in line with the axis left out; as the scene places A) and
+    /// towards the axis × that one (equal: a circular cone), and the range of A's twist about
+    /// its axis relative to B (rad, within [−π, π], 0 as placed). Both need `axisA`.
+    std::optional<std::array<double, 2>> swingLimit;
+    std::optional<std::array<double, 2>> twistLimits;
     /// Hinge and slider: drives the coordinate's rate towards `speed` (rad/s or m/s) with
     /// at most `maxForce` (N m for a hinge, N for a slider).
     struct Motor {

@@ -380,7 +380,8 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
     r.object(j, p);
     r.onlyKeys(j, p,
                {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length",
-                "limits", "motor", "spring", "servo", "break_force", "collide_connected"});
+                "limits", "motor", "spring", "servo", "swing_limit", "twist_limits", "break_force",
+                "collide_connected"});
     JointDesc d;
     d.name = r.string(r.require(j, p, "name"), p + ".name");
     d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
@@ -416,6 +417,20 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         }
         m.maxForce = r.number(r.require(v, f, key), Reader::join(f, key));
         d.motor = m;
+    });
+    r.optional(j, p, "swing_limit", [&](const json& v, const std::string& f) {
+        if (v.is_number()) {  // a circular cone
+            const double angle = r.number(v, f);
+            d.swingLimit = std::array<double, 2>{angle, angle};
+        } else {
+            if (!v.is_array() || v.size() != 2) r.fail(f, "must be an angle or an array of 2 angles");
+            const Eigen::Vector2d l = r.vector<2>(v, f);
+            d.swingLimit = std::array<double, 2>{l[0], l[1]};
+        }
+    });
+    r.optional(j, p, "twist_limits", [&](const json& v, const std::string& f) {
+        const Eigen::Vector2d l = r.vector<2>(v, f);
+        d.twistLimits = std::array<double, 2>{l[0], l[1]};
     });
     r.optional(j, p, "spring", [&](const json& v, const std::string& f) {
         r.object(v, f);

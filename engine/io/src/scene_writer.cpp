@@ -147,6 +147,11 @@ ojson jointJson(const JointDesc& d) {
     if (d.axisB) j["axis_b"] = vec(*d.axisB);  // absent: axis_a as it lies at the start
     if (d.length >= 0.0) j["length"] = d.length;  // absent: the anchors' distance at the start
     if (d.limits) j["limits"] = ojson::array({(*d.limits)[0], (*d.limits)[1]});
+    if (d.swingLimit) {
+        const auto [first, second] = *d.swingLimit;
+        j["swing_limit"] = first == second ? ojson(first) : ojson::array({first, second});
+    }
+    if (d.twistLimits) j["twist_limits"] = ojson::array({(*d.twistLimits)[0], (*d.twistLimits)[1]});
     if (d.breakForce) j["break_force"] = *d.breakForce;
     if (d.collideConnected) j["collide_connected"] = true;
     if (d.motor) {

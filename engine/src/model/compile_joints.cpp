@@ -27,6 +27,20 @@ void finiteAtLeast0(double v, const std::string& field) {
     if (!std::isfinite(v) || v < 0.0) throw SceneError(field, "must be a finite number, at least 0");
 }
 
+// A ball joint's swing cone and twist range.
+void validateBallLimits(const JointDesc& j, const std::string& p) {
+    if (j.swingLimit)
+        for (double angle : *j.swingLimit)
+            if (!(angle > 0.0 && angle < M_PI))
+                throw SceneError(p + ".swing_limit", "must be angles greater than 0 and less than pi (rad)");
+    if (j.twistLimits) {
+        const auto [lower, upper] = *j.twistLimits;
+        if (!(lower >= -M_PI && upper <= M_PI))
+            throw SceneError(p + ".twist_limits", "must be angles within [-pi, pi] (rad)");
+        if (lower > upper) throw SceneError(p + ".twist_limits", "the lower limit is above the upper one");
+    }
+}
+
 // A hinge's or slider's spring and servo (the motor is checked with the limits).
 void validateDrives(const JointDesc& j, const std::string& p) {
     if (j.spring) {
@@ -56,6 +70,15 @@ void validateDrives(const JointDesc& j, const std::string& p) {
     if (!(v.stiffness > 0.0))
         throw SceneError(p + ".servo.stiffness",
                          "must be greater than 0 (or give time_constant instead of stiffness and damping)");
+}
+
+// The first of the frame's axes x, y, z across the unit `axis` (the one most in line with it
+// left out), made square to it: a cone's first half-angle leans towards it.
+Vec3 crossAxis(const Vec3& axis) {
+    int along = 0;
+    axis.cwiseAbs().maxCoeff(&along);
+    const Vec3 first = along == 0 ? Vec3::UnitY() : Vec3::UnitX();
+    return (first - first.dot(axis) * axis).normalized();
 }
 
 }  // namespace
@@ -90,13 +113,23 @@ void validateJoints(const SceneDesc& scene) {
                              std::string("a ") + toString(j.type) +
                                  " joint has no length (only distance and rope joints have one)");
         const bool axial = j.type == JointType::Hinge || j.type == JointType::Slider;
+        const bool cone = j.type == JointType::Ball && (j.swingLimit || j.twistLimits);
         if (axial && !j.axisA)
             throw SceneError(p + ".axis_a",
                              std::string("is missing (a ") + toString(j.type) + " joint needs its axis)");
-        if (!axial && (j.axisA || j.axisB))
+        if (cone && !j.axisA)
+            throw SceneError(p + ".axis_a",
+                             "is missing (a ball joint's swing_limit and twist_limits are about its axis)");
+        if (!axial && j.type != JointType::Ball && (j.axisA || j.axisB))
             throw SceneError(p + (j.axisA ? ".axis_a" : ".axis_b"),
                              std::string("a ") + toString(j.type) +
-                                 " joint has no axis (only hinge and slider joints have one)");
+                                 " joint has no axis (hinge, slider and ball joints have one)");
+        if (j.type == JointType::Ball && j.axisB && !j.axisA)
+            throw SceneError(p + ".axis_a", "is missing (a ball joint's axis_b goes with its axis_a)");
+        if (j.type != JointType::Ball && (j.swingLimit || j.twistLimits))
+            throw SceneError(p + (j.swingLimit ? ".swing_limit" : ".twist_limits"),
+                             std::string("a ") + toString(j.type) + " joint has none (only ball joints do)");
+        validateBallLimits(j, p);
         if (!axial && (j.limits || j.motor || j.spring || j.servo))
             throw SceneError(
                 p + (j.limits ? ".limits" : j.motor ? ".motor" : j.spring ? ".spring" : ".servo"),
@@ -163,6 +196,18 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.motor = true;
             j.motorSpeed = d.motor->speed;
             j.motorMax = d.motor->maxForce;
+        }
+        if (d.swingLimit) {
+            j.swingLimited = true;
+            j.swingLimit = *d.swingLimit;
+            // A's first frame axis across its axis, as the scene places A, in B's frame.
+            const Vec3 across = qb.conjugate() * (qa * crossAxis(j.axisA));
+            j.swingCross = (across - across.dot(j.axisB) * j.axisB).normalized();
+        }
+        if (d.twistLimits) {
+            j.twistLimited = true;
+            j.twistLower = (*d.twistLimits)[0];
+            j.twistUpper = (*d.twistLimits)[1];
         }
         if (d.spring) {
             j.spring = true;

@@ -115,6 +115,15 @@ struct ContactSolverScratch {
         bool pullsOnly = false;      // rope
         Vec3 lambda = Vec3::Zero();  // accumulated impulse (x alone for a single row)
         int general = -1;            // hinge, slider, fixed: its entry in generalRows
+        // A ball joint's cone and twist limits (joint_cone.h): one-sided angular rows keeping
+        // the rate (ωA − ωB)·axis on its side of `target`, λ ≥ 0 (sign +1) or ≤ 0 (−1).
+        struct Angular {
+            Vec3 axis = Vec3::Zero();
+            double k = 0.0, target = 0.0, lambda = 0.0;
+            int sign = 0;
+        };
+        int angulars = 0;
+        Angular angular[3];
     };
     /// A hinge's, slider's or fixed joint's rows (joint_general.h): up to six, solved
     /// together through the inverse of their effective mass.

@@ -65,6 +65,22 @@ double jointSpringEnergy(const Model& model, const State& state) {
     return energy;
 }
 
+void fillJacobians(ContactSolverScratch::GeneralRow& rows, const Vec3& rA, const Vec3& rB) {
+    rows.m = rows.nl + rows.na;
+    rows.JA.setZero();
+    rows.JB.setZero();
+    for (int i = 0; i < rows.nl; ++i) {
+        const Vec3 d = rows.lin.col(i);
+        rows.JA.col(i) << d, rA.cross(d);
+        rows.JB.col(i) << -d, -rB.cross(d);
+    }
+    for (int i = 0; i < rows.na; ++i) {
+        const Vec3 e = rows.ang.col(i);
+        rows.JA.col(rows.nl + i) << Vec3::Zero(), e;
+        rows.JB.col(rows.nl + i) << Vec3::Zero(), -e;
+    }
+}
+
 void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
                  ContactSolverScratch::GeneralRow& rows, Vector6* error, double near) {
     const Quat qa = a.q, qb = b ? b->q : Quat::Identity();
@@ -115,19 +131,7 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
             c = rotationVector(qa * (qb * j.relative).conjugate());
             break;
     }
-    rows.m = rows.nl + rows.na;
-    rows.JA.setZero();
-    rows.JB.setZero();
-    for (int i = 0; i < rows.nl; ++i) {
-        const Vec3 d = rows.lin.col(i);
-        rows.JA.col(i) << d, rA.cross(d);
-        rows.JB.col(i) << -d, -rB.cross(d);
-    }
-    for (int i = 0; i < rows.na; ++i) {
-        const Vec3 e = rows.ang.col(i);
-        rows.JA.col(rows.nl + i) << Vec3::Zero(), e;
-        rows.JB.col(rows.nl + i) << Vec3::Zero(), -e;
-    }
+    fillJacobians(rows, rA, rB);
     if (error) {
         error->setZero();
         const Vec3 gap = pA - pB;

@@ -39,6 +39,10 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
                  ContactSolverScratch::GeneralRow& rows, Vector6* error = nullptr,
                  double near = std::numeric_limits<double>::quiet_NaN());
 
+/// Sets rows.m and the Jacobians JA, JB of the rows' directions (lin's first nl columns,
+/// acting at the arms rA of A and rB of B; ang's first na, turning A against B).
+void fillJacobians(ContactSolverScratch::GeneralRow& rows, const Vec3& rA, const Vec3& rB);
+
 /// A hinge's angle about its axis at these poses, within π of `near` (NaN: within [-π, π]);
 /// 0 as the scene places the bodies.
 double hingeAngle(const JointModel& j, const BodyState& a, const BodyState* b,

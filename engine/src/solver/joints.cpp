@@ -1,6 +1,7 @@
 #include "solver/joints.h"
 
 #include "solver/contact_energy.h"
+#include "solver/joint_cone.h"
 #include "solver/joint_drive.h"
 #include "solver/joint_general.h"
 #include "solver/joint_math.h"
@@ -79,6 +80,29 @@ double lastStep(const State& state, int k) {
 double warmSpan(const State& state, int k, double h, double most) {
     const double last = lastStep(state, k);
     return last > 0.0 ? std::min(h, most * last) : h;
+}
+
+// A ball joint's cone and twist rows (joint_cone.h) at the poses now; in an impact only a
+// bound reached, holding.
+void ballLimitRows(const JointModel& j, const State& state, double h, bool impulsive, const SolverBody& A,
+                   const SolverBody* B, JointRow& r) {
+    const BallAngles g = ballAngles(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr);
+    // `room`: how far the angle may still go towards the bound (negative: past it).
+    auto add = [&](const Vec3& axis, double room, int sign) {
+        if (impulsive && room > kReached) return;
+        const double inv = axis.dot(A.invI * axis) + (B ? axis.dot(B->invI * axis) : 0.0);
+        if (!(inv > 0.0)) return;
+        JointRow::Angular& row = r.angular[r.angulars++];
+        row.axis = axis;
+        row.k = 1.0 / inv;
+        row.sign = sign;
+        row.target = impulsive ? 0.0 : -sign * std::max(room, 0.0) / h;
+    };
+    if (j.swingLimited && g.swingKnown) add(g.swingAxis, g.swingBound - g.swing, -1);
+    if (j.twistLimited) {
+        add(g.twistAxis, g.twist - j.twistLower, +1);
+        add(g.twistAxis, j.twistUpper - g.twist, -1);
+    }
 }
 
 // The mass along a hinge's or slider's free axis with its other rows held: the inverse of
@@ -213,6 +237,7 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
             if (!(K.determinant() > 0.0)) continue;  // nothing here can move
             r.Kinv = K.inverse();
             r.ball = true;
+            if (j.swingLimited || j.twistLimited) ballLimitRows(j, state, h, impulsive, A, B, r);
         } else {
             const Vec3 d = pA - pB;
             const double length = d.norm();
@@ -299,6 +324,23 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         if (B) applyImpulse(*B, r.rB, -d);
         s.jointWork += 0.5 * d.dot(dv);  // (the anchors' relative velocity after is dv + Kd = 0)
         change = dv.lpNorm<Eigen::Infinity>();
+        for (int i = 0; i < r.angulars; ++i) {  // its cone and twist limits
+            JointRow::Angular& q = r.angular[i];
+            const double rate = q.axis.dot(A.w - (B ? B->w : Vec3::Zero()));
+            double next = q.lambda - q.k * (rate - q.target);
+            next = q.sign > 0 ? std::max(next, 0.0) : std::min(next, 0.0);
+            const double step = next - q.lambda;
+            if (step == 0.0) continue;
+            A.w += A.invI * (step * q.axis);
+            A.touched = true;
+            if (B) {
+                B->w -= B->invI * (step * q.axis);
+                B->touched = true;
+            }
+            s.jointWork += step * (rate + 0.5 * step / q.k);
+            change = std::max(change, std::abs(step) / q.k);
+            q.lambda = next;
+        }
     }
     if (!(change > quietSpeed)) return false;
     const long tick = ++s.tick;  // the contact blocks of these bodies look again
@@ -356,6 +398,10 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
             state.jointSteps[r.joint] = h;
             state.jointImpulses[r.joint] = r.lambda / h;
             impulse += r.ball ? r.lambda : Vec3(r.lambda.x() * r.n);
+            for (int i = 0; i < r.angulars; ++i)  // a ball's cone and twist limits: a couple
+                state.jointCouples[r.joint] += r.angular[i].lambda / h * r.angular[i].axis;
+            if (r.angulars && s.projectedCouple.size() == model.joints.size())
+                state.jointCouples[r.joint] += s.projectedCouple[r.joint] / h;
         } else {
             const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
             state.jointSteps[r.joint] = h;
@@ -464,6 +510,11 @@ double projectOne(const Model& model, State& state, ContactSolverScratch& s, dou
     if (isGeneral(j.type)) return projectGeneral(state, s, h, from, at, j, moveA, moveB, A, B);
     const Vec3 arA = at.bodies[j.a].q * j.anchorA;  // the arms the impulse acts at
     const Vec3 arB = j.b >= 0 ? Vec3(at.bodies[j.b].q * j.anchorB) : Vec3::Zero();
+    if (j.swingLimited || j.twistLimited) {  // (as a hinge's: its rows at once)
+        if (from && (turnedFar(at.bodies[j.a].q, a.q) || (j.b >= 0 && turnedFar(at.bodies[j.b].q, state.bodies[j.b].q))))
+            return (pA - pB).norm();
+        return projectLimitedBall(state, s, h, from, at, j, moveA, moveB, A, B);
+    }
     // A body that turned far in the step (a whipping chain's end at 1/30 s): the start's
     // arms no longer tell how the anchor moves, and the Newton steps along them can run
     // away; such a joint is left to the passes along the directions now.

@@ -24,7 +24,8 @@ namespace {
 bool composable(const Model& m) {
     if (m.integrator->id != Integrator::Splitting4 || m.joints.empty() || m.bodies.size() > 64) return false;
     for (const JointModel& j : m.joints)
-        if (j.type == JointType::Rope || j.limited || j.motor || j.spring || j.servo || std::isfinite(j.breakForce))
+        if (j.type == JointType::Rope || j.limited || j.swingLimited || j.twistLimited || j.motor || j.spring ||
+            j.servo || std::isfinite(j.breakForce))
             return false;
     for (const BodyModel& b : m.bodies)
         if (b.linearDamping != 0.0 || b.angularDamping != 0.0 ||

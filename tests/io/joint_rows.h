@@ -1,4 +1,5 @@
-// tst_scene_file's bad-input rows for joints' springs and servos (issue 51 item 1): each a
+// tst_scene_file's bad-input rows for joints' springs, servos, cones and twist limits (issue
+// 51 item 1): each a
 // change to the base scene's second joint (a ball joint of "crate") and the message that
 // names the field.
 #pragma once
@@ -6,7 +7,7 @@
 namespace tumble::test {
 
 template <class Row>
-void jointDriveRows(Row row) {
+void jointFeatureRows(Row row) {
     const char* ball = R"("type": "ball", "body_a": "crate")";
     row("spring on a ball joint", R"("anchor_b": [0, -0.5, 0])",
         R"("anchor_b": [0, -0.5, 0], "spring": {"stiffness": 10})", "joints[1].spring",
@@ -51,6 +52,22 @@ void jointDriveRows(Row row) {
         R"("type": "slider", "axis_a": [0, 1, 0], "servo": {"target": 1, "time_constant": 0.1, "max_torque": 3}, )"
         R"("body_a": "crate")",
         "joints[1].servo.max_torque", "drop.json: joints[1].servo.max_torque: unknown key");
+    const char* axis = R"("anchor_b": [0, -0.5, 0])";
+    row("swing limit on a hinge", ball,
+        R"("type": "hinge", "axis_a": [0, 1, 0], "swing_limit": 0.5, "body_a": "crate")", "joints[1].swing_limit",
+        "drop.json: joints[1].swing_limit: a hinge joint has none (only ball joints do)");
+    row("swing limit without an axis", axis, R"("anchor_b": [0, -0.5, 0], "swing_limit": 0.5)", "joints[1].axis_a",
+        "drop.json: joints[1].axis_a: is missing (a ball joint's swing_limit and twist_limits are about its axis)");
+    row("swing limit of 0", axis, R"("anchor_b": [0, -0.5, 0], "axis_a": [0, 1, 0], "swing_limit": [0.5, 0])",
+        "joints[1].swing_limit",
+        "drop.json: joints[1].swing_limit: must be angles greater than 0 and less than pi (rad)");
+    row("swing limit of three angles", axis,
+        R"("anchor_b": [0, -0.5, 0], "axis_a": [0, 1, 0], "swing_limit": [0.5, 0.2, 0.1])", "joints[1].swing_limit",
+        "drop.json: joints[1].swing_limit: must be an angle or an array of 2 angles");
+    row("twist limits past pi", axis, R"("anchor_b": [0, -0.5, 0], "axis_a": [0, 1, 0], "twist_limits": [-4, 1])",
+        "joints[1].twist_limits", "drop.json: joints[1].twist_limits: must be angles within [-pi, pi] (rad)");
+    row("twist limits inverted", axis, R"("anchor_b": [0, -0.5, 0], "axis_a": [0, 1, 0], "twist_limits": [1, -1])",
+        "joints[1].twist_limits", "drop.json: joints[1].twist_limits: the lower limit is above the upper one");
 }
 
 }  // namespace tumble::test
