@@ -54,6 +54,11 @@ std::optional<JointDesc> swappedJoint(const SceneDesc& scene, const JointDesc& j
     // The coordinate is the other body's against this one: the same motion, the other sign.
     if (j.limits) s.limits = std::array<double, 2>{-(*j.limits)[1], -(*j.limits)[0]};
     if (j.motor) s.motor->speed = -j.motor->speed;
+    if (j.spring) s.spring->rest = -j.spring->rest;
+    if (j.servo) s.servo->target = -j.servo->target;
+    // A ball's twist of the one against the other, the other sign; its cone is the angle
+    // between the two axes, the same (an elliptical cone's directions are then the new A's).
+    if (j.twistLimits) s.twistLimits = std::array<double, 2>{-(*j.twistLimits)[1], -(*j.twistLimits)[0]};
     return s;
 }
 

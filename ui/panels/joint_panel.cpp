@@ -59,19 +59,10 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     outer->addWidget(box);
 
     auto addRow = [this](const QString& label, const QString& key, QWidget* editor) {
-        QWidget* row = withError(editor, key);
-        form_->addRow(label, row);
-        rows_.insert(key, row);
-        return row;
+        return addFormRow(label, key, editor);
     };
     auto spin = [this](const QString& key, const QString& suffix, double min, double step) {
-        auto* s = new PropertySpinBox;
-        s->setObjectName(key);
-        s->setSuffix(suffix);
-        s->setSoftMinimum(min);
-        s->setSingleStep(step);
-        connect(s, &PropertySpinBox::editingFinished, this, [this] { ++generation_; });
-        return s;
+        return makeSpin(key, suffix, min, step);
     };
     auto vector = [this](const QString& key, const QString& suffix) {
         auto* v = new VectorEdit(key, suffix);
@@ -79,14 +70,8 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         connect(v, &VectorEdit::editingFinished, this, [this] { ++generation_; });
         return v;
     };
-    // A check box and the spin boxes it enables, as one field.
     auto optional = [](QCheckBox* check, std::initializer_list<QWidget*> fields) {
-        auto* w = new QWidget;
-        auto* layout = new QHBoxLayout(w);
-        layout->setContentsMargins(0, 0, 0, 0);
-        layout->addWidget(check);
-        for (QWidget* f : fields) layout->addWidget(f, 1);
-        return w;
+        return optionalRow(check, fields);
     };
 
     name_ = new QLineEdit;
@@ -114,10 +99,18 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
                     j.axisA = a.q.conjugate() * (t == JointType::Hinge ? Vec3::UnitY() : Vec3::UnitX());
                 }
                 if (!axial(t)) {
-                    j.axisA.reset();
-                    j.axisB.reset();
+                    if (t != JointType::Ball || !(j.swingLimit || j.twistLimits)) {
+                        j.axisA.reset();
+                        j.axisB.reset();
+                    }
                     j.limits.reset();
                     j.motor.reset();
+                    j.spring.reset();
+                    j.servo.reset();
+                }
+                if (t != JointType::Ball) {
+                    j.swingLimit.reset();
+                    j.twistLimits.reset();
                 }
                 if (!line(t)) j.length = -1.0;
             },
@@ -310,10 +303,12 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         apply(
             "motor", on ? tr("Add joint motor") : tr("Remove joint motor"),
             [&](JointDesc& j) {
-                if (on)
+                if (on) {
                     j.motor = JointDesc::Motor{1.0, 10.0};
-                else
+                    j.servo.reset();  // one drive: the motor replaces the servo
+                } else {
                     j.motor.reset();
+                }
             },
             false);
     });
@@ -327,6 +322,9 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             if (j.motor) j.motor->maxForce = v;
         });
     });
+
+    buildDriveRows();
+    buildBallLimitRows();
 
     breaks_ = new QCheckBox;
     breaks_->setObjectName("joint.break_force.on");
@@ -380,6 +378,32 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     for (PropertySpinBox* limit : {lower_, upper_})
         connect(limit, &PropertySpinBox::heldCancelled, this, cancel);
     refresh();
+}
+
+QWidget* JointPanel::addFormRow(const QString& label, const QString& key, QWidget* editor) {
+    QWidget* row = withError(editor, key);
+    form_->addRow(label, row);
+    rows_.insert(key, row);
+    return row;
+}
+
+PropertySpinBox* JointPanel::makeSpin(const QString& key, const QString& suffix, double min, double step) {
+    auto* s = new PropertySpinBox;
+    s->setObjectName(key);
+    s->setSuffix(suffix);
+    s->setSoftMinimum(min);
+    s->setSingleStep(step);
+    connect(s, &PropertySpinBox::editingFinished, this, [this] { ++generation_; });
+    return s;
+}
+
+QWidget* JointPanel::optionalRow(QWidget* check, std::initializer_list<QWidget*> fields) {
+    auto* w = new QWidget;
+    auto* layout = new QHBoxLayout(w);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(check);
+    for (QWidget* f : fields) layout->addWidget(f, 1);
+    return w;
 }
 
 int JointPanel::jointIndex() const {
@@ -528,8 +552,9 @@ void JointPanel::refresh() {
     anchorB_->setToolTip(world || j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
     swap_->setEnabled(!j.bodyB.empty());
     const bool ax = axial(j.type);
-    form_->setRowVisible(rows_["axis_a"], ax);
-    form_->setRowVisible(rows_["axis_b"], ax);
+    const bool ballAxis = j.type == JointType::Ball && j.axisA.has_value();
+    form_->setRowVisible(rows_["axis_a"], ax || ballAxis);
+    form_->setRowVisible(rows_["axis_b"], ax || ballAxis);
     form_->setRowVisible(rows_["limits"], ax);
     form_->setRowVisible(rows_["motor"], ax);
     form_->setRowVisible(rows_["length"], line(j.type));
@@ -572,6 +597,8 @@ void JointPanel::refresh() {
         motorSpeed_->showValue(j.motor->speed);
         motorMax_->showValue(j.motor->maxForce);
     }
+    refreshDrives(j);
+    refreshBallLimits(j);
     {
         const QSignalBlocker b(breaks_);
         breaks_->setChecked(j.breakForce.has_value());

@@ -1,6 +1,6 @@
 // The property panel's page for a selected joint: its name, type, the bodies it joins,
-// anchors and axes in each body's frame, and the optional length, limits, motor and
-// breaking force, each with its unit. Every edit is checked with the engine's own
+// anchors and axes in each body's frame, and the optional length, limits, motor, spring,
+// servo, cone, twist limits and breaking force, each with its unit. Every edit is checked with the engine's own
 // validation before it reaches the document (a refused value is explained under its field
 // and the field shows the joint as it is); each is one undo step, a scrub of one field is
 // one. Changing a joint's body keeps its anchor (and axis) where they are in the world.
@@ -12,6 +12,7 @@
 #include <QWidget>
 
 #include <functional>
+#include <initializer_list>
 
 class QCheckBox;
 class QComboBox;
@@ -53,6 +54,16 @@ private:
     void markHeld(const QString& key, bool held);
     void dropHeld();
     QWidget* withError(QWidget* editor, const QString& key);
+    QWidget* addFormRow(const QString& label, const QString& key, QWidget* editor);
+    PropertySpinBox* makeSpin(const QString& key, const QString& suffix, double min, double step);
+    /// A check box (or any switch) and the fields it enables, as one field.
+    static QWidget* optionalRow(QWidget* check, std::initializer_list<QWidget*> fields);
+    /// A hinge's or slider's spring and servo, and a ball joint's cone and twist limits
+    /// (joint_panel_drives.cpp).
+    void buildDriveRows();
+    void buildBallLimitRows();
+    void refreshDrives(const JointDesc& j);
+    void refreshBallLimits(const JointDesc& j);
     void clearErrors();
     int jointIndex() const;
 
@@ -82,6 +93,23 @@ private:
     QCheckBox* hasMotor_ = nullptr;
     PropertySpinBox* motorSpeed_ = nullptr;
     PropertySpinBox* motorMax_ = nullptr;
+    QCheckBox* hasSpring_ = nullptr;
+    PropertySpinBox* springStiffness_ = nullptr;
+    PropertySpinBox* springDamping_ = nullptr;
+    PropertySpinBox* springRest_ = nullptr;
+    QCheckBox* hasServo_ = nullptr;
+    PropertySpinBox* servoTarget_ = nullptr;
+    PropertySpinBox* servoMax_ = nullptr;
+    QComboBox* servoMode_ = nullptr;  // time constant, or gains
+    PropertySpinBox* servoTime_ = nullptr;
+    PropertySpinBox* servoStiffness_ = nullptr;
+    PropertySpinBox* servoDamping_ = nullptr;
+    QCheckBox* hasCone_ = nullptr;
+    PropertySpinBox* cone1_ = nullptr;
+    PropertySpinBox* cone2_ = nullptr;
+    QCheckBox* hasTwist_ = nullptr;
+    PropertySpinBox* twistLower_ = nullptr;
+    PropertySpinBox* twistUpper_ = nullptr;
     QCheckBox* breaks_ = nullptr;
     QCheckBox* collide_ = nullptr;  // collide_connected
     PropertySpinBox* breakForce_ = nullptr;

@@ -80,7 +80,10 @@ const char* const kSamples[] = {"tumbling-box",
                                 "sieve",
                                 "paddle-dominoes",
                                 "lift",
-                                "turntable"};
+                                "turntable",
+                                "ragdoll-stairs",
+                                "robot-arm",
+                                "suspension-cart"};
 
 bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);

@@ -534,6 +534,7 @@ int contactIslands(const Model& model, const State& state, const ManifoldList& c
 void solveIsland(const Model& model, State& state, const State& before, const ManifoldList& contacts,
                  const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s,
                  EnergyLedger& ledger, bool onlyIsland) {
+    s.stepStart = &before;
     bodiesOf(contacts, s.seen, s.involved);
     addJointBodies(model, state, s.involved, s.seen);
     loadSolverBodies(model, state, s.bodies, s.involved);

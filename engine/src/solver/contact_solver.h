@@ -149,13 +149,19 @@ struct ContactSolverScratch {
         // Its spring and servo (joint_drive.h): the rate after is κ v* + target, solved as
         // the soft row (1 − κ) v + (κ / mass) λ = target, `mass` the axis's with the joint's
         // other rows held, λ within ±most.
+        // `hard`: a rate row instead (a servo by its time constant), `target` its rate.
         struct Drive {
             double kappa = 1.0, target = 0.0, mass = 0.0, gain = 0.0, lambda = 0.0, most = HUGE_VAL;
+            bool hard = false;
         };
         int drives = 0;
         Drive drive[2];
+        double startRate = 0.0, startCoord = 0.0;  // the coordinate's at the step's start
     };
     std::vector<GeneralRow> generalRows;
+    /// The state at the start of the interval the solve covers (solveIsland sets it; the
+    /// joints' springs and servos read their coordinate there).
+    const State* stepStart = nullptr;
     /// The kinetic energy the joints' rows gave their bodies since prepareJoints (negative:
     /// took), each impulse's λ·(u⁻ + u⁺)/2 with u the row's velocity before and after it.
     double jointWork = 0.0;

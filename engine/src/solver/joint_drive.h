@@ -5,8 +5,9 @@
 //     v = α v₀ + κ (v* − v₀) + (b / h) (c − rest),
 // with v₀ the rate at the step's start, v* the rate the rest of the step gives (gravity, the
 // other joints and contacts) and c the coordinate at the step's new poses; then the bodies are
-// moved along the axis by h/2 times the rate the row added (nudgeDrives), so that over the
-// step the coordinate moves by h (v₀ + v) / 2 plus what the rest of the step moves it. For the
+// moved along the axis (nudgeDrives) so that over the step the coordinate moves by h (v₀ + v)
+// / 2, as a trapezoid (for the coordinate alone, what the row's own impulse would move it by
+// in half the step). For the
 // coordinate alone, with the effective mass m along the axis, that map of (c, v) has trace
 // 1 + α + 3b/2 and determinant α + b/2; they are set to the exact eigenvalues' z₁ + z₂ and
 // z₁z₂ of m c'' = −k c − d c' over h (p = d / m, q = k / m): b = −(1 − z₁)(1 − z₂), α = z₁z₂
@@ -17,6 +18,9 @@
 // eigenvalues blend into implicit Euler's (z = 1 / (1 − λ h), reached at ω h = 1.5), which
 // holds a spring of any stiffness like a hard joint; both pairs lie in the stable region
 // (|z₁z₂| < 1, |z₁ + z₂| < 1 + z₁z₂), which is convex, so the blend does too.
+// A servo by its time constant τ (p = 2/τ, q = 1/τ²) is a rate row instead, whose target
+// (b/h)(c₀ − target) + (α + b) v₀ is the same map's from the step's start (c₀, v₀): it follows
+// the critically damped path whatever the masses and loads, up to its force.
 #pragma once
 
 namespace tumble::joint {

@@ -106,8 +106,10 @@ void ballLimitRows(const JointModel& j, const State& state, double h, bool impul
 }
 
 // The mass along a hinge's or slider's free axis with its other rows held: the inverse of
-// Jx M⁻¹ Jxᵀ − aᵀ K⁻¹ a, a = J M⁻¹ Jxᵀ (0: nothing can move along it).
-double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const SolverBody& A, const SolverBody& B) {
+// Jx M⁻¹ Jxᵀ − aᵀ K⁻¹ a, a = J M⁻¹ Jxᵀ (0: nothing can move along it); with `held`, the
+// impulse on the other rows, −K⁻¹ a, that goes with a unit impulse along the axis.
+double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const SolverBody& A, const SolverBody& B,
+                    Vector6* held = nullptr) {
     auto moved = [](const SolverBody& body, const Vector6& J) {
         Vector6 out;
         out << body.invMass * J.head<3>(), body.invI * J.tail<3>();
@@ -116,23 +118,42 @@ double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const SolverBody&
     const Vector6 mA = moved(A, g.JAx), mB = moved(B, g.JBx);
     Vector6 a = g.JA.transpose() * mA + g.JB.transpose() * mB;
     a.tail(6 - g.m).setZero();
-    const double inv = g.JAx.dot(mA) + g.JBx.dot(mB) - a.dot(g.Kinv * a);
+    const Vector6 Ka = g.Kinv * a;
+    if (held) *held = -Ka;
+    const double inv = g.JAx.dot(mA) + g.JBx.dot(mB) - a.dot(Ka);
     return inv > 1e-12 * (g.JAx.dot(mA) + g.JBx.dot(mB)) ? 1.0 / inv : 0.0;
 }
 
-// A hinge's or slider's spring and servo as soft rows along its free axis (joint_drive.h);
-// `start` the coordinate's rate at the step's start.
-void prepareDrives(const JointModel& j, double h, double start, const SolverBody& A, const SolverBody& B,
-                   ContactSolverScratch::GeneralRow& g) {
+// The coordinate of hinge or slider j at the poses of `at` (a hinge's angle near the last
+// step's, as `state` tracks it).
+double coordinateAt(const JointModel& j, const State& at, const State& state) {
+    ContactSolverScratch::GeneralRow g;
+    generalRows(j, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, g, nullptr, hingeNear(state, j));
+    return g.coord;
+}
+
+// A hinge's or slider's spring and servo as rows along its free axis (joint_drive.h): a
+// spring, and a servo by gains, as soft rows; a servo by its time constant as a rate row
+// whose target is the critically damped path's from the step's start (rate v₀, coordinate
+// c₀): (b/h)(c₀ − target) + (α + b) v₀, held against any load up to its force.
+void prepareDrives(const JointModel& j, double h, const State& state, const ContactSolverScratch& s,
+                   const SolverBody& A, const SolverBody& B, ContactSolverScratch::GeneralRow& g) {
     g.drives = 0;
     if (!(j.spring || j.servo) || !(h > 0.0)) return;
     const double mass = heldAxisMass(g, A, B);
     if (!(mass > 0.0)) return;
+    {
+        SolverBody A0, B0;  // the bodies' velocities at the step's start
+        static_cast<BodyVelocity&>(A0) = s.start[j.a];
+        if (j.b >= 0) static_cast<BodyVelocity&>(B0) = s.start[j.b];
+        g.startRate = axisVelocity(g, A0, B0);
+    }
+    g.startCoord = s.stepStart ? coordinateAt(j, *s.stepStart, state) : g.coord - h * g.startRate;
     auto add = [&](double p, double q, double error, double most) {
         const DriveStep step = driveStep(p, q, h);
         ContactSolverScratch::GeneralRow::Drive& d = g.drive[g.drives++];
         d.kappa = step.kappa;
-        d.target = step.b / h * error + (step.alpha - step.kappa) * start;
+        d.target = step.b / h * error + (step.alpha - step.kappa) * g.startRate;
         d.mass = mass;
         d.gain = 1.0 / ((1.0 - step.kappa) / g.kAxis + step.kappa / mass);
         d.most = most;
@@ -140,10 +161,15 @@ void prepareDrives(const JointModel& j, double h, double start, const SolverBody
     if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, g.coord - j.springRest, HUGE_VAL);
     if (!j.servo) return;
     const double tau = j.servoTimeConstant;
-    if (tau > 0.0)
-        add(2.0 / tau, 1.0 / (tau * tau), g.coord - j.servoTarget, j.servoMax * h);
-    else
+    if (!(tau > 0.0)) {
         add(j.servoDamping / mass, j.servoStiffness / mass, g.coord - j.servoTarget, j.servoMax * h);
+        return;
+    }
+    const DriveStep step = driveStep(2.0 / tau, 1.0 / (tau * tau), h);
+    ContactSolverScratch::GeneralRow::Drive& d = g.drive[g.drives++];
+    d.hard = true;
+    d.target = step.b / h * (g.startCoord - j.servoTarget) + (step.alpha + step.b) * g.startRate;
+    d.most = j.servoMax * h;
 }
 
 // A hinge's, slider's or fixed joint's rows at the bodies' poses now, warm-started; false
@@ -168,12 +194,7 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, do
     }
     if (g.axial && (j.motor || j.limited || j.spring || j.servo)) {
         g.kAxis = axisMass(g, A, B ? *B : kStill);
-        if (g.kAxis > 0.0 && !impulsive && (j.spring || j.servo)) {
-            SolverBody A0, B0;  // the bodies' velocities at the step's start
-            static_cast<BodyVelocity&>(A0) = s.start[j.a];
-            if (B) static_cast<BodyVelocity&>(B0) = s.start[j.b];
-            prepareDrives(j, h, axisVelocity(g, A0, B0), A, B ? *B : kStill, g);
-        }
+        if (g.kAxis > 0.0 && !impulsive && (j.spring || j.servo)) prepareDrives(j, h, state, s, A, B ? *B : kStill, g);
         if (g.kAxis > 0.0 && !impulsive) {
             g.motor = j.motor;
             g.motorSpeed = j.motorSpeed;
@@ -297,8 +318,12 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
             const double vx = axisVelocity(g, A, B ? *B : kStill);
             take(lambda, std::clamp(lambda - g.kAxis * (vx - target), low, high), vx);
         };
-        for (int i = 0; i < g.drives; ++i) {  // spring, servo: soft rows
+        for (int i = 0; i < g.drives; ++i) {  // spring, servo: soft rows, or a servo's rate
             ContactSolverScratch::GeneralRow::Drive& d = g.drive[i];
+            if (d.hard) {
+                row(d.lambda, d.target, -d.most, d.most);
+                continue;
+            }
             const double vx = axisVelocity(g, A, B ? *B : kStill);
             const double residual = (1.0 - d.kappa) * vx + d.kappa / d.mass * d.lambda - d.target;
             take(d.lambda, std::clamp(d.lambda - d.gain * residual, -d.most, d.most), vx);
@@ -350,18 +375,34 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
 }
 
 void nudgeDrives(const Model& model, State& state, const ContactSolverScratch& s, double h) {
-    for (const JointRow& r : s.jointRows) {
-        if (r.general < 0) continue;
-        const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
-        double lambda = 0.0;
-        for (int i = 0; i < g.drives; ++i) lambda += g.drive[i].lambda;
-        if (lambda == 0.0) continue;
-        const JointModel& j = model.joints[r.joint];
-        const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
-        // The rate it added is λ / mass (the axis's, the other rows held); moved along the
-        // free axis (whose mass is kAxis) by as much, the projection after keeps the rest.
-        nudgeAxis(g, moveA ? s.bodies[j.a] : kStill, state.bodies[j.a], moveA, moveB ? s.bodies[j.b] : kStill,
-                  j.b >= 0 ? &state.bodies[j.b] : nullptr, moveB, 0.5 * h * lambda * g.kAxis / g.drive[0].mass);
+    if (!s.stepStart) return;
+    // Over the step each coordinate moves by the mean of its start and end rates: what is
+    // missing is moved along its free axis with the joint's other rows held (a hinge's body
+    // turned about the hinge, not its centre). A joint's move turns its base, which may be
+    // another's part (an arm's elbow turns its upper link): Gauss-Seidel passes until none
+    // is missing more than kHeld.
+    constexpr int kPasses = 20;
+    for (int pass = 0; pass < kPasses; ++pass) {
+        double worst = 0.0;
+        for (const JointRow& r : s.jointRows) {
+            if (r.general < 0) continue;
+            const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
+            if (g.drives == 0) continue;
+            const JointModel& j = model.joints[r.joint];
+            const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+            const SolverBody& A = moveA ? s.bodies[j.a] : kStill;
+            const SolverBody& B = moveB ? s.bodies[j.b] : kStill;
+            const double missing = g.startCoord + 0.5 * h * (g.startRate + axisVelocity(g, A, B)) -
+                                   coordinateAt(j, state, state);
+            worst = std::max(worst, std::abs(missing));
+            if (std::abs(missing) <= kHeld) continue;
+            Vector6 held;
+            const double mass = heldAxisMass(g, A, B, &held);
+            BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
+            nudgeAxis(g, A, state.bodies[j.a], moveA, B, b, moveB, missing * mass);
+            nudgeGeneral(g, A, state.bodies[j.a], moveA, B, b, moveB, held * (missing * mass));
+        }
+        if (worst <= kHeld) break;
     }
 }
 

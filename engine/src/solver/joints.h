@@ -33,9 +33,9 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
 /// `quietSpeed` (and then the bodies' changedAt stamps, for the contact blocks' skipping).
 bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed);
 
-/// After the velocity rows: moves the bodies of each hinge's or slider's spring and servo
-/// along its axis by h/2 times the rate they added (joint_drive.h), so that the coordinate
-/// moves over the step by the mean of its rates at the start and the end.
+/// After the velocity rows: moves the bodies of each hinge or slider with a spring or servo
+/// along its axis so that its coordinate has moved over the step by the mean of its rates at
+/// the start and the end (joint_drive.h), from its place at s.stepStart.
 void nudgeDrives(const Model& model, State& state, const ContactSolverScratch& s, double h);
 
 /// The impulses to start the next step from (State::jointImpulses).

@@ -316,6 +316,69 @@ private slots:
         QVERIFY(f.joint().limits && f.joint().motor);
     }
 
+    // Issue 51 item 3: a hinge's spring and servo in the panel, in its units (the rest and
+    // the target in degrees, kept in radians), one undo step each; the servo and the motor
+    // are one drive: ticking either takes the other away; a servo by gains or a time constant.
+    void springAndServoInTheJointsUnits() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        f.find<QCheckBox>("joint.spring.on")->setChecked(true);
+        QVERIFY(f.joint().spring.has_value());
+        QCOMPARE(f.spin("joint.spring.stiffness")->suffix(), QString(" N m/rad"));
+        f.spin("joint.spring.stiffness")->setValue(250.0);
+        emit f.spin("joint.spring.stiffness")->editingFinished();
+        f.spin("joint.spring.rest")->setValue(30.0);
+        QCOMPARE(f.joint().spring->stiffness, 250.0);
+        QCOMPARE(f.joint().spring->rest, 30.0 * std::numbers::pi / 180.0);
+        QCOMPARE(f.doc.undoStack()->count(), 3);
+        f.find<QCheckBox>("joint.motor.on")->setChecked(true);
+        f.find<QCheckBox>("joint.servo.on")->setChecked(true);  // replaces the motor
+        QVERIFY(f.joint().servo && !f.joint().motor);
+        QVERIFY(!f.find<QCheckBox>("joint.motor.on")->isChecked());
+        QCOMPARE(f.joint().servo->timeConstant, 0.1);
+        f.spin("joint.servo.target")->setValue(-45.0);
+        QCOMPARE(f.joint().servo->target, -std::numbers::pi / 4);
+        QVERIFY(!std::isfinite(f.joint().servo->maxForce));  // 0 shown as "no bound"
+        QCOMPARE(f.spin("joint.servo.max")->text(), QString("no bound"));
+        f.spin("joint.servo.max")->setValue(12.0);
+        QCOMPARE(f.joint().servo->maxForce, 12.0);
+        f.choose("joint.servo.mode", "gains");
+        QVERIFY(f.joint().servo->timeConstant == 0.0 && f.joint().servo->stiffness > 0.0);
+        QVERIFY(f.spin("joint.servo.stiffness")->isVisibleTo(&f.dock));
+        QVERIFY(!f.spin("joint.servo.time_constant")->isVisibleTo(&f.dock));
+        f.spin("joint.servo.stiffness")->setValue(0.0);  // gains need a stiffness: refused, said
+        QVERIFY(f.joint().servo->stiffness > 0.0);
+        QVERIFY2(f.panel()->fieldError("servo").contains("stiffness"), qPrintable(f.panel()->fieldError("servo")));
+        f.find<QCheckBox>("joint.motor.on")->setChecked(true);  // and back
+        QVERIFY(f.joint().motor && !f.joint().servo);
+        f.choose("joint.type", "fixed");
+        QVERIFY(!f.joint().spring && !f.joint().servo);
+    }
+
+    // A ball joint's swing cone and twist range in degrees; ticking one gives the joint an
+    // axis along the limb (from the anchor towards the body's origin) if it has none, and
+    // taking both away takes that axis away again.
+    void ballConeAndTwistInDegrees() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        f.choose("joint.type", "ball");
+        QVERIFY(!f.find<QCheckBox>("joint.spring.on")->isVisibleTo(&f.dock));
+        f.find<QCheckBox>("joint.swing_limit.on")->setChecked(true);
+        QVERIFY(f.joint().swingLimit && f.joint().axisA);
+        QVERIFY((*f.joint().axisA - Vec3::UnitX()).norm() < 1e-12);  // the door's anchor is (-0.4, 0, 0)
+        f.spin("joint.swing_limit.second")->setValue(20.0);
+        QCOMPARE((*f.joint().swingLimit)[1], 20.0 * std::numbers::pi / 180.0);
+        f.find<QCheckBox>("joint.twist_limits.on")->setChecked(true);
+        f.spin("joint.twist_limits.lower")->setValue(-10.0);
+        QCOMPARE((*f.joint().twistLimits)[0], -10.0 * std::numbers::pi / 180.0);
+        f.spin("joint.swing_limit.first")->setValue(0.0);  // not a cone: refused, said
+        QVERIFY((*f.joint().swingLimit)[0] > 0.0);
+        QVERIFY(!f.panel()->fieldError("swing_limit").isEmpty());
+        f.find<QCheckBox>("joint.swing_limit.on")->setChecked(false);
+        f.find<QCheckBox>("joint.twist_limits.on")->setChecked(false);
+        QVERIFY(!f.joint().axisA && !f.joint().swingLimit && !f.joint().twistLimits);
+    }
+
     void renameRefusesATakenName() {
         Fixture f;
         JointDesc second = f.joint();
