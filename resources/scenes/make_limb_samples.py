@@ -57,9 +57,10 @@ dump({"settings": {"gravity": [0, -9.81, 0], "dt": 1 / 240, "duration": 5, "fram
      'resources/scenes/ragdoll-stairs.json')
 
 # Robot arm: two links turning about the vertical (a SCARA arm, so gravity does not load its
-# servos) on a post, each driven by a servo to its target (the shoulder to 100°, the elbow to
-# −70°, critically damped with time constants of 0.3 and 0.2 s, at most 60 and 30 N m); its
-# hand sweeps three blocks aside on the way.
+# servos) on a post, each driven by a servo (time constant 0.1 s, at most 60 and 30 N m)
+# through a keyed program: the elbow bends to −70° by 0.8 s and the shoulder swings to 100°
+# by 1.2 s, both hold, then swing back to 20° and −20° from 2.5 to 3.5 s; its hand sweeps
+# three blocks aside on the way.
 arm = [
     {"name": "ground", "motion": "static", "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}},
     {"name": "table", "motion": "static", "shape": {"type": "box", "half_extents": [1.2, 0.4, 1.2]}, "position": [0, 0.4, 0], "friction": 0.4},
@@ -73,14 +74,19 @@ for i, angle in enumerate([25, 45, 62]):  # blocks on the table in the hand's wa
     arm.append({"name": f"block-{i + 1}", "shape": {"type": "box", "half_extents": [0.05, 0.05, 0.05]}, "mass": 0.5,
                 "position": r([0.92 * math.cos(a), 0.85, -0.92 * math.sin(a)]), "orientation": r(quat_about([0, 1, 0], a)),
                 "friction": 0.4})
+def program(keys):  # (time in s, angle in degrees) -> the servo's keys
+    return [{"time": t, "target": round(a * deg, 9)} for t, a in keys]
+
 arm_joints = [
     {"name": "shoulder", "type": "hinge", "body_a": "upper-link", "anchor_a": [-0.3, -0.04, 0], "axis_a": [0, 1, 0],
-     "body_b": "post", "anchor_b": [0, 0.25, 0], "servo": {"target": round(100 * deg, 9), "max_torque": 60, "time_constant": 0.3}},
+     "body_b": "post", "anchor_b": [0, 0.25, 0],
+     "servo": {"keys": program([(0, 0), (1.2, 100), (2.5, 100), (3.5, 20)]), "max_torque": 60, "time_constant": 0.1}},
     {"name": "elbow", "type": "hinge", "body_a": "lower-link", "anchor_a": [-0.25, 0, 0], "axis_a": [0, 1, 0],
-     "body_b": "upper-link", "anchor_b": [0.3, -0.08, 0], "servo": {"target": round(-70 * deg, 9), "max_torque": 30, "time_constant": 0.2}},
+     "body_b": "upper-link", "anchor_b": [0.3, -0.08, 0],
+     "servo": {"keys": program([(0, 0), (0.8, -70), (2.5, -70), (3.5, -20)]), "max_torque": 30, "time_constant": 0.1}},
     {"name": "wrist", "type": "fixed", "body_a": "hand", "anchor_a": [0, 0.2, 0], "body_b": "lower-link", "anchor_b": [0.21, -0.04, 0]},
 ]
-dump({"settings": {"gravity": [0, -9.81, 0], "dt": 1 / 240, "duration": 4, "frame_rate": 60}, "bodies": arm, "joints": arm_joints},
+dump({"settings": {"gravity": [0, -9.81, 0], "dt": 1 / 240, "duration": 5, "frame_rate": 60}, "bodies": arm, "joints": arm_joints},
      'resources/scenes/robot-arm.json')
 
 # Suspension cart: a 40 kg chassis on four struts, each a slider along the chassis' y with a

@@ -305,6 +305,29 @@ private slots:
         QVERIFY2(offPath < 0.05, qPrintable(QString::number(offPath)));
     }
 
+    // A keyed target: ramped from 0 to 1 rad over 1 s and held, the wheel's servo (τ = 0.05 s)
+    // follows it with the lag of a critically damped follower, 2τ × the ramp's rate: 0.9
+    // rad at t = 1 s, to the step's error (the target is the step's end's: it runs h/2 ahead,
+    // 2.0e-3 rad at 1/240 s, 7.4e-3 at 1/60), then settles on 1 rad.
+    void keyedServoFollowsItsTarget_data() {
+        QTest::addColumn<double>("h");
+        QTest::addColumn<int>("seed");
+        addRows({240, 60});
+    }
+    void keyedServoFollowsItsTarget() {
+        QFETCH(double, h);
+        QFETCH(int, seed);
+        JointDesc::Servo servo;
+        servo.timeConstant = 0.05;
+        servo.keys = {{0.0, 0.0}, {1.0, 1.0}};
+        World w(turnedScene(wheel(std::nullopt, servo), poseOf(seed)));
+        stepN(w, std::lround(1.0 / h), h);
+        const double lagging = coordinate(w);
+        QVERIFY2(std::abs(lagging - 0.9) < h, qPrintable(QString::number(lagging, 'g', 12)));
+        stepN(w, std::lround(1.0 / h), h);
+        QVERIFY2(std::abs(coordinate(w) - 1.0) < 1e-6, qPrintable(QString::number(coordinate(w), 'g', 12)));
+    }
+
     // A servo bounded to 0.05 N m (stiff gains: it pushes at its bound until near the
     // target): the wheel accelerates at M / I = 0.2 rad/s², so at t = 1 s it has turned
     // 0.1 rad (to the step's first-order error, h / t of it).

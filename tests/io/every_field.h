@@ -228,7 +228,7 @@ inline SceneDesc everyField() {
     arm.type = JointType::Hinge;
     arm.bodyA = "crate";
     arm.axisA = Vec3(0, 0, 1);
-    arm.servo = JointDesc::Servo{0.5, 30, 0, 0, 0.2};
+    arm.servo = JointDesc::Servo{0.5, 30, 0, 0, 0.2, {{0.0, 0.5}, {1.5, -0.25}, {2.0, 0.125}}};
     s.joints.push_back(arm);
     JointDesc weld;
     weld.name = "weld";

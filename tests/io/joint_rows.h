@@ -52,6 +52,14 @@ void jointFeatureRows(Row row) {
         R"("type": "slider", "axis_a": [0, 1, 0], "servo": {"target": 1, "time_constant": 0.1, "max_torque": 3}, )"
         R"("body_a": "crate")",
         "joints[1].servo.max_torque", "drop.json: joints[1].servo.max_torque: unknown key");
+    row("servo keys out of order", ball,
+        R"("type": "hinge", "axis_a": [0, 1, 0], "servo": {"time_constant": 0.1, )"
+        R"("keys": [{"time": 1, "target": 0}, {"time": 1, "target": 1}]}, "body_a": "crate")",
+        "joints[1].servo.keys[1].time", "drop.json: joints[1].servo.keys[1].time: must be later than the key before");
+    row("servo target and keys", ball,
+        R"("type": "hinge", "axis_a": [0, 1, 0], "servo": {"time_constant": 0.1, "target": 1, )"
+        R"("keys": [{"time": 1, "target": 0}]}, "body_a": "crate")",
+        "joints[1].servo.target", "drop.json: joints[1].servo.target: give target or keys, not both");
     const char* axis = R"("anchor_b": [0, -0.5, 0])";
     row("swing limit on a hinge", ball,
         R"("type": "hinge", "axis_a": [0, 1, 0], "swing_limit": 0.5, "body_a": "crate")", "joints[1].swing_limit",

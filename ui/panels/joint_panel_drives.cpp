@@ -216,6 +216,10 @@ void JointPanel::refreshDrives(const JointDesc& j) {
         hasServo_->setChecked(j.servo.has_value());
     }
     for (PropertySpinBox* s : {servoTarget_, servoMax_}) s->setEnabled(j.servo.has_value());
+    if (j.servo && !j.servo->keys.empty()) {  // its target moves with its keys (the file's)
+        servoTarget_->setEnabled(false);
+        servoTarget_->setToolTip(tr("Keyed: %n key(s) in the file move the target", "", int(j.servo->keys.size())));
+    }
     if (!j.servo) return;
     servoTarget_->showValue(j.servo->target / unit);
     servoMax_->showValue(std::isfinite(j.servo->maxForce) ? j.servo->maxForce : 0.0);

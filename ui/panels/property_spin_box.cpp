@@ -41,7 +41,8 @@ void PropertySpinBox::showValue(double value) {
     const QSignalBlocker block(this);
     mixed_ = false;
     setValue(value);
-    lineEdit()->setText(textFromValue(this->value()) + suffix());
+    const bool special = !specialValueText().isEmpty() && this->value() == minimum();  // "no bound"
+    lineEdit()->setText(special ? specialValueText() : textFromValue(this->value()) + suffix());
     lineEdit()->setCursorPosition(0);  // a long number shows its first digits, not its unit
 }
 

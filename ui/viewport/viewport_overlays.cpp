@@ -203,6 +203,35 @@ void limitLines(Lines& lines, JointType type, const Vec3& anchorA, const Vec3& a
     for (int i = 0; i < n; ++i) segment(lines.xyzrgb, at(lower + span * i / n), at(lower + span * (i + 1) / n), c);
 }
 
+// A ball joint's limits: its swing cone about B's axis `n` (unit) from the anchor, `size`
+// long (its rim, where A's axis stops, and four spokes; elliptical: θ₁ towards `e1`, θ₂
+// towards n × e1), and its twist range as an arc about n from the lower to the upper angle
+// counted from e1 (zero twist: where the scene placed A), a third of the size out.
+void ballLimitLines(Lines& lines, const Vec3& anchor, const Vec3& n, const Vec3& e1, const double* cone,
+                    const double* twist, double size, Rgb c) {
+    if (!n.allFinite() || !e1.allFinite() || !(size > 0)) return;
+    const Vec3 e2 = n.cross(e1);
+    constexpr int kRim = 36;
+    if (cone) {
+        auto rim = [&](int i) {
+            const double psi = 2.0 * std::numbers::pi * i / kRim, c1 = std::cos(psi), s1 = std::sin(psi);
+            const double bound = 1.0 / std::sqrt(c1 * c1 / (cone[0] * cone[0]) + s1 * s1 / (cone[1] * cone[1]));
+            return Vec3(anchor + size * (std::cos(bound) * n + std::sin(bound) * (c1 * e1 + s1 * e2)));
+        };
+        for (int i = 0; i < kRim; ++i) segment(lines.xyzrgb, rim(i), rim(i + 1), c);
+        for (int i = 0; i < kRim; i += kRim / 4) segment(lines.xyzrgb, anchor, rim(i), c);
+    }
+    if (twist) {
+        const double r = size / 3.0, span = twist[1] - twist[0];
+        const int steps = std::max(2, int(std::ceil(span / 0.17)));
+        auto at = [&](double phi) { return Vec3(anchor + r * (std::cos(phi) * e1 + std::sin(phi) * e2)); };
+        segment(lines.xyzrgb, anchor, at(twist[0]), c);
+        segment(lines.xyzrgb, anchor, at(twist[1]), c);
+        for (int i = 0; i < steps; ++i)
+            segment(lines.xyzrgb, at(twist[0] + span * i / steps), at(twist[0] + span * (i + 1) / steps), c);
+    }
+}
+
 // The direction perpendicular to `axis` (unit) from `anchor` towards `centre` (body A's
 // centre), or any perpendicular when the centre is on the axis.
 Vec3 towards(const Vec3& anchor, const Vec3& centre, const Vec3& axis) {
@@ -233,6 +262,13 @@ Lines joints(const Model& model, const State& state, int selected) {
             limitLines(lines, j.type, pa, pb, axis, zero, j.lower, j.upper, 0.6 * size,
                        j.index == selected ? kJointSelected : kJointAxis);
         }
+        if (j.swingLimited || j.twistLimited) {  // with B: its axis and cross axis now
+            const Quat qb = j.b < 0 ? Quat::Identity() : state.bodies[size_t(j.b)].q;
+            const double twist[2] = {j.twistLower, j.twistUpper};
+            ballLimitLines(lines, pb, qb * j.axisB, qb * j.swingCross, j.swingLimited ? j.swingLimit.data() : nullptr,
+                           j.twistLimited ? twist : nullptr, 1.2 * size, j.index == selected ? kJointSelected : kJointAxis);
+            segment(lines.xyzrgb, pa, pa + 1.2 * size * axis, j.index == selected ? kJointSelected : kJoint);
+        }
     }
     return lines;
 }
@@ -257,6 +293,20 @@ Lines joints(const SceneDesc& scene, int selected) {
         if (axial && j.limits) {  // as placed: the hinge's angle is 0
             limitLines(lines, j.type, pa, pb, axis, towards(pa, a->position, axis), (*j.limits)[0], (*j.limits)[1],
                        0.6 * boundingRadius(a->shape), int(k) == selected ? kJointSelected : kJointAxis);
+        }
+        if (j.type == JointType::Ball && (j.swingLimit || j.twistLimits) && j.axisA && j.axisA->norm() > 0.0) {
+            // As placed (compile_joints.cpp): B's axis, or A's as it lies; A's first cross axis.
+            const Vec3 aA = a->orientation * j.axisA->normalized();
+            const Vec3 n = j.axisB && j.axisB->norm() > 0.0
+                               ? Vec3((b ? b->orientation : Quat::Identity()) * j.axisB->normalized())
+                               : aA;
+            const Vec3 across = a->orientation * firstCrossAxis(j.axisA->normalized());
+            const Vec3 e1 = (across - across.dot(n) * n).normalized();
+            const double size = 1.2 * boundingRadius(a->shape);
+            ballLimitLines(lines, pb, n, e1, j.swingLimit ? j.swingLimit->data() : nullptr,
+                           j.twistLimits ? j.twistLimits->data() : nullptr, size,
+                           int(k) == selected ? kJointSelected : kJointAxis);
+            segment(lines.xyzrgb, pa, pa + size * aA, int(k) == selected ? kJointSelected : kJoint);
         }
     }
     return lines;

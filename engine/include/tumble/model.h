@@ -121,6 +121,9 @@ struct JointModel {
     bool servo = false;
     double servoTarget = 0.0, servoMax = HUGE_VAL, servoStiffness = 0.0, servoDamping = 0.0,
            servoTimeConstant = 0.0;
+    std::vector<JointDesc::ServoKey> servoKeys;  ///< its target's keys (none: servoTarget)
+    /// The servo's target at time t (its keys', linear between them).
+    double servoTargetAt(double t) const;
     double breakForce = HUGE_VAL;  ///< N
     bool collideConnected = false;  ///< its two bodies still collide with each other
     int index = 0;                 ///< in Model::joints
@@ -155,6 +158,11 @@ struct Model {
 
 /// Checks every value of a scene; throws SceneError naming the first bad field.
 void validate(const SceneDesc& scene);
+
+/// Of a frame's axes x, y, z, the first across the unit `axis` (the one most in line with
+/// it left out), made square to it: a ball joint's elliptical cone's first half-angle leans
+/// towards it (JointDesc::swingLimit).
+Vec3 firstCrossAxis(const Vec3& axis);
 
 /// The joints' part of validate(): throws SceneError naming joints[i].field for an empty or
 /// repeated name, a body that does not exist, a joint of a body with itself, one between

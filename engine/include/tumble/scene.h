@@ -254,11 +254,19 @@ struct JointDesc {
     /// with at most `maxForce` (N m or N; infinite: no bound), either as a spring and damper
     /// of the given `stiffness` and `damping` or, with `timeConstant` (s) > 0, critically
     /// damped with that time constant whatever the bodies' masses.
+    /// With `keys`, the target moves: at each key's time it is the key's, linear between
+    /// keys, the first's before them and the last's after (a robot's program).
+    struct ServoKey {
+        double time = 0.0;
+        double target = 0.0;
+        bool operator==(const ServoKey&) const = default;
+    };
     struct Servo {
         double target = 0.0;
         double maxForce = HUGE_VAL;
         double stiffness = 0.0, damping = 0.0;
         double timeConstant = 0.0;  ///< > 0: used instead of stiffness and damping
+        std::vector<ServoKey> keys;  ///< none: `target` throughout
         bool operator==(const Servo&) const = default;
     };
     std::optional<Servo> servo;

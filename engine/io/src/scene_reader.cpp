@@ -445,9 +445,24 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         r.object(v, f);
         const bool slider = d.type == JointType::Slider;
         const char* most = slider ? "max_force" : "max_torque";
-        r.onlyKeys(v, f, {"target", most, "stiffness", "damping", "time_constant"});
+        r.onlyKeys(v, f, {"target", "keys", most, "stiffness", "damping", "time_constant"});
         JointDesc::Servo s;
-        s.target = r.number(r.require(v, f, "target"), f + ".target");
+        r.optional(v, f, "keys", [&](const json& keys, const std::string& g) {
+            if (!keys.is_array() || keys.empty()) r.fail(g, "must be an array of at least one {time, target}");
+            for (size_t k = 0; k < keys.size(); ++k) {
+                const std::string at = g + "[" + std::to_string(k) + "]";
+                r.object(keys[k], at);
+                r.onlyKeys(keys[k], at, {"time", "target"});
+                s.keys.push_back({r.number(r.require(keys[k], at, "time"), at + ".time"),
+                                  r.number(r.require(keys[k], at, "target"), at + ".target")});
+            }
+        });
+        if (s.keys.empty())
+            s.target = r.number(r.require(v, f, "target"), f + ".target");
+        else if (v.contains("target"))
+            r.fail(Reader::join(f, "target"), "give target or keys, not both");
+        else
+            s.target = s.keys.front().target;
         r.optional(v, f, most, [&](const json& x, const std::string& g) { s.maxForce = r.number(x, g); });
         r.optional(v, f, "stiffness", [&](const json& x, const std::string& g) { s.stiffness = r.number(x, g); });
         r.optional(v, f, "damping", [&](const json& x, const std::string& g) { s.damping = r.number(x, g); });

@@ -167,7 +167,17 @@ ojson jointJson(const JointDesc& d) {
     }
     if (d.servo) {
         ojson& s = j["servo"];
-        s["target"] = d.servo->target;
+        if (d.servo->keys.empty()) {
+            s["target"] = d.servo->target;
+        } else {
+            ojson& keys = s["keys"];
+            for (const JointDesc::ServoKey& k : d.servo->keys) {
+                ojson key;
+                key["time"] = k.time;
+                key["target"] = k.target;
+                keys.push_back(key);
+            }
+        }
         if (std::isfinite(d.servo->maxForce))
             s[d.type == JointType::Slider ? "max_force" : "max_torque"] = d.servo->maxForce;
         if (d.servo->timeConstant > 0.0) {

@@ -54,6 +54,13 @@ void validateDrives(const JointDesc& j, const std::string& p) {
         throw SceneError(p + ".servo",
                          "a joint has one drive: a motor (a speed) or a servo (a target), not both");
     if (!std::isfinite(v.target)) throw SceneError(p + ".servo.target", "must be a finite number");
+    for (size_t k = 0; k < v.keys.size(); ++k) {
+        const std::string key = p + ".servo.keys[" + std::to_string(k) + "]";
+        if (!std::isfinite(v.keys[k].time)) throw SceneError(key + ".time", "must be a finite number");
+        if (!std::isfinite(v.keys[k].target)) throw SceneError(key + ".target", "must be a finite number");
+        if (k > 0 && !(v.keys[k].time > v.keys[k - 1].time))
+            throw SceneError(key + ".time", "must be later than the key before");
+    }
     const std::string most = p + (j.type == JointType::Slider ? ".servo.max_force" : ".servo.max_torque");
     if (std::isnan(v.maxForce) || !(v.maxForce > 0.0))
         throw SceneError(most, "must be greater than 0 (leave it out for no bound)");
@@ -72,16 +79,14 @@ void validateDrives(const JointDesc& j, const std::string& p) {
                          "must be greater than 0 (or give time_constant instead of stiffness and damping)");
 }
 
-// The first of the frame's axes x, y, z across the unit `axis` (the one most in line with it
-// left out), made square to it: a cone's first half-angle leans towards it.
-Vec3 crossAxis(const Vec3& axis) {
+}  // namespace
+
+Vec3 firstCrossAxis(const Vec3& axis) {
     int along = 0;
     axis.cwiseAbs().maxCoeff(&along);
     const Vec3 first = along == 0 ? Vec3::UnitY() : Vec3::UnitX();
     return (first - first.dot(axis) * axis).normalized();
 }
-
-}  // namespace
 
 void validateJoints(const SceneDesc& scene) {
     std::map<std::string, const BodyDesc*> bodies;
@@ -201,7 +206,7 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.swingLimited = true;
             j.swingLimit = *d.swingLimit;
             // A's first frame axis across its axis, as the scene places A, in B's frame.
-            const Vec3 across = qb.conjugate() * (qa * crossAxis(j.axisA));
+            const Vec3 across = qb.conjugate() * (qa * firstCrossAxis(j.axisA));
             j.swingCross = (across - across.dot(j.axisB) * j.axisB).normalized();
         }
         if (d.twistLimits) {
@@ -222,6 +227,7 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.servoStiffness = d.servo->stiffness;
             j.servoDamping = d.servo->damping;
             j.servoTimeConstant = d.servo->timeConstant;
+            j.servoKeys = d.servo->keys;
         }
         if (j.type == JointType::Rope && !(j.length > 0.0))
             throw SceneError(at(i) + ".length", "a rope must be longer than 0");

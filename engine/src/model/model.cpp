@@ -2,7 +2,7 @@
 #include <tumble/model.h>
 
 #include "common/pair_key.h"
-#include "solver/joint_general.h"
+#include "model/joint_coordinate.h"
 
 #include <algorithm>
 

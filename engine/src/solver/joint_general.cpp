@@ -1,6 +1,5 @@
 #include "solver/joint_general.h"
 
-#include "solver/joint_math.h"
 #include <algorithm>
 
 #include <cmath>
@@ -26,17 +25,6 @@ Vec3 rotationVector(Quat e) {
 
 }  // namespace
 
-double hingeAngle(const JointModel& j, const BodyState& a, const BodyState* b, double near) {
-    const Quat qb = b ? b->q : Quat::Identity();
-    Quat e = a.q * (qb * j.relative).conjugate();  // A turned from its place in the scene
-    if (e.w() < 0.0) e.coeffs() = -e.coeffs();
-    const double raw = 2.0 * std::atan2(e.vec().dot(a.q * j.axisA), e.w());
-    // Counted on past a half turn: the turn nearest to the last step's angle (raw itself,
-    // to the bit, while the two are within a half turn).
-    if (std::isnan(near) || std::abs(raw - near) <= M_PI) return raw;
-    return near + std::remainder(raw - near, 2.0 * M_PI);
-}
-
 void trackHingeAngles(const Model& model, State& state) {
     if (std::none_of(model.joints.begin(), model.joints.end(),
                      [](const JointModel& j) { return j.type == JointType::Hinge; }))
@@ -50,19 +38,6 @@ void trackHingeAngles(const Model& model, State& state) {
         state.hingeAngles[j.index] =
             hingeAngle(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, near);
     }
-}
-
-double jointSpringEnergy(const Model& model, const State& state) {
-    double energy = 0.0;
-    for (const JointModel& j : model.joints) {
-        if (!j.spring || j.springStiffness == 0.0 || !active(model, state, j)) continue;
-        ContactSolverScratch::GeneralRow g;
-        generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g, nullptr,
-                    hingeNear(state, j));
-        const double stretch = g.coord - j.springRest;
-        energy += 0.5 * j.springStiffness * stretch * stretch;
-    }
-    return energy;
 }
 
 void fillJacobians(ContactSolverScratch::GeneralRow& rows, const Vec3& rA, const Vec3& rB) {

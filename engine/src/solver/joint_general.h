@@ -17,6 +17,7 @@
 
 #include <limits>
 
+#include "model/joint_coordinate.h"
 #include "solver/contact_solver.h"
 
 #include <tumble/model.h>
@@ -42,20 +43,6 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
 /// Sets rows.m and the Jacobians JA, JB of the rows' directions (lin's first nl columns,
 /// acting at the arms rA of A and rB of B; ang's first na, turning A against B).
 void fillJacobians(ContactSolverScratch::GeneralRow& rows, const Vec3& rA, const Vec3& rB);
-
-/// A hinge's angle about its axis at these poses, within π of `near` (NaN: within [-π, π]);
-/// 0 as the scene places the bodies.
-double hingeAngle(const JointModel& j, const BodyState& a, const BodyState* b,
-                  double near = std::numeric_limits<double>::quiet_NaN());
-
-/// The angle the hinge `j` had at the end of the last step in `state` (NaN: unknown).
-inline double hingeNear(const State& state, const JointModel& j) {
-    return j.index < static_cast<int>(state.hingeAngles.size()) ? state.hingeAngles[j.index]
-                                                                : std::numeric_limits<double>::quiet_NaN();
-}
-
-/// The energy the joints' springs hold in `state`: ½ k (coordinate − rest)² each.
-double jointSpringEnergy(const Model& model, const State& state);
 
 /// Sets state.hingeAngles from the poses now (World, at the end of every step).
 void trackHingeAngles(const Model& model, State& state);

@@ -127,9 +127,7 @@ double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const SolverBody&
 // The coordinate of hinge or slider j at the poses of `at` (a hinge's angle near the last
 // step's, as `state` tracks it).
 double coordinateAt(const JointModel& j, const State& at, const State& state) {
-    ContactSolverScratch::GeneralRow g;
-    generalRows(j, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, g, nullptr, hingeNear(state, j));
-    return g.coord;
+    return jointCoordinate(j, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, state);
 }
 
 // A hinge's or slider's spring and servo as rows along its free axis (joint_drive.h): a
@@ -161,14 +159,16 @@ void prepareDrives(const JointModel& j, double h, const State& state, const Cont
     if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, g.coord - j.springRest, HUGE_VAL);
     if (!j.servo) return;
     const double tau = j.servoTimeConstant;
+    // The target at the step's end (a keyed one moves: each step chases it).
+    const double target = j.servoTargetAt(s.stepStart ? s.stepStart->time + h : state.time);
     if (!(tau > 0.0)) {
-        add(j.servoDamping / mass, j.servoStiffness / mass, g.coord - j.servoTarget, j.servoMax * h);
+        add(j.servoDamping / mass, j.servoStiffness / mass, g.coord - target, j.servoMax * h);
         return;
     }
     const DriveStep step = driveStep(2.0 / tau, 1.0 / (tau * tau), h);
     ContactSolverScratch::GeneralRow::Drive& d = g.drive[g.drives++];
     d.hard = true;
-    d.target = step.b / h * (g.startCoord - j.servoTarget) + (step.alpha + step.b) * g.startRate;
+    d.target = step.b / h * (g.startCoord - target) + (step.alpha + step.b) * g.startRate;
     d.most = j.servoMax * h;
 }
 
