@@ -50,8 +50,8 @@ for name, kind, a, b, P, axis, limits, cone, twist in joints_spec:
     if limits: j["limits"] = limits
     if cone:
         j["axis_a"] = limb(a, P)
-        j["swing_limit"] = r(cone, 9) if cone[0] != cone[1] else round(cone[0], 9)
-        j["twist_limits"] = r(twist, 9)
+        j["swing_limit"] = r(cone, 15) if cone[0] != cone[1] else round(cone[0], 15)
+        j["twist_limits"] = r(twist, 15)
     joints.append(j)
 dump({"settings": {"gravity": [0, -9.81, 0], "dt": 1 / 240, "duration": 5, "frame_rate": 60}, "bodies": bodies, "joints": joints},
      'resources/scenes/ragdoll-stairs.json')
@@ -75,7 +75,7 @@ for i, angle in enumerate([25, 45, 62]):  # blocks on the table in the hand's wa
                 "position": r([0.92 * math.cos(a), 0.85, -0.92 * math.sin(a)]), "orientation": r(quat_about([0, 1, 0], a)),
                 "friction": 0.4})
 def program(keys):  # (time in s, angle in degrees) -> the servo's keys
-    return [{"time": t, "target": round(a * deg, 9)} for t, a in keys]
+    return [{"time": t, "target": round(a * deg, 15)} for t, a in keys]
 
 arm_joints = [
     {"name": "shoulder", "type": "hinge", "body_a": "upper-link", "anchor_a": [-0.3, -0.04, 0], "axis_a": [0, 1, 0],

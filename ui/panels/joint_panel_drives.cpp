@@ -10,6 +10,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QSignalBlocker>
 
 #include <cmath>
@@ -44,7 +45,8 @@ void JointPanel::buildDriveRows() {
     springDamping_->setToolTip(tr("Damping"));
     springRest_ = makeSpin("joint.spring.rest", QString(), -1e12, 5.0);
     springRest_->setToolTip(tr("Rest: where it pulls to (0: as placed)"));
-    addFormRow(tr("Spring"), "spring", optionalRow(hasSpring_, {springStiffness_, springDamping_, springRest_}));
+    addFormRow(tr("Spring"), "spring", optionalRow(hasSpring_, {springStiffness_, springDamping_}));
+    addFormRow(tr("Spring rest"), "spring_rest", springRest_);
     connect(hasSpring_, &QCheckBox::toggled, this, [this](bool on) {
         apply(
             "spring", on ? tr("Add joint spring") : tr("Remove joint spring"),
@@ -90,7 +92,13 @@ void JointPanel::buildDriveRows() {
     servoStiffness_->setToolTip(tr("Stiffness"));
     servoDamping_ = makeSpin("joint.servo.damping", QString(), 0.0, 1.0);
     servoDamping_->setToolTip(tr("Damping"));
-    addFormRow(tr("Servo by"), "servo_mode", optionalRow(servoMode_, {servoTime_, servoStiffness_, servoDamping_}));
+    addFormRow(tr("Servo by"), "servo_mode", optionalRow(servoMode_, {servoTime_}));
+    auto* gains = new QWidget;
+    auto* gainsLayout = new QHBoxLayout(gains);
+    gainsLayout->setContentsMargins(0, 0, 0, 0);
+    gainsLayout->addWidget(servoStiffness_, 1);
+    gainsLayout->addWidget(servoDamping_, 1);
+    addFormRow(tr("Servo gains"), "servo_gains", gains);
     connect(hasServo_, &QCheckBox::toggled, this, [this](bool on) {
         apply(
             "servo", on ? tr("Add joint servo") : tr("Remove joint servo"),
@@ -192,7 +200,10 @@ void JointPanel::refreshDrives(const JointDesc& j) {
     const bool axialJoint = j.type == JointType::Hinge || j.type == JointType::Slider;
     form_->setRowVisible(rows_["spring"], axialJoint);
     form_->setRowVisible(rows_["servo"], axialJoint);
+    form_->setRowVisible(rows_["spring_rest"], axialJoint && j.spring.has_value());
     form_->setRowVisible(rows_["servo_mode"], axialJoint && j.servo.has_value());
+    const bool gainsShown = axialJoint && j.servo && !(j.servo->timeConstant > 0.0);
+    form_->setRowVisible(rows_["servo_gains"], gainsShown);
     const bool hinge = j.type == JointType::Hinge;
     const double unit = unitOf(j);
     springStiffness_->setSuffix(hinge ? QStringLiteral(" N m/rad") : QStringLiteral(" N/m"));
@@ -229,8 +240,6 @@ void JointPanel::refreshDrives(const JointDesc& j) {
         servoMode_->setCurrentIndex(gains ? 1 : 0);
     }
     servoTime_->setVisible(!gains);
-    servoStiffness_->setVisible(gains);
-    servoDamping_->setVisible(gains);
     if (gains) {
         servoStiffness_->showValue(j.servo->stiffness);
         servoDamping_->showValue(j.servo->damping);
