@@ -324,6 +324,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     });
 
     buildDriveRows();
+    buildServoKeyRows();
     buildBallLimitRows();
 
     breaks_ = new QCheckBox;

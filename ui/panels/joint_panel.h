@@ -20,6 +20,7 @@ class QPushButton;
 class QFormLayout;
 class QLabel;
 class QLineEdit;
+class QListWidget;
 
 namespace tumble::ui {
 
@@ -64,6 +65,12 @@ private:
     void buildBallLimitRows();
     void refreshDrives(const JointDesc& j);
     void refreshBallLimits(const JointDesc& j);
+    void buildServoKeyRows();
+    void refreshServoKeys(const JointDesc& j);
+    /// Applies `change` to a copy of the servo's keys (kept in time order, the target the
+    /// first key's) as one edit of the "servo" field.
+    void editServoKeys(const QString& text, const std::function<void(std::vector<JointDesc::ServoKey>&)>& change,
+                       bool merge = true);
     void clearErrors();
     int jointIndex() const;
 
@@ -102,6 +109,10 @@ private:
     PropertySpinBox* servoMax_ = nullptr;
     QComboBox* servoMode_ = nullptr;  // time constant, or gains
     PropertySpinBox* servoTime_ = nullptr;
+    QListWidget* servoKeys_ = nullptr;  // a keyed target: its keys; the target field edits the current one
+    QPushButton* servoKeyAdd_ = nullptr;
+    QPushButton* servoKeyRemove_ = nullptr;
+    PropertySpinBox* servoKeyTime_ = nullptr;
     PropertySpinBox* servoStiffness_ = nullptr;
     PropertySpinBox* servoDamping_ = nullptr;
     QCheckBox* hasCone_ = nullptr;

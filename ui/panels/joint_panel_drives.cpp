@@ -11,8 +11,12 @@
 #include <QComboBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
+#include <QListWidget>
+#include <QPushButton>
+#include <QVBoxLayout>
 #include <QSignalBlocker>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -134,12 +138,115 @@ void JointPanel::buildDriveRows() {
             });
         });
     };
-    servoField(servoTarget_, tr("Set servo target"), [](JointDesc& j, double v) { j.servo->target = v * unitOf(j); });
+    connect(servoTarget_, &PropertySpinBox::valueChanged, this, [this](double v) {
+        const int i = jointIndex(), key = servoKeys_->currentRow();
+        if (i < 0) return;
+        const JointDesc& j = doc_->joint(i);
+        if (j.servo && !j.servo->keys.empty() && key >= 0) {
+            const double target = v * unitOf(j);
+            editServoKeys(tr("Set servo key"), [key, target](auto& keys) { keys[size_t(key)].target = target; });
+            return;
+        }
+        apply("servo", tr("Set servo target"), [&](JointDesc& jj) {
+            if (jj.servo) jj.servo->target = v * unitOf(jj);
+        });
+    });
     servoField(servoMax_, tr("Set servo strength"),
                [](JointDesc& j, double v) { j.servo->maxForce = v > 0.0 ? v : HUGE_VAL; });
     servoField(servoTime_, tr("Set servo time constant"), [](JointDesc& j, double v) { j.servo->timeConstant = v; });
     servoField(servoStiffness_, tr("Set servo stiffness"), [](JointDesc& j, double v) { j.servo->stiffness = v; });
     servoField(servoDamping_, tr("Set servo damping"), [](JointDesc& j, double v) { j.servo->damping = v; });
+}
+
+void JointPanel::buildServoKeyRows() {
+    servoKeys_ = new QListWidget;
+    servoKeys_->setObjectName("joint.servo.keys");
+    servoKeys_->setMaximumHeight(80);
+    servoKeys_->setToolTip(tr("The target's keys: linear between them; the target field edits the current one"));
+    servoKeyAdd_ = new QPushButton(tr("Add key"));
+    servoKeyAdd_->setObjectName("joint.servo.keys.add");
+    servoKeyAdd_->setToolTip(tr("A key 1 s after the last, at its target (the first: keys at 0 and 1 s)"));
+    servoKeyRemove_ = new QPushButton(tr("Remove"));
+    servoKeyRemove_->setObjectName("joint.servo.keys.remove");
+    servoKeyTime_ = makeSpin("joint.servo.keys.time", QStringLiteral(" s"), 0.0, 0.1);
+    servoKeyTime_->setToolTip(tr("The current key's time"));
+    auto* box = new QWidget;
+    auto* layout = new QVBoxLayout(box);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(servoKeys_);
+    layout->addWidget(optionalRow(servoKeyAdd_, {servoKeyRemove_, servoKeyTime_}));
+    addFormRow(tr("Servo keys"), "servo_keys", box);
+    connect(servoKeys_, &QListWidget::currentRowChanged, this, [this] { refresh(); });
+    connect(servoKeyAdd_, &QPushButton::clicked, this, [this] {
+        const int i = jointIndex();
+        if (i < 0 || !doc_->joint(i).servo) return;
+        const double target = doc_->joint(i).servo->target;
+        editServoKeys(
+            tr("Add servo key"),
+            [target](auto& keys) {
+                if (keys.empty())
+                    keys = {{0.0, target}, {1.0, target}};
+                else
+                    keys.push_back({keys.back().time + 1.0, keys.back().target});
+            },
+            false);
+        servoKeys_->setCurrentRow(servoKeys_->count() - 1);
+    });
+    connect(servoKeyRemove_, &QPushButton::clicked, this, [this] {
+        const int key = servoKeys_->currentRow();
+        apply(
+            "servo", tr("Remove servo key"),
+            [key](JointDesc& j) {
+                if (!j.servo || key < 0 || key >= int(j.servo->keys.size())) return;
+                std::vector<JointDesc::ServoKey>& keys = j.servo->keys;
+                keys.erase(keys.begin() + key);
+                if (!keys.empty()) j.servo->target = keys.front().target;
+                if (keys.size() == 1) keys.clear();  // one key is a fixed target: the plain one
+            },
+            false);
+    });
+    connect(servoKeyTime_, &PropertySpinBox::valueChanged, this, [this](double v) {
+        const int key = servoKeys_->currentRow();
+        if (key < 0) return;
+        editServoKeys(tr("Set servo key time"), [key, v](auto& keys) { keys[size_t(key)].time = v; });
+    });
+}
+
+void JointPanel::editServoKeys(const QString& text,
+                               const std::function<void(std::vector<JointDesc::ServoKey>&)>& change, bool merge) {
+    apply(
+        "servo", text,
+        [&](JointDesc& j) {
+            if (!j.servo) return;
+            std::vector<JointDesc::ServoKey> keys = j.servo->keys;
+            change(keys);
+            std::stable_sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
+            if (!keys.empty()) j.servo->target = keys.front().target;
+            j.servo->keys = keys;
+        },
+        merge);
+}
+
+void JointPanel::refreshServoKeys(const JointDesc& j) {
+    if (!j.servo) return;
+    const double unit = unitOf(j);
+    const QString suffix = j.type == JointType::Hinge ? QStringLiteral("°") : QStringLiteral(" m");
+    const std::vector<JointDesc::ServoKey>& keys = j.servo->keys;
+    const int row = servoKeys_->currentRow();
+    {
+        const QSignalBlocker b(servoKeys_);
+        servoKeys_->clear();
+        for (const JointDesc::ServoKey& k : keys)
+            servoKeys_->addItem(QStringLiteral("%1 s: %2%3").arg(k.time, 0, 'g', 6).arg(k.target / unit, 0, 'g', 6).arg(suffix));
+        servoKeys_->setCurrentRow(keys.empty() ? -1 : std::clamp(row, 0, int(keys.size()) - 1));
+    }
+    const int key = servoKeys_->currentRow();
+    servoKeyRemove_->setEnabled(key >= 0);
+    servoKeyTime_->setEnabled(key >= 0);
+    if (key >= 0) {
+        servoKeyTime_->showValue(keys[size_t(key)].time);
+        servoTarget_->showValue(keys[size_t(key)].target / unit);
+    }
 }
 
 void JointPanel::buildBallLimitRows() {
@@ -202,6 +309,7 @@ void JointPanel::refreshDrives(const JointDesc& j) {
     form_->setRowVisible(rows_["servo"], axialJoint);
     form_->setRowVisible(rows_["spring_rest"], axialJoint && j.spring.has_value());
     form_->setRowVisible(rows_["servo_mode"], axialJoint && j.servo.has_value());
+    form_->setRowVisible(rows_["servo_keys"], axialJoint && j.servo.has_value());
     const bool gainsShown = axialJoint && j.servo && !(j.servo->timeConstant > 0.0);
     form_->setRowVisible(rows_["servo_gains"], gainsShown);
     const bool hinge = j.type == JointType::Hinge;
@@ -227,10 +335,8 @@ void JointPanel::refreshDrives(const JointDesc& j) {
         hasServo_->setChecked(j.servo.has_value());
     }
     for (PropertySpinBox* s : {servoTarget_, servoMax_}) s->setEnabled(j.servo.has_value());
-    if (j.servo && !j.servo->keys.empty()) {  // its target moves with its keys (the file's)
-        servoTarget_->setEnabled(false);
-        servoTarget_->setToolTip(tr("Keyed: %n key(s) in the file move the target", "", int(j.servo->keys.size())));
-    }
+    servoTarget_->setToolTip(j.servo && !j.servo->keys.empty() ? tr("The current key's target")
+                                                                : tr("Target (0: as placed)"));
     if (!j.servo) return;
     servoTarget_->showValue(j.servo->target / unit);
     servoMax_->showValue(std::isfinite(j.servo->maxForce) ? j.servo->maxForce : 0.0);
@@ -246,6 +352,7 @@ void JointPanel::refreshDrives(const JointDesc& j) {
     } else {
         servoTime_->showValue(j.servo->timeConstant);
     }
+    refreshServoKeys(j);
 }
 
 void JointPanel::refreshBallLimits(const JointDesc& j) {

@@ -16,6 +16,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QLineEdit>
+#include <QListWidget>
 #include <QPushButton>
 #include <QTreeWidget>
 #include <QUndoStack>
@@ -349,6 +350,22 @@ private slots:
         f.spin("joint.servo.stiffness")->setValue(0.0);  // gains need a stiffness: refused, said
         QVERIFY(f.joint().servo->stiffness > 0.0);
         QVERIFY2(f.panel()->fieldError("servo").contains("stiffness"), qPrintable(f.panel()->fieldError("servo")));
+        // A keyed target: Add keys it at 0 and 1 s; the target field edits the current key,
+        // the time field its time; removing down to one key leaves that one's target.
+        f.choose("joint.servo.mode", "time constant");
+        f.find<QPushButton>("joint.servo.keys.add")->click();
+        QCOMPARE(f.joint().servo->keys.size(), size_t(2));
+        QCOMPARE(f.find<QListWidget>("joint.servo.keys")->currentRow(), 1);
+        f.spin("joint.servo.target")->setValue(90.0);
+        emit f.spin("joint.servo.target")->editingFinished();
+        f.spin("joint.servo.keys.time")->setValue(2.5);
+        QCOMPARE(f.joint().servo->keys[1].time, 2.5);
+        QCOMPARE(f.joint().servo->keys[1].target, std::numbers::pi / 2);
+        QCOMPARE(f.joint().servo->target, f.joint().servo->keys[0].target);
+        f.find<QListWidget>("joint.servo.keys")->setCurrentRow(0);
+        f.find<QPushButton>("joint.servo.keys.remove")->click();
+        QVERIFY(f.joint().servo->keys.empty());
+        QCOMPARE(f.joint().servo->target, std::numbers::pi / 2);
         f.find<QCheckBox>("joint.motor.on")->setChecked(true);  // and back
         QVERIFY(f.joint().motor && !f.joint().servo);
         f.choose("joint.type", "fixed");
