@@ -107,6 +107,10 @@ struct JointModel {
     double lower = 0.0, upper = 0.0;
     bool motor = false;
     double motorSpeed = 0.0, motorMax = 0.0;
+    double breakForce = HUGE_VAL;  ///< N
+    bool collideConnected = false;  ///< its two bodies still collide with each other
+    int index = 0;                 ///< in Model::joints
+    // (What few joints have, after what every step reads.)
     /// Ball: its swing cone (half-angles towards `swingCross`, A's first frame axis across
     /// its axis as placed, and axisB × it, in B's frame)
     /// and twist range (JointDesc::swingLimit, twistLimits; joint_cone.h).
@@ -124,9 +128,6 @@ struct JointModel {
     std::vector<JointDesc::ServoKey> servoKeys;  ///< its target's keys (none: servoTarget)
     /// The servo's target at time t (its keys', linear between them).
     double servoTargetAt(double t) const;
-    double breakForce = HUGE_VAL;  ///< N
-    bool collideConnected = false;  ///< its two bodies still collide with each other
-    int index = 0;                 ///< in Model::joints
 };
 
 struct Model {

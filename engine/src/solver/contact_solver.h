@@ -116,14 +116,14 @@ struct ContactSolverScratch {
         Vec3 lambda = Vec3::Zero();  // accumulated impulse (x alone for a single row)
         int general = -1;            // hinge, slider, fixed: its entry in generalRows
         // A ball joint's cone and twist limits (joint_cone.h): one-sided angular rows keeping
-        // the rate (ωA − ωB)·axis on its side of `target`, λ ≥ 0 (sign +1) or ≤ 0 (−1).
+        // the rate (ωA − ωB)·axis on its side of `target`, λ ≥ 0 (sign +1) or ≤ 0 (−1); kept
+        // in angularRows[angularBegin ..] (a row here for every joint slowed ragdoll piles).
         struct Angular {
             Vec3 axis = Vec3::Zero();
             double k = 0.0, target = 0.0, lambda = 0.0;
             int sign = 0;
         };
-        int angulars = 0;
-        Angular angular[3];
+        int angularBegin = 0, angulars = 0;
     };
     /// A hinge's, slider's or fixed joint's rows (joint_general.h): up to six, solved
     /// together through the inverse of their effective mass.
@@ -154,11 +154,12 @@ struct ContactSolverScratch {
             double kappa = 1.0, target = 0.0, mass = 0.0, gain = 0.0, lambda = 0.0, most = HUGE_VAL;
             bool hard = false;
         };
-        int drives = 0;
-        Drive drive[2];
+        int driveBegin = 0, drives = 0;  // in driveRows
         double startRate = 0.0, startCoord = 0.0;  // the coordinate's at the step's start
     };
     std::vector<GeneralRow> generalRows;
+    std::vector<JointRow::Angular> angularRows;  // the balls' cone and twist rows
+    std::vector<GeneralRow::Drive> driveRows;    // the hinges' and sliders' springs and servos
     /// The state at the start of the interval the solve covers (solveIsland sets it; the
     /// joints' springs and servos read their coordinate there).
     const State* stepStart = nullptr;

@@ -85,14 +85,16 @@ double warmSpan(const State& state, int k, double h, double most) {
 // A ball joint's cone and twist rows (joint_cone.h) at the poses now; in an impact only a
 // bound reached, holding.
 void ballLimitRows(const JointModel& j, const State& state, double h, bool impulsive, const SolverBody& A,
-                   const SolverBody* B, JointRow& r) {
+                   const SolverBody* B, JointRow& r, std::vector<JointRow::Angular>& rows) {
+    r.angularBegin = static_cast<int>(rows.size());
     const BallAngles g = ballAngles(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr);
     // `room`: how far the angle may still go towards the bound (negative: past it).
     auto add = [&](const Vec3& axis, double room, int sign) {
         if (impulsive && room > kReached) return;
         const double inv = axis.dot(A.invI * axis) + (B ? axis.dot(B->invI * axis) : 0.0);
         if (!(inv > 0.0)) return;
-        JointRow::Angular& row = r.angular[r.angulars++];
+        JointRow::Angular& row = rows.emplace_back();
+        ++r.angulars;
         row.axis = axis;
         row.k = 1.0 / inv;
         row.sign = sign;
@@ -134,9 +136,10 @@ double coordinateAt(const JointModel& j, const State& at, const State& state) {
 // spring, and a servo by gains, as soft rows; a servo by its time constant as a rate row
 // whose target is the critically damped path's from the step's start (rate v₀, coordinate
 // c₀): (b/h)(c₀ − target) + (α + b) v₀, held against any load up to its force.
-void prepareDrives(const JointModel& j, double h, const State& state, const ContactSolverScratch& s,
+void prepareDrives(const JointModel& j, double h, const State& state, ContactSolverScratch& s,
                    const SolverBody& A, const SolverBody& B, ContactSolverScratch::GeneralRow& g) {
     g.drives = 0;
+    g.driveBegin = static_cast<int>(s.driveRows.size());
     if (!(j.spring || j.servo) || !(h > 0.0)) return;
     const double mass = heldAxisMass(g, A, B);
     if (!(mass > 0.0)) return;
@@ -149,7 +152,8 @@ void prepareDrives(const JointModel& j, double h, const State& state, const Cont
     g.startCoord = s.stepStart ? coordinateAt(j, *s.stepStart, state) : g.coord - h * g.startRate;
     auto add = [&](double p, double q, double error, double most) {
         const DriveStep step = driveStep(p, q, h);
-        ContactSolverScratch::GeneralRow::Drive& d = g.drive[g.drives++];
+        ContactSolverScratch::GeneralRow::Drive& d = s.driveRows.emplace_back();
+        ++g.drives;
         d.kappa = step.kappa;
         d.target = step.b / h * error + (step.alpha - step.kappa) * g.startRate;
         d.mass = mass;
@@ -166,7 +170,8 @@ void prepareDrives(const JointModel& j, double h, const State& state, const Cont
         return;
     }
     const DriveStep step = driveStep(2.0 / tau, 1.0 / (tau * tau), h);
-    ContactSolverScratch::GeneralRow::Drive& d = g.drive[g.drives++];
+    ContactSolverScratch::GeneralRow::Drive& d = s.driveRows.emplace_back();
+    ++g.drives;
     d.hard = true;
     d.target = step.b / h * (g.startCoord - target) + (step.alpha + step.b) * g.startRate;
     d.most = j.servoMax * h;
@@ -229,6 +234,8 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
                    const std::vector<std::uint8_t>* only, double warmGrowth) {
     s.jointRows.clear();
     s.generalRows.clear();
+    s.angularRows.clear();
+    s.driveRows.clear();
     s.jointWork = 0.0;
     const bool remembered = !impulsive && state.jointImpulses.size() == model.joints.size();
     bool grew = false;
@@ -258,7 +265,7 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
             if (!(K.determinant() > 0.0)) continue;  // nothing here can move
             r.Kinv = K.inverse();
             r.ball = true;
-            if (j.swingLimited || j.twistLimited) ballLimitRows(j, state, h, impulsive, A, B, r);
+            if (j.swingLimited || j.twistLimited) ballLimitRows(j, state, h, impulsive, A, B, r, s.angularRows);
         } else {
             const Vec3 d = pA - pB;
             const double length = d.norm();
@@ -319,7 +326,7 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
             take(lambda, std::clamp(lambda - g.kAxis * (vx - target), low, high), vx);
         };
         for (int i = 0; i < g.drives; ++i) {  // spring, servo: soft rows, or a servo's rate
-            ContactSolverScratch::GeneralRow::Drive& d = g.drive[i];
+            ContactSolverScratch::GeneralRow::Drive& d = s.driveRows[g.driveBegin + i];
             if (d.hard) {
                 row(d.lambda, d.target, -d.most, d.most);
                 continue;
@@ -350,7 +357,7 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         s.jointWork += 0.5 * d.dot(dv);  // (the anchors' relative velocity after is dv + Kd = 0)
         change = dv.lpNorm<Eigen::Infinity>();
         for (int i = 0; i < r.angulars; ++i) {  // its cone and twist limits
-            JointRow::Angular& q = r.angular[i];
+            JointRow::Angular& q = s.angularRows[r.angularBegin + i];
             const double rate = q.axis.dot(A.w - (B ? B->w : Vec3::Zero()));
             double next = q.lambda - q.k * (rate - q.target);
             next = q.sign > 0 ? std::max(next, 0.0) : std::min(next, 0.0);
@@ -440,7 +447,8 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
             state.jointImpulses[r.joint] = r.lambda / h;
             impulse += r.ball ? r.lambda : Vec3(r.lambda.x() * r.n);
             for (int i = 0; i < r.angulars; ++i)  // a ball's cone and twist limits: a couple
-                state.jointCouples[r.joint] += r.angular[i].lambda / h * r.angular[i].axis;
+                state.jointCouples[r.joint] += s.angularRows[r.angularBegin + i].lambda / h *
+                                               s.angularRows[r.angularBegin + i].axis;
             if (r.angulars && s.projectedCouple.size() == model.joints.size())
                 state.jointCouples[r.joint] += s.projectedCouple[r.joint] / h;
         } else {
@@ -456,7 +464,7 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
             // axis, a force along a slider's (reported; breaking is the constraint's alone).
             if (g.axial) {
                 double axial = (g.motorLambda + g.lowerLambda + g.upperLambda) / h;
-                for (int i = 0; i < g.drives; ++i) axial += g.drive[i].lambda / h;
+                for (int i = 0; i < g.drives; ++i) axial += s.driveRows[g.driveBegin + i].lambda / h;
                 state.jointCouples[r.joint] += axial * g.JAx.tail<3>();
                 reported += axial * g.JAx.head<3>();
             }
