@@ -60,6 +60,8 @@ void jointFeatureRows(Row row) {
         R"("type": "hinge", "axis_a": [0, 1, 0], "servo": {"time_constant": 0.1, "target": 1, )"
         R"("keys": [{"time": 1, "target": 0}]}, "body_a": "crate")",
         "joints[1].servo.target", "drop.json: joints[1].servo.target: give target or keys, not both");
+    row("rope with an axis", R"("length": 1.5)", R"("length": 1.5, "axis_a": [0, 1, 0])", "joints[0].axis_a",
+        "drop.json: joints[0].axis_a: a rope joint has no axis (hinge, slider and ball joints have one)");
     const char* axis = R"("anchor_b": [0, -0.5, 0])";
     row("swing limit on a hinge", ball,
         R"("type": "hinge", "axis_a": [0, 1, 0], "swing_limit": 0.5, "body_a": "crate")", "joints[1].swing_limit",
