@@ -1,5 +1,10 @@
 #include "document/joint_presets.h"
 
+#include <tumble/model.h>
+
+#include <algorithm>
+#include <cmath>
+
 namespace tumble::ui {
 
 std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, const std::vector<int>& selection,
@@ -60,6 +65,21 @@ std::optional<JointDesc> swappedJoint(const SceneDesc& scene, const JointDesc& j
     // between the two axes, the same (an elliptical cone's directions are then the new A's).
     if (j.twistLimits) s.twistLimits = std::array<double, 2>{-(*j.twistLimits)[1], -(*j.twistLimits)[0]};
     return s;
+}
+
+bool insertServoKey(JointDesc& j, double time) {
+    if (!j.servo) return false;
+    std::vector<JointDesc::ServoKey>& keys = j.servo->keys;
+    if (keys.empty()) keys.push_back({0.0, j.servo->target});
+    JointModel m;  // the target at that time, as the engine reads the keys
+    m.servoTarget = j.servo->target;
+    m.servoKeys = keys;
+    const double target = m.servoTargetAt(time);
+    const auto at = std::lower_bound(keys.begin(), keys.end(), time,
+                                     [](const JointDesc::ServoKey& k, double t) { return k.time < t; });
+    if (at == keys.end() || std::abs(at->time - time) > 1e-9) keys.insert(at, {time, target});
+    j.servo->target = keys.front().target;
+    return true;
 }
 
 BodyFrame frameOf(const SceneDesc& scene, const std::string& name) {

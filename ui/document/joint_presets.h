@@ -32,6 +32,11 @@ std::optional<JointDesc> presetJoint(JointType type, const SceneDesc& scene, con
 /// change sign (its coordinate is A's against B). Nothing for a joint to the world.
 std::optional<JointDesc> swappedJoint(const SceneDesc& scene, const JointDesc& j);
 
+/// Keys a joint's servo target at `time` (Edit > Insert Key with the joint selected): the
+/// target it has there (its keys', or its fixed target, which then also keys t = 0), a key
+/// already at that time kept. False when the joint has no servo.
+bool insertServoKey(JointDesc& j, double time);
+
 /// Where body `name` is placed (the world's frame for an empty name or one no body has).
 struct BodyFrame {
     Vec3 p = Vec3::Zero();

@@ -6,6 +6,7 @@
 
 #include "document/body_keys.h"
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "editor_main.h"
 #include "panels/plots_dock.h"
 #include "panels/property_dock.h"
@@ -389,6 +390,18 @@ bool MainWindow::openScene(const QString& path, QString* error) {
 }
 
 void MainWindow::insertKey() {
+    if (const int joint = doc_->selectedJoint(); joint >= 0) {  // a servo's target
+        JointDesc j = doc_->joint(joint);
+        const double time = timeline_->currentFrame() / doc_->scene().settings.frameRate;
+        if (!insertServoKey(j, time)) {
+            statusBar()->showMessage(tr("Insert Key: this joint has no servo to key"), 4000);
+            return;
+        }
+        doc_->setJoint(joint, j, tr("Insert servo key"));
+        statusBar()->showMessage(
+            tr("Keyed %1's servo at t = %2 s").arg(QString::fromStdString(j.name)).arg(time, 0, 'g', 6), 3000);
+        return;
+    }
     const QList<int>& selection = doc_->selection();
     if (selection.size() != 1) {
         statusBar()->showMessage(tr("Insert Key: select one body"), 4000);

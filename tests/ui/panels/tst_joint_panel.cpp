@@ -4,6 +4,7 @@
 // message under the field, keeps an anchor where it is in the world when its body changes,
 // and clears what a new type cannot have; Delete removes the selected joint.
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "panels/joint_list.h"
 #include "panels/joint_panel.h"
 #include "panels/property_dock.h"
@@ -366,8 +367,19 @@ private slots:
         f.find<QPushButton>("joint.servo.keys.remove")->click();
         QVERIFY(f.joint().servo->keys.empty());
         QCOMPARE(f.joint().servo->target, std::numbers::pi / 2);
+        // Insert Key at 2 s (the timeline's frame; here the function it calls): the target
+        // it has there keyed, its fixed one keyed at 0; at 1 s between keys, the line's value.
+        JointDesc keyed = f.joint();
+        QVERIFY(insertServoKey(keyed, 2.0));
+        QCOMPARE(keyed.servo->keys.size(), size_t(2));
+        QCOMPARE(keyed.servo->keys[1].time, 2.0);
+        keyed.servo->keys[1].target = 1.0;
+        QVERIFY(insertServoKey(keyed, 1.0));
+        QCOMPARE(keyed.servo->keys.size(), size_t(3));
+        QCOMPARE(keyed.servo->keys[1].target, 0.5 * (keyed.servo->keys[0].target + 1.0));
         f.find<QCheckBox>("joint.motor.on")->setChecked(true);  // and back
         QVERIFY(f.joint().motor && !f.joint().servo);
+        QVERIFY(!insertServoKey(keyed = f.joint(), 1.0));
         f.choose("joint.type", "fixed");
         QVERIFY(!f.joint().spring && !f.joint().servo);
     }
