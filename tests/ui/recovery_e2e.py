@@ -18,6 +18,8 @@ display ctest runs in):
 
 Usage: recovery_e2e.py TUMBLE CRASH_CHILD SCENE
 """
+import ctypes
+import ctypes.util
 import hashlib
 import json
 import os
@@ -255,9 +257,29 @@ def two_editors(root):
     print("ok: two editors")
 
 
+def hold_display():
+    """Keeps a connection to the display open for the test's run. An X server started
+    without -noreset (xvfb-run's default) resets when its last client leaves, and refuses
+    whoever connects meanwhile: every case kills all its editors and starts a new one, which
+    then could not connect now and then ("could not connect to display"; a full ctest run
+    failed so about one time in five)."""
+    lib = ctypes.util.find_library("xcb")
+    if not lib:
+        fail("needs libxcb (to hold the display open)")
+    xcb = ctypes.CDLL(lib)
+    xcb.xcb_connect.restype = ctypes.c_void_p
+    xcb.xcb_connect.argtypes = [ctypes.c_char_p, ctypes.c_void_p]
+    xcb.xcb_connection_has_error.argtypes = [ctypes.c_void_p]
+    connection = xcb.xcb_connect(None, None)
+    if not connection or xcb.xcb_connection_has_error(connection):
+        fail("could not connect to the display " + os.environ["DISPLAY"])
+    return connection  # (closed as the test ends)
+
+
 def main():
     if not os.environ.get("DISPLAY"):
         fail("needs a display (run under xvfb-run)")
+    held = hold_display()  # noqa: F841 (held for the run)
     if not shutil.which("xdotool"):
         fail("needs xdotool (./dev.sh installs it)")
     with tempfile.TemporaryDirectory(prefix="tumble-recovery-") as root:
