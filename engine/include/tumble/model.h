@@ -89,9 +89,32 @@ struct BodyModel {
     }
 };
 
+/// A joint's free axis as its limits, motor, spring and servo act on it: a hinge's or a
+/// slider's (JointModel is one: `axis` -1) or one of a six-axis joint's (JointModel::axes).
+struct JointAxis {
+    int axis = -1;  ///< six-axis: 0-2 along the joint frame's x, y, z; 3-5 about them
+    /// Its range (JointDesc::limits), motor, spring (JointDesc::spring) and servo
+    /// (JointDesc::servo; timeConstant > 0 replaces its stiffness and damping).
+    bool limited = false;
+    double lower = 0.0, upper = 0.0;
+    bool motor = false;
+    double motorSpeed = 0.0, motorMax = 0.0;
+    bool spring = false;
+    double springStiffness = 0.0, springDamping = 0.0, springRest = 0.0;
+    bool servo = false;
+    double servoTarget = 0.0, servoMax = HUGE_VAL, servoStiffness = 0.0, servoDamping = 0.0,
+           servoTimeConstant = 0.0;
+    std::vector<JointDesc::ServoKey> servoKeys;  ///< its target's keys (none: servoTarget)
+    /// The servo's target at time t (its keys', linear between them).
+    double servoTargetAt(double t) const;
+    /// Whether anything acts along it (else a free axis is just free).
+    bool acted() const { return limited || motor || spring || servo; }
+};
+
 /// A joint as the solver uses it: body indices (-1: the world) and each anchor from its
-/// body's centre of mass, in the body's axes (a world point for the world).
-struct JointModel {
+/// body's centre of mass, in the body's axes (a world point for the world). A hinge's or
+/// slider's free axis is its JointAxis part.
+struct JointModel : JointAxis {
     std::string name;
     JointType type = JointType::Ball;
     int a = -1, b = -1;
@@ -102,11 +125,6 @@ struct JointModel {
     /// Slider and fixed: A's orientation relative to B's (B's: the world's) to keep; a
     /// hinge's angle is measured from it.
     Quat relative = Quat::Identity();
-    /// Hinge and slider (JointDesc::limits, motor).
-    bool limited = false;
-    double lower = 0.0, upper = 0.0;
-    bool motor = false;
-    double motorSpeed = 0.0, motorMax = 0.0;
     double breakForce = HUGE_VAL;  ///< N
     bool collideConnected = false;  ///< its two bodies still collide with each other
     int index = 0;                 ///< in Model::joints
@@ -118,16 +136,12 @@ struct JointModel {
     std::array<double, 2> swingLimit{M_PI, M_PI};
     Vec3 swingCross = Vec3::UnitX();
     double twistLower = -M_PI, twistUpper = M_PI;
-    /// Hinge and slider: a spring on the coordinate (JointDesc::spring) and a servo
-    /// (JointDesc::servo; timeConstant > 0 replaces its stiffness and damping).
-    bool spring = false;
-    double springStiffness = 0.0, springDamping = 0.0, springRest = 0.0;
-    bool servo = false;
-    double servoTarget = 0.0, servoMax = HUGE_VAL, servoStiffness = 0.0, servoDamping = 0.0,
-           servoTimeConstant = 0.0;
-    std::vector<JointDesc::ServoKey> servoKeys;  ///< its target's keys (none: servoTarget)
-    /// The servo's target at time t (its keys', linear between them).
-    double servoTargetAt(double t) const;
+    /// Six-axis: the joint frame (columns x, y, z) in A's axes and in B's (the world's for
+    /// the world), the same frame as the scene places the bodies; the axes held at 0 (bit i:
+    /// axis i, JointAxis::axis) and the others, which may be acted on.
+    Mat3 frameA = Mat3::Identity(), frameB = Mat3::Identity();
+    unsigned locked = 0;
+    std::vector<JointAxis> axes;
 };
 
 struct Model {

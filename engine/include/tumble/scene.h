@@ -204,7 +204,7 @@ std::string stepNote(const Settings& settings);
 /// axes in line: it turns about the axis only), slider (the two bodies keep their relative
 /// orientation and A's anchor stays on the line through B's along the axis: it slides
 /// along the axis only) and fixed (the two keep their relative pose: one rigid body).
-enum class JointType { Ball, Distance, Rope, Hinge, Slider, Fixed };
+enum class JointType { Ball, Distance, Rope, Hinge, Slider, Fixed, SixAxis };
 const char* toString(JointType t);
 
 struct JointDesc {
@@ -270,6 +270,22 @@ struct JointDesc {
         bool operator==(const Servo&) const = default;
     };
     std::optional<Servo> servo;
+    /// Six-axis: one of its six axes (x, y, z: A's anchor's offset from B's along the joint
+    /// frame's axes, m; rx, ry, rz: the turn of A's frame from B's about them, rad, as the
+    /// components of its rotation vector). Locked (held at 0) unless `free`; a free axis may
+    /// have limits, a motor, a spring and a servo, as a hinge's or slider's coordinate.
+    struct Axis {
+        bool free = false;
+        std::optional<std::array<double, 2>> limits;
+        std::optional<Motor> motor;
+        std::optional<Spring> spring;
+        std::optional<Servo> servo;
+        bool operator==(const Axis&) const = default;
+    };
+    /// Six-axis: x, y, z, rx, ry, rz. The joint frame's x is `axisA` (default body_a's x), its
+    /// y the first of body_a's frame axes across it (made square), z = x × y; B's frame is A's
+    /// as the scene places the bodies.
+    std::array<Axis, 6> axes;
     /// Any joint: it breaks (for good, at the end of the step) when the force it carries
     /// passes this (N); none: it never breaks.
     std::optional<double> breakForce;

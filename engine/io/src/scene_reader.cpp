@@ -374,31 +374,14 @@ BodyDesc readBody(const Reader& r, const json& j, const std::string& p) {
     return b;
 }
 
-// A joint of the top-level `joints` (docs/scene-format.md "Joints"). The bodies it names
-// and what its type allows are checked with the rest of the scene (validate).
-JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
-    r.object(j, p);
-    r.onlyKeys(j, p,
-               {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length",
-                "limits", "motor", "spring", "servo", "swing_limit", "twist_limits", "break_force",
-                "collide_connected"});
-    JointDesc d;
-    d.name = r.string(r.require(j, p, "name"), p + ".name");
-    d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
-                       {JointType::Ball, JointType::Distance, JointType::Rope, JointType::Hinge,
-                        JointType::Slider, JointType::Fixed});
-    d.bodyA = r.string(r.require(j, p, "body_a"), p + ".body_a");
-    r.optional(j, p, "anchor_a", [&](const json& v, const std::string& f) { d.anchorA = r.vector<3>(v, f); });
-    r.optional(j, p, "body_b", [&](const json& v, const std::string& f) {
-        d.bodyB = r.string(v, f);
-        if (d.bodyB.empty()) r.fail(f, "must name a body (leave it out to join body_a to the world)");
-    });
-    r.optional(j, p, "anchor_b", [&](const json& v, const std::string& f) { d.anchorB = r.vector<3>(v, f); });
-    r.optional(j, p, "axis_a", [&](const json& v, const std::string& f) { d.axisA = r.vector<3>(v, f); });
-    r.optional(j, p, "axis_b", [&](const json& v, const std::string& f) { d.axisB = r.vector<3>(v, f); });
+// What acts on a free axis: the `limits`, `motor`, `spring` and `servo` of a hinge's or
+// slider's object, or of a six-axis joint's axis (`what`: "hinge", "slider", "linear axis",
+// "angular axis"; `axial`: it has a free axis; `linear`: its force is a force, else a torque).
+void readAxisKeys(const Reader& r, const json& j, const std::string& p, const char* what, bool axial, bool linear,
+                  JointDesc::Axis& x) {
     r.optional(j, p, "limits", [&](const json& v, const std::string& f) {
         const Eigen::Vector2d l = r.vector<2>(v, f);
-        d.limits = std::array<double, 2>{l[0], l[1]};
+        x.limits = std::array<double, 2>{l[0], l[1]};
     });
     r.optional(j, p, "motor", [&](const json& v, const std::string& f) {
         r.object(v, f);
@@ -406,31 +389,17 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         JointDesc::Motor m;
         m.speed = r.number(r.require(v, f, "speed"), f + ".speed");
         // A hinge's motor turns (a torque), a slider's pushes (a force).
-        const char* key = d.type == JointType::Slider ? "max_force" : "max_torque";
-        const char* wrong = d.type == JointType::Slider ? "max_torque" : "max_force";
-        if (d.type == JointType::Hinge || d.type == JointType::Slider) {
+        const char* key = linear ? "max_force" : "max_torque";
+        const char* wrong = linear ? "max_torque" : "max_force";
+        if (axial) {
             if (v.contains(wrong))
-                r.fail(Reader::join(f, wrong), std::string("a ") + toString(d.type) + "'s motor gives a " +
-                                                   (d.type == JointType::Slider ? "force: max_force" : "torque: max_torque"));
+                r.fail(Reader::join(f, wrong), std::string("a ") + what + "'s motor gives a " +
+                                                   (linear ? "force: max_force" : "torque: max_torque"));
         } else if (!v.contains(key)) {
             key = wrong;
         }
         m.maxForce = r.number(r.require(v, f, key), Reader::join(f, key));
-        d.motor = m;
-    });
-    r.optional(j, p, "swing_limit", [&](const json& v, const std::string& f) {
-        if (v.is_number()) {  // a circular cone
-            const double angle = r.number(v, f);
-            d.swingLimit = std::array<double, 2>{angle, angle};
-        } else {
-            if (!v.is_array() || v.size() != 2) r.fail(f, "must be an angle or an array of 2 angles");
-            const Eigen::Vector2d l = r.vector<2>(v, f);
-            d.swingLimit = std::array<double, 2>{l[0], l[1]};
-        }
-    });
-    r.optional(j, p, "twist_limits", [&](const json& v, const std::string& f) {
-        const Eigen::Vector2d l = r.vector<2>(v, f);
-        d.twistLimits = std::array<double, 2>{l[0], l[1]};
+        x.motor = m;
     });
     r.optional(j, p, "spring", [&](const json& v, const std::string& f) {
         r.object(v, f);
@@ -439,12 +408,11 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         s.stiffness = r.number(r.require(v, f, "stiffness"), f + ".stiffness");
         r.optional(v, f, "damping", [&](const json& x, const std::string& g) { s.damping = r.number(x, g); });
         r.optional(v, f, "rest", [&](const json& x, const std::string& g) { s.rest = r.number(x, g); });
-        d.spring = s;
+        x.spring = s;
     });
     r.optional(j, p, "servo", [&](const json& v, const std::string& f) {
         r.object(v, f);
-        const bool slider = d.type == JointType::Slider;
-        const char* most = slider ? "max_force" : "max_torque";
+        const char* most = linear ? "max_force" : "max_torque";
         r.onlyKeys(v, f, {"target", "keys", most, "stiffness", "damping", "time_constant"});
         JointDesc::Servo s;
         r.optional(v, f, "keys", [&](const json& keys, const std::string& g) {
@@ -468,7 +436,75 @@ JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
         r.optional(v, f, "damping", [&](const json& x, const std::string& g) { s.damping = r.number(x, g); });
         r.optional(v, f, "time_constant",
                    [&](const json& x, const std::string& g) { s.timeConstant = r.number(x, g); });
-        d.servo = s;
+        x.servo = s;
+    });
+}
+
+// A joint of the top-level `joints` (docs/scene-format.md "Joints"). The bodies it names
+// and what its type allows are checked with the rest of the scene (validate).
+JointDesc readJoint(const Reader& r, const json& j, const std::string& p) {
+    r.object(j, p);
+    r.onlyKeys(j, p,
+               {"name", "type", "body_a", "anchor_a", "axis_a", "body_b", "anchor_b", "axis_b", "length",
+                "limits", "motor", "spring", "servo", "swing_limit", "twist_limits", "axes", "break_force",
+                "collide_connected"});
+    JointDesc d;
+    d.name = r.string(r.require(j, p, "name"), p + ".name");
+    d.type = enumValue(r, r.require(j, p, "type"), p + ".type",
+                       {JointType::Ball, JointType::Distance, JointType::Rope, JointType::Hinge,
+                        JointType::Slider, JointType::Fixed, JointType::SixAxis});
+    d.bodyA = r.string(r.require(j, p, "body_a"), p + ".body_a");
+    r.optional(j, p, "anchor_a", [&](const json& v, const std::string& f) { d.anchorA = r.vector<3>(v, f); });
+    r.optional(j, p, "body_b", [&](const json& v, const std::string& f) {
+        d.bodyB = r.string(v, f);
+        if (d.bodyB.empty()) r.fail(f, "must name a body (leave it out to join body_a to the world)");
+    });
+    r.optional(j, p, "anchor_b", [&](const json& v, const std::string& f) { d.anchorB = r.vector<3>(v, f); });
+    r.optional(j, p, "axis_a", [&](const json& v, const std::string& f) { d.axisA = r.vector<3>(v, f); });
+    r.optional(j, p, "axis_b", [&](const json& v, const std::string& f) { d.axisB = r.vector<3>(v, f); });
+    r.optional(j, p, "swing_limit", [&](const json& v, const std::string& f) {
+        if (v.is_number()) {  // a circular cone
+            const double angle = r.number(v, f);
+            d.swingLimit = std::array<double, 2>{angle, angle};
+        } else {
+            if (!v.is_array() || v.size() != 2) r.fail(f, "must be an angle or an array of 2 angles");
+            const Eigen::Vector2d l = r.vector<2>(v, f);
+            d.swingLimit = std::array<double, 2>{l[0], l[1]};
+        }
+    });
+    r.optional(j, p, "twist_limits", [&](const json& v, const std::string& f) {
+        const Eigen::Vector2d l = r.vector<2>(v, f);
+        d.twistLimits = std::array<double, 2>{l[0], l[1]};
+    });
+    {
+        JointDesc::Axis x;
+        const bool axial = d.type == JointType::Hinge || d.type == JointType::Slider;
+        readAxisKeys(r, j, p, toString(d.type), axial, d.type == JointType::Slider, x);
+        d.limits = x.limits;
+        d.motor = x.motor;
+        d.spring = x.spring;
+        d.servo = x.servo;
+    }
+    r.optional(j, p, "axes", [&](const json& v, const std::string& f) {
+        static const char* const names[6] = {"x", "y", "z", "rx", "ry", "rz"};
+        r.object(v, f);
+        r.onlyKeys(v, f, {"x", "y", "z", "rx", "ry", "rz"});
+        for (int i = 0; i < 6; ++i)
+            r.optional(v, f, names[i], [&](const json& x, const std::string& g) {
+                JointDesc::Axis& axis = d.axes[i];
+                if (x.is_string()) {
+                    const std::string mode = x.get<std::string>();
+                    if (mode != "locked" && mode != "free")
+                        r.fail(g, "must be \"locked\", \"free\" or an object of limits, motor, spring and servo");
+                    axis.free = mode == "free";
+                    return;
+                }
+                if (!x.is_object())
+                    r.fail(g, "must be \"locked\", \"free\" or an object of limits, motor, spring and servo");
+                r.onlyKeys(x, g, {"limits", "motor", "spring", "servo"});
+                axis.free = true;
+                readAxisKeys(r, x, g, i < 3 ? "linear axis" : "angular axis", true, i < 3, axis);
+            });
     });
     r.optional(j, p, "break_force", [&](const json& v, const std::string& f) { d.breakForce = r.number(v, f); });
     r.optional(j, p, "collide_connected",

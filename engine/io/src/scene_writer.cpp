@@ -135,6 +135,45 @@ ojson namePairs(const std::vector<std::array<std::string, 2>>& pairs) {
     return out;
 }
 
+// What acts on a free axis (a hinge's or slider's, or a six-axis joint's) into `j`;
+// `linear`: its force is a force (max_force), else a torque (max_torque).
+void axisKeys(ojson& j, const JointDesc::Axis& x, bool linear) {
+    if (x.limits) j["limits"] = ojson::array({(*x.limits)[0], (*x.limits)[1]});
+    if (x.motor) {
+        ojson& m = j["motor"];
+        m["speed"] = x.motor->speed;
+        m[linear ? "max_force" : "max_torque"] = x.motor->maxForce;
+    }
+    if (x.spring) {
+        ojson& s = j["spring"];
+        s["stiffness"] = x.spring->stiffness;
+        if (x.spring->damping != 0.0) s["damping"] = x.spring->damping;
+        if (x.spring->rest != 0.0) s["rest"] = x.spring->rest;
+    }
+    if (x.servo) {
+        ojson& s = j["servo"];
+        if (x.servo->keys.empty()) {
+            s["target"] = x.servo->target;
+        } else {
+            ojson& keys = s["keys"];
+            for (const JointDesc::ServoKey& k : x.servo->keys) {
+                ojson key;
+                key["time"] = k.time;
+                key["target"] = k.target;
+                keys.push_back(key);
+            }
+        }
+        if (std::isfinite(x.servo->maxForce))
+            s[linear ? "max_force" : "max_torque"] = x.servo->maxForce;
+        if (x.servo->timeConstant > 0.0) {
+            s["time_constant"] = x.servo->timeConstant;
+        } else {
+            s["stiffness"] = x.servo->stiffness;
+            s["damping"] = x.servo->damping;
+        }
+    }
+}
+
 ojson jointJson(const JointDesc& d) {
     ojson j;
     j["name"] = d.name;
@@ -154,37 +193,21 @@ ojson jointJson(const JointDesc& d) {
     if (d.twistLimits) j["twist_limits"] = ojson::array({(*d.twistLimits)[0], (*d.twistLimits)[1]});
     if (d.breakForce) j["break_force"] = *d.breakForce;
     if (d.collideConnected) j["collide_connected"] = true;
-    if (d.motor) {
-        ojson& m = j["motor"];
-        m["speed"] = d.motor->speed;
-        m[d.type == JointType::Slider ? "max_force" : "max_torque"] = d.motor->maxForce;
-    }
-    if (d.spring) {
-        ojson& s = j["spring"];
-        s["stiffness"] = d.spring->stiffness;
-        if (d.spring->damping != 0.0) s["damping"] = d.spring->damping;
-        if (d.spring->rest != 0.0) s["rest"] = d.spring->rest;
-    }
-    if (d.servo) {
-        ojson& s = j["servo"];
-        if (d.servo->keys.empty()) {
-            s["target"] = d.servo->target;
-        } else {
-            ojson& keys = s["keys"];
-            for (const JointDesc::ServoKey& k : d.servo->keys) {
-                ojson key;
-                key["time"] = k.time;
-                key["target"] = k.target;
-                keys.push_back(key);
+    axisKeys(j, {false, std::nullopt, d.motor, d.spring, d.servo}, d.type == JointType::Slider);
+    if (d.type == JointType::SixAxis) {
+        static const char* const names[6] = {"x", "y", "z", "rx", "ry", "rz"};
+        ojson& axes = j["axes"];
+        for (int i = 0; i < 6; ++i) {
+            const JointDesc::Axis& x = d.axes[i];
+            const bool plain = !x.limits && !x.motor && !x.spring && !x.servo;
+            if (!x.free) {
+                axes[names[i]] = "locked";
+            } else if (plain) {
+                axes[names[i]] = "free";
+            } else {
+                ojson& one = axes[names[i]];
+                axisKeys(one, x, i < 3);
             }
-        }
-        if (std::isfinite(d.servo->maxForce))
-            s[d.type == JointType::Slider ? "max_force" : "max_torque"] = d.servo->maxForce;
-        if (d.servo->timeConstant > 0.0) {
-            s["time_constant"] = d.servo->timeConstant;
-        } else {
-            s["stiffness"] = d.servo->stiffness;
-            s["damping"] = d.servo->damping;
         }
     }
     return j;

@@ -80,7 +80,8 @@ bool updateSleep(const Model& model, State& state, const ManifoldList& contacts,
     // motor keeps its bodies awake.
     for (const JointModel& j : model.joints) {
         if (state.jointBroken(j.index)) continue;
-        if (j.motor && j.motorMax > 0.0) {
+        const auto running = [](const JointAxis& x) { return x.motor && x.motorMax > 0.0; };
+        if (running(j) || std::any_of(j.axes.begin(), j.axes.end(), running)) {
             s.blocked[j.a] = 1;
             if (j.b >= 0) s.blocked[j.b] = 1;
         }

@@ -41,8 +41,28 @@ void validateBallLimits(const JointDesc& j, const std::string& p) {
     }
 }
 
-// A hinge's or slider's spring and servo (the motor is checked with the limits).
-void validateDrives(const JointDesc& j, const std::string& p) {
+// What acts on a free axis: a hinge's or slider's (`p` the joint), a six-axis joint's
+// (`p` its axis); `linear`: the axis is along (forces, N), else about (torques, N m).
+struct AxisSettings {
+    const std::optional<std::array<double, 2>>& limits;
+    const std::optional<JointDesc::Motor>& motor;
+    const std::optional<JointDesc::Spring>& spring;
+    const std::optional<JointDesc::Servo>& servo;
+};
+
+void validateDrives(const AxisSettings& j, const std::string& p, bool linear) {
+    if (j.limits) {
+        const auto [lower, upper] = *j.limits;
+        if (!std::isfinite(lower) || !std::isfinite(upper))
+            throw SceneError(p + ".limits", "must be finite numbers");
+        if (lower > upper) throw SceneError(p + ".limits", "the lower limit is above the upper one");
+    }
+    if (j.motor) {
+        if (!std::isfinite(j.motor->speed)) throw SceneError(p + ".motor.speed", "must be a finite number");
+        if (!std::isfinite(j.motor->maxForce) || j.motor->maxForce < 0.0)
+            throw SceneError(p + (linear ? ".motor.max_force" : ".motor.max_torque"),
+                             "must be a finite number, at least 0");
+    }
     if (j.spring) {
         finiteAtLeast0(j.spring->stiffness, p + ".spring.stiffness");
         finiteAtLeast0(j.spring->damping, p + ".spring.damping");
@@ -61,7 +81,7 @@ void validateDrives(const JointDesc& j, const std::string& p) {
         if (k > 0 && !(v.keys[k].time > v.keys[k - 1].time))
             throw SceneError(key + ".time", "must be later than the key before");
     }
-    const std::string most = p + (j.type == JointType::Slider ? ".servo.max_force" : ".servo.max_torque");
+    const std::string most = p + (linear ? ".servo.max_force" : ".servo.max_torque");
     if (std::isnan(v.maxForce) || !(v.maxForce > 0.0))
         throw SceneError(most, "must be greater than 0 (leave it out for no bound)");
     if (v.timeConstant != 0.0) {
@@ -77,6 +97,22 @@ void validateDrives(const JointDesc& j, const std::string& p) {
     if (!(v.stiffness > 0.0))
         throw SceneError(p + ".servo.stiffness",
                          "must be greater than 0 (or give time_constant instead of stiffness and damping)");
+}
+
+const char* const kAxisNames[6] = {"x", "y", "z", "rx", "ry", "rz"};
+
+// A six-axis joint's axes: what acts on one needs it free; an angle's range within ±π (its
+// coordinate is a rotation vector's component).
+void validateSixAxis(const JointDesc& j, const std::string& p) {
+    for (int i = 0; i < 6; ++i) {
+        const JointDesc::Axis& x = j.axes[i];
+        const std::string q = p + ".axes." + kAxisNames[i];
+        if (!x.free && (x.limits || x.motor || x.spring || x.servo))
+            throw SceneError(q, "a locked axis has no limits, motor, spring or servo");
+        validateDrives({x.limits, x.motor, x.spring, x.servo}, q, i < 3);
+        if (i >= 3 && x.limits && !((*x.limits)[0] >= -M_PI && (*x.limits)[1] <= M_PI))
+            throw SceneError(q + ".limits", "must be angles within [-pi, pi] (rad)");
+    }
 }
 
 }  // namespace
@@ -118,6 +154,13 @@ void validateJoints(const SceneDesc& scene) {
                              std::string("a ") + toString(j.type) +
                                  " joint has no length (only distance and rope joints have one)");
         const bool axial = j.type == JointType::Hinge || j.type == JointType::Slider;
+        const bool six = j.type == JointType::SixAxis;
+        if (!six && j.axes != JointDesc().axes)
+            throw SceneError(p + ".axes", std::string("a ") + toString(j.type) +
+                                              " joint has none (only six_axis joints do)");
+        if (six && j.axisB)
+            throw SceneError(p + ".axis_b", "a six_axis joint's frame on body_b is body_a's as placed: give axis_a only");
+        if (six) validateSixAxis(j, p);
         const bool cone = j.type == JointType::Ball && (j.swingLimit || j.twistLimits);
         if (axial && !j.axisA)
             throw SceneError(p + ".axis_a",
@@ -125,10 +168,10 @@ void validateJoints(const SceneDesc& scene) {
         if (cone && !j.axisA)
             throw SceneError(p + ".axis_a",
                              "is missing (a ball joint's swing_limit and twist_limits are about its axis)");
-        if (!axial && j.type != JointType::Ball && (j.axisA || j.axisB))
+        if (!axial && !six && j.type != JointType::Ball && (j.axisA || j.axisB))
             throw SceneError(p + (j.axisA ? ".axis_a" : ".axis_b"),
                              std::string("a ") + toString(j.type) +
-                                 " joint has no axis (hinge, slider and ball joints have one)");
+                                 " joint has no axis (hinge, slider, ball and six_axis joints have one)");
         if (j.type == JointType::Ball && j.axisB && !j.axisA)
             throw SceneError(p + ".axis_a", "is missing (a ball joint's axis_b goes with its axis_a)");
         if (j.type != JointType::Ball && (j.swingLimit || j.twistLimits))
@@ -139,20 +182,7 @@ void validateJoints(const SceneDesc& scene) {
             throw SceneError(
                 p + (j.limits ? ".limits" : j.motor ? ".motor" : j.spring ? ".spring" : ".servo"),
                 std::string("a ") + toString(j.type) + " joint has none (only hinge and slider joints do)");
-        validateDrives(j, p);
-        if (j.limits) {
-            const auto [lower, upper] = *j.limits;
-            if (!std::isfinite(lower) || !std::isfinite(upper))
-                throw SceneError(p + ".limits", "must be finite numbers");
-            if (lower > upper) throw SceneError(p + ".limits", "the lower limit is above the upper one");
-        }
-        if (j.motor) {
-            if (!std::isfinite(j.motor->speed))
-                throw SceneError(p + ".motor.speed", "must be a finite number");
-            if (!std::isfinite(j.motor->maxForce) || j.motor->maxForce < 0.0)
-                throw SceneError(p + (j.type == JointType::Hinge ? ".motor.max_torque" : ".motor.max_force"),
-                                 "must be a finite number, at least 0");
-        }
+        validateDrives({j.limits, j.motor, j.spring, j.servo}, p, j.type == JointType::Slider);
         if (j.breakForce && !(std::isfinite(*j.breakForce) && *j.breakForce > 0.0))
             throw SceneError(p + ".break_force", "must be a finite number greater than 0");
         for (const auto& [axis, field] : {std::pair{&j.axisA, ".axis_a"}, std::pair{&j.axisB, ".axis_b"}}) {
@@ -162,6 +192,62 @@ void validateJoints(const SceneDesc& scene) {
         }
     }
 }
+
+namespace {
+
+// The solver's copy of what acts on a free axis.
+void compileAxis(const AxisSettings& d, JointAxis& j) {
+    if (d.limits) {
+        j.limited = true;
+        j.lower = (*d.limits)[0];
+        j.upper = (*d.limits)[1];
+    }
+    if (d.motor) {
+        j.motor = true;
+        j.motorSpeed = d.motor->speed;
+        j.motorMax = d.motor->maxForce;
+    }
+    if (d.spring) {
+        j.spring = true;
+        j.springStiffness = d.spring->stiffness;
+        j.springDamping = d.spring->damping;
+        j.springRest = d.spring->rest;
+    }
+    if (d.servo) {
+        j.servo = true;
+        j.servoTarget = d.servo->target;
+        j.servoMax = d.servo->maxForce;
+        j.servoStiffness = d.servo->stiffness;
+        j.servoDamping = d.servo->damping;
+        j.servoTimeConstant = d.servo->timeConstant;
+        j.servoKeys = d.servo->keys;
+    }
+}
+
+// A six-axis joint's frame (x its axis_a, y the first of A's frame axes across it, z = x × y)
+// in A's axes and, as the scene places the bodies, in B's; its locked and free axes.
+void compileSixAxis(const JointDesc& d, const Quat& relative, JointModel& j) {
+    const Vec3 x = d.axisA ? d.axisA->normalized() : Vec3::UnitX();
+    const Vec3 y = firstCrossAxis(x);
+    j.frameA.col(0) = x;
+    j.frameA.col(1) = y;
+    j.frameA.col(2) = x.cross(y);
+    j.frameB = relative.toRotationMatrix() * j.frameA;
+    j.axisA = x;
+    j.axisB = j.frameB.col(0);
+    for (int i = 0; i < 6; ++i) {
+        const JointDesc::Axis& a = d.axes[i];
+        if (!a.free) {
+            j.locked |= 1u << i;
+            continue;
+        }
+        JointAxis& axis = j.axes.emplace_back();
+        axis.axis = i;
+        compileAxis({a.limits, a.motor, a.spring, a.servo}, axis);
+    }
+}
+
+}  // namespace
 
 void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
     if (scene.joints.empty()) return;
@@ -189,19 +275,11 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.axisB = d.axisB ? d.axisB->normalized() : Vec3(qb.conjugate() * (qa * j.axisA));
         }
         j.relative = (qb.conjugate() * qa).normalized();
-        if (d.limits) {
-            j.limited = true;
-            j.lower = (*d.limits)[0];
-            j.upper = (*d.limits)[1];
-        }
+        compileAxis({d.limits, d.motor, d.spring, d.servo}, j);
+        if (j.type == JointType::SixAxis) compileSixAxis(d, j.relative, j);
         j.index = static_cast<int>(i);
         if (d.breakForce) j.breakForce = *d.breakForce;
         j.collideConnected = d.collideConnected;
-        if (d.motor) {
-            j.motor = true;
-            j.motorSpeed = d.motor->speed;
-            j.motorMax = d.motor->maxForce;
-        }
         if (d.swingLimit) {
             j.swingLimited = true;
             j.swingLimit = *d.swingLimit;
@@ -213,21 +291,6 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             j.twistLimited = true;
             j.twistLower = (*d.twistLimits)[0];
             j.twistUpper = (*d.twistLimits)[1];
-        }
-        if (d.spring) {
-            j.spring = true;
-            j.springStiffness = d.spring->stiffness;
-            j.springDamping = d.spring->damping;
-            j.springRest = d.spring->rest;
-        }
-        if (d.servo) {
-            j.servo = true;
-            j.servoTarget = d.servo->target;
-            j.servoMax = d.servo->maxForce;
-            j.servoStiffness = d.servo->stiffness;
-            j.servoDamping = d.servo->damping;
-            j.servoTimeConstant = d.servo->timeConstant;
-            j.servoKeys = d.servo->keys;
         }
         if (j.type == JointType::Rope && !(j.length > 0.0))
             throw SceneError(at(i) + ".length", "a rope must be longer than 0");
@@ -243,6 +306,9 @@ void compileJoints(const SceneDesc& scene, const State& start, Model& m) {
             off = (gap - gap.dot(qb * j.axisB) * (qb * j.axisB)).norm();
         else if (j.type == JointType::Distance)
             off = std::abs(gap.norm() - j.length);
+        else if (j.type == JointType::SixAxis)
+            for (int k = 0; k < 3; ++k)
+                if (j.locked & (1u << k)) off = std::max(off, std::abs((qb * j.frameB.col(k)).dot(gap)));
         if (off > 1e-4 * size) {
             char text[32];
             std::snprintf(text, sizeof text, "%.3g", off);

@@ -4,7 +4,7 @@
 
 namespace tumble {
 
-double JointModel::servoTargetAt(double t) const {
+double JointAxis::servoTargetAt(double t) const {
     if (servoKeys.empty()) return servoTarget;
     if (t <= servoKeys.front().time) return servoKeys.front().target;
     if (t >= servoKeys.back().time) return servoKeys.back().target;
@@ -36,13 +36,38 @@ double jointCoordinate(const JointModel& j, const BodyState& a, const BodyState*
     return (qb * j.axisB).dot(a.x + a.q * j.anchorA - pB);
 }
 
+Eigen::Matrix<double, 6, 1> sixAxisCoordinates(const JointModel& j, const BodyState& a, const BodyState* b) {
+    const Quat qb = b ? b->q : Quat::Identity();
+    const Vec3 pB = b ? Vec3(b->x + qb * j.anchorB) : j.anchorB;
+    const Mat3 WB = qb.toRotationMatrix() * j.frameB;
+    // A's turn from its place relative to B, as a rotation vector in B's frame axes.
+    Quat e = a.q * (qb * j.relative).conjugate();
+    if (e.w() < 0.0) e.coeffs() = -e.coeffs();
+    const double s = e.vec().norm();
+    const Vec3 turn = s > 1e-12 ? Vec3((2.0 * std::atan2(s, e.w()) / s) * e.vec()) : Vec3(2.0 * e.vec());
+    Eigen::Matrix<double, 6, 1> c;
+    c << WB.transpose() * (a.x + a.q * j.anchorA - pB), WB.transpose() * turn;
+    return c;
+}
+
+double axisCoordinate(const JointModel& j, const JointAxis& x, const BodyState& a, const BodyState* b,
+                      const State& state) {
+    if (x.axis < 0) return jointCoordinate(j, a, b, state);
+    return sixAxisCoordinates(j, a, b)[x.axis];
+}
+
 double jointSpringEnergy(const Model& model, const State& state) {
     double energy = 0.0;
-    for (const JointModel& j : model.joints) {
-        if (!j.spring || j.springStiffness == 0.0 || state.jointBroken(j.index)) continue;
+    auto add = [&](const JointModel& j, const JointAxis& x) {
+        if (!x.spring || x.springStiffness == 0.0) return;
         const double stretch =
-            jointCoordinate(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, state) - j.springRest;
-        energy += 0.5 * j.springStiffness * stretch * stretch;
+            axisCoordinate(j, x, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, state) - x.springRest;
+        energy += 0.5 * x.springStiffness * stretch * stretch;
+    };
+    for (const JointModel& j : model.joints) {
+        if (state.jointBroken(j.index)) continue;
+        add(j, j);
+        for (const JointAxis& x : j.axes) add(j, x);
     }
     return energy;
 }

@@ -25,6 +25,15 @@ inline double hingeNear(const State& state, const JointModel& j) {
 /// anchor from B's along B's axis, with the bodies at `a` and `b` (null: the world).
 double jointCoordinate(const JointModel& j, const BodyState& a, const BodyState* b, const State& state);
 
+/// A six-axis joint's coordinates with its bodies at `a` and `b` (null: the world): A's
+/// anchor's offset from B's along B's joint frame axes (m), then the rotation vector of the
+/// turn from B's frame to A's in those axes (rad, at most π long); all 0 as placed.
+Eigen::Matrix<double, 6, 1> sixAxisCoordinates(const JointModel& j, const BodyState& a, const BodyState* b);
+
+/// The coordinate of the free axis `x` of joint `j` (j itself for a hinge or slider).
+double axisCoordinate(const JointModel& j, const JointAxis& x, const BodyState& a, const BodyState* b,
+                      const State& state);
+
 /// The energy the joints' springs hold in `state`: ½ k (coordinate − rest)² each.
 double jointSpringEnergy(const Model& model, const State& state);
 

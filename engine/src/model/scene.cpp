@@ -63,6 +63,7 @@ const char* toString(JointType t) {
         case JointType::Hinge: return "hinge";
         case JointType::Slider: return "slider";
         case JointType::Fixed: return "fixed";
+        case JointType::SixAxis: return "six_axis";
     }
     return "?";
 }

@@ -125,8 +125,8 @@ struct ContactSolverScratch {
         };
         int angularBegin = 0, angulars = 0;
     };
-    /// A hinge's, slider's or fixed joint's rows (joint_general.h): up to six, solved
-    /// together through the inverse of their effective mass.
+    /// A hinge's, slider's, fixed or six-axis joint's locked rows (joint_general.h): up to
+    /// six, solved together through the inverse of their effective mass.
     struct GeneralRow {
         int m = 0;  // rows
         // Per row (a column): the impulse's effect on A's and B's (v, ω) per unit, i.e. the
@@ -137,15 +137,9 @@ struct ContactSolverScratch {
         Eigen::Matrix<double, 6, 1> lambda = Eigen::Matrix<double, 6, 1>::Zero();
         Mat3 lin = Mat3::Zero(), ang = Mat3::Zero();  // the rows' directions (columns)
         int nl = 0, na = 0;
-        // Hinge and slider: the row along the free axis (its Jacobian columns), the joint's
-        // coordinate (angle or offset), and the scalar rows of its motor and limits.
-        bool axial = false;
-        Eigen::Matrix<double, 6, 1> JAx = Eigen::Matrix<double, 6, 1>::Zero(),
-                                    JBx = Eigen::Matrix<double, 6, 1>::Zero();
-        double coord = 0.0, kAxis = 0.0;
-        bool motor = false, lowerOn = false, upperOn = false;
-        double motorSpeed = 0.0, motorMax = 0.0, motorLambda = 0.0;
-        double lowerTarget = 0.0, lowerLambda = 0.0, upperTarget = 0.0, upperLambda = 0.0;
+        // Its free axes that something acts on (a hinge's or slider's, a six-axis joint's
+        // not locked), in axisRows.
+        int axisBegin = 0, axes = 0;
         // Its spring and servo (joint_drive.h): the rate after is κ v* + target, solved as
         // the soft row (1 − κ) v + (κ / mass) λ = target, `mass` the axis's with the joint's
         // other rows held, λ within ±most.
@@ -154,12 +148,24 @@ struct ContactSolverScratch {
             double kappa = 1.0, target = 0.0, mass = 0.0, gain = 0.0, lambda = 0.0, most = HUGE_VAL;
             bool hard = false;
         };
-        int driveBegin = 0, drives = 0;  // in driveRows
+    };
+    // A free axis's row (its Jacobian columns, the coordinate along it: angle or offset) and
+    // the scalar rows of its motor, limits, spring and servo.
+    struct AxisRow {
+        const JointAxis* settings = nullptr;
+        Eigen::Matrix<double, 6, 1> JAx = Eigen::Matrix<double, 6, 1>::Zero(),
+                                    JBx = Eigen::Matrix<double, 6, 1>::Zero();
+        double coord = 0.0, kAxis = 0.0;
+        bool motor = false, lowerOn = false, upperOn = false;
+        double motorSpeed = 0.0, motorMax = 0.0, motorLambda = 0.0;
+        double lowerTarget = 0.0, lowerLambda = 0.0, upperTarget = 0.0, upperLambda = 0.0;
+        int driveBegin = 0, drives = 0;            // in driveRows
         double startRate = 0.0, startCoord = 0.0;  // the coordinate's at the step's start
     };
     std::vector<GeneralRow> generalRows;
     std::vector<JointRow::Angular> angularRows;  // the balls' cone and twist rows
-    std::vector<GeneralRow::Drive> driveRows;    // the hinges' and sliders' springs and servos
+    std::vector<AxisRow> axisRows;               // the free axes acted on
+    std::vector<GeneralRow::Drive> driveRows;    // the free axes' springs and servos
     /// The state at the start of the interval the solve covers (solveIsland sets it; the
     /// joints' springs and servos read their coordinate there).
     const State* stepStart = nullptr;

@@ -56,15 +56,84 @@ void fillJacobians(ContactSolverScratch::GeneralRow& rows, const Vec3& rA, const
     }
 }
 
+namespace {
+
+// The inverse of SO(3)'s left Jacobian at the rotation vector t: the rate of t is
+// Jl⁻¹(t) w for a turn Q = exp([t]×) that changes as Q' = [w]× Q.
+Mat3 leftJacobianInverse(const Vec3& t) {
+    Mat3 T;
+    T << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
+    const double a = t.norm();
+    // 1/a² − (1 + cos a) / (2 a sin a): 1/12 + a²/720 near 0.
+    const double c = a < 1e-4 ? 1.0 / 12.0 + a * a / 720.0
+                              : 1.0 / (a * a) - (1.0 + std::cos(a)) / (2.0 * a * std::sin(a));
+    return Mat3::Identity() - 0.5 * T + c * T * T;
+}
+
+// A six-axis joint's rows: its locked axes as the rows, its free ones in `axes`; the error
+// along each locked row in `error` (its coordinate: the locked ones are held at 0).
+void sixAxisRows(const JointModel& j, const BodyState& a, const BodyState* b, const Vec3& rA, const Vec3& rB,
+                 ContactSolverScratch::GeneralRow& rows, Vector6* error, AxisRow* axes) {
+    const Quat qb = b ? b->q : Quat::Identity();
+    const Mat3 WB = qb.toRotationMatrix() * j.frameB;
+    const Vector6 c = sixAxisCoordinates(j, a, b);
+    // Row i of the angular coordinates' rate against ω_A − ω_B (world): B's frame axes
+    // through Jl⁻¹.
+    const Mat3 G = WB * leftJacobianInverse(c.tail<3>()).transpose();
+    rows.nl = rows.na = 0;
+    rows.lin.setZero();
+    rows.ang.setZero();
+    Vector6 e = Vector6::Zero();
+    for (int i = 0; i < 3; ++i)
+        if (j.locked & (1u << i)) {
+            e[rows.nl] = c[i];
+            rows.lin.col(rows.nl++) = WB.col(i);
+        }
+    for (int i = 0; i < 3; ++i)
+        if (j.locked & (1u << (3 + i))) {
+            e[3 + rows.na] = c[3 + i];
+            rows.ang.col(rows.na++) = G.col(i);
+        }
+    fillJacobians(rows, rA, rB);
+    if (error) {
+        error->setZero();
+        error->head(rows.nl) = e.head(rows.nl);
+        error->segment(rows.nl, rows.na) = e.segment(3, rows.na);
+    }
+    if (!axes) return;
+    for (std::size_t k = 0; k < j.axes.size(); ++k) {
+        AxisRow& x = axes[k];
+        const int i = j.axes[k].axis;
+        x.settings = &j.axes[k];
+        x.coord = c[i];
+        if (i < 3) {
+            const Vec3 d = WB.col(i);
+            x.JAx << d, rA.cross(d);
+            x.JBx << -d, -rB.cross(d);
+        } else {
+            const Vec3 g = G.col(i - 3);
+            x.JAx << Vec3::Zero(), g;
+            x.JBx << Vec3::Zero(), -g;
+        }
+    }
+}
+
+}  // namespace
+
 void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
-                 ContactSolverScratch::GeneralRow& rows, Vector6* error, double near) {
+                 ContactSolverScratch::GeneralRow& rows, Vector6* error, double near, AxisRow* axes) {
     const Quat qa = a.q, qb = b ? b->q : Quat::Identity();
     const Vec3 rA = qa * j.anchorA;
     const Vec3 pA = a.x + rA;
     const Vec3 pB = b ? Vec3(b->x + qb * j.anchorB) : j.anchorB;
     const Vec3 rB = b ? Vec3(pA - b->x) : Vec3::Zero();  // B's material point at A's anchor
+    if (j.type == JointType::SixAxis) {
+        sixAxisRows(j, a, b, rA, rB, rows, error, axes);
+        return;
+    }
     Vec3 t1, t2;
     Vec3 c = Vec3::Zero();  // the angular error vector
+    AxisRow* x = axes;      // a hinge's or slider's free axis
     switch (j.type) {
         case JointType::Hinge: {
             const Vec3 aA = qa * j.axisA, aB = qb * j.axisB;
@@ -76,19 +145,21 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
             rows.ang.col(1) = t2;
             rows.ang.col(2).setZero();
             c = aB.cross(aA);
-            rows.axial = true;
-            rows.JAx << Vec3::Zero(), aA;
-            rows.JBx << Vec3::Zero(), -aA;
-            rows.coord = hingeAngle(j, a, b, near);
+            if (x) {
+                x->JAx << Vec3::Zero(), aA;
+                x->JBx << Vec3::Zero(), -aA;
+                x->coord = hingeAngle(j, a, b, near);
+            }
             break;
         }
         case JointType::Slider: {
             const Vec3 aB = qb * j.axisB;
             across(aB, t1, t2);
-            rows.axial = true;
-            rows.JAx << aB, rA.cross(aB);
-            rows.JBx << -aB, -rB.cross(aB);
-            rows.coord = aB.dot(pA - pB);
+            if (x) {
+                x->JAx << aB, rA.cross(aB);
+                x->JBx << -aB, -rB.cross(aB);
+                x->coord = aB.dot(pA - pB);
+            }
             rows.nl = 2;
             rows.lin.col(0) = t1;
             rows.lin.col(1) = t2;
@@ -106,6 +177,7 @@ void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
             c = rotationVector(qa * (qb * j.relative).conjugate());
             break;
     }
+    if (x) x->settings = &j;
     fillJacobians(rows, rA, rB);
     if (error) {
         error->setZero();
@@ -141,19 +213,19 @@ Vector6 generalVelocity(const ContactSolverScratch::GeneralRow& r, const SolverB
     return out;
 }
 
-double axisMass(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B) {
+double axisMass(const AxisRow& r, const SolverBody& A, const SolverBody& B) {
     const double inv =
         A.invMass * r.JAx.head<3>().squaredNorm() + r.JAx.tail<3>().dot(A.invI * r.JAx.tail<3>()) +
         B.invMass * r.JBx.head<3>().squaredNorm() + r.JBx.tail<3>().dot(B.invI * r.JBx.tail<3>());
     return inv > 0.0 ? 1.0 / inv : 0.0;
 }
 
-double axisVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B) {
+double axisVelocity(const AxisRow& r, const SolverBody& A, const SolverBody& B) {
     return r.JAx.head<3>().dot(A.v) + r.JAx.tail<3>().dot(A.w) + r.JBx.head<3>().dot(B.v) +
            r.JBx.tail<3>().dot(B.w);
 }
 
-void applyAxis(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, double lambda) {
+void applyAxis(const AxisRow& r, SolverBody& A, SolverBody* B, double lambda) {
     A.v += (A.invMass * lambda) * r.JAx.head<3>();
     A.w += A.invI * (lambda * r.JAx.tail<3>());
     A.touched = true;
@@ -192,7 +264,7 @@ void nudgeGeneral(const ContactSolverScratch::GeneralRow& r, const SolverBody& A
     if (moveB && b) move(B, *b, r.JB * lambda);
 }
 
-void nudgeAxis(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
+void nudgeAxis(const AxisRow& r, const SolverBody& A, BodyState& a, bool moveA,
                const SolverBody& B, BodyState* b, bool moveB, double lambda) {
     if (moveA) move(A, a, r.JAx * lambda);
     if (moveB && b) move(B, *b, r.JBx * lambda);

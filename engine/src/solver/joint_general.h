@@ -28,17 +28,32 @@ namespace tumble::joint {
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
+using AxisRow = ContactSolverScratch::AxisRow;
+
 inline bool isGeneral(JointType t) {
-    return t == JointType::Hinge || t == JointType::Slider || t == JointType::Fixed;
+    return t == JointType::Hinge || t == JointType::Slider || t == JointType::Fixed || t == JointType::SixAxis;
+}
+
+/// How many free axes joint j has: a hinge's or slider's one, a six-axis joint's not locked.
+inline int freeAxes(const JointModel& j) {
+    return j.type == JointType::Hinge || j.type == JointType::Slider ? 1 : static_cast<int>(j.axes.size());
+}
+
+/// The free axis k of joint j's settings (a hinge or slider: j itself).
+inline const JointAxis& freeAxis(const JointModel& j, int k) {
+    return j.type == JointType::SixAxis ? j.axes[k] : static_cast<const JointAxis&>(j);
 }
 
 /// The rows of joint `j` with its bodies at `a` and `b` (null: the world): their
 /// directions, Jacobians (JA, JB: a column per row, v then ω) and, in `error`, the
-/// position error along them. Kinv is not set. A hinge's coordinate is its angle within π
-/// of `near` (State::hingeAngles, hingeNear), or within [-π, π] when `near` is NaN.
+/// position error along them. Kinv is not set. With `axes`, the free axes' rows too
+/// (freeAxes(j) of them: JAx, JBx and coord; `settings` set). A hinge's coordinate is its
+/// angle within π of `near` (State::hingeAngles, hingeNear), or within [-π, π] when `near`
+/// is NaN. A six-axis joint's angular rows are exact at any turn: each is the gradient of
+/// its rotation-vector coordinate (the inverse of SO(3)'s left Jacobian).
 void generalRows(const JointModel& j, const BodyState& a, const BodyState* b,
                  ContactSolverScratch::GeneralRow& rows, Vector6* error = nullptr,
-                 double near = std::numeric_limits<double>::quiet_NaN());
+                 double near = std::numeric_limits<double>::quiet_NaN(), AxisRow* axes = nullptr);
 
 /// Sets rows.m and the Jacobians JA, JB of the rows' directions (lin's first nl columns,
 /// acting at the arms rA of A and rB of B; ang's first na, turning A against B).
@@ -68,13 +83,13 @@ void applyGeneral(const ContactSolverScratch::GeneralRow& r, SolverBody& A, Solv
 void nudgeGeneral(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
                   const SolverBody& B, BodyState* b, bool moveB, const Vector6& lambda);
 
-/// Hinge and slider: the effective mass along the free axis (0: nothing can move), the
-/// coordinate's rate now, an impulse along it applied to the velocities, and the poses moved
-/// by one (as nudgeGeneral).
-double axisMass(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
-double axisVelocity(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, const SolverBody& B);
-void applyAxis(const ContactSolverScratch::GeneralRow& r, SolverBody& A, SolverBody* B, double lambda);
-void nudgeAxis(const ContactSolverScratch::GeneralRow& r, const SolverBody& A, BodyState& a, bool moveA,
-               const SolverBody& B, BodyState* b, bool moveB, double lambda);
+/// A free axis: the effective mass along it (0: nothing can move), the coordinate's rate
+/// now, an impulse along it applied to the velocities, and the poses moved by one (as
+/// nudgeGeneral).
+double axisMass(const AxisRow& r, const SolverBody& A, const SolverBody& B);
+double axisVelocity(const AxisRow& r, const SolverBody& A, const SolverBody& B);
+void applyAxis(const AxisRow& r, SolverBody& A, SolverBody* B, double lambda);
+void nudgeAxis(const AxisRow& r, const SolverBody& A, BodyState& a, bool moveA, const SolverBody& B, BodyState* b,
+               bool moveB, double lambda);
 
 }  // namespace tumble::joint

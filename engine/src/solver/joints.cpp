@@ -11,6 +11,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -110,70 +111,72 @@ void ballLimitRows(const JointModel& j, const State& state, double h, bool impul
 // The mass along a hinge's or slider's free axis with its other rows held: the inverse of
 // Jx M⁻¹ Jxᵀ − aᵀ K⁻¹ a, a = J M⁻¹ Jxᵀ (0: nothing can move along it); with `held`, the
 // impulse on the other rows, −K⁻¹ a, that goes with a unit impulse along the axis.
-double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const SolverBody& A, const SolverBody& B,
-                    Vector6* held = nullptr) {
+double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const AxisRow& x, const SolverBody& A,
+                    const SolverBody& B, Vector6* held = nullptr) {
     auto moved = [](const SolverBody& body, const Vector6& J) {
         Vector6 out;
         out << body.invMass * J.head<3>(), body.invI * J.tail<3>();
         return out;
     };
-    const Vector6 mA = moved(A, g.JAx), mB = moved(B, g.JBx);
+    const Vector6 mA = moved(A, x.JAx), mB = moved(B, x.JBx);
     Vector6 a = g.JA.transpose() * mA + g.JB.transpose() * mB;
     a.tail(6 - g.m).setZero();
     const Vector6 Ka = g.Kinv * a;
     if (held) *held = -Ka;
-    const double inv = g.JAx.dot(mA) + g.JBx.dot(mB) - a.dot(Ka);
-    return inv > 1e-12 * (g.JAx.dot(mA) + g.JBx.dot(mB)) ? 1.0 / inv : 0.0;
+    const double inv = x.JAx.dot(mA) + x.JBx.dot(mB) - a.dot(Ka);
+    return inv > 1e-12 * (x.JAx.dot(mA) + x.JBx.dot(mB)) ? 1.0 / inv : 0.0;
 }
 
-// The coordinate of hinge or slider j at the poses of `at` (a hinge's angle near the last
-// step's, as `state` tracks it).
-double coordinateAt(const JointModel& j, const State& at, const State& state) {
-    return jointCoordinate(j, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, state);
+// The coordinate of joint j's free axis x at the poses of `at` (a hinge's angle near the
+// last step's, as `state` tracks it).
+double coordinateAt(const JointModel& j, const JointAxis& x, const State& at, const State& state) {
+    return axisCoordinate(j, x, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, state);
 }
 
 // A hinge's or slider's spring and servo as rows along its free axis (joint_drive.h): a
 // spring, and a servo by gains, as soft rows; a servo by its time constant as a rate row
 // whose target is the critically damped path's from the step's start (rate v₀, coordinate
 // c₀): (b/h)(c₀ − target) + (α + b) v₀, held against any load up to its force.
-void prepareDrives(const JointModel& j, double h, const State& state, ContactSolverScratch& s,
-                   const SolverBody& A, const SolverBody& B, ContactSolverScratch::GeneralRow& g) {
-    g.drives = 0;
-    g.driveBegin = static_cast<int>(s.driveRows.size());
+void prepareDrives(const JointModel& jm, double h, const State& state, ContactSolverScratch& s,
+                   const SolverBody& A, const SolverBody& B, const ContactSolverScratch::GeneralRow& g,
+                   AxisRow& x) {
+    const JointAxis& j = *x.settings;
+    x.drives = 0;
+    x.driveBegin = static_cast<int>(s.driveRows.size());
     if (!(j.spring || j.servo) || !(h > 0.0)) return;
-    const double mass = heldAxisMass(g, A, B);
+    const double mass = heldAxisMass(g, x, A, B);
     if (!(mass > 0.0)) return;
     {
         SolverBody A0, B0;  // the bodies' velocities at the step's start
-        static_cast<BodyVelocity&>(A0) = s.start[j.a];
-        if (j.b >= 0) static_cast<BodyVelocity&>(B0) = s.start[j.b];
-        g.startRate = axisVelocity(g, A0, B0);
+        static_cast<BodyVelocity&>(A0) = s.start[jm.a];
+        if (jm.b >= 0) static_cast<BodyVelocity&>(B0) = s.start[jm.b];
+        x.startRate = axisVelocity(x, A0, B0);
     }
-    g.startCoord = s.stepStart ? coordinateAt(j, *s.stepStart, state) : g.coord - h * g.startRate;
+    x.startCoord = s.stepStart ? coordinateAt(jm, j, *s.stepStart, state) : x.coord - h * x.startRate;
     auto add = [&](double p, double q, double error, double most) {
         const DriveStep step = driveStep(p, q, h);
         ContactSolverScratch::GeneralRow::Drive& d = s.driveRows.emplace_back();
-        ++g.drives;
+        ++x.drives;
         d.kappa = step.kappa;
-        d.target = step.b / h * error + (step.alpha - step.kappa) * g.startRate;
+        d.target = step.b / h * error + (step.alpha - step.kappa) * x.startRate;
         d.mass = mass;
-        d.gain = 1.0 / ((1.0 - step.kappa) / g.kAxis + step.kappa / mass);
+        d.gain = 1.0 / ((1.0 - step.kappa) / x.kAxis + step.kappa / mass);
         d.most = most;
     };
-    if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, g.coord - j.springRest, HUGE_VAL);
+    if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, x.coord - j.springRest, HUGE_VAL);
     if (!j.servo) return;
     const double tau = j.servoTimeConstant;
     // The target at the step's end (a keyed one moves: each step chases it).
     const double target = j.servoTargetAt(s.stepStart ? s.stepStart->time + h : state.time);
     if (!(tau > 0.0)) {
-        add(j.servoDamping / mass, j.servoStiffness / mass, g.coord - target, j.servoMax * h);
+        add(j.servoDamping / mass, j.servoStiffness / mass, x.coord - target, j.servoMax * h);
         return;
     }
     const DriveStep step = driveStep(2.0 / tau, 1.0 / (tau * tau), h);
     ContactSolverScratch::GeneralRow::Drive& d = s.driveRows.emplace_back();
-    ++g.drives;
+    ++x.drives;
     d.hard = true;
-    d.target = step.b / h * (g.startCoord - target) + (step.alpha + step.b) * g.startRate;
+    d.target = step.b / h * (x.startCoord - target) + (step.alpha + step.b) * x.startRate;
     d.most = j.servoMax * h;
 }
 
@@ -182,8 +185,12 @@ void prepareDrives(const JointModel& j, double h, const State& state, ContactSol
 bool prepareGeneral(const JointModel& j, int k, const State& state, double h, double span, bool remembered,
                     bool impulsive, SolverBody& A, SolverBody* B, ContactSolverScratch& s, JointRow& r) {
     ContactSolverScratch::GeneralRow g;
+    const int free = freeAxes(j);
+    bool acted = false;
+    for (int k = 0; k < free && !acted; ++k) acted = freeAxis(j, k).acted();
+    std::array<AxisRow, 6> axes;
     generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g, nullptr,
-                hingeNear(state, j));
+                hingeNear(state, j), acted ? axes.data() : nullptr);
     const Matrix6 K = generalMass(g, g, A, B ? *B : kStill);
     const Eigen::LDLT<Matrix6> ldlt(K);
     if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0)) return false;
@@ -197,20 +204,27 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, do
             g.lambda.dot(generalVelocity(g, A, B ? *B : kStill)) + 0.5 * g.lambda.dot(K * g.lambda);
         applyGeneral(g, A, B, g.lambda);
     }
-    if (g.axial && (j.motor || j.limited || j.spring || j.servo)) {
-        g.kAxis = axisMass(g, A, B ? *B : kStill);
-        if (g.kAxis > 0.0 && !impulsive && (j.spring || j.servo)) prepareDrives(j, h, state, s, A, B ? *B : kStill, g);
-        if (g.kAxis > 0.0 && !impulsive) {
-            g.motor = j.motor;
-            g.motorSpeed = j.motorSpeed;
-            g.motorMax = j.motorMax * h;
-            g.lowerOn = g.upperOn = j.limited;
-            g.lowerTarget = -std::max(g.coord - j.lower, 0.0) / h;  // reach the limit, no further
-            g.upperTarget = std::max(j.upper - g.coord, 0.0) / h;
-        } else if (g.kAxis > 0.0 && j.limited) {  // an impact: a limit reached holds
-            g.lowerOn = g.coord - j.lower <= kReached;
-            g.upperOn = j.upper - g.coord <= kReached;
+    g.axisBegin = static_cast<int>(s.axisRows.size());
+    for (int k = 0; acted && k < free; ++k) {
+        AxisRow& x = axes[k];
+        const JointAxis& a = *x.settings;
+        if (!a.acted()) continue;
+        x.kAxis = axisMass(x, A, B ? *B : kStill);
+        if (!(x.kAxis > 0.0)) continue;
+        if (!impulsive && (a.spring || a.servo)) prepareDrives(j, h, state, s, A, B ? *B : kStill, g, x);
+        if (!impulsive) {
+            x.motor = a.motor;
+            x.motorSpeed = a.motorSpeed;
+            x.motorMax = a.motorMax * h;
+            x.lowerOn = x.upperOn = a.limited;
+            x.lowerTarget = -std::max(x.coord - a.lower, 0.0) / h;  // reach the limit, no further
+            x.upperTarget = std::max(a.upper - x.coord, 0.0) / h;
+        } else if (a.limited) {  // an impact: a limit reached holds
+            x.lowerOn = x.coord - a.lower <= kReached;
+            x.upperOn = a.upper - x.coord <= kReached;
         }
+        s.axisRows.push_back(x);
+        ++g.axes;
     }
     r.general = static_cast<int>(s.generalRows.size());
     s.generalRows.push_back(g);
@@ -235,6 +249,7 @@ bool prepareJoints(const Model& model, const State& state, double h, ContactSolv
     s.jointRows.clear();
     s.generalRows.clear();
     s.angularRows.clear();
+    s.axisRows.clear();
     s.driveRows.clear();
     s.jointWork = 0.0;
     const bool remembered = !impulsive && state.jointImpulses.size() == model.joints.size();
@@ -313,31 +328,34 @@ bool updateJoint(ContactSolverScratch& s, int k, double quietSpeed) {
         applyGeneral(g, A, B, d);
         s.jointWork += 0.5 * d.dot(v);         // (the rows' velocity after is v + Kd = 0)
         change = v.lpNorm<Eigen::Infinity>();  // (the rows past m are zero)
-        // The motor's and the limits' rows along the free axis.
-        auto take = [&](double& lambda, double next, double vx) {
-            if (next == lambda) return;
-            s.jointWork += (next - lambda) * (vx + 0.5 * (next - lambda) / g.kAxis);
-            applyAxis(g, A, B, next - lambda);
-            change = std::max(change, std::abs(next - lambda) / g.kAxis);
-            lambda = next;
-        };
-        auto row = [&](double& lambda, double target, double low, double high) {
-            const double vx = axisVelocity(g, A, B ? *B : kStill);
-            take(lambda, std::clamp(lambda - g.kAxis * (vx - target), low, high), vx);
-        };
-        for (int i = 0; i < g.drives; ++i) {  // spring, servo: soft rows, or a servo's rate
-            ContactSolverScratch::GeneralRow::Drive& d = s.driveRows[g.driveBegin + i];
-            if (d.hard) {
-                row(d.lambda, d.target, -d.most, d.most);
-                continue;
+        // The motors', limits', springs' and servos' rows along the free axes.
+        for (int k = 0; k < g.axes; ++k) {
+            AxisRow& x = s.axisRows[g.axisBegin + k];
+            auto take = [&](double& lambda, double next, double vx) {
+                if (next == lambda) return;
+                s.jointWork += (next - lambda) * (vx + 0.5 * (next - lambda) / x.kAxis);
+                applyAxis(x, A, B, next - lambda);
+                change = std::max(change, std::abs(next - lambda) / x.kAxis);
+                lambda = next;
+            };
+            auto row = [&](double& lambda, double target, double low, double high) {
+                const double vx = axisVelocity(x, A, B ? *B : kStill);
+                take(lambda, std::clamp(lambda - x.kAxis * (vx - target), low, high), vx);
+            };
+            for (int i = 0; i < x.drives; ++i) {  // spring, servo: soft rows, or a servo's rate
+                ContactSolverScratch::GeneralRow::Drive& d = s.driveRows[x.driveBegin + i];
+                if (d.hard) {
+                    row(d.lambda, d.target, -d.most, d.most);
+                    continue;
+                }
+                const double vx = axisVelocity(x, A, B ? *B : kStill);
+                const double residual = (1.0 - d.kappa) * vx + d.kappa / d.mass * d.lambda - d.target;
+                take(d.lambda, std::clamp(d.lambda - d.gain * residual, -d.most, d.most), vx);
             }
-            const double vx = axisVelocity(g, A, B ? *B : kStill);
-            const double residual = (1.0 - d.kappa) * vx + d.kappa / d.mass * d.lambda - d.target;
-            take(d.lambda, std::clamp(d.lambda - d.gain * residual, -d.most, d.most), vx);
+            if (x.motor) row(x.motorLambda, x.motorSpeed, -x.motorMax, x.motorMax);
+            if (x.lowerOn) row(x.lowerLambda, x.lowerTarget, 0.0, HUGE_VAL);
+            if (x.upperOn) row(x.upperLambda, x.upperTarget, -HUGE_VAL, 0.0);
         }
-        if (g.motor) row(g.motorLambda, g.motorSpeed, -g.motorMax, g.motorMax);
-        if (g.lowerOn) row(g.lowerLambda, g.lowerTarget, 0.0, HUGE_VAL);
-        if (g.upperOn) row(g.upperLambda, g.upperTarget, -HUGE_VAL, 0.0);
     } else if (!r.ball) {  // one row along the line
         const double vn = lineVelocity(A, B, r);
         const double old = r.lambda.x();
@@ -394,20 +412,23 @@ void nudgeDrives(const Model& model, State& state, const ContactSolverScratch& s
         for (const JointRow& r : s.jointRows) {
             if (r.general < 0) continue;
             const ContactSolverScratch::GeneralRow& g = s.generalRows[r.general];
-            if (g.drives == 0) continue;
-            const JointModel& j = model.joints[r.joint];
-            const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
-            const SolverBody& A = moveA ? s.bodies[j.a] : kStill;
-            const SolverBody& B = moveB ? s.bodies[j.b] : kStill;
-            const double missing = g.startCoord + 0.5 * h * (g.startRate + axisVelocity(g, A, B)) -
-                                   coordinateAt(j, state, state);
-            worst = std::max(worst, std::abs(missing));
-            if (std::abs(missing) <= kHeld) continue;
-            Vector6 held;
-            const double mass = heldAxisMass(g, A, B, &held);
-            BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
-            nudgeAxis(g, A, state.bodies[j.a], moveA, B, b, moveB, missing * mass);
-            nudgeGeneral(g, A, state.bodies[j.a], moveA, B, b, moveB, held * (missing * mass));
+            for (int k = 0; k < g.axes; ++k) {
+                const AxisRow& x = s.axisRows[g.axisBegin + k];
+                if (x.drives == 0) continue;
+                const JointModel& j = model.joints[r.joint];
+                const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
+                const SolverBody& A = moveA ? s.bodies[j.a] : kStill;
+                const SolverBody& B = moveB ? s.bodies[j.b] : kStill;
+                const double missing = x.startCoord + 0.5 * h * (x.startRate + axisVelocity(x, A, B)) -
+                                       coordinateAt(j, *x.settings, state, state);
+                worst = std::max(worst, std::abs(missing));
+                if (std::abs(missing) <= kHeld) continue;
+                Vector6 held;
+                const double mass = heldAxisMass(g, x, A, B, &held);
+                BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
+                nudgeAxis(x, A, state.bodies[j.a], moveA, B, b, moveB, missing * mass);
+                nudgeGeneral(g, A, state.bodies[j.a], moveA, B, b, moveB, held * (missing * mass));
+            }
         }
         if (worst <= kHeld) break;
     }
@@ -462,11 +483,12 @@ void rememberJoints(const Model& model, const ContactSolverScratch& s, double h,
             state.jointCouples[r.joint] = state.jointTorques[r.joint] + projected / h;
             // A motor's and the limits' push along the free axis: a couple about a hinge's
             // axis, a force along a slider's (reported; breaking is the constraint's alone).
-            if (g.axial) {
-                double axial = (g.motorLambda + g.lowerLambda + g.upperLambda) / h;
-                for (int i = 0; i < g.drives; ++i) axial += s.driveRows[g.driveBegin + i].lambda / h;
-                state.jointCouples[r.joint] += axial * g.JAx.tail<3>();
-                reported += axial * g.JAx.head<3>();
+            for (int k = 0; k < g.axes; ++k) {
+                const AxisRow& x = s.axisRows[g.axisBegin + k];
+                double axial = (x.motorLambda + x.lowerLambda + x.upperLambda) / h;
+                for (int i = 0; i < x.drives; ++i) axial += s.driveRows[x.driveBegin + i].lambda / h;
+                state.jointCouples[r.joint] += axial * x.JAx.tail<3>();
+                reported += axial * x.JAx.head<3>();
             }
         }
         state.jointForces[r.joint] = impulse / h + reported;
@@ -491,19 +513,30 @@ bool turnedFar(const Quat& then, const Quat& now) {
     return std::abs(then.dot(now)) < std::cos(0.1);
 }
 
-// A hinge or slider past one of its limits is moved back to it along its axis (positions
-// only: the limit's velocity row has stopped the approach).
+// A hinge, slider or six-axis joint past one of its limits is moved back to it along its
+// axis (positions only: the limit's velocity row has stopped the approach).
 // Returns how far past it was.
 double projectLimit(const JointModel& j, BodyState& a, BodyState* b, bool moveA, bool moveB,
                     const SolverBody& A, const SolverBody& B, double near) {
-    if (!j.limited) return 0.0;
-    ContactSolverScratch::GeneralRow g;
-    generalRows(j, a, b, g, nullptr, near);
-    const double past = g.coord < j.lower ? g.coord - j.lower : g.coord > j.upper ? g.coord - j.upper : 0.0;
-    if (std::abs(past) <= kHeld) return 0.0;
-    const double k = axisMass(g, A, B);
-    if (k > 0.0) nudgeAxis(g, A, a, moveA, B, b, moveB, -past * k);
-    return std::abs(past);
+    const int free = freeAxes(j);
+    bool limited = false;
+    for (int k = 0; k < free && !limited; ++k) limited = freeAxis(j, k).limited;
+    if (!limited) return 0.0;
+    double worst = 0.0;
+    for (int k = 0; k < free; ++k) {
+        const JointAxis& x = freeAxis(j, k);
+        if (!x.limited) continue;
+        ContactSolverScratch::GeneralRow g;
+        std::array<AxisRow, 6> axes;
+        generalRows(j, a, b, g, nullptr, near, axes.data());
+        const double c = axes[k].coord;
+        const double past = c < x.lower ? c - x.lower : c > x.upper ? c - x.upper : 0.0;
+        if (std::abs(past) <= kHeld) continue;
+        const double mass = axisMass(axes[k], A, B);
+        if (mass > 0.0) nudgeAxis(axes[k], A, a, moveA, B, b, moveB, -past * mass);
+        worst = std::max(worst, std::abs(past));
+    }
+    return worst;
 }
 
 // A Newton step on a hinge's, slider's or fixed joint's rows (as projectionPass's for the

@@ -25,7 +25,8 @@ bool composable(const Model& m) {
     if (m.integrator->id != Integrator::Splitting4 || m.joints.empty() || m.bodies.size() > 64) return false;
     for (const JointModel& j : m.joints)
         if (j.type == JointType::Rope || j.limited || j.swingLimited || j.twistLimited || j.motor || j.spring ||
-            j.servo || std::isfinite(j.breakForce))
+            j.servo || std::isfinite(j.breakForce) ||
+            std::any_of(j.axes.begin(), j.axes.end(), [](const JointAxis& x) { return x.acted(); }))
             return false;
     for (const BodyModel& b : m.bodies)
         if (b.linearDamping != 0.0 || b.angularDamping != 0.0 ||
@@ -54,7 +55,9 @@ void World::prepareJointedSteps() {
         }
     // (A spring's energy comes back as the step's rounding of its oscillation: not a gain
     // the halves would mend; a servo drives.)
-    for (const JointModel& j : model_.joints) s.jointsPassive = s.jointsPassive && !j.motor && !j.spring && !j.servo;
+    auto drives = [](const JointAxis& x) { return x.motor || x.spring || x.servo; };
+    for (const JointModel& j : model_.joints)
+        s.jointsPassive = s.jointsPassive && !drives(j) && std::none_of(j.axes.begin(), j.axes.end(), drives);
     // (Every group's energy counts since a chain of ball joints of any length is solved as
     // one (joint_projection.cpp): a 100-link chain let go level at 1/60 s gained up to 4e-4
     // of its energy without the check, 3e-5 with it (49 of 301 steps split, 20 % more
