@@ -221,7 +221,7 @@ inline SceneDesc everyField() {
     shock.bodyB = "post";
     shock.axisA = Vec3(0, 1, 0);
     shock.spring = JointDesc::Spring{400, 0, 0};
-    shock.servo = JointDesc::Servo{-0.25, HUGE_VAL, 400, 20, 0};
+    shock.servo = JointDesc::Servo{-0.25, HUGE_VAL, 400, 20, 0, {}};
     s.joints.push_back(shock);
     JointDesc arm;  // a hinge's servo by its time constant, bounded
     arm.name = "arm";
@@ -238,6 +238,23 @@ inline SceneDesc everyField() {
     weld.breakForce = 1500;
     weld.collideConnected = true;
     s.joints.push_back(weld);
+    JointDesc six;  // every kind of axis: locked, free, limited, driven, sprung, servoed
+    six.name = "six";
+    six.type = JointType::SixAxis;
+    six.bodyA = "crate";
+    six.bodyB = "can";
+    six.axisA = Vec3(0, 1, 0);
+    six.axes[1].free = true;
+    six.axes[1].limits = std::array<double, 2>{-0.125, 0.25};
+    six.axes[1].spring = JointDesc::Spring{500, 12.5, 0.0625};
+    six.axes[2].free = true;
+    six.axes[2].motor = JointDesc::Motor{0.5, 75};
+    six.axes[3].free = true;
+    six.axes[4].free = true;
+    six.axes[4].servo = JointDesc::Servo{0.25, 8, 0, 0, 0.125, {}};
+    six.axes[5].free = true;
+    six.axes[5].limits = std::array<double, 2>{-1.5, 0.75};
+    s.joints.push_back(six);
     s.noCollide = {{"pill", "bunny"}};
     return s;
 }

@@ -61,7 +61,7 @@ void jointFeatureRows(Row row) {
         R"("keys": [{"time": 1, "target": 0}]}, "body_a": "crate")",
         "joints[1].servo.target", "drop.json: joints[1].servo.target: give target or keys, not both");
     row("rope with an axis", R"("length": 1.5)", R"("length": 1.5, "axis_a": [0, 1, 0])", "joints[0].axis_a",
-        "drop.json: joints[0].axis_a: a rope joint has no axis (hinge, slider and ball joints have one)");
+        "drop.json: joints[0].axis_a: a rope joint has no axis (hinge, slider, ball and six_axis joints have one)");
     const char* axis = R"("anchor_b": [0, -0.5, 0])";
     row("swing limit on a hinge", ball,
         R"("type": "hinge", "axis_a": [0, 1, 0], "swing_limit": 0.5, "body_a": "crate")", "joints[1].swing_limit",
@@ -78,6 +78,37 @@ void jointFeatureRows(Row row) {
         "joints[1].twist_limits", "drop.json: joints[1].twist_limits: must be angles within [-pi, pi] (rad)");
     row("twist limits inverted", axis, R"("anchor_b": [0, -0.5, 0], "axis_a": [0, 1, 0], "twist_limits": [1, -1])",
         "joints[1].twist_limits", "drop.json: joints[1].twist_limits: the lower limit is above the upper one");
+    // The six-axis joint's axes.
+    row("axes on a hinge", ball, R"("type": "hinge", "axis_a": [0, 1, 0], "axes": {"x": "free"}, "body_a": "crate")",
+        "joints[1].axes", "drop.json: joints[1].axes: a hinge joint has none (only six_axis joints do)");
+    row("an axis of no mode", ball, R"("type": "six_axis", "axes": {"y": "loose"}, "body_a": "crate")",
+        "joints[1].axes.y",
+        "drop.json: joints[1].axes.y: must be \"locked\", \"free\" or an object of limits, motor, spring and servo");
+    row("an axis that is not one", ball, R"("type": "six_axis", "axes": {"w": "free"}, "body_a": "crate")",
+        "joints[1].axes.w", "drop.json: joints[1].axes.w: unknown key");
+    row("an angle's limits past pi", ball,
+        R"("type": "six_axis", "axes": {"rx": {"limits": [-4, 1]}}, "body_a": "crate")", "joints[1].axes.rx.limits",
+        "drop.json: joints[1].axes.rx.limits: must be angles within [-pi, pi] (rad)");
+    row("an axis's limits inverted", ball,
+        R"("type": "six_axis", "axes": {"y": {"limits": [0.5, -0.5]}}, "body_a": "crate")",
+        "joints[1].axes.y.limits", "drop.json: joints[1].axes.y.limits: the lower limit is above the upper one");
+    row("a linear axis's motor with a torque", ball,
+        R"("type": "six_axis", "axes": {"x": {"motor": {"speed": 1, "max_torque": 2}}}, "body_a": "crate")",
+        "joints[1].axes.x.motor.max_torque",
+        "drop.json: joints[1].axes.x.motor.max_torque: a linear axis's motor gives a force: max_force");
+    row("an angular axis's servo with a force", ball,
+        R"("type": "six_axis", "axes": {"rz": {"servo": {"target": 1, "time_constant": 0.1, "max_force": 3}}}, )"
+        R"("body_a": "crate")",
+        "joints[1].axes.rz.servo.max_force", "drop.json: joints[1].axes.rz.servo.max_force: unknown key");
+    row("an axis's negative spring", ball,
+        R"("type": "six_axis", "axes": {"y": {"spring": {"stiffness": -3}}}, "body_a": "crate")",
+        "joints[1].axes.y.spring.stiffness",
+        "drop.json: joints[1].axes.y.spring.stiffness: must be a finite number, at least 0");
+    row("six-axis with axis_b", ball, R"("type": "six_axis", "body_a": "crate", "axis_a": [0, 1, 0], "axis_b": [1, 0, 0])",
+        "joints[1].axis_b",
+        "drop.json: joints[1].axis_b: a six_axis joint's frame on body_b is body_a's as placed: give axis_a only");
+    row("limits on a six-axis joint itself", ball, R"("type": "six_axis", "body_a": "crate", "limits": [0, 1])",
+        "joints[1].limits", "drop.json: joints[1].limits: a six_axis joint has none (only hinge and slider joints do)");
 }
 
 }  // namespace tumble::test

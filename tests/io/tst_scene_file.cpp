@@ -454,7 +454,7 @@ private slots:
         row("joint without a type", R"("type": "rope", )", "", "joints[0].type",
             "drop.json: joints[0].type: is missing");
         row("unknown joint type", R"("type": "rope")", R"("type": "glue")", "joints[0].type",
-            "drop.json: joints[0].type: 'glue' is not one of ball, distance, rope, hinge, slider, fixed");
+            "drop.json: joints[0].type: 'glue' is not one of ball, distance, rope, hinge, slider, fixed, six_axis");
         row("unknown joint key", R"("name": "hitch", )", R"("name": "hitch", "axis": [0, 1, 0], )",
             "joints[1].axis", "drop.json: joints[1].axis: unknown key");
         row("joint's body missing", R"("body_a": "crate")", R"("body_a": "cart")", "joints[1].body_a",

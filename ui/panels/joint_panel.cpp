@@ -85,7 +85,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     type_ = new QComboBox;
     type_->setObjectName("joint.type");
     for (JointType t : {JointType::Ball, JointType::Hinge, JointType::Slider, JointType::Fixed, JointType::Distance,
-                        JointType::Rope})
+                        JointType::Rope, JointType::SixAxis})
         type_->addItem(QString::fromLatin1(toString(t)), int(t));
     addRow(tr("Type"), "type", type_);
     connect(type_, &QComboBox::activated, this, [this](int i) {
@@ -113,6 +113,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
                     j.twistLimits.reset();
                 }
                 if (!line(t)) j.length = -1.0;
+                if (t != JointType::SixAxis) j.axes = JointDesc().axes;
             },
             false);
     });
@@ -255,6 +256,8 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         apply("length", tr("Set joint length"), [&](JointDesc& j) { j.length = v; });
     });
 
+    buildAxisRows();
+
     hasLimits_ = new QCheckBox;
     hasLimits_->setObjectName("joint.limits.on");
     lower_ = spin("joint.limits.lower", QString(), -1e12, 5.0);
@@ -282,7 +285,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             const int i = jointIndex();
             if (i < 0) return;
             editVector(
-                "limits", tr("Set joint limits"), k, v * unit(doc_->joint(i)),
+                "limits", tr("Set joint limits"), k, v * unit(viewed(i)),
                 [](const JointDesc& j) {
                     return j.limits ? std::optional(Vec3((*j.limits)[0], (*j.limits)[1], 0.0)) : std::nullopt;
                 },
@@ -442,8 +445,10 @@ QString JointPanel::fieldError(const QString& field) const {
 void JointPanel::apply(const QString& key, const QString& text, const Edit& edit, bool merge) {
     const int i = jointIndex();
     if (i < 0) return;
-    JointDesc j = doc_->joint(i);
+    // (A type change is made to the joint itself, every other edit to what the rows show.)
+    JointDesc j = key == "type" ? doc_->joint(i) : viewed(i);
     edit(j);
+    if (key != "type") j = lowered(j, i);
     if (j == doc_->joint(i)) {
         refresh();
         return;
@@ -496,12 +501,14 @@ void JointPanel::editVector(const QString& key, const QString& text, int k, doub
                             const SetVector& set) {
     const int i = jointIndex();
     if (i < 0) return;
-    const std::optional<Vec3> current = get(doc_->joint(i));
+    const std::optional<Vec3> current = get(viewed(i));
     if (!current) return;
-    Vec3 value = held_.contains(key) ? held_.value(key) : *current;
+    Vec3 value = *current;
+    if (const auto it = held_.constFind(key); it != held_.cend()) value = *it;
     value[k] = v;
-    JointDesc j = doc_->joint(i);
+    JointDesc j = viewed(i);
     set(j, value);
+    j = lowered(j, i);
     SceneDesc scene = doc_->scene();
     scene.joints[static_cast<size_t>(i)] = j;
     const auto problem = problemOf(scene);
@@ -527,7 +534,8 @@ void JointPanel::dropHeld() {
 void JointPanel::refresh() {
     const int i = jointIndex();
     if (i < 0) return;
-    const JointDesc& j = doc_->joint(i);
+    const JointDesc& real = doc_->joint(i);
+    const JointDesc j = viewed(i);  // (a six-axis joint: the shown axis's settings as its own)
     const SceneDesc& scene = doc_->scene();
     {
         const QSignalBlocker b(name_);
@@ -535,7 +543,7 @@ void JointPanel::refresh() {
     }
     {
         const QSignalBlocker b(type_);
-        type_->setCurrentIndex(type_->findData(int(j.type)));
+        type_->setCurrentIndex(type_->findData(int(real.type)));
     }
     for (QComboBox* combo : {bodyA_, bodyB_}) {
         const QSignalBlocker b(combo);
@@ -551,11 +559,16 @@ void JointPanel::refresh() {
     anchorB_->showValue(held_.value("anchor_b", world ? frameB.toWorld(j.anchorB) : j.anchorB));
     anchorA_->setToolTip(world ? tr("A world point, as the bodies are placed") : tr("In body A's frame"));
     anchorB_->setToolTip(world || j.bodyB.empty() ? tr("A world point") : tr("In body B's frame"));
-    swap_->setEnabled(!j.bodyB.empty());
+    const bool six = real.type == JointType::SixAxis;
+    swap_->setEnabled(!j.bodyB.empty() && !six);
+    swap_->setToolTip(six ? tr("A six-axis joint's frame is body A's: make it again from the other body to swap")
+                          : tr("Make the base the moving part and the moving part the base: the same joint "
+                               "(its limits and motor speed change sign)"));
     const bool ax = axial(j.type);
     const bool ballAxis = j.type == JointType::Ball && j.axisA.has_value();
     form_->setRowVisible(rows_["axis_a"], ax || ballAxis);
-    form_->setRowVisible(rows_["axis_b"], ax || ballAxis);
+    form_->setRowVisible(rows_["axis_b"], (ax && !six) || ballAxis);
+    refreshAxes(real);
     form_->setRowVisible(rows_["limits"], ax);
     form_->setRowVisible(rows_["motor"], ax);
     form_->setRowVisible(rows_["length"], line(j.type));

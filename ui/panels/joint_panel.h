@@ -71,6 +71,17 @@ private:
     /// first key's) as one edit of the "servo" field.
     void editServoKeys(const QString& text, const std::function<void(std::vector<JointDesc::ServoKey>&)>& change,
                        bool merge = true);
+    /// A six-axis joint's free axes and the axis its limits, motor, spring and servo rows
+    /// edit (joint_panel_axes.cpp): those rows show that axis's settings as a slider's (x, y,
+    /// z) or a hinge's (rx, ry, rz) would have them.
+    void buildAxisRows();
+    void refreshAxes(const JointDesc& j);
+    /// Joint i as the rows edit it: a six-axis joint with the shown axis's settings as its
+    /// own limits, motor, spring and servo (and the type of a slider or hinge); any other
+    /// joint as it is. `lowered` puts an edited view back (the settings into the axis,
+    /// which they free).
+    JointDesc viewed(int i) const;
+    JointDesc lowered(JointDesc view, int i) const;
     void clearErrors();
     int jointIndex() const;
 
@@ -121,6 +132,9 @@ private:
     QCheckBox* hasTwist_ = nullptr;
     PropertySpinBox* twistLower_ = nullptr;
     PropertySpinBox* twistUpper_ = nullptr;
+    QCheckBox* freeAxes_[6] = {};
+    QComboBox* drivesOn_ = nullptr;
+    int sixAxis_ = 3;  // the six-axis joint's axis the rows edit (JointDesc::axes)
     QCheckBox* breaks_ = nullptr;
     QCheckBox* collide_ = nullptr;  // collide_connected
     PropertySpinBox* breakForce_ = nullptr;

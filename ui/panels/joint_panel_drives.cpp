@@ -141,7 +141,7 @@ void JointPanel::buildDriveRows() {
     connect(servoTarget_, &PropertySpinBox::valueChanged, this, [this](double v) {
         const int i = jointIndex(), key = servoKeys_->currentRow();
         if (i < 0) return;
-        const JointDesc& j = doc_->joint(i);
+        const JointDesc j = viewed(i);
         if (j.servo && !j.servo->keys.empty() && key >= 0) {
             const double target = v * unitOf(j);
             editServoKeys(tr("Set servo key"), [key, target](auto& keys) { keys[size_t(key)].target = target; });
@@ -179,8 +179,8 @@ void JointPanel::buildServoKeyRows() {
     connect(servoKeys_, &QListWidget::currentRowChanged, this, [this] { refresh(); });
     connect(servoKeyAdd_, &QPushButton::clicked, this, [this] {
         const int i = jointIndex();
-        if (i < 0 || !doc_->joint(i).servo) return;
-        const double target = doc_->joint(i).servo->target;
+        if (i < 0 || !viewed(i).servo) return;
+        const double target = viewed(i).servo->target;
         editServoKeys(
             tr("Add servo key"),
             [target](auto& keys) {

@@ -95,6 +95,8 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
         {JointType::Fixed, QT_TR_NOOP("&Fixed"), QT_TR_NOOP("Weld the bodies into one")},
         {JointType::Distance, QT_TR_NOOP("&Distance (Rod)"), QT_TR_NOOP("Keep the bodies' origins as far apart as now")},
         {JointType::Rope, QT_TR_NOOP("&Rope"), QT_TR_NOOP("Keep the bodies' origins at most as far apart as now")},
+        {JointType::SixAxis, QT_TR_NOOP("Si&x-axis"),
+         QT_TR_NOOP("Hold the bodies in all six axes; free, limit or drive each in the joint panel")},
     };
     for (const auto& k : joints) {
         QAction* a = jointMenu_->addAction(tr(k.text));

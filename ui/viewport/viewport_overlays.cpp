@@ -294,6 +294,17 @@ Lines joints(const SceneDesc& scene, int selected) {
             limitLines(lines, j.type, pa, pb, axis, towards(pa, a->position, axis), (*j.limits)[0], (*j.limits)[1],
                        0.6 * boundingRadius(a->shape), int(k) == selected ? kJointSelected : kJointAxis);
         }
+        if (j.type == JointType::SixAxis) {  // its frame at anchor A: free axes long, locked ones short
+            const Vec3 x = j.axisA && j.axisA->norm() > 0.0 ? Vec3(j.axisA->normalized()) : Vec3::UnitX();
+            const Vec3 y = firstCrossAxis(x);
+            const Vec3 frame[3] = {a->orientation * x, a->orientation * y, a->orientation * x.cross(y)};
+            const double size = 0.8 * boundingRadius(a->shape);
+            for (int i = 0; i < 3; ++i) {
+                const bool free = j.axes[i].free || j.axes[3 + i].free;
+                const Rgb c = int(k) == selected ? kJointSelected : free ? kJointAxis : kJoint;
+                segment(lines.xyzrgb, pa, pa + (free ? size : 0.35 * size) * frame[i], c);
+            }
+        }
         if (j.type == JointType::Ball && (j.swingLimit || j.twistLimits) && j.axisA && j.axisA->norm() > 0.0) {
             // As placed (compile_joints.cpp): B's axis, or A's as it lies; A's first cross axis.
             const Vec3 aA = a->orientation * j.axisA->normalized();

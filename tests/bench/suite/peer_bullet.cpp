@@ -276,7 +276,7 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
             peer::PeerCaps{false, true,
                            peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
                                peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed),
-                           true, true, true, true},
+                           true, true, true, true, true},
             &ps_, &reason)) {
         if (why) *why = reason;
         return false;
@@ -405,6 +405,24 @@ bool BulletAdapter::makeJoint(const JointModel& j, std::string* why) {
     std::unique_ptr<btTypedConstraint> c;
     switch (j.type) {
         case JointType::Ball:
+            if (j.swingLimited || j.twistLimited) {
+                // btConeTwistConstraint: its frames' x the twist axis (B's axis), the first
+                // swing span towards y (Tumble's first half-angle's direction), the second
+                // towards z; its twist range is symmetric.
+                if (j.twistLimited && std::abs(j.twistLower + j.twistUpper) > 1e-12) {
+                    *why = "a twist range not symmetric about 0 is not translated to Bullet";
+                    return false;
+                }
+                const Quat qb = j.b < 0 ? Quat::Identity() : ps_.q[j.b];
+                const Vec3 n = qb * j.axisB, e1 = qb * j.swingCross;
+                const btTransform fa = frameIn(j.a, pa, n.cross(e1), n), fb = frameIn(j.b, pb, n.cross(e1), n);
+                auto ct = B ? std::make_unique<btConeTwistConstraint>(A, *B, fa, fb)
+                            : std::make_unique<btConeTwistConstraint>(A, fa);
+                ct->setLimit(j.swingLimited ? j.swingLimit[0] : M_PI, j.swingLimited ? j.swingLimit[1] : M_PI,
+                             j.twistLimited ? j.twistUpper : M_PI);
+                c = std::move(ct);
+                break;
+            }
             if (B)
                 c = std::make_unique<btPoint2PointConstraint>(A, *B, local(j.a, pa), local(j.b, pb));
             else
@@ -442,7 +460,8 @@ bool BulletAdapter::makeJoint(const JointModel& j, std::string* why) {
             break;
         }
         case JointType::Distance:
-        case JointType::Rope: *why = std::string("a ") + toString(j.type) + " joint is not translated to Bullet"; return false;
+        case JointType::Rope:
+        case JointType::SixAxis: *why = std::string("a ") + toString(j.type) + " joint is not translated to Bullet"; return false;
     }
     if (std::isfinite(j.breakForce)) c->setBreakingImpulseThreshold(j.breakForce * dt_);
     world_->addConstraint(c.get(), true);

@@ -39,6 +39,10 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
         if (j.motor && !caps.jointMotors) return fail(who + "joint motors are not translated to this peer");
         if (std::isfinite(j.breakForce) && !caps.jointBreaking)
             return fail(who + "breaking joints are not translated to this peer");
+        // (A peer run without them would be another scene.)
+        if (j.spring || j.servo) return fail(who + "joint springs and servos are not translated to the peers");
+        if ((j.swingLimited || j.twistLimited) && !caps.ballLimits)
+            return fail(who + "a ball joint's cone and twist limits are not translated to this peer");
     }
     const int n = int(m.bodies.size());
     out->com.resize(n);

@@ -32,6 +32,7 @@ struct PeerCaps {
     unsigned jointTypes = 0;
     bool jointLimits = false, jointMotors = false, jointBreaking = false;
     bool compounds = false;  ///< ShapeType::Compound (several shapes on one body)
+    bool ballLimits = false;  ///< a ball joint's swing cone and twist range
 };
 
 constexpr unsigned jointBit(JointType t) { return 1u << static_cast<unsigned>(t); }

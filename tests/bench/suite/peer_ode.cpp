@@ -387,7 +387,8 @@ void OdeAdapter::makeJoint(const JointModel& j) {
         case JointType::Slider: id = dJointCreateSlider(world_, nullptr); break;
         case JointType::Fixed: id = dJointCreateFixed(world_, nullptr); break;
         case JointType::Distance: id = dJointCreateDBall(world_, nullptr); break;
-        case JointType::Rope: return;  // refused by prepare
+        case JointType::Rope:
+        case JointType::SixAxis: return;  // refused by prepare
     }
     dJointAttach(id, bodies_[j.a].id, j.b < 0 ? nullptr : bodies_[j.b].id);
     // Limits and motor of the one free coordinate (hinge and slider).
@@ -420,7 +421,8 @@ void OdeAdapter::makeJoint(const JointModel& j) {
             dJointSetDBallAnchor2(id, pb.x(), pb.y(), pb.z());
             dJointSetDBallDistance(id, j.length);
             break;
-        case JointType::Rope: break;
+        case JointType::Rope:
+        case JointType::SixAxis: break;
     }
 }
 

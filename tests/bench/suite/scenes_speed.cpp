@@ -280,6 +280,19 @@ std::vector<SpeedScene> speedScenes() {
                    "20 ragdolls (10 bodies, 9 joints each: balls and limited hinges) dropped in four "
                    "columns of five onto the ground",
                    [] { return ragdollPile(20); }, 1.0 / 60.0, 300, 10});
+    out.push_back({"ragdoll-stairs",
+                   "the sample ragdoll with swing cones and twist limits at its ball joints, tumbling down "
+                   "six steps (sleeping off)",
+                   [] {
+                       SceneDesc s = sampleScene("ragdoll-stairs.json");
+                       s.settings.sleeping = false;
+                       return s;
+                   },
+                   1.0 / 60.0, 300, 10});
+    out.push_back({"robot-arm",
+                   "the sample two-link arm driven by servos through its keyed targets, pushing three "
+                   "blocks aside",
+                   [] { return sampleScene("robot-arm.json"); }, 1.0 / 60.0, 300, 10});
     out.push_back({"chair-pile",
                    "200 chairs (compound bodies of six boxes) dropped in eight layers of 5 x 5 onto the "
                    "floor, impacts at the end of the step",

@@ -408,6 +408,52 @@ private slots:
         QVERIFY(!f.joint().axisA && !f.joint().swingLimit && !f.joint().twistLimits);
     }
 
+    // A six-axis joint: its free axes ticked; the limits, spring and motor rows edit the axis
+    // chosen under "Settings of", in that axis's units (about: degrees, N m; along: metres,
+    // N), and giving one frees it; locking an axis takes its settings away; one undo step each.
+    void sixAxisAxesAndTheirSettings() {
+        Fixture f;
+        f.doc.selectJoint(0);
+        f.choose("joint.type", "six_axis");
+        QCOMPARE(f.joint().type, JointType::SixAxis);
+        QVERIFY(!f.joint().limits && !f.joint().axisB);
+        QVERIFY(f.find<QCheckBox>("joint.axes.ry")->isVisibleTo(&f.dock));
+        QVERIFY(!f.find<QPushButton>("joint.swap")->isEnabled());
+        f.find<QCheckBox>("joint.axes.rx")->setChecked(true);
+        QVERIFY(f.joint().axes[3].free && !f.joint().axes[4].free);
+        f.choose("joint.drives_on", "about y");
+        f.find<QCheckBox>("joint.limits.on")->setChecked(true);  // frees ry
+        QVERIFY(f.joint().axes[4].free && f.joint().axes[4].limits);
+        QVERIFY(!f.joint().limits);  // (the joint's own: none)
+        QVERIFY(f.find<QCheckBox>("joint.axes.ry")->isChecked());
+        QCOMPARE(f.spin("joint.limits.lower")->suffix(), QString("°"));
+        f.spin("joint.limits.upper")->setValue(30.0);
+        QCOMPARE((*f.joint().axes[4].limits)[1], 30.0 * std::numbers::pi / 180.0);
+        f.choose("joint.drives_on", "along y");
+        QVERIFY(!f.find<QCheckBox>("joint.limits.on")->isChecked());
+        f.find<QCheckBox>("joint.spring.on")->setChecked(true);
+        QCOMPARE(f.spin("joint.spring.stiffness")->suffix(), QString(" N/m"));
+        f.spin("joint.spring.stiffness")->setValue(400.0);
+        QCOMPARE(f.joint().axes[1].spring->stiffness, 400.0);
+        QVERIFY(f.joint().axes[1].free);
+        f.find<QCheckBox>("joint.motor.on")->setChecked(true);
+        QCOMPARE(f.spin("joint.motor.max")->suffix(), QString(" N"));
+        // A bad value for the axis is refused and said under its row.
+        f.spin("joint.spring.damping")->setValue(-1.0);
+        QVERIFY(f.joint().axes[1].spring->damping >= 0.0);
+        const int steps = f.doc.undoStack()->count();
+        f.find<QCheckBox>("joint.axes.y")->setChecked(false);  // locked: its spring and motor go
+        QVERIFY(!f.joint().axes[1].free && !f.joint().axes[1].spring && !f.joint().axes[1].motor);
+        QVERIFY(!f.find<QCheckBox>("joint.spring.on")->isChecked());
+        QCOMPARE(f.doc.undoStack()->count(), steps + 1);
+        f.doc.undoStack()->undo();
+        QVERIFY(f.joint().axes[1].spring && f.joint().axes[1].free);
+        QCOMPARE(f.joint().axes[4].limits.has_value(), true);
+        // Another type takes the axes away.
+        f.choose("joint.type", "ball");
+        QVERIFY(f.joint().axes == JointDesc().axes);
+    }
+
     void renameRefusesATakenName() {
         Fixture f;
         JointDesc second = f.joint();
