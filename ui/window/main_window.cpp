@@ -84,7 +84,8 @@ const char* const kSamples[] = {"tumbling-box",
                                 "turntable",
                                 "ragdoll-stairs",
                                 "robot-arm",
-                                "suspension-cart"};
+                                "suspension-cart",
+                                "tilt-platform"};
 
 bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);
