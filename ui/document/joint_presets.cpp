@@ -1,5 +1,7 @@
 #include "document/joint_presets.h"
 
+#include "document/body_presets.h"
+
 #include <tumble/model.h>
 
 #include <algorithm>
@@ -94,6 +96,40 @@ Vec3 worldAnchorA(const SceneDesc& scene, const JointDesc& j) {
 
 Vec3 worldAnchorB(const SceneDesc& scene, const JointDesc& j) {
     return frameOf(scene, j.bodyB).toWorld(j.anchorB);
+}
+
+std::optional<BallLimitFrame> ballLimitFrame(const SceneDesc& scene, const JointDesc& j) {
+    if (j.type != JointType::Ball || !(j.swingLimit || j.twistLimits) || !j.axisA || !(j.axisA->norm() > 0.0))
+        return std::nullopt;
+    const BodyDesc* a = nullptr;
+    for (const BodyDesc& b : scene.bodies)
+        if (b.name == j.bodyA) a = &b;
+    if (!a) return std::nullopt;
+    const BodyFrame fa = frameOf(scene, j.bodyA), fb = frameOf(scene, j.bodyB);
+    BallLimitFrame f;
+    const Vec3 axis = fa.q * j.axisA->normalized();
+    f.n = j.axisB && j.axisB->norm() > 0.0 ? Vec3(fb.q * j.axisB->normalized()) : axis;
+    const Vec3 across = fa.q * firstCrossAxis(j.axisA->normalized());
+    f.e1 = (across - across.dot(f.n) * f.n).normalized();
+    f.anchor = worldAnchorB(scene, j);
+    f.size = 1.2 * boundingRadius(a->shape);
+    if (!f.e1.allFinite() || !(f.size > 0.0)) return std::nullopt;
+    return f;
+}
+
+std::optional<Vec3> ballLimitGrip(const BallLimitFrame& f, const JointDesc& j, int grip) {
+    const Vec3 e2 = f.n.cross(f.e1);
+    if (grip == 0 || grip == 1) {
+        if (!j.swingLimit) return std::nullopt;
+        const double theta = (*j.swingLimit)[size_t(grip)];
+        return f.anchor + f.size * (std::cos(theta) * f.n + std::sin(theta) * (grip == 0 ? f.e1 : e2));
+    }
+    if (grip == 2 || grip == 3) {
+        if (!j.twistLimits) return std::nullopt;
+        const double phi = (*j.twistLimits)[size_t(grip - 2)];
+        return f.anchor + (f.size / 3.0) * (std::cos(phi) * f.e1 + std::sin(phi) * e2);
+    }
+    return std::nullopt;
 }
 
 }  // namespace tumble::ui

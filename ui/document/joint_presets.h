@@ -50,4 +50,20 @@ BodyFrame frameOf(const SceneDesc& scene, const std::string& name);
 Vec3 worldAnchorA(const SceneDesc& scene, const JointDesc& j);
 Vec3 worldAnchorB(const SceneDesc& scene, const JointDesc& j);
 
+/// Where a ball joint's swing cone and twist range are drawn and dragged, as the scene
+/// places the bodies (as compile_joints.cpp sets them): from anchor B about B's axis `n`
+/// (axis_b, or A's axis as placed), `e1` A's first frame axis across its axis made square
+/// to n (the first half-angle's direction, and zero twist), `size` long (1.2 × A's bounding
+/// radius). Nothing for a joint that is not a ball with an axis and a limit.
+struct BallLimitFrame {
+    Vec3 anchor = Vec3::Zero(), n = Vec3::UnitY(), e1 = Vec3::UnitX();
+    double size = 0.0;
+};
+std::optional<BallLimitFrame> ballLimitFrame(const SceneDesc& scene, const JointDesc& j);
+
+/// A ball joint's limit grips in the world: 0 and 1 its cone's rim towards e1 and n × e1
+/// (its half-angles), 2 and 3 the ends of its twist arc (a third of the size out). Nothing
+/// for a limit it does not have.
+std::optional<Vec3> ballLimitGrip(const BallLimitFrame& f, const JointDesc& j, int grip);
+
 }  // namespace tumble::ui

@@ -131,6 +131,7 @@ void ViewportGizmo::setVisible(bool visible) {
 }
 
 void ViewportGizmo::setHighlight(int axis) {
+    if (axis < 0 || axis > 2) axis = -1;  // (a joint's limit grip: not one of the gizmo's)
     if (axis == highlight_) return;
     highlight_ = axis;
     rebuild();

@@ -2,6 +2,7 @@
 
 #include "document/joint_presets.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tumble::ui::handles {
@@ -92,6 +93,35 @@ JointDesc turnedAxis(const SceneDesc& scene, const JointDesc& j, const Vec3& axi
     const Quat r(Eigen::AngleAxisd(angle, axis));
     if (j.axisA) out.axisA = a.q.conjugate() * (r * (a.q * *j.axisA));
     if (j.axisB) out.axisB = b.q.conjugate() * (r * (b.q * *j.axisB));
+    return out;
+}
+
+JointDesc draggedBallLimit(const BallLimitFrame& f, const JointDesc& j, int grip, const Vec3& rayOrigin,
+                           const Vec3& rayDir, double step) {
+    JointDesc out = j;
+    const Vec3 e2 = f.n.cross(f.e1);
+    if ((grip == 0 || grip == 1) && j.swingLimit) {
+        const Vec3 towards = grip == 0 ? f.e1 : e2;
+        const auto hit = planeHit(rayOrigin, rayDir, f.anchor, f.n.cross(towards));
+        if (!hit) return out;
+        const Vec3 d = *hit - f.anchor;
+        const double degree = M_PI / 180.0;
+        const double theta = std::clamp(snap(std::atan2(d.dot(towards), d.dot(f.n)), step), degree, M_PI - degree);
+        const bool round = (*j.swingLimit)[0] == (*j.swingLimit)[1];
+        (*out.swingLimit)[size_t(grip)] = theta;
+        if (round) (*out.swingLimit)[size_t(1 - grip)] = theta;
+        return out;
+    }
+    if ((grip == 2 || grip == 3) && j.twistLimits) {
+        const auto hit = planeHit(rayOrigin, rayDir, f.anchor, f.n);
+        if (!hit || !((*hit - f.anchor).norm() > 0.0)) return out;
+        const double phi = snap(signedAngle(f.e1, *hit - f.anchor, f.n), step);
+        auto& [lower, upper] = *out.twistLimits;
+        if (grip == 2)
+            lower = std::clamp(phi, -M_PI, upper);
+        else
+            upper = std::clamp(phi, lower, M_PI);
+    }
     return out;
 }
 

@@ -3,6 +3,8 @@
 // the snapping step, so tests can compute what a drag must do and compare.
 #pragma once
 
+#include "document/joint_presets.h"
+
 #include <tumble/scene.h>
 
 #include <optional>
@@ -48,5 +50,14 @@ JointDesc movedAnchor(const SceneDesc& scene, const JointDesc& j, const Vec3& ax
 /// The joint with its axis (and B's own axis, if it has one) turned by `angle` about the
 /// world `axis`; each stays in its own body's frame. A joint without an axis is unchanged.
 JointDesc turnedAxis(const SceneDesc& scene, const JointDesc& j, const Vec3& axis, double angle);
+
+/// A ball joint with its limit grip `grip` (ballLimitGrip, document/joint_presets.h) dragged
+/// to where the ray points: a cone's half-angle becomes the angle from n of the ray's hit on
+/// the plane of n and the grip's direction (a round cone stays round), a twist bound the
+/// angle about n from e1 of its hit on the plane normal to n; rounded to `step` rad (0: not)
+/// and kept valid (a half-angle within [1°, 179°], the twist range within [−π, π] with
+/// lower ≤ upper). The joint as it is where the ray meets no such plane.
+JointDesc draggedBallLimit(const BallLimitFrame& f, const JointDesc& j, int grip, const Vec3& rayOrigin,
+                           const Vec3& rayDir, double step);
 
 }  // namespace tumble::ui::handles

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "document/document.h"
+#include "document/joint_presets.h"
 #include "timeline/timeline.h"
 #include "viewport/viewport.h"
 #include "viewport/viewport_camera.h"
@@ -44,6 +45,9 @@ namespace viewport_detail {
 inline constexpr int kClickSlop = 4;
 // How near a handle the cursor must be to grab it (pixels).
 inline constexpr double kHandleGrabPx = 8.0;
+// Handle numbers past the three axes: a selected ball joint's limit grips (ballLimitGrip's
+// 0 to 3: its cone's two half-angles, its twist range's ends).
+inline constexpr int kLimitGrip = 3;
 // Handle size: this fraction of the distance from the camera (about a sixth of the view).
 inline constexpr float kHandleScale = 0.13f;
 // Merge ids of handle drags: a new one per drag, in a range of their own.
@@ -160,6 +164,7 @@ struct Viewport::Impl {
     int dragPart = -1;   // the part the drag moves (of the one body in dragStart), or -1
     int dragJoint = -1;  // a selected joint's drag: the joint, as it was
     JointDesc dragJointStart;
+    BallLimitFrame dragLimits;  // a ball joint's limit grip's drag (dragAxis kLimitGrip + grip)
     int dragMergeId = 0;
     int dragCounter = 0;
     const QUndoCommand* dragCommand = nullptr;  // the drag's undo step so far (null: none yet)

@@ -4,6 +4,7 @@
 
 #include "document/body_keys.h"
 #include "document/body_presets.h"
+#include "document/joint_presets.h"
 
 #include <tumble/contact_query.h>
 #include <tumble/forces.h>
@@ -305,19 +306,15 @@ Lines joints(const SceneDesc& scene, int selected) {
                 segment(lines.xyzrgb, pa, pa + (free ? size : 0.35 * size) * frame[i], c);
             }
         }
-        if (j.type == JointType::Ball && (j.swingLimit || j.twistLimits) && j.axisA && j.axisA->norm() > 0.0) {
-            // As placed (compile_joints.cpp): B's axis, or A's as it lies; A's first cross axis.
+        if (const auto f = ballLimitFrame(scene, j)) {  // (as placed: compile_joints.cpp)
+            const Rgb c = int(k) == selected ? kJointSelected : kJointAxis;
+            ballLimitLines(lines, f->anchor, f->n, f->e1, j.swingLimit ? j.swingLimit->data() : nullptr,
+                           j.twistLimits ? j.twistLimits->data() : nullptr, f->size, c);
             const Vec3 aA = a->orientation * j.axisA->normalized();
-            const Vec3 n = j.axisB && j.axisB->norm() > 0.0
-                               ? Vec3((b ? b->orientation : Quat::Identity()) * j.axisB->normalized())
-                               : aA;
-            const Vec3 across = a->orientation * firstCrossAxis(j.axisA->normalized());
-            const Vec3 e1 = (across - across.dot(n) * n).normalized();
-            const double size = 1.2 * boundingRadius(a->shape);
-            ballLimitLines(lines, pb, n, e1, j.swingLimit ? j.swingLimit->data() : nullptr,
-                           j.twistLimits ? j.twistLimits->data() : nullptr, size,
-                           int(k) == selected ? kJointSelected : kJointAxis);
-            segment(lines.xyzrgb, pa, pa + size * aA, int(k) == selected ? kJointSelected : kJoint);
+            segment(lines.xyzrgb, pa, pa + f->size * aA, int(k) == selected ? kJointSelected : kJoint);
+            if (int(k) == selected)  // the grips a drag sets the limits with (viewport_transform.cpp)
+                for (int g = 0; g < 4; ++g)
+                    if (const auto p = ballLimitGrip(*f, j, g)) cross(lines.xyzrgb, *p, 0.06 * f->size, c);
         }
     }
     return lines;

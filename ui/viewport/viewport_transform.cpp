@@ -95,6 +95,19 @@ void Viewport::updateHandles() {
 int Viewport::handleAt(const QPoint& widgetPos) const {
     if (!d_->handlesShown) return -1;
     const QPointF p(widgetPos);
+    // A selected ball joint's limit grips come first (they are small, and stand apart).
+    if (const int j = d_->handledJoint(d_->mode); j >= 0 && d_->shownFrame == 0) {
+        const JointDesc& joint = d_->doc->joint(j);
+        if (const auto f = ballLimitFrame(d_->doc->scene(), joint)) {
+            for (int g = 0; g < 4; ++g) {
+                const auto grip = ballLimitGrip(*f, joint, g);
+                if (!grip) continue;
+                const QVector3D at = projectToWidget(toQt(*grip));
+                if (onScreen(at) && std::hypot(at.x() - p.x(), at.y() - p.y()) < kHandleGrabPx)
+                    return kLimitGrip + g;
+            }
+        }
+    }
     const QVector3D o = toQt(d_->handlesOrigin);
     const float size = d_->handlesSize;
     const QVector3D e[3] = {QVector3D(1, 0, 0), QVector3D(0, 1, 0), QVector3D(0, 0, 1)};
@@ -130,6 +143,23 @@ int Viewport::handleAt(const QPoint& widgetPos) const {
 }
 
 bool Viewport::beginHandleDrag(int axis, const QPoint& pos) {
+    if (axis >= kLimitGrip && axis < kLimitGrip + 4 && d_->handlesShown) {  // a ball joint's limit
+        const int j = d_->handledJoint(d_->mode);
+        if (j < 0) return false;
+        const auto f = ballLimitFrame(d_->doc->scene(), d_->doc->joint(j));
+        if (!f || !ballLimitGrip(*f, d_->doc->joint(j), axis - kLimitGrip)) return false;
+        d_->dragLimits = *f;
+        d_->dragAxis = axis;
+        d_->dragJoint = j;
+        d_->dragJointStart = d_->doc->joint(j);
+        d_->dragStart.clear();
+        d_->dragPart = -1;
+        d_->dragKeying = false;
+        d_->dragKeyMoved = false;
+        d_->dragMergeId = kDragMergeBase + (++d_->dragCounter & 0xffffff);
+        d_->dragCommand = nullptr;
+        return true;
+    }
     if (axis < 0 || axis > 2 || !d_->handlesShown) return false;
     QVector3D o, dir;
     rayAt(pos, &o, &dir);
@@ -177,8 +207,24 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
     if (d_->dragAxis < 0 || (d_->dragStart.empty() && d_->dragJoint < 0)) return;
     QVector3D o, dir;
     rayAt(pos, &o, &dir);
-    const Vec3 a = Vec3::Unit(d_->dragAxis);
     const bool snap = d_->snapping || (modifiers & Qt::ControlModifier);
+    if (d_->dragAxis >= kLimitGrip) {  // a ball joint's cone or twist bound, in one undo step
+        const JointDesc& before = d_->dragJointStart;
+        const int grip = d_->dragAxis - kLimitGrip;
+        const JointDesc after = handles::draggedBallLimit(d_->dragLimits, before, grip, toVec(o), toVec(dir),
+                                                          snap ? qDegreesToRadians(d_->turnStepDegrees) : 0.0);
+        QUndoStack* stack = d_->doc->undoStack();
+        const QUndoCommand* topBefore = stack->index() > 0 ? stack->command(stack->index() - 1) : nullptr;
+        const int countBefore = stack->count();
+        d_->doc->setJoint(d_->dragJoint, after,
+                          (grip < 2 ? tr("Set swing cone of %1") : tr("Set twist limits of %1"))
+                              .arg(QString::fromStdString(before.name)),
+                          d_->dragMergeId);
+        const QUndoCommand* topNow = stack->index() > 0 ? stack->command(stack->index() - 1) : nullptr;
+        if (topNow != topBefore || stack->count() != countBefore) d_->dragCommand = topNow;
+        return;
+    }
+    const Vec3 a = Vec3::Unit(d_->dragAxis);
     const bool move = d_->mode == TransformMode::Move;
     double amount = 0;  // metres or radians
     if (move) {

@@ -320,6 +320,78 @@ private slots:
                  Vec3(0, 0, 0.5)).norm() < 1e-12);
     }
 
+    // A ball joint's limit grips, against closed forms: a cone's half-angle is the hit's
+    // angle from n in the plane of n and the grip's direction (a round cone stays round, an
+    // elliptical one changes one half-angle); a twist bound the hit's angle about n from e1,
+    // snapped to the step, kept within the other bound.
+    void ballLimitGripMath() {
+        const BallLimitFrame f{Vec3::Zero(), Vec3::UnitY(), Vec3::UnitX(), 1.0};
+        JointDesc j;
+        j.type = JointType::Ball;
+        j.swingLimit = std::array<double, 2>{0.5, 0.5};
+        j.twistLimits = std::array<double, 2>{-0.3, 0.4};
+        const double angle = std::atan2(0.8, 0.6);
+        JointDesc out = handles::draggedBallLimit(f, j, 0, Vec3(0.8, 0.6, 5), Vec3(0, 0, -1), 0.0);
+        QVERIFY(std::abs((*out.swingLimit)[0] - angle) < 1e-12 && (*out.swingLimit)[1] == (*out.swingLimit)[0]);
+        j.swingLimit = std::array<double, 2>{0.5, 0.7};  // towards e2 = n × e1 = −z
+        out = handles::draggedBallLimit(f, j, 1, Vec3(5, 0.6, -0.8), Vec3(-1, 0, 0), 0.0);
+        QVERIFY(std::abs((*out.swingLimit)[1] - angle) < 1e-12);
+        QCOMPARE((*out.swingLimit)[0], 0.5);
+        out = handles::draggedBallLimit(f, j, 2, Vec3(0.6, 5, 0.8), Vec3(0, -1, 0), 0.0);
+        QVERIFY(std::abs((*out.twistLimits)[0] + angle) < 1e-12);  // (0.6, 0, 0.8): −53° about y from x
+        out = handles::draggedBallLimit(f, j, 2, Vec3(0.6, 5, 0.8), Vec3(0, -1, 0), kPi / 12);
+        QVERIFY(std::abs((*out.twistLimits)[0] + kPi / 3) < 1e-12);
+        out = handles::draggedBallLimit(f, j, 3, Vec3(0.6, 5, 0.8), Vec3(0, -1, 0), 0.0);
+        QCOMPARE((*out.twistLimits)[1], -0.3);  // not below the lower bound
+        // The grips stand where the limits are drawn.
+        const Vec3 rim = *ballLimitGrip(f, j, 0);
+        QVERIFY((rim - Vec3(std::sin(0.5), std::cos(0.5), 0)).norm() < 1e-12);
+    }
+
+    // A selected ball joint's cone and twist are set by dragging their grips in the
+    // viewport, one undo step a drag.
+    void aBallJointsLimitsAreDraggedByTheirGrips() {
+        Fixture f(50.0f);
+        QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
+        JointDesc j;
+        j.name = "neck";
+        j.type = JointType::Ball;
+        j.bodyA = "ball";
+        j.anchorB = Vec3(0, 1, 0);
+        j.axisA = Vec3::UnitY();
+        j.swingLimit = std::array<double, 2>{0.5, 0.5};
+        j.twistLimits = std::array<double, 2>{-0.5, 0.5};
+        f.doc.addJoint(j);
+        f.doc.undoStack()->clear();
+        QCOMPARE(f.doc.selectedJoint(), 0);
+        const BallLimitFrame frame = *ballLimitFrame(f.doc.scene(), f.doc.joint(0));
+        const QPoint from = projected(*f.view, *ballLimitGrip(frame, j, 0));
+        QCOMPARE(f.view->handleAt(from), 3);
+        const QPoint to = projected(*f.view, frame.anchor + frame.size * (std::cos(0.8) * frame.n +
+                                                                         std::sin(0.8) * frame.e1));
+        QVector3D o, d;
+        f.view->rayAt(to, &o, &d);
+        const double expected = (*handles::draggedBallLimit(frame, j, 0, toVec(o), toVec(d), 0.0).swingLimit)[0];
+        drag(*f.view, from, to);
+        QCOMPARE(f.doc.undoStack()->count(), 1);
+        QCOMPARE((*f.doc.joint(0).swingLimit)[0], expected);
+        QCOMPARE((*f.doc.joint(0).swingLimit)[1], expected);  // round, still
+        QVERIFY(std::abs(expected - 0.8) < 0.02);
+        // The upper twist bound, from 0.5 to 1.2 rad about n.
+        const JointDesc now = f.doc.joint(0);
+        const Vec3 e2 = frame.n.cross(frame.e1);
+        const QPoint twistFrom = projected(*f.view, *ballLimitGrip(frame, now, 3));
+        QCOMPARE(f.view->handleAt(twistFrom), 6);
+        const QPoint twistTo = projected(*f.view, frame.anchor + frame.size / 3 * (std::cos(1.2) * frame.e1 +
+                                                                                  std::sin(1.2) * e2));
+        drag(*f.view, twistFrom, twistTo);
+        QCOMPARE(f.doc.undoStack()->count(), 2);
+        QVERIFY(std::abs((*f.doc.joint(0).twistLimits)[1] - 1.2) < 0.03);
+        QCOMPARE((*f.doc.joint(0).twistLimits)[0], -0.5);
+        f.doc.undoStack()->undo();
+        QCOMPARE((*f.doc.joint(0).twistLimits)[1], 0.5);
+    }
+
     void aMultiSelectionDragMovesEveryBodyInOneUndoStepButNotThePlane() {
         Fixture f;
         QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
