@@ -298,11 +298,13 @@ private slots:
         if (file == "chair.json") bound = 1e-2;
         if (file == "ragdoll.json") seconds = 0.5, bound = 1e-5;
         // The ragdoll on the stairs (cones and twist limits): 2e-12 m apart until its first
-        // limb lands at 0.417 s, 2e-8 m and 3e-6 rad/s by 0.5 s. The robot arm's servos
+        // limb lands at 0.417 s, 2.5e-8 m and 1.2e-5 rad/s by 0.5 s (rk4, seed 2: its limits
+        // past, closed in the group's Newton steps since 2026-12-06, are taken there as the
+        // rounding finds them past, by more than 1e-13 or not). The robot arm's servos
         // drive it alike in any pose (1e-13 m apart) until its hand meets the first block at
         // 0.65 s, a moment found to 1e-6 of the block's size: the pushed blocks are 0.06 m
         // apart by 2 s.
-        if (file == "ragdoll-stairs.json") seconds = 0.5, bound = 1e-5;
+        if (file == "ragdoll-stairs.json") seconds = 0.5, bound = 3e-5;
         if (file == "robot-arm.json") seconds = 0.6;
         // The cart on its springs: 7e-13 m apart until its front wheels meet the first bump
         // at 1.125 s, a moment found to 1e-6 of a wheel's size (3e-6 m apart by 2 s).

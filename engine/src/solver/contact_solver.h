@@ -153,8 +153,7 @@ struct ContactSolverScratch {
     // the scalar rows of its motor, limits, spring and servo.
     struct AxisRow {
         const JointAxis* settings = nullptr;
-        Eigen::Matrix<double, 6, 1> JAx = Eigen::Matrix<double, 6, 1>::Zero(),
-                                    JBx = Eigen::Matrix<double, 6, 1>::Zero();
+        Eigen::Matrix<double, 6, 1> JAx, JBx;  // (set with the axis: generalRows)
         double coord = 0.0, kAxis = 0.0;
         bool motor = false, lowerOn = false, upperOn = false;
         double motorSpeed = 0.0, motorMax = 0.0, motorLambda = 0.0;

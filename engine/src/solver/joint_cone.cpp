@@ -119,4 +119,30 @@ double projectLimitedBall(State& state, ContactSolverScratch& s, double h, const
     return error;
 }
 
+int ballBoundsPast(const JointModel& j, const BodyState& a, const BodyState* b, int* bounds) {
+    const BallAngles g = ballAngles(j, a, b);
+    int n = 0;
+    if (j.swingLimited && g.swingKnown && g.swing - g.swingBound > kHeld) bounds[n++] = 0;
+    if (j.twistLimited && g.twist < j.twistLower - kHeld) bounds[n++] = 1;
+    if (j.twistLimited && g.twist > j.twistUpper + kHeld) bounds[n++] = 2;
+    return n;
+}
+
+void limitedBallRows(const JointModel& j, const BodyState& a, const BodyState* b, const int* bounds, int count,
+                     ContactSolverScratch::GeneralRow& rows, Vector6* error) {
+    const BallAngles g = ballAngles(j, a, b);
+    Vec3 axes[3];
+    double past[3];
+    for (int i = 0; i < count; ++i) {
+        axes[i] = bounds[i] == 0 ? g.swingAxis : g.twistAxis;
+        past[i] = bounds[i] == 0 ? g.swing - g.swingBound : bounds[i] == 1 ? g.twist - j.twistLower : g.twist - j.twistUpper;
+    }
+    ballRows(j, a, b, axes, count, rows);
+    if (!error) return;
+    error->setZero();
+    const Vec3 pA = a.x + a.q * j.anchorA;
+    error->head<3>() = pA - (b ? Vec3(b->x + b->q * j.anchorB) : j.anchorB);
+    for (int i = 0; i < count; ++i) (*error)[3 + i] = past[i];
+}
+
 }  // namespace tumble::joint

@@ -44,4 +44,16 @@ double ballLimitsPast(const JointModel& j, const BallAngles& angles);
 double projectLimitedBall(State& state, ContactSolverScratch& s, double h, const State* from, const State& at,
                           const JointModel& j, bool moveA, bool moveB, const SolverBody& A, const SolverBody& B);
 
+/// The bounds a limited ball joint is past (more than kHeld) at these poses, as
+/// limitedBallRows takes them (0: the cone, 1: the twist's lower bound, 2: its upper), in
+/// `bounds`; how many.
+int ballBoundsPast(const JointModel& j, const BodyState& a, const BodyState* b, int* bounds);
+
+/// A limited ball joint's three point rows and after them the rows of `bounds` (as
+/// ballBoundsPast gives them), held at the bound, at these poses; in `error` the anchors'
+/// gap and each angle's distance past its bound (negative inside). For a group's Newton
+/// steps (joint_projection.cpp), which keep the bounds they started with.
+void limitedBallRows(const JointModel& j, const BodyState& a, const BodyState* b, const int* bounds, int count,
+                     ContactSolverScratch::GeneralRow& rows, Eigen::Matrix<double, 6, 1>* error);
+
 }  // namespace tumble::joint

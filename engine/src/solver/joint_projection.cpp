@@ -1,6 +1,7 @@
 #include "solver/joint_projection.h"
 
 #include "solver/contact_energy.h"
+#include "solver/joint_cone.h"
 #include "solver/joint_general.h"
 #include "solver/joint_math.h"
 
@@ -39,8 +40,41 @@ struct Rows {
     // Hinge, slider, fixed (joint_general.h): the rows now and where the impulse acts.
     bool general = false;
     ContactSolverScratch::GeneralRow now, then;
+    // A positions-only solve: the free axes past a limit as the group found them (freeAxis
+    // k, the bound it is held at), rows after the joint's own.
+    std::array<int, 6> limitAxis{};
+    std::array<double, 6> limitBound{};
+    int limits = 0;
+    // A limited ball joint past its cone or twist range in a positions-only solve: made a
+    // general joint of its point rows and those bounds' (joint_cone.h limitedBallRows).
+    std::array<int, 3> ballBounds{};
+    int bounds = 0;
     Eigen::VectorXd C;
 };
+
+// The limits joint r's free axes are past (more than kHeld) at the poses of `state`, as
+// rows after its own (Rows::limits), their Jacobians at those poses in r.then.
+void addLimitRows(const JointModel& j, const State& state, Rows& r) {
+    const int free = freeAxes(j);
+    bool limited = false;
+    for (int k = 0; k < free && !limited; ++k) limited = freeAxis(j, k).limited;
+    if (!limited) return;
+    ContactSolverScratch::GeneralRow g;
+    std::array<AxisRow, 6> axes;
+    generalRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, g, nullptr, hingeNear(state, j),
+                axes.data());
+    for (int k = 0; k < free && r.count < 6; ++k) {
+        const JointAxis& x = freeAxis(j, k);
+        if (!x.limited) continue;
+        const double c = axes[k].coord;
+        if (c >= x.lower - kHeld && c <= x.upper + kHeld) continue;
+        r.limitAxis[r.limits] = k;
+        r.limitBound[r.limits++] = c < x.lower ? x.lower : x.upper;
+        r.then.JA.col(r.count) = axes[k].JAx;
+        r.then.JB.col(r.count) = axes[k].JBx;
+        ++r.count;
+    }
+}
 
 // The group's rows at the bodies' present poses; the largest error, and in `sum` the sum
 // of the squared errors (what a Newton step must lower: its direction descends on it).
@@ -51,10 +85,27 @@ double measure(const Model& /*model*/, const State& state, const State& at, std:
     for (Rows& r : rows) {
         const JointModel& j = *r.joint;
         const BodyState& a = state.bodies[j.a];
+        if (r.general && r.bounds) {
+            Vector6 error;
+            const BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
+            limitedBallRows(j, a, b, r.ballBounds.data(), r.bounds, r.now, &error);
+            if (&at == &state) r.then = r.now;
+            r.C = error.head(r.count);
+            worst = std::max(worst, r.C.cwiseAbs().maxCoeff());
+            if (sum) *sum += r.C.squaredNorm();
+            continue;
+        }
         if (r.general) {
             Vector6 error;
             const BodyState* b = j.b >= 0 ? &state.bodies[j.b] : nullptr;
-            generalRows(j, a, b, r.now, &error, hingeNear(state, j));
+            std::array<AxisRow, 6> axes;
+            generalRows(j, a, b, r.now, &error, hingeNear(state, j), r.limits ? axes.data() : nullptr);
+            for (int i = 0, m = r.now.m; i < r.limits; ++i) {  // the limits past, held at their bounds
+                const AxisRow& x = axes[r.limitAxis[i]];
+                r.now.JA.col(m + i) = x.JAx;
+                r.now.JB.col(m + i) = x.JBx;
+                error[m + i] = x.coord - r.limitBound[i];
+            }
             if (&at == &state) r.then = r.now;  // (else made once: the start does not move)
             r.C = error.head(r.count);
             worst = std::max(worst, r.C.cwiseAbs().maxCoeff());
@@ -341,14 +392,23 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
                 generalRows(j, at.bodies[j.a], j.b >= 0 ? &at.bodies[j.b] : nullptr, rows[k].then, nullptr,
                             hingeNear(state, j));
                 rows[k].count = rows[k].then.m;
+                if (!from) addLimitRows(j, state, rows[k]);  // (positions only)
+            } else if (!from && (j.swingLimited || j.twistLimited) &&
+                       (rows[k].bounds = ballBoundsPast(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr,
+                                                        rows[k].ballBounds.data())) > 0) {
+                rows[k].general = true;  // (positions only: the poses now are the start's)
+                limitedBallRows(j, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr,
+                                rows[k].ballBounds.data(), rows[k].bounds, rows[k].then, nullptr);
+                rows[k].count = 3 + rows[k].bounds;
             } else {
                 rows[k].count = j.type == JointType::Ball ? 3 : 1;
             }
             size += rows[k].count;
         }
         const std::vector<std::pair<int, int>> pairs = sharingPairs(model, state, rows);
-        const bool balls = std::all_of(rows.begin(), rows.end(),
-                                       [](const Rows& r) { return r.joint->type == JointType::Ball; });
+        const bool balls = std::all_of(rows.begin(), rows.end(), [](const Rows& r) {
+            return r.joint->type == JointType::Ball && !r.general;
+        });
         const std::vector<int> path =
             count > kMostGroupJoints && balls ? pathOrder(count, pairs) : std::vector<int>{};
         std::optional<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu;  // made when a large group needs it
