@@ -7,6 +7,7 @@
 // bounded one accelerates at its torque over the inertia; the
 // energy ledger closes with the springs' energy.
 #include "joint_checks.h"
+#include "oscillation_fit.h"
 #include "scene_builders.h"
 #include "turned_world.h"
 
@@ -45,28 +46,6 @@ double coordinate(const World& w) {
     Quat e = a.q * j.relative.conjugate();
     if (e.w() < 0.0) e.coeffs() = -e.coeffs();
     return 2.0 * std::atan2(e.vec().dot(a.q * j.axisA), e.w());
-}
-
-// The damped oscillation a sequence of coordinates c_n follows: from the least-squares fit of
-// c_{n+1} = T c_n − D c_{n−1} + E, the eigenvalue z = e^{λh} of z² − T z + D, ω = |λ|, ζ =
-// −Re λ / |λ| and the centre E / (1 − T + D).
-struct Oscillation {
-    double omega = 0.0, zeta = 0.0, centre = 0.0;
-};
-
-Oscillation fit(const std::vector<double>& c, double h) {
-    const int n = static_cast<int>(c.size()) - 2;
-    Eigen::MatrixXd M(n, 3);
-    Eigen::VectorXd y(n);
-    for (int i = 0; i < n; ++i) {
-        M.row(i) << c[i + 1], -c[i], 1.0;
-        y[i] = c[i + 2];
-    }
-    const Eigen::Vector3d p = M.colPivHouseholderQr().solve(y);
-    const double T = p[0], D = p[1];
-    const std::complex<double> z = 0.5 * (T + std::sqrt(std::complex<double>(T * T - 4.0 * D)));
-    const std::complex<double> lambda = std::log(z) / h;
-    return {std::abs(lambda), -lambda.real() / std::abs(lambda), p[2] / (1.0 - T + D)};
 }
 
 // A 2 kg box on a vertical slider to the world at the origin (A's anchor at its centre), its
@@ -124,7 +103,7 @@ private slots:
             w.step(h);
             path.push_back(coordinate(w));
         }
-        const Oscillation o = fit(path, h);
+        const Oscillation o = fitOscillation(path, h);
         QVERIFY2(std::abs(o.omega / std::sqrt(k / m) - 1.0) < 1e-6, qPrintable(QString::number(o.omega, 'g', 12)));
         QVERIFY2(std::abs(o.zeta / (c / (2.0 * std::sqrt(k * m))) - 1.0) < 1e-6,
                  qPrintable(QString::number(o.zeta, 'g', 12)));
@@ -181,7 +160,7 @@ private slots:
             w.step(h);
             path.push_back(coordinate(w));
         }
-        const Oscillation o = fit(path, h);
+        const Oscillation o = fitOscillation(path, h);
         QVERIFY2(std::abs(o.omega / 4.0 - 1.0) < 1e-6, qPrintable(QString::number(o.omega, 'g', 12)));
         QVERIFY2(std::abs(o.zeta) < 1e-6, qPrintable(QString::number(o.zeta, 'g', 12)));
         QVERIFY2(std::abs(o.centre - 0.5) < 1e-6, qPrintable(QString::number(o.centre, 'g', 12)));
@@ -252,7 +231,7 @@ private slots:
         s.settings.sleeping = false;
         JointDesc j = joint("shoulder", JointType::Hinge, "rod", Vec3(-0.5, 0, 0), "", Vec3(0, 1, 0));
         j.axisA = Vec3::UnitZ();
-        j.servo = JointDesc::Servo{0.5, 100.0, 0.0, 0.0, 0.1};
+        j.servo = JointDesc::Servo{0.5, 100.0, 0.0, 0.0, 0.1, {}};
         s.joints.push_back(j);
         World w(turnedScene(s, pose));
         double last = 0.0;
@@ -273,10 +252,10 @@ private slots:
         arm.settings.sleeping = false;
         JointDesc shoulder = joint("shoulder", JointType::Hinge, "upper", Vec3(-0.3, 0, 0), "", Vec3(0, 1, 0));
         shoulder.axisA = Vec3::UnitY();
-        shoulder.servo = JointDesc::Servo{1.2, 200.0, 0.0, 0.0, 0.3};
+        shoulder.servo = JointDesc::Servo{1.2, 200.0, 0.0, 0.0, 0.3, {}};
         JointDesc elbow = joint("elbow", JointType::Hinge, "lower", Vec3(-0.25, 0, 0), "upper", Vec3(0.3, -0.08, 0));
         elbow.axisA = Vec3::UnitY();
-        elbow.servo = JointDesc::Servo{-0.9, 200.0, 0.0, 0.0, 0.2};
+        elbow.servo = JointDesc::Servo{-0.9, 200.0, 0.0, 0.0, 0.2, {}};
         arm.joints = {shoulder, elbow};
         World a(turnedScene(arm, pose));
         const double targets[2] = {1.2, -0.9};

@@ -7,6 +7,7 @@
 // there, a servo by its time constant reaches its target without passing it, all axes
 // locked is a weld, and the three angles free move as a ball joint.
 #include "joint_checks.h"
+#include "oscillation_fit.h"
 #include "model/joint_coordinate.h"
 #include "scene_builders.h"
 #include "turned_world.h"
@@ -59,28 +60,6 @@ JointDesc::Axis freeAxis() {
     JointDesc::Axis a;
     a.free = true;
     return a;
-}
-
-// The damped oscillation a sequence c_n follows (as tst_joint_drives): the least-squares
-// fit of c_{n+1} = T c_n − D c_{n−1} + E gives z = e^{λh}; ω = |λ|, ζ = −Re λ / |λ|, centre
-// E / (1 − T + D).
-struct Oscillation {
-    double omega = 0.0, zeta = 0.0, centre = 0.0;
-};
-
-Oscillation fit(const std::vector<double>& c, double h) {
-    const int n = static_cast<int>(c.size()) - 2;
-    Eigen::MatrixXd M(n, 3);
-    Eigen::VectorXd y(n);
-    for (int i = 0; i < n; ++i) {
-        M.row(i) << c[i + 1], -c[i], 1.0;
-        y[i] = c[i + 2];
-    }
-    const Eigen::Vector3d p = M.colPivHouseholderQr().solve(y);
-    const double T = p[0], D = p[1];
-    const std::complex<double> z = 0.5 * (T + std::sqrt(std::complex<double>(T * T - 4.0 * D)));
-    const std::complex<double> lambda = std::log(z) / h;
-    return {std::abs(lambda), -lambda.real() / std::abs(lambda), p[2] / (1.0 - T + D)};
 }
 
 // A wheel (a disc about y, I = m r² / 2 = 0.25 kg m²) at (0, 1, 0) on a six-axis joint to
@@ -146,7 +125,7 @@ private slots:
             path.push_back(q[Y]);
             for (int a : {X, Z, RX, RY, RZ}) held = std::max(held, std::abs(q[a]));
         }
-        const Oscillation o = fit(path, h);
+        const Oscillation o = fitOscillation(path, h);
         QVERIFY2(std::abs(o.omega / std::sqrt(k / m) - 1.0) < 1e-6, qPrintable(QString::number(o.omega, 'g', 12)));
         QVERIFY2(std::abs(o.zeta / (c / (2.0 * std::sqrt(k * m))) - 1.0) < 1e-6,
                  qPrintable(QString::number(o.zeta, 'g', 12)));
@@ -168,7 +147,7 @@ private slots:
             w.step(h);
             path.push_back(coordinates(w)[RX]);
         }
-        const Oscillation o = fit(path, h);
+        const Oscillation o = fitOscillation(path, h);
         QVERIFY2(std::abs(o.omega / 4.0 - 1.0) < 1e-6, qPrintable(QString::number(o.omega, 'g', 12)));
         QVERIFY2(std::abs(o.zeta) < 1e-6, qPrintable(QString::number(o.zeta, 'g', 12)));
         QVERIFY2(std::abs(o.centre - 0.5) < 1e-6, qPrintable(QString::number(o.centre, 'g', 12)));
