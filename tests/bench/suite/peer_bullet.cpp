@@ -155,6 +155,7 @@ private:
     std::vector<std::unique_ptr<btTriangleMesh>> meshes_;
     std::vector<std::unique_ptr<btRigidBody>> rigid_;
     std::vector<std::unique_ptr<btTypedConstraint>> constraints_;
+    std::vector<std::pair<const JointModel*, btHingeConstraint*>> servos_;  // driven each step
     std::vector<Body> bodies_;
 };
 
@@ -164,6 +165,7 @@ void BulletAdapter::clear() {
         for (auto& rb : rigid_) world_->removeRigidBody(rb.get());
     }
     constraints_.clear();
+    servos_.clear();
     rigid_.clear();
     world_.reset();
     solver_.reset();
@@ -276,7 +278,7 @@ bool BulletAdapter::load(const SceneDesc& scene, const std::string& mode, double
             peer::PeerCaps{false, true,
                            peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
                                peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed),
-                           true, true, true, true, true},
+                           true, true, true, true, true, true},
             &ps_, &reason)) {
         if (why) *why = reason;
         return false;
@@ -438,6 +440,10 @@ bool BulletAdapter::makeJoint(const JointModel& j, std::string* why) {
                        : std::make_unique<btHingeConstraint>(A, fa, false);
             if (j.limited) h->setLimit(j.lower, j.upper);
             if (j.motor) h->enableAngularMotor(true, j.motorSpeed, j.motorMax * dt_);
+            if (j.servo) {  // (its speed set each step: peer::servoSpeed)
+                h->enableAngularMotor(true, 0.0, std::isfinite(j.servoMax) ? j.servoMax * dt_ : 1e30);
+                servos_.emplace_back(&j, h.get());
+            }
             c = std::move(h);
             break;
         }
@@ -481,6 +487,13 @@ void BulletAdapter::step() {
             rb->applyCentralForce(bt(F));
             rb->applyTorque(bt(T));
         }
+    }
+    for (const auto& [j, hinge] : servos_) {  // a servo by its time constant, as Tumble's
+        const BodySample a = body(j->a);
+        const Vec3 w = a.w - (j->b >= 0 ? body(j->b).w : Vec3::Zero());
+        const double speed = peer::servoSpeed(*j, hinge->getHingeAngle(), w.dot(a.q * j->axisA), time_, dt_);
+        hinge->enableAngularMotor(true, speed, hinge->getMaxMotorImpulse());
+        bodies_[j->a].rb->activate();
     }
     world_->stepSimulation(dt_, 0, dt_);
     time_ += dt_;

@@ -22,7 +22,9 @@
 //                hinged at one end to the world, level, gravity turning it to negative angles:
 //                with limits [-1, 0] it stops at -1 rad, with [0, 1] it stays at 0 (within
 //                0.1 rad after 2 s: the sign and zero of the hinge angle). A peer that does not
-//                translate limits prints n/a for the second, not a failure.
+//                translate limits prints n/a for the second, not a failure. The same bar
+//                lifted by a servo by its time constant to +0.5 rad: there within 0.02 rad
+//                after 2 s, never past it by more (a peer without servos: n/a).
 //
 // Prints a table; exits 1 when a check fails, 2 when no peer was built.
 #include "engine_adapter.h"
@@ -363,7 +365,26 @@ std::string checkJoints(EngineAdapter& e, const std::string& mode, bool* ok) {
         angles[c] = std::atan2(dir.y(), dir.x());
     }
     if (!(std::abs(angles[0] + 1.0) <= 0.1) || !(std::abs(angles[1]) <= 0.1)) *ok = false;
-    return out + fmt(", limits at %+.2f and %+.2f rad", angles[0], angles[1]);
+    out += fmt(", limits at %+.2f and %+.2f rad", angles[0], angles[1]);
+    // A servo by its time constant (0.1 s, at most 50 N m) lifting the bar to +0.5 rad
+    // against gravity: at 0.5 after 2 s, never past it (within 0.02 rad).
+    SceneDesc servo = limitedBar(0.0, 0.0);
+    servo.joints[0].limits.reset();
+    JointDesc::Servo drive;
+    drive.target = 0.5;
+    drive.maxForce = 50.0;
+    drive.timeConstant = 0.1;
+    servo.joints[0].servo = drive;
+    if (!e.load(servo, mode, kDt, &why)) return out + ", servo n/a";
+    double most = -INFINITY, angle = NAN;
+    for (int k = 0; k < 2 * 240; ++k) {
+        e.step();
+        const Vec3 dir = e.body(0).q * Vec3::UnitX();
+        angle = std::atan2(dir.y(), dir.x());
+        most = std::max(most, angle);
+    }
+    if (!(std::abs(angle - 0.5) <= 0.02) || !(most <= 0.52)) *ok = false;
+    return out + fmt(", servo at %+.3f (most %+.3f) rad", angle, most);
 }
 
 }  // namespace

@@ -40,7 +40,9 @@ bool prepare(const SceneDesc& scene, const PeerCaps& caps, PeerScene* out, std::
         if (std::isfinite(j.breakForce) && !caps.jointBreaking)
             return fail(who + "breaking joints are not translated to this peer");
         // (A peer run without them would be another scene.)
-        if (j.spring || j.servo) return fail(who + "joint springs and servos are not translated to the peers");
+        if (j.spring) return fail(who + "joint springs are not translated to the peers");
+        if (j.servo && !(caps.hingeServos && j.type == JointType::Hinge && j.servoTimeConstant > 0.0))
+            return fail(who + "this joint's servo is not translated to this peer");
         if ((j.swingLimited || j.twistLimited) && !caps.ballLimits)
             return fail(who + "a ball joint's cone and twist limits are not translated to this peer");
     }
@@ -92,6 +94,11 @@ void jointStart(const PeerScene& ps, const JointModel& j, Vec3* anchorA, Vec3* a
     *anchorB = j.b < 0 ? j.anchorB : Vec3(ps.com[j.b] + ps.q[j.b] * j.anchorB);
     const bool axial = j.type == JointType::Hinge || j.type == JointType::Slider;
     *axis = axial ? Vec3(ps.q[j.a] * j.axisA) : Vec3::Zero();
+}
+
+double servoSpeed(const JointModel& j, double c, double v, double t, double h) {
+    const double tau = j.servoTimeConstant, x = c - j.servoTargetAt(t + h);
+    return (v - (v + x / tau) * h / tau) * std::exp(-h / tau);
 }
 
 Vec3 anyPerpendicular(const Vec3& axis) {

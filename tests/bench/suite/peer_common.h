@@ -33,7 +33,15 @@ struct PeerCaps {
     bool jointLimits = false, jointMotors = false, jointBreaking = false;
     bool compounds = false;  ///< ShapeType::Compound (several shapes on one body)
     bool ballLimits = false;  ///< a ball joint's swing cone and twist range
+    /// A hinge's servo by its time constant, driven as Tumble's through the peer's velocity
+    /// motor (servoSpeed, each step).
+    bool hingeServos = false;
 };
+
+/// The rate a hinge's servo by its time constant τ asks of the peer's velocity motor for the
+/// step from t to t + h, its coordinate c and rate v now: the rate at t + h of the critically
+/// damped path from (c − target(t + h), v), as Tumble's servo row (joint_drive.h) follows it.
+double servoSpeed(const JointModel& j, double c, double v, double t, double h);
 
 constexpr unsigned jointBit(JointType t) { return 1u << static_cast<unsigned>(t); }
 

@@ -129,6 +129,7 @@ private:
     double time_ = 0.0;
     bool quick_ = false;
     bool loads_ = false;
+    std::vector<std::pair<const JointModel*, dJointID>> servos_;  // driven each step
     int contacts_ = 0;
     int pending_ = 0;
     dWorldID world_ = nullptr;
@@ -148,6 +149,7 @@ void OdeAdapter::clear() {
     space_ = nullptr;
     world_ = nullptr;
     bodies_.clear();
+    servos_.clear();
     hulls_.clear();
     meshes_.clear();
 }
@@ -301,7 +303,7 @@ bool OdeAdapter::load(const SceneDesc& scene, const std::string& mode, double dt
                            peer::jointBit(JointType::Ball) | peer::jointBit(JointType::Hinge) |
                                peer::jointBit(JointType::Slider) | peer::jointBit(JointType::Fixed) |
                                peer::jointBit(JointType::Distance),
-                           true, true, false, true},
+                           true, true, false, true, false, true},
             &ps_, &reason)) {
         if (why) *why = reason;
         return false;
@@ -410,6 +412,10 @@ void OdeAdapter::makeJoint(const JointModel& j) {
             dJointSetHingeAnchor(id, pa.x(), pa.y(), pa.z());
             dJointSetHingeAxis(id, axis.x(), axis.y(), axis.z());
             axial(dParamLoStop, dParamHiStop, dParamVel, dParamFMax, 0.0);
+            if (j.servo) {  // (its speed set each step: peer::servoSpeed)
+                dJointSetHingeParam(id, dParamFMax, std::isfinite(j.servoMax) ? j.servoMax : dInfinity);
+                servos_.emplace_back(&j, id);
+            }
             break;
         case JointType::Slider:
             dJointSetSliderAxis(id, axis.x(), axis.y(), axis.z());
@@ -462,6 +468,11 @@ void OdeAdapter::step() {
             dBodyAddForce(id, F.x(), F.y(), F.z());
             dBodyAddTorque(id, T.x(), T.y(), T.z());
         }
+    }
+    for (const auto& [j, id] : servos_) {  // a servo by its time constant, as Tumble's
+        dJointSetHingeParam(id, dParamVel,
+                            peer::servoSpeed(*j, dJointGetHingeAngle(id), dJointGetHingeAngleRate(id), time_, dt_));
+        dBodyEnable(bodies_[j->a].id);
     }
     pending_ = 0;
     dSpaceCollide(space_, this, &OdeAdapter::nearCallback);
