@@ -24,7 +24,8 @@
 //                0.1 rad after 2 s: the sign and zero of the hinge angle). A peer that does not
 //                translate limits prints n/a for the second, not a failure. The same bar
 //                lifted by a servo by its time constant to +0.5 rad: there within 0.02 rad
-//                after 2 s, never past it by more (a peer without servos: n/a).
+//                after 2 s, never past it by more (a peer without servos: n/a); a ball
+//                joint's swing cone of 0.5 rad holding a bob pushed at 4 m/s (within 0.05).
 //
 // Prints a table; exits 1 when a check fails, 2 when no peer was built.
 #include "engine_adapter.h"
@@ -32,6 +33,7 @@
 #include <tumble/mass.h>
 #include <tumble/model.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -384,7 +386,21 @@ std::string checkJoints(EngineAdapter& e, const std::string& mode, bool* ok) {
         most = std::max(most, angle);
     }
     if (!(std::abs(angle - 0.5) <= 0.02) || !(most <= 0.52)) *ok = false;
-    return out + fmt(", servo at %+.3f (most %+.3f) rad", angle, most);
+    out += fmt(", servo at %+.3f (most %+.3f) rad", angle, most);
+    // A swing cone of 0.5 rad about the bob's hanging axis: pushed at 4 m/s (free, it would
+    // swing to 1.4 rad), it stays in the cone (within 0.05 rad over 2 s).
+    SceneDesc cone = ballPendulum(0.0);
+    cone.joints[0].axisA = Vec3::UnitY();
+    cone.joints[0].swingLimit = std::array<double, 2>{0.5, 0.5};
+    cone.bodies[0].velocity = Vec3(4, 0, 0);
+    if (!e.load(cone, mode, kDt, &why)) return out + ", cone n/a";
+    double swing = 0.0;
+    for (int k = 0; k < 2 * 240; ++k) {
+        e.step();
+        swing = std::max(swing, std::acos(std::clamp((e.body(0).q * Vec3::UnitY()).y(), -1.0, 1.0)));
+    }
+    if (!(swing <= 0.55) || !(swing > 0.4)) *ok = false;
+    return out + fmt(", cone 0.5: most %.3f rad", swing);
 }
 
 }  // namespace
