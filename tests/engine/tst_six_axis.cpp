@@ -18,6 +18,7 @@
 #include <Eigen/Dense>
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -151,6 +152,46 @@ private slots:
         QVERIFY2(std::abs(o.omega / 4.0 - 1.0) < 1e-6, qPrintable(QString::number(o.omega, 'g', 12)));
         QVERIFY2(std::abs(o.zeta) < 1e-6, qPrintable(QString::number(o.zeta, 'g', 12)));
         QVERIFY2(std::abs(o.centre - 0.5) < 1e-6, qPrintable(QString::number(o.centre, 'g', 12)));
+    }
+
+    // The rest at 3 rad and the wheel started at 0: it swings to 6 rad, past π, where its
+    // coordinate (a rotation vector's component) jumps to 6 − 2π; the spring pulls the short
+    // way round all the same: ω = 4 rad/s to 1e-6, about 3 rad.
+    void torsionSpringSwingsPastPi_data() { addRows({240}); }
+    void torsionSpringSwingsPastPi() {
+        QFETCH(double, h);
+        QFETCH(int, seed);
+        JointDesc::Axis rx = freeAxis();
+        rx.spring = JointDesc::Spring{4.0, 0.0, 3.0};
+        World w(turnedScene(wheel(rx), poseOf(seed)));  // (at 0: 3 rad from the rest)
+        std::vector<double> path{coordinates(w)[RX]};
+        for (int i = 0; i < static_cast<int>(std::lround(2.0 / h)); ++i) {
+            w.step(h);
+            const double c = coordinates(w)[RX];
+            path.push_back(path.back() + std::remainder(c - path.back(), 2.0 * M_PI));  // unwrapped
+        }
+        QVERIFY2(*std::max_element(path.begin(), path.end()) > M_PI + 1.0, "never past pi");
+        const Oscillation o = fitOscillation(path, h);
+        QVERIFY2(std::abs(o.omega / 4.0 - 1.0) < 1e-6, qPrintable(QString::number(o.omega, 'g', 12)));
+        QVERIFY2(std::abs(o.centre - 3.0) < 1e-6, qPrintable(QString::number(o.centre, 'g', 12)));
+    }
+
+    // Every axis free: a joint that holds nothing. The box falls as a free body, to 1e-12 m
+    // of g t² / 2 after 0.5 s (the splitting integrator is exact for a constant force).
+    void allFreeHoldsNothing_data() { addRows({60}); }
+    void allFreeHoldsNothing() {
+        QFETCH(double, h);
+        QFETCH(int, seed);
+        SceneDesc s = sceneOf({boxBody("box", Vec3(0.2, 0.1, 0.2), 2.0)});
+        s.settings.sleeping = false;
+        JointDesc j = sixAxis("box", Vec3::Zero());
+        for (JointDesc::Axis& a : j.axes) a = freeAxis();
+        s.joints.push_back(j);
+        const WorldPose pose = poseOf(seed);
+        World w(turnedScene(s, pose));
+        for (int i = 0; i < static_cast<int>(std::lround(0.5 / h)); ++i) w.step(h);
+        const Vec3 want = pose.point(Vec3(0, -0.5 * 9.81 * 0.25, 0));
+        QVERIFY2((w.state().bodies[0].x - want).norm() < 1e-12, qPrintable(QString::number((w.state().bodies[0].x - want).norm())));
     }
 
     // A motor of 2 rad/s with at most 0.1 N m on the wheel (I = 0.25): each step adds M h / I

@@ -104,6 +104,10 @@ void jointFeatureRows(Row row) {
         R"("type": "six_axis", "axes": {"y": {"spring": {"stiffness": -3}}}, "body_a": "crate")",
         "joints[1].axes.y.spring.stiffness",
         "drop.json: joints[1].axes.y.spring.stiffness: must be a finite number, at least 0");
+    row("an angle's servo target past pi", ball,
+        R"("type": "six_axis", "axes": {"rx": {"servo": {"target": 4, "time_constant": 0.1}}}, "body_a": "crate")",
+        "joints[1].axes.rx.servo.target",
+        "drop.json: joints[1].axes.rx.servo.target: must be an angle within [-pi, pi] (rad)");
     row("six-axis with axis_b", ball, R"("type": "six_axis", "body_a": "crate", "axis_a": [0, 1, 0], "axis_b": [1, 0, 0])",
         "joints[1].axis_b",
         "drop.json: joints[1].axis_b: a six_axis joint's frame on body_b is body_a's as placed: give axis_a only");

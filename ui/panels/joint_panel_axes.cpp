@@ -63,6 +63,7 @@ void JointPanel::buildAxisRows() {
     addFormRow(tr("Settings of"), "drives_on", drivesOn_);
     connect(drivesOn_, &QComboBox::activated, this, [this](int i) {
         sixAxis_ = drivesOn_->itemData(i).toInt();
+        ++generation_;  // (an edit of another axis is another undo step)
         dropHeld();
         clearErrors();
         refresh();

@@ -112,6 +112,17 @@ void validateSixAxis(const JointDesc& j, const std::string& p) {
         validateDrives({x.limits, x.motor, x.spring, x.servo}, q, i < 3);
         if (i >= 3 && x.limits && !((*x.limits)[0] >= -M_PI && (*x.limits)[1] <= M_PI))
             throw SceneError(q + ".limits", "must be angles within [-pi, pi] (rad)");
+        // (An angle a servo or spring aims at beyond ±π could never be reached: past π the
+        // coordinate is the turn the other way.)
+        auto within = [&](double angle, const std::string& field) {
+            if (i >= 3 && !(std::abs(angle) <= M_PI)) throw SceneError(field, "must be an angle within [-pi, pi] (rad)");
+        };
+        if (x.spring) within(x.spring->rest, q + ".spring.rest");
+        if (x.servo) {
+            within(x.servo->target, q + ".servo.target");
+            for (size_t k = 0; k < x.servo->keys.size(); ++k)
+                within(x.servo->keys[k].target, q + ".servo.keys[" + std::to_string(k) + "].target");
+        }
     }
 }
 

@@ -60,8 +60,9 @@ double jointSpringEnergy(const Model& model, const State& state) {
     double energy = 0.0;
     auto add = [&](const JointModel& j, const JointAxis& x) {
         if (!x.spring || x.springStiffness == 0.0) return;
-        const double stretch =
+        double stretch =
             axisCoordinate(j, x, state.bodies[j.a], j.b >= 0 ? &state.bodies[j.b] : nullptr, state) - x.springRest;
+        if (x.axis >= 3) stretch = std::remainder(stretch, 2.0 * M_PI);  // (the short way round, as the solver's)
         energy += 0.5 * x.springStiffness * stretch * stretch;
     };
     for (const JointModel& j : model.joints) {

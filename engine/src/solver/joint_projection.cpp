@@ -91,7 +91,7 @@ double measure(const Model& /*model*/, const State& state, const State& at, std:
             limitedBallRows(j, a, b, r.ballBounds.data(), r.bounds, r.now, &error);
             if (&at == &state) r.then = r.now;
             r.C = error.head(r.count);
-            worst = std::max(worst, r.C.cwiseAbs().maxCoeff());
+            if (r.count > 0) worst = std::max(worst, r.C.cwiseAbs().maxCoeff());  // (a six-axis joint all free: none)
             if (sum) *sum += r.C.squaredNorm();
             continue;
         }
@@ -108,7 +108,7 @@ double measure(const Model& /*model*/, const State& state, const State& at, std:
             }
             if (&at == &state) r.then = r.now;  // (else made once: the start does not move)
             r.C = error.head(r.count);
-            worst = std::max(worst, r.C.cwiseAbs().maxCoeff());
+            if (r.count > 0) worst = std::max(worst, r.C.cwiseAbs().maxCoeff());  // (a six-axis joint all free: none)
             if (sum) *sum += r.C.squaredNorm();
             continue;
         }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <array>
@@ -127,6 +128,13 @@ double heldAxisMass(const ContactSolverScratch::GeneralRow& g, const AxisRow& x,
     return inv > 1e-12 * (x.JAx.dot(mA) + x.JBx.dot(mB)) ? 1.0 / inv : 0.0;
 }
 
+// A difference of free axis x's coordinates: a six-axis joint's angle (a rotation vector's
+// component, within ±π) jumps by 2π as it passes ±π, so its differences are taken the
+// short way round (a hinge's angle is counted on past a turn: as it is).
+double gap(const JointAxis& x, double d) {
+    return x.axis >= 3 ? std::remainder(d, 2.0 * M_PI) : d;
+}
+
 // The coordinate of joint j's free axis x at the poses of `at` (a hinge's angle near the
 // last step's, as `state` tracks it).
 double coordinateAt(const JointModel& j, const JointAxis& x, const State& at, const State& state) {
@@ -163,20 +171,20 @@ void prepareDrives(const JointModel& jm, double h, const State& state, ContactSo
         d.gain = 1.0 / ((1.0 - step.kappa) / x.kAxis + step.kappa / mass);
         d.most = most;
     };
-    if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, x.coord - j.springRest, HUGE_VAL);
+    if (j.spring) add(j.springDamping / mass, j.springStiffness / mass, gap(j, x.coord - j.springRest), HUGE_VAL);
     if (!j.servo) return;
     const double tau = j.servoTimeConstant;
     // The target at the step's end (a keyed one moves: each step chases it).
     const double target = j.servoTargetAt(s.stepStart ? s.stepStart->time + h : state.time);
     if (!(tau > 0.0)) {
-        add(j.servoDamping / mass, j.servoStiffness / mass, x.coord - target, j.servoMax * h);
+        add(j.servoDamping / mass, j.servoStiffness / mass, gap(j, x.coord - target), j.servoMax * h);
         return;
     }
     const DriveStep step = driveStep(2.0 / tau, 1.0 / (tau * tau), h);
     ContactSolverScratch::GeneralRow::Drive& d = s.driveRows.emplace_back();
     ++x.drives;
     d.hard = true;
-    d.target = step.b / h * (x.startCoord - target) + (step.alpha + step.b) * x.startRate;
+    d.target = step.b / h * gap(j, x.startCoord - target) + (step.alpha + step.b) * x.startRate;
     d.most = j.servoMax * h;
 }
 
@@ -198,7 +206,13 @@ bool prepareGeneral(const JointModel& j, int k, const State& state, double h, do
     if (!g.Kinv.allFinite()) return false;
     if (remembered && state.jointTorques.size() == state.jointImpulses.size()) {
         g.lambda.head(g.nl) = g.lin.leftCols(g.nl).transpose() * (span * state.jointImpulses[k]);
-        g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (span * state.jointTorques[k]);
+        // (The rows' directions are square to each other but a six-axis joint's angular ones,
+        // the torque's least-squares split over them: the impulses that give it again.)
+        if (j.type == JointType::SixAxis && g.na > 0)
+            g.lambda.segment(g.nl, g.na) =
+                g.ang.leftCols(g.na).colPivHouseholderQr().solve(span * state.jointTorques[k]);
+        else
+            g.lambda.segment(g.nl, g.na) = g.ang.leftCols(g.na).transpose() * (span * state.jointTorques[k]);
         // Its work: λ·u⁻ + λᵀKλ/2 (the rows' velocity after is u⁻ + Kλ).
         s.jointWork +=
             g.lambda.dot(generalVelocity(g, A, B ? *B : kStill)) + 0.5 * g.lambda.dot(K * g.lambda);
@@ -419,8 +433,9 @@ void nudgeDrives(const Model& model, State& state, const ContactSolverScratch& s
                 const bool moveA = movable(model, state, j.a), moveB = movable(model, state, j.b);
                 const SolverBody& A = moveA ? s.bodies[j.a] : kStill;
                 const SolverBody& B = moveB ? s.bodies[j.b] : kStill;
-                const double missing = x.startCoord + 0.5 * h * (x.startRate + axisVelocity(x, A, B)) -
-                                       coordinateAt(j, *x.settings, state, state);
+                const double missing =
+                    gap(*x.settings, x.startCoord + 0.5 * h * (x.startRate + axisVelocity(x, A, B)) -
+                                         coordinateAt(j, *x.settings, state, state));
                 worst = std::max(worst, std::abs(missing));
                 if (std::abs(missing) <= kHeld) continue;
                 Vector6 held;

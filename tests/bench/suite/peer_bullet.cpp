@@ -418,8 +418,10 @@ bool BulletAdapter::makeJoint(const JointModel& j, std::string* why) {
                 const Quat qb = j.b < 0 ? Quat::Identity() : ps_.q[j.b];
                 const Vec3 n = qb * j.axisB, e1 = qb * j.swingCross;
                 const btTransform fa = frameIn(j.a, pa, n.cross(e1), n), fb = frameIn(j.b, pb, n.cross(e1), n);
-                auto ct = B ? std::make_unique<btConeTwistConstraint>(A, *B, fa, fb)
-                            : std::make_unique<btConeTwistConstraint>(A, fa);
+                // (To the world: the fixed body with B's frame; Bullet's one-body form puts
+                // B's frame at the world's origin, turned as A's.)
+                auto ct = std::make_unique<btConeTwistConstraint>(A, B ? *B : btTypedConstraint::getFixedBody(),
+                                                                  fa, fb);
                 ct->setLimit(j.swingLimited ? j.swingLimit[0] : M_PI, j.swingLimited ? j.swingLimit[1] : M_PI,
                              j.twistLimited ? j.twistUpper : M_PI);
                 c = std::move(ct);
