@@ -565,12 +565,14 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     const double found = std::max(error, past);
     if (found <= kHeld) return found;
     // (As for the others: a body that turned far since the start is left to the passes
-    // along the directions now.)
-    if (from && (turnedFar(at.bodies[j.a].q, a.q) || (b && turnedFar(at.bodies[j.b].q, b->q)))) return found;
+    // along the directions now; but a stop past with the rows held is moved back along the
+    // directions now, positions only, as a stop always was.)
+    const bool far = from && (turnedFar(at.bodies[j.a].q, a.q) || (b && turnedFar(at.bodies[j.b].q, b->q)));
+    if (far && error > kHeld) return found;
     now.m = m + extra;
     // The rows at the start; at the poses now themselves (the passes along the directions
     // now) they are the ones just made.
-    if (&at == &state) {
+    if (&at == &state || far) {
         then = now;
     } else {
         std::array<AxisRow, 6> axes0;
@@ -588,7 +590,7 @@ double projectGeneral(State& state, ContactSolverScratch& s, double h, const Sta
     const Vector6 lambda = -K.partialPivLu().solve(C);
     if (!lambda.allFinite()) return found;
     nudgeGeneral(then, A, a, moveA, B, b, moveB, lambda);
-    if (from && h != 0.0) {  // the rows' move was made by the impulse λ / h over the step
+    if (from && h != 0.0 && !far) {  // the rows' move was made by the impulse λ / h over the step
         Vector6 rows = lambda;
         rows.tail(6 - m).setZero();  // (the stops' moves give no velocity)
         s.projectedImpulse[j.index] += then.lin.leftCols(then.nl) * rows.head(then.nl) / h;
