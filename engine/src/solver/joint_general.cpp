@@ -191,6 +191,7 @@ Matrix6 generalMass(const ContactSolverScratch::GeneralRow& now, const ContactSo
                     const SolverBody& A, const SolverBody& B) {
     Matrix6 K = Matrix6::Identity();
     const int m = now.m;
+    if (m == 0) return K;  // (a six-axis joint with every axis free and nothing past a stop)
     auto add = [&](const Matrix6& Jn, const Matrix6& Jt, const SolverBody& body) {
         if (body.invMass == 0.0 && body.invI.isZero(0.0)) return;
         Eigen::Matrix<double, 6, Eigen::Dynamic> MJ(6, m);

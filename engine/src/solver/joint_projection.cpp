@@ -364,9 +364,11 @@ void projectGroups(const Model& model, State& state, ContactSolverScratch& s, do
     std::vector<int> members;
     for (int k = 0; k < static_cast<int>(model.joints.size()); ++k) {
         const JointModel& j = model.joints[k];
-        // Ropes (one-sided) are left to the Gauss-Seidel passes; so are a hinge's or
-        // slider's limits (joints.cpp: after the group has closed the joint's other rows).
+        // Ropes (one-sided) are left to the Gauss-Seidel passes; limits past join their
+        // joint's rows in a positions-only solve (addLimitRows, limitedBallRows).
         if (!active(model, state, j) || j.type == JointType::Rope) continue;
+        // (A six-axis joint with every axis free has no rows: its stops are the passes'.)
+        if (j.type == JointType::SixAxis && j.locked == 0) continue;
         members.push_back(k);
         if (movable(model, state, j.a) && movable(model, state, j.b))
             parent[root(parent, j.a)] = root(parent, j.b);
