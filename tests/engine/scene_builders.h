@@ -22,6 +22,17 @@ inline BodyDesc sphereBody(const std::string& name, double radius, double mass) 
     return b;
 }
 
+/// A cylinder about its y axis (a disc, a wheel) of `radius` and `halfHeight`.
+inline BodyDesc cylinderBody(const std::string& name, double radius, double halfHeight, double mass) {
+    BodyDesc b;
+    b.name = name;
+    b.shape.type = ShapeType::Cylinder;
+    b.shape.radius = radius;
+    b.shape.halfHeight = halfHeight;
+    b.mass = mass;
+    return b;
+}
+
 inline BodyDesc boxBody(const std::string& name, const Vec3& halfExtents, double mass) {
     BodyDesc b;
     b.name = name;

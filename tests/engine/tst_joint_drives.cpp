@@ -64,12 +64,7 @@ SceneDesc sliderSpring(double k, double c) {
 // A wheel (a disc about y, I = m r² / 2 = 0.25 kg m²) on a hinge about its axis through its
 // centre, turned 0.5 rad from where its torsion spring (or servo) rests.
 SceneDesc wheel(std::optional<JointDesc::Spring> spring, std::optional<JointDesc::Servo> servo) {
-    BodyDesc disc;
-    disc.name = "wheel";
-    disc.shape.type = ShapeType::Cylinder;
-    disc.shape.radius = 0.5;
-    disc.shape.halfHeight = 0.05;
-    disc.mass = 2.0;
+    BodyDesc disc = cylinderBody("wheel", 0.5, 0.05, 2.0);
     disc.position = Vec3(0, 1, 0);
     SceneDesc s = sceneOf({disc});
     s.settings.sleeping = false;

@@ -66,12 +66,7 @@ JointDesc::Axis freeAxis() {
 // A wheel (a disc about y, I = m r² / 2 = 0.25 kg m²) at (0, 1, 0) on a six-axis joint to
 // the world whose x is the wheel's axis; only rx free, acted on by `rx`.
 SceneDesc wheel(JointDesc::Axis rx) {
-    BodyDesc disc;
-    disc.name = "wheel";
-    disc.shape.type = ShapeType::Cylinder;
-    disc.shape.radius = 0.5;
-    disc.shape.halfHeight = 0.05;
-    disc.mass = 2.0;
+    BodyDesc disc = cylinderBody("wheel", 0.5, 0.05, 2.0);
     disc.position = Vec3(0, 1, 0);
     SceneDesc s = sceneOf({disc});
     s.settings.sleeping = false;
