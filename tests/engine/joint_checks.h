@@ -45,7 +45,7 @@ inline double energy(const World& w) {
         if (b.motion != Motion::Dynamic) continue;
         const BodyState& s = w.state().bodies[i];
         const Derived d = derive(b, s);
-        e += 0.5 * b.mass * d.v.squaredNorm() + 0.5 * d.omega.dot(s.L) + b.mass * 9.81 * s.x.y();
+        e += 0.5 * b.mass * d.v.squaredNorm() + 0.5 * d.omega.dot(s.L) - b.mass * w.model().settings.gravity.dot(s.x);
     }
     return e;
 }
