@@ -423,12 +423,17 @@ void newtonSteps(const Model& model, State& state, ContactSolverScratch& s, doub
         return r.joint->type == JointType::Ball && !r.general;
     });
     const std::vector<int> path = balls ? pathOrder(count, pairs) : std::vector<int>{};
-    const Elimination plan = path.empty() ? eliminationOf(count, pairs) : Elimination{};
+    Elimination plan;  // (made at the first step: most groups need none)
+    bool planned = !path.empty();
     std::optional<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu;  // made when a large group needs it
     std::optional<DampedTurns> damped;  // once a full positions-only step has failed
     double squares = 0.0;
     double error = measure(model, state, at, rows, &squares);
     for (int it = 0; it < iterations && error > kHeld; ++it) {
+        if (!planned) {
+            plan = eliminationOf(count, pairs);
+            planned = true;
+        }
         const Eigen::VectorXd lambda = newtonImpulses(model, state, s, rows, pairs, path, plan, size, lu);
         if (!lambda.allFinite()) break;
         // Every joint's impulse from the same linearisation, then the error again. Along
