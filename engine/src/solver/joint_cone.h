@@ -9,7 +9,8 @@
 // about u = n × a / |n × a| (which opens φ).
 // Twist: A's turn about its axis relative to B's, from the swing-twist split of A's rotation
 // since the scene placed the two (0 there), within [−π, π]; its row turns about the mean of
-// the two axes.
+// A's axis a and where the placement puts it, m: (a + m) / (1 + a·m), whose dot product with
+// the relative spin is the twist's rate.
 // Both rows are one-sided and speculative, as a hinge's limits (joint_general.h): the angle
 // may reach its bound within the step, no further; past it, no rate back, and the position
 // projection (projectLimitedBall) turns the bodies back with the anchors held.
