@@ -113,17 +113,23 @@ private slots:
     // quarter of the error a step.)
     void limitRowsAreTheAnglesRates_data() {
         QTest::addColumn<double>("swing");
+        QTest::addColumn<double>("second");  // the cone's second half-angle (the first 100°)
         QTest::addColumn<int>("seed");
         for (double deg : {10.0, 45.0, 80.0})
-            for (int seed : {0, 7})
-                QTest::newRow(qPrintable(QString("%1 deg %2").arg(deg).arg(seed ? "turned" : "as built")))
-                    << deg * kDeg << seed;
+            for (double second : {100.0, 40.0})
+                for (int seed : {0, 7})
+                    QTest::newRow(qPrintable(QString("%1 deg, %2 cone, %3")
+                                                 .arg(deg)
+                                                 .arg(second == 100.0 ? "circular" : "elliptical")
+                                                 .arg(seed ? "turned" : "as built")))
+                        << deg * kDeg << second * kDeg << seed;
     }
     void limitRowsAreTheAnglesRates() {
         QFETCH(double, swing);
+        QFETCH(double, second);
         QFETCH(int, seed);
         const WorldPose pose = poseOf(seed);
-        SceneDesc s = pendulum(swing, Vec3::Zero(), {100 * kDeg, 100 * kDeg});
+        SceneDesc s = pendulum(swing, Vec3::Zero(), {100 * kDeg, second});
         s.joints[0].twistLimits = std::array<double, 2>{-1.0, 1.0};
         World w(turnedScene(s, pose));
         const JointModel& j = w.model().joints[0];
@@ -132,6 +138,10 @@ private slots:
         const tumble::joint::BallAngles g = tumble::joint::ballAngles(j, a, nullptr);
         QVERIFY(g.swingKnown);
         QVERIFY(std::abs(g.swing - swing) < 1e-12);
+        // Leaning the other way as well, off the ellipse's axes (where its bound turns).
+        a.q = (pose.R * Quat(Eigen::AngleAxisd(0.3, Vec3::UnitX())) * pose.R.conjugate() * a.q).normalized();
+        const tumble::joint::BallAngles h = tumble::joint::ballAngles(j, a, nullptr);
+        if (second != 100 * kDeg) QVERIFY((h.swingRow - h.swingAxis).norm() > 1e-2);  // (the case it is for)
         Rng rng{3};
         for (int k = 0; k < 5; ++k) {
             const Vec3 d = rng.vec(-1, 1).normalized();
@@ -139,12 +149,16 @@ private slots:
             BodyState plus = a, minus = a;
             plus.q = (Quat(Eigen::AngleAxisd(eps, d)) * a.q).normalized();
             minus.q = (Quat(Eigen::AngleAxisd(-eps, d)) * a.q).normalized();
-            const tumble::joint::BallAngles p = tumble::joint::ballAngles(j, plus, nullptr), m = tumble::joint::ballAngles(j, minus, nullptr);
+            const tumble::joint::BallAngles p = tumble::joint::ballAngles(j, plus, nullptr);
+            const tumble::joint::BallAngles m = tumble::joint::ballAngles(j, minus, nullptr);
             const double twistRate = (p.twist - m.twist) / (2 * eps), swingRate = (p.swing - m.swing) / (2 * eps);
-            QVERIFY2(std::abs(twistRate - g.twistAxis.dot(d)) < 1e-7,
-                     qPrintable(QString("twist: %1 against %2").arg(twistRate).arg(g.twistAxis.dot(d))));
-            QVERIFY2(std::abs(swingRate - g.swingAxis.dot(d)) < 1e-7,
-                     qPrintable(QString("swing: %1 against %2").arg(swingRate).arg(g.swingAxis.dot(d))));
+            const double pastRate = (p.swing - p.swingBound - m.swing + m.swingBound) / (2 * eps);
+            QVERIFY2(std::abs(twistRate - h.twistAxis.dot(d)) < 1e-7,
+                     qPrintable(QString("twist: %1 against %2").arg(twistRate).arg(h.twistAxis.dot(d))));
+            QVERIFY2(std::abs(swingRate - h.swingAxis.dot(d)) < 1e-7,
+                     qPrintable(QString("swing: %1 against %2").arg(swingRate).arg(h.swingAxis.dot(d))));
+            QVERIFY2(std::abs(pastRate - h.swingRow.dot(d)) < 1e-7,
+                     qPrintable(QString("past the cone: %1 against %2").arg(pastRate).arg(h.swingRow.dot(d))));
         }
     }
 

@@ -20,8 +20,16 @@ BallAngles ballAngles(const JointModel& j, const BodyState& a, const BodyState* 
         out.swingAxis = lean / s;
         const Vec3 d = (aA - aA.dot(n) * n).normalized();
         const Vec3 e1 = qb * j.swingCross, e2 = n.cross(e1);
-        const double d1 = d.dot(e1) / j.swingLimit[0], d2 = d.dot(e2) / j.swingLimit[1];
+        const double c = d.dot(e1), t = d.dot(e2);  // the lean's direction ψ: cos, sin
+        const double d1 = c / j.swingLimit[0], d2 = t / j.swingLimit[1];
         out.swingBound = 1.0 / std::sqrt(d1 * d1 + d2 * d2);
+        // φ − θ(ψ) changes by u·δ − θ'(ψ) dψ for a turn δ of A relative to B, and the lean
+        // turns about n by dψ = (n − d cot φ)·δ; θ' = θ³ cos ψ sin ψ (1/θ₁² − 1/θ₂²), 0 on a
+        // circle (where the row is u, to the bit).
+        const double bound = out.swingBound;
+        const double slope = bound * bound * bound * c * t *
+                             (1.0 / (j.swingLimit[0] * j.swingLimit[0]) - 1.0 / (j.swingLimit[1] * j.swingLimit[1]));
+        out.swingRow = out.swingAxis - slope * (n - d * (n.dot(aA) / s));
     } else {
         out.swingBound = std::min(j.swingLimit[0], j.swingLimit[1]);
     }
@@ -61,7 +69,7 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 int pastBounds(const JointModel& j, const BallAngles& g, Vec3* axes, double* past) {
     int n = 0;
     if (j.swingLimited && g.swingKnown && g.swing - g.swingBound > kHeld) {
-        axes[n] = g.swingAxis;
+        axes[n] = g.swingRow;
         past[n++] = g.swing - g.swingBound;
     }
     if (j.twistLimited && (g.twist < j.twistLower - kHeld || g.twist > j.twistUpper + kHeld)) {
@@ -107,7 +115,7 @@ double projectLimitedBall(State& state, ContactSolverScratch& s, double h, const
         const BallAngles g0 = ballAngles(j, at.bodies[j.a], b0);
         Vec3 axes0[3];
         for (int i = 0; i < na; ++i)
-            axes0[i] = axes[i] == g.swingAxis && g0.swingKnown ? g0.swingAxis
+            axes0[i] = axes[i] == g.swingRow && g0.swingKnown ? g0.swingRow
                        : axes[i] == g.twistAxis                 ? g0.twistAxis
                                                                 : axes[i];
         ballRows(j, at.bodies[j.a], b0, axes0, na, then);
@@ -142,7 +150,7 @@ void limitedBallRows(const JointModel& j, const BodyState& a, const BodyState* b
     Vec3 axes[3];
     double past[3];
     for (int i = 0; i < count; ++i) {
-        axes[i] = bounds[i] == 0 ? g.swingAxis : g.twistAxis;
+        axes[i] = bounds[i] == 0 ? g.swingRow : g.twistAxis;
         past[i] = bounds[i] == 0 ? g.swing - g.swingBound : bounds[i] == 1 ? g.twist - j.twistLower : g.twist - j.twistUpper;
     }
     ballRows(j, a, b, axes, count, rows);

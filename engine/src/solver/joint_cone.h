@@ -26,6 +26,11 @@ namespace tumble::joint {
 struct BallAngles {
     bool swingKnown = false;  ///< false when the axes are in line (no lean direction)
     Vec3 swingAxis = Vec3::Zero();  ///< u: turning A about it opens the swing
+    /// The rate of φ − θ(ψ) (how far past the cone) per turn of A relative to B: u on a
+    /// circular cone; on an elliptical one also the bound's change as the lean turns. The
+    /// position projection's row (its Newton steps); the velocity rows keep u, which stays
+    /// bounded as the lean's direction does not near the cone's axis.
+    Vec3 swingRow = Vec3::Zero();
     double swing = 0.0, swingBound = 0.0;  ///< φ and θ(d)
     Vec3 twistAxis = Vec3::Zero();
     double twist = 0.0;
