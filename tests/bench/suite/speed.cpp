@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -94,12 +95,33 @@ double jointGap(const JointModel& j, const EngineAdapter& engine) {
 }  // namespace
 
 int childMain(int argc, char** argv) {
+    const char* usage = "usage: tumble-bench --child speed SCENE ENGINE MODE [--quick] [--substeps N]\n";
     if (argc < 6 || std::strcmp(argv[2], "speed") != 0) {
-        std::fprintf(stderr, "usage: tumble-bench --child speed SCENE ENGINE MODE [--quick]\n");
+        std::fprintf(stderr, "%s", usage);
         return 2;
     }
     const std::string sceneName = argv[3], engineName = argv[4], mode = argv[5];
-    const bool quick = argc > 6 && std::strcmp(argv[6], "--quick") == 0;
+    // --substeps N: each of the scene's frames (its dt) stepped as N steps of dt / N, the
+    // time and the joints' gap still per frame. What a peer's accuracy costs: its joints
+    // held as Tumble's are (docs/benchmarks.md, "at matched accuracy").
+    bool quick = false;
+    int substeps = 1;
+    for (int i = 6; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) {
+            quick = true;
+        } else if (std::strcmp(argv[i], "--substeps") == 0 && i + 1 < argc) {
+            char* end = nullptr;
+            const long n = std::strtol(argv[++i], &end, 10);
+            if (*end != '\0' || n < 1 || n > 1000) {
+                std::fprintf(stderr, "tumble-bench: --substeps wants a whole number from 1 to 1000, not '%s'\n", argv[i]);
+                return 2;
+            }
+            substeps = static_cast<int>(n);
+        } else {
+            std::fprintf(stderr, "tumble-bench: unknown option '%s'\n%s", argv[i], usage);
+            return 2;
+        }
+    }
     const double base = vmKB("VmHWM:");
     for (SpeedScene& sc : speedScenes()) {
         if (sc.name != sceneName) continue;
@@ -118,7 +140,7 @@ int childMain(int argc, char** argv) {
                 dynamic.push_back(b.motion == Motion::Dynamic);
                 if (b.motion == Motion::Static) floorY = std::min(floorY, b.position.y());
             }
-            loaded = engine && engine->load(scene, mode, sc.dt, &why);
+            loaded = engine && engine->load(scene, mode, sc.dt / substeps, &why);
         }
         if (!loaded) {
             std::printf("NA %s\n", engine ? why.c_str() : "not built");
@@ -131,7 +153,7 @@ int childMain(int argc, char** argv) {
         try {
             for (int i = 0; i < steps; ++i) {
                 const double t0 = wallNow();
-                engine->step();
+                for (int k = 0; k < substeps; ++k) engine->step();
                 const double t = wallNow() - t0;
                 total += t;
                 worst = std::max(worst, t);
