@@ -2,6 +2,7 @@
 // dialog opens, pictured part by part in colours with its figures, and applied to the body
 // as one undo step with the very parts shown (nothing made again); a mesh that bounds no
 // solid says why; a dialog closed while it splits stops the split.
+#include "../helpers/choose_file.h"
 #include "document/document.h"
 #include "import/convex_parts_preview.h"
 #include "import/convex_split_dialog.h"
@@ -126,8 +127,7 @@ private slots:
         connect(&poll, &QTimer::timeout, &w, [&] {
             QWidget* modal = QApplication::activeModalWidget();
             if (auto* files = qobject_cast<QFileDialog*>(modal)) {
-                files->selectFile(TUMBLE_SCENES_DIR "/../meshes/mug.obj");
-                QMetaObject::invokeMethod(files, "accept");
+                tumble::test::chooseFile(files, TUMBLE_SCENES_DIR "/../meshes/mug.obj");
             } else if (auto* options = qobject_cast<ImportOptionsDialog*>(modal); options && !chose) {
                 chose = true;
                 auto* collision = options->findChild<QComboBox*>("collision");

@@ -6,6 +6,7 @@
 #include "document/document.h"
 #include "import/import_options_dialog.h"
 #include "import/mesh_import_job.h"
+#include "../helpers/choose_file.h"
 #include "message_box_answer.h"
 #include "timeline/timeline.h"
 #include "viewport/viewport.h"
@@ -49,6 +50,7 @@
 using namespace tumble;
 using namespace tumble::ui;
 using tumble::ui::test::answerNextMessageBox;
+using tumble::test::chooseFile;
 
 namespace {
 
@@ -245,8 +247,7 @@ private slots:
         connect(&poll, &QTimer::timeout, &w, [&] {
             QWidget* modal = QApplication::activeModalWidget();
             if (auto* files = qobject_cast<QFileDialog*>(modal)) {
-                files->selectFile(file);
-                QMetaObject::invokeMethod(files, "accept");
+                chooseFile(files, file);
             } else if (auto* options = qobject_cast<ImportOptionsDialog*>(modal); options && !asked) {
                 asked = true;
                 inMetres = options->sizeText();
@@ -680,8 +681,7 @@ private slots:
         QTimer::singleShot(0, &w, [&] {
             auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
             if (!dialog) return;
-            dialog->selectFile(QDir(dir.path()).filePath("my-scene"));
-            QMetaObject::invokeMethod(dialog, "accept");  // as its Save button does
+            chooseFile(dialog, QDir(dir.path()).filePath("my-scene"));  // as its Save button does
             answered = true;
         });
         saveAs->trigger();
