@@ -243,7 +243,9 @@ void SceneTreeDock::addBody(ShapeType type) {
         return;
     }
     message_->hide();
-    const int index = doc_->addBody(presetBody(type, doc_->scene()));
+    BodyDesc body = presetBody(type, doc_->scene());
+    if (place_ && type != ShapeType::Plane) body = place_(body);
+    const int index = doc_->addBody(body);
     doc_->setSelection({index});
 }
 

@@ -9,6 +9,8 @@
 #include <QDockWidget>
 #include <QMap>
 
+#include <functional>
+
 class QAction;
 class QLabel;
 class QMenu;
@@ -51,9 +53,11 @@ public:
     /// why it cannot.
     void addJoint(JointType type);
 
-    /// Adds a body of that shape with the editor's defaults (body_presets.h) and selects it.
-    /// A mesh emits importMeshRequested instead: the mesh comes from a file.
+    /// Adds a body of that shape with the editor's defaults (body_presets.h) and selects it,
+    /// placed by the placement set (the main window's: on the surface under the view), else
+    /// above everything else. A mesh emits importMeshRequested instead: the mesh comes from a file.
     void addBody(ShapeType type);
+    void setPlacement(std::function<BodyDesc(const BodyDesc&)> place) { place_ = std::move(place); }
 
     /// Copies of the selected bodies, each moved straight up above everything else (a copy
     /// in the same place would start inside its original), as one undo step; selects them.
@@ -69,6 +73,7 @@ private:
     void showMessage(const QString& text);
 
     Document* doc_;
+    std::function<BodyDesc(const BodyDesc&)> place_;
     SceneTreeModel* model_;
     QTreeView* view_;
     JointList* joints_;

@@ -54,7 +54,10 @@ TimelineDock::TimelineDock(Timeline* timeline, QWidget* parent)
     back_ = newAction(this, tr("Step Back"), "stepBack", QStyle::SP_MediaSeekBackward, Qt::Key_Left);
     play_ = newAction(this, tr("Play"), "play", QStyle::SP_MediaPlay, Qt::Key_Space);
     forward_ = newAction(this, tr("Step Forward"), "stepForward", QStyle::SP_MediaSeekForward, Qt::Key_Right);
-    end_ = newAction(this, tr("Jump to End"), "toEnd", QStyle::SP_MediaSkipForward, Qt::Key_End);
+    // End alone is Scene > Drop to Surface (as in other editors); Home keeps the start.
+    start_->setShortcuts({QKeySequence(Qt::Key_Home), QKeySequence(Qt::CTRL | Qt::Key_Home)});
+    end_ = newAction(this, tr("Jump to End"), "toEnd", QStyle::SP_MediaSkipForward,
+                     QKeySequence(Qt::CTRL | Qt::Key_End));
     loop_ = newAction(this, tr("Loop"), "loop", QStyle::SP_BrowserReload, QKeySequence(tr("L")));
     loop_->setCheckable(true);
     simulate_ =

@@ -271,7 +271,9 @@ void MainWindow::buildMenus() {
         doc_->setSelection(all);
     });
 
-    // The timeline's keys (Space, Left, Right, Home, End) work anywhere in the window; a
+    buildSceneMenu(edit);  // and Copy, Paste (main_window_build.cpp)
+
+    // The timeline's keys (Space, Left, Right, Home, Ctrl+End) work anywhere in the window; a
     // text field that has the focus keeps its own use of them.
     QMenu* simulation = menuBar()->addMenu(tr("&Simulation"));
     simulation->addAction(timelineDock_->simulateAction());

@@ -8,6 +8,7 @@
 #include <tumble/io/mesh_import.h>
 #include <tumble/io/trajectory_writer.h>
 
+#include "document/placement.h"
 #include "window/shortcuts_dialog.h"
 
 #include <QMainWindow>
@@ -17,6 +18,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 class QMenu;
 class QTimer;
@@ -142,6 +144,23 @@ private:
     /// Keys the one selected body's pose at the playhead (Edit > Insert Key, I in the
     /// viewport): at frame 0 the pose it is placed at, later the recorded one.
     void insertKey();
+    // Building (ui/window/main_window_build.cpp): the Scene menu, Copy and Paste.
+    void buildSceneMenu(QMenu* edit);
+    /// Where the view looks on the scene's surfaces: the first hit of the ray through the
+    /// view's centre, else the camera's target; the body hit (-1: none or a plane).
+    Vec3 viewPoint(int* hitBody = nullptr) const;
+    /// `body` set down resting on the surface under the view's centre (placement.h
+    /// setDownAt); on another body, centred on it (adds in a row stack up).
+    BodyDesc setDownUnderView(BodyDesc body) const;
+    void dropSelection();
+    void copySelection();
+    void pasteBodies();
+    void arrayDialog();
+    void layoutDialog(Layout kind);
+    /// New bodies in one undo step called `text`, then selected.
+    void addBodies(const std::vector<BodyDesc>& bodies, const QString& text);
+    SceneDesc copied_;      // the last Copy, with its meshes' triangles
+    QString copiedText_;    // ... and the text it put on the clipboard
 
     Document* doc_ = nullptr;
     Timeline* timeline_ = nullptr;

@@ -282,7 +282,7 @@ private slots:
         QVERIFY(QTest::qWaitFor([&] { return t->status() == Timeline::Status::Complete; }, kWaitMs));
         w.activateWindow();
         QVERIFY(QTest::qWaitForWindowActive(&w));
-        QTest::keyClick(&w, Qt::Key_End);
+        QTest::keyClick(&w, Qt::Key_End, Qt::ControlModifier);  // (End alone: Drop to Surface)
         QCOMPARE(t->currentFrame(), t->frameCount() - 1);
         QTest::keyClick(&w, Qt::Key_Left);
         QCOMPARE(t->currentFrame(), t->frameCount() - 2);
@@ -298,7 +298,7 @@ private slots:
         w.viewport()->setFocus();
         QTest::keyClick(w.viewport()->renderWindow(), Qt::Key_Right);
         QCOMPARE(t->currentFrame(), 2);
-        QTest::keyClick(w.viewport()->renderWindow(), Qt::Key_End);
+        QTest::keyClick(w.viewport()->renderWindow(), Qt::Key_End, Qt::ControlModifier);
         QCOMPARE(t->currentFrame(), t->frameCount() - 1);
 
         // A long run: cancel keeps the frames made and the scene.

@@ -1,0 +1,236 @@
+// Building a scene quickly (issue 52), through the real window: Add sets a body down on the
+// surface under the view's centre and adds in a row stack up; End drops the selection along
+// gravity onto what is below (not while a text field has the focus; Ctrl+End is the
+// timeline's); Copy and Paste put the copies beside the originals; Array and Make Stack /
+// Pyramid / Wall fill their dialogs and add their bodies; each is one undo step.
+#include "document/document.h"
+#include "panels/scene_tree_dock.h"
+#include "timeline/timeline.h"
+#include "viewport/viewport.h"
+#include "window/main_window.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCheckBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QTimer>
+#include <QUndoStack>
+#include <QtTest>
+
+#include <functional>
+
+using namespace tumble;
+using namespace tumble::ui;
+
+namespace {
+
+// Within the touch tolerance the drop stops at (1e-5 of the largest body's size).
+constexpr double kRest = 1e-4;
+
+QAction* action(MainWindow& w, const char* name) {
+    QAction* a = w.findChild<QAction*>(name);
+    if (!a) qFatal("no action %s", name);
+    return a;
+}
+
+// Opens the modal dialog `open` shows, lets `fill` set its fields, then presses OK.
+void withDialog(MainWindow& w, const std::function<void()>& open, const std::function<void(QDialog*)>& fill) {
+    bool seen = false;
+    QTimer::singleShot(0, &w, [&] {
+        auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+        QVERIFY(dialog);
+        seen = true;
+        fill(dialog);
+        QPushButton* ok = dialog->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok);
+        QVERIFY(ok->isEnabled());
+        ok->click();
+    });
+    open();
+    QVERIFY(seen);
+}
+
+struct Window {
+    MainWindow w;
+    Document* doc() { return w.document(); }
+    Window() {
+        w.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&w));
+        w.activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(&w));
+        // The new scene's ground; the view on the origin from above and aside.
+        w.viewport()->setCamera(QVector3D(0, 0, 0), 12.0f, 30.0f, 35.0f);
+    }
+    int addBox() {
+        w.findChild<SceneTreeDock*>()->addBodyAction(ShapeType::Box)->trigger();
+        return doc()->bodyCount() - 1;
+    }
+};
+
+}  // namespace
+
+class TestBuilding : public QObject {
+    Q_OBJECT
+private slots:
+    void addsRestOnTheSurfaceUnderTheViewAndStack() {
+        Window win;
+        const int ground = win.doc()->bodyCount();
+        for (int k = 0; k < 3; ++k) {
+            const int i = win.addBox();
+            QCOMPARE(win.doc()->selection(), QList<int>{i});
+            const Vec3 at = win.doc()->body(i).position;
+            // A unit box on the floor, then on each other, centred under the view.
+            QVERIFY2(std::abs(at.y() - (0.5 + k)) < kRest, qPrintable(QString::number(at.y(), 'g', 12)));
+            QVERIFY2(Vec3(at.x(), 0, at.z()).norm() < 1e-9, qPrintable(QString::number(at.x())));
+        }
+        QCOMPARE(win.doc()->bodyCount(), ground + 3);
+        // Looking elsewhere on the floor: the next one rests there.
+        win.w.viewport()->setCamera(QVector3D(4, 0, -3), 12.0f, 30.0f, 35.0f);
+        const Vec3 at = win.doc()->body(win.addBox()).position;
+        QVERIFY((at - Vec3(4, 0.5, -3)).norm() < kRest);
+    }
+
+    void addsFollowGravity() {
+        // Gravity along -x onto a wall at x = 0: a new body rests against the wall.
+        Window win;
+        SceneDesc s = win.doc()->scene();
+        s.settings.gravity = Vec3(-9.81, 0, 0);
+        s.bodies[0].shape.normal = Vec3::UnitX();
+        win.doc()->replaceScene(s, "sideways", true);
+        win.w.viewport()->setCamera(QVector3D(0, 2, 1), 12.0f, 80.0f, 10.0f);
+        const Vec3 at = win.doc()->body(win.addBox()).position;
+        QVERIFY2(std::abs(at.x() - 0.5) < kRest, qPrintable(QString::number(at.x(), 'g', 12)));
+        QVERIFY((Vec3(0, at.y(), at.z()) - Vec3(0, 2, 1)).norm() < 1e-9);
+    }
+
+    void endDropsTheSelectionInOneUndoStep() {
+        Window win;
+        const int a = win.addBox();
+        win.w.viewport()->setCamera(QVector3D(3, 0, 0), 12.0f, 30.0f, 35.0f);
+        const int b = win.addBox();
+        BodyDesc high = win.doc()->body(a);
+        high.position = Vec3(0, 4, 0);
+        win.doc()->setBody(a, high, "lift");
+        BodyDesc over = win.doc()->body(b);
+        over.position = Vec3(0.2, 7, 0);  // over a, lower side first
+        win.doc()->setBody(b, over, "lift");
+        win.doc()->setSelection({a, b});
+        // A text field with the focus keeps End for its cursor.
+        auto* field = win.w.findChild<QLineEdit*>();
+        QVERIFY(field);
+        field->setFocus();
+        QTest::keyClick(field, Qt::Key_End);
+        QCOMPARE(win.doc()->body(a).position.y(), 4.0);
+        win.w.viewport()->setFocus();
+        const int steps = win.doc()->undoStack()->count();
+        QTest::keyClick(win.w.viewport()->renderWindow(), Qt::Key_End);
+        QVERIFY(std::abs(win.doc()->body(a).position.y() - 0.5) < kRest);
+        QVERIFY(std::abs(win.doc()->body(b).position.y() - 1.5) < 2 * kRest);  // onto a
+        QCOMPARE(win.doc()->undoStack()->count(), steps + 1);
+        win.doc()->undoStack()->undo();
+        QCOMPARE(win.doc()->body(a).position.y(), 4.0);
+        QCOMPARE(win.doc()->body(b).position.y(), 7.0);
+        // Resting already: nothing moves, nothing is added to undo.
+        win.doc()->undoStack()->redo();
+        QTest::keyClick(win.w.viewport()->renderWindow(), Qt::Key_End);
+        QCOMPARE(win.doc()->undoStack()->count(), steps + 1);
+    }
+
+    void copyAndPasteBesideInOneUndoStep() {
+        Window win;
+        const int a = win.addBox();
+        win.doc()->setSelection({a});
+        win.w.viewport()->setFocus();
+        QTest::keyClick(win.w.viewport()->renderWindow(), Qt::Key_C, Qt::ControlModifier);
+        const int before = win.doc()->bodyCount();
+        QTest::keyClick(win.w.viewport()->renderWindow(), Qt::Key_V, Qt::ControlModifier);
+        QTest::keyClick(win.w.viewport()->renderWindow(), Qt::Key_V, Qt::ControlModifier);
+        QCOMPARE(win.doc()->bodyCount(), before + 2);
+        QSet<QString> names;
+        for (int i = 0; i < win.doc()->bodyCount(); ++i) names.insert(QString::fromStdString(win.doc()->body(i).name));
+        QCOMPARE(names.size(), win.doc()->bodyCount());
+        const Vec3 p0 = win.doc()->body(a).position, p1 = win.doc()->body(before).position;
+        QCOMPARE(p1.y(), p0.y());
+        QVERIFY2((p1 - p0).norm() >= 1.1 - 1e-9, qPrintable(QString::number((p1 - p0).norm())));  // beside, not inside
+        QCOMPARE(win.doc()->selection(), QList<int>{before + 1});
+        win.doc()->undoStack()->undo();
+        QCOMPARE(win.doc()->bodyCount(), before + 1);
+    }
+
+    void arrayMakesAGrid() {
+        Window win;
+        const int a = win.addBox();
+        win.doc()->setSelection({a});
+        const int before = win.doc()->bodyCount();
+        withDialog(win.w, [&] { action(win.w, "array")->trigger(); }, [](QDialog* d) {
+            d->findChild<QSpinBox*>("count1")->setValue(4);
+            d->findChild<QSpinBox*>("count2")->setValue(3);
+            d->findChild<QDoubleSpinBox*>("step1x")->setValue(1.5);
+            d->findChild<QDoubleSpinBox*>("step2z")->setValue(-2.0);
+        });
+        QCOMPARE(win.doc()->bodyCount(), before + 11);
+        const Vec3 p0 = win.doc()->body(a).position;
+        const Vec3 last = win.doc()->body(win.doc()->bodyCount() - 1).position;
+        QVERIFY((last - (p0 + Vec3(4.5, 0, -4.0))).norm() < 1e-12);
+        win.doc()->undoStack()->undo();
+        QCOMPARE(win.doc()->bodyCount(), before);
+    }
+
+    void makeStackPyramidAndWall() {
+        Window win;
+        const int ground = win.doc()->bodyCount();
+        withDialog(win.w, [&] { action(win.w, "makePyramid")->trigger(); }, [](QDialog*) {});
+        QCOMPARE(win.doc()->bodyCount(), ground + 55);  // rows of 10, 9, ... 1
+        double low = HUGE_VAL, high = -HUGE_VAL;
+        for (int i = ground; i < win.doc()->bodyCount(); ++i) {
+            low = std::min(low, win.doc()->body(i).position.y());
+            high = std::max(high, win.doc()->body(i).position.y());
+        }
+        QVERIFY(std::abs(low - 0.25) < kRest && std::abs(high - 4.75) < kRest);  // 0.5 m boxes on the floor
+        win.doc()->undoStack()->undo();
+        QCOMPARE(win.doc()->bodyCount(), ground);
+        withDialog(win.w, [&] { action(win.w, "makeStack")->trigger(); }, [](QDialog* d) {
+            d->findChild<QSpinBox*>("count")->setValue(7);
+        });
+        QCOMPARE(win.doc()->bodyCount(), ground + 7);
+        // Made while the view looks at the stack: the next layout rests on top of it.
+        withDialog(win.w, [&] { action(win.w, "makeStack")->trigger(); }, [](QDialog* d) {
+            d->findChild<QSpinBox*>("count")->setValue(2);
+        });
+        QCOMPARE(win.doc()->bodyCount(), ground + 9);
+        QVERIFY(std::abs(win.doc()->body(ground + 7).position.y() - 3.75) < kRest);
+        win.doc()->undoStack()->undo();
+        win.w.viewport()->setCamera(QVector3D(0, 0, 5), 12.0f, 30.0f, 35.0f);  // the floor beside it
+        withDialog(win.w, [&] { action(win.w, "makeWall")->trigger(); }, [](QDialog* d) {
+            d->findChild<QSpinBox*>("count")->setValue(20);
+            d->findChild<QSpinBox*>("rows")->setValue(1);
+            d->findChild<QDoubleSpinBox*>("sizex")->setValue(0.05);  // dominoes
+            d->findChild<QDoubleSpinBox*>("sizey")->setValue(0.5);
+            d->findChild<QDoubleSpinBox*>("gap")->setValue(0.2);
+        });
+        QCOMPARE(win.doc()->bodyCount(), ground + 27);
+        const BodyDesc& domino = win.doc()->body(ground + 7);
+        QCOMPARE(domino.shape.halfExtents, Vec3(0.025, 0.25, 0.25));
+        QVERIFY(std::abs(domino.position.y() - 0.25) < kRest);
+        QVERIFY(std::abs(domino.position.z() - 5.0) < 1e-9);
+    }
+
+    void ctrlEndIsTheTimelines() {
+        Window win;
+        QString error;
+        QVERIFY(win.w.openScene(":/scenes/projectile.json", &error));
+        Timeline* t = win.w.timeline();
+        QVERIFY(QTest::qWaitFor([&] { return t->status() == Timeline::Status::Complete; }, 60000));
+        QTest::keyClick(&win.w, Qt::Key_End, Qt::ControlModifier);
+        QCOMPARE(t->currentFrame(), t->frameCount() - 1);
+        QTest::keyClick(&win.w, Qt::Key_Home, Qt::ControlModifier);
+        QCOMPARE(t->currentFrame(), 0);
+    }
+};
+
+QTEST_MAIN(TestBuilding)
+#include "tst_building.moc"

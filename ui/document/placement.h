@@ -1,0 +1,64 @@
+// Setting bodies down where the user builds: on the surface under a point the view looks at,
+// dropped along gravity onto what is below, and laid out as stacks, pyramids, walls and
+// arrays. Qt-free: the positions are a function of the scene only (travelToTouch, the
+// engine's own collision shapes), so tests know where a body will land.
+#pragma once
+
+#include <tumble/scene.h>
+
+#include <array>
+#include <optional>
+#include <vector>
+
+namespace tumble::ui {
+
+/// Down in `scene`: along its gravity, or -y when it has none.
+Vec3 downOf(const SceneDesc& scene);
+
+/// How far body `index` of `scene` can drop along downOf(scene) before it touches a body it
+/// may collide with (at most 10 km); nothing when nothing is below it, or when the scene
+/// cannot be compiled (a mesh not loaded).
+std::optional<double> dropDistance(const SceneDesc& scene, int index);
+
+/// `body` (not yet in `scene`) set down on what lies under `point`: raised above the point
+/// by its size, then lowered along down until it rests on the first body it meets. Where it
+/// would start inside another body it is raised until it does not. With nothing under it
+/// (empty space, or the scene cannot be compiled) it is centred on `point`.
+BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point);
+
+/// Half the size of the body's box along the world axes, about its position: exact for an
+/// unturned sphere, box, capsule and cylinder, its bounding sphere's for anything else.
+Vec3 halfSize(const BodyDesc& body);
+
+/// The bodies' order from the lowest to the highest along down (by their positions).
+std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices);
+
+/// The turn that stands a body upright where down is `down`: it takes -y to down (the least
+/// turn; the identity for gravity along -y).
+Quat uprightFor(const Vec3& down);
+
+/// A layout of copies of one box, resting on each other: a stack (a column), a pyramid (rows
+/// of count, count - 1, ... 1 boxes, or square layers of count², (count - 1)², ... 1), or a
+/// wall (rows of `count`, every other shifted by half a box when staggered, a brick bond).
+enum class Layout { Stack, Pyramid, Wall };
+struct LayoutSpec {
+    Layout kind = Layout::Stack;
+    int count = 10;          ///< Stack: boxes; Pyramid: the bottom row's boxes; Wall: boxes a row
+    int rows = 5;            ///< Wall: rows
+    bool square = false;     ///< Pyramid: square layers instead of a single row a layer
+    bool staggered = true;   ///< Wall
+    Vec3 halfExtents = Vec3(0.25, 0.25, 0.25);
+    double gap = 0.0;        ///< m between neighbours in a row (sideways only)
+};
+/// How many boxes the layout has.
+long layoutCount(const LayoutSpec& spec);
+/// The boxes' centres with up = +y and the layout's base point (the middle of its bottom
+/// row's lowest faces) at the origin, bottom row first. Empty past kMostLaidOut boxes.
+inline constexpr long kMostLaidOut = 10000;
+std::vector<Vec3> layoutCentres(const LayoutSpec& spec);
+
+/// The places of an array of n x m x k (`counts`) from `start`, `steps[d]` apart along each of
+/// its three directions, `start` first; empty past kMostLaidOut places or with a count below 1.
+std::vector<Vec3> arrayPlaces(const Vec3& start, const std::array<int, 3>& counts, const std::array<Vec3, 3>& steps);
+
+}  // namespace tumble::ui
