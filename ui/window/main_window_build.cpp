@@ -255,6 +255,7 @@ void MainWindow::arrayDialog() {
             copies.push_back(std::move(b));
         }
     addBodies(copies, tr("Array of %n bodies", nullptr, int(copies.size())));
+    viewport_->frameSelection();  // (it may reach far past the view)
 }
 
 void MainWindow::layoutDialog(Layout kind) {
@@ -289,6 +290,7 @@ void MainWindow::layoutDialog(Layout kind) {
         boxes.push_back(std::move(b));
     }
     addBodies(boxes, dialog.windowTitle().remove("&") + tr(" of %n boxes", nullptr, int(boxes.size())));
+    viewport_->frameSelection();
 }
 
 }  // namespace tumble::ui
