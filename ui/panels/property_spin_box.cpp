@@ -168,10 +168,15 @@ void PropertySpinBox::contextMenuEvent(QContextMenuEvent* event) {
     const StepEnabled steps = stepEnabled();
     menu->addAction(tr("&Step up"), this, [this] { stepBy(1); })->setEnabled(steps & StepUpEnabled);
     menu->addAction(tr("Step &down"), this, [this] { stepBy(-1); })->setEnabled(steps & StepDownEnabled);
-    menu->addSeparator();
-    QAction* sweep = menu->addAction(tr("Sweep this value…"), this, [this] { sweep_(); });
+    // The field's own command first, with an icon, above the text editing ones (at the end,
+    // under Undo, Cut, Copy and Paste, users missed it).
+    auto* sweep = new QAction(style()->standardIcon(QStyle::SP_MediaSeekForward), tr("S&weep this value…"), menu);
+    connect(sweep, &QAction::triggered, this, [this] { sweep_(); });
     sweep->setObjectName("sweepThisValue");
     sweep->setEnabled(!sweepEnabled_ || sweepEnabled_());
+    QAction* first = menu->actions().value(0);
+    menu->insertAction(first, sweep);
+    menu->insertSeparator(first);
     menu->popup(event->globalPos());
     event->accept();
 }

@@ -421,6 +421,18 @@ bool Viewport::poke(int body, const Vec3& point, const Vec3& drag) {
 }
 
 void Viewport::frameSelection() {
+    // A joint selected (no body then): its body or two bodies.
+    const int joint = d_->doc->selectedJoint();
+    if (d_->doc->selection().isEmpty() && joint >= 0 && joint < d_->doc->jointCount()) {
+        const JointDesc& j = d_->doc->joint(joint);
+        QList<int> bodies;
+        for (int i = 0; i < d_->doc->bodyCount(); ++i) {
+            const std::string& name = d_->doc->body(i).name;
+            if (name == j.bodyA || (!j.bodyB.empty() && name == j.bodyB)) bodies.append(i);
+        }
+        if (!bodies.isEmpty()) frameBodies(bodies);
+        return;
+    }
     frameBodies(d_->doc->selection());
 }
 

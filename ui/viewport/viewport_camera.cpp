@@ -11,7 +11,13 @@ void OrbitCamera::set(const QVector3D& target, float distance, float yawDegrees,
     target_ = target;
     distance_ = std::clamp(distance, 0.05f, 1.0e5f);
     yaw_ = std::fmod(yawDegrees, 360.0f);
-    pitch_ = std::clamp(pitchDegrees, -89.0f, 89.0f);
+    pitch_ = std::clamp(pitchDegrees, -90.0f, 90.0f);  // (straight down: the top view)
+}
+
+QVector3D OrbitCamera::up() const {
+    const float yaw = qDegreesToRadians(yaw_);
+    const float pitch = qDegreesToRadians(pitch_);
+    return QVector3D(-std::sin(pitch) * std::sin(yaw), std::cos(pitch), -std::sin(pitch) * std::cos(yaw));
 }
 
 QVector3D OrbitCamera::eye() const {

@@ -21,7 +21,9 @@ public:
     void set(const QVector3D& target, float distance, float yawDegrees, float pitchDegrees);
 
     QVector3D eye() const;
-    QVector3D up() const { return QVector3D(0, 1, 0); }
+    /// The screen's up: square to the line of sight, in the vertical plane through it (world
+    /// y seen from any side; looking straight down, the way the yaw faces).
+    QVector3D up() const;
     float nearPlane() const;
     float farPlane() const;
     QMatrix4x4 view() const;

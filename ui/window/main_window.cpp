@@ -218,7 +218,7 @@ void MainWindow::buildMenus() {
     };
     connect(doc_, &Document::selectionChanged, this, enablePairs);
     enablePairs();
-    QAction* key = edit->addAction(tr("Insert &Key") + "\tI", this, &MainWindow::insertKey);
+    QAction* key = edit->addAction(tr("Insert &Key"), QKeySequence(Qt::Key_I), this, &MainWindow::insertKey);
     key->setObjectName("insertKey");
     key->setToolTip(tr("Key the selected body's pose at the playhead (it becomes animated)"));
     connect(viewport_, &Viewport::insertKeyRequested, this, &MainWindow::insertKey);
@@ -295,18 +295,24 @@ void MainWindow::buildMenus() {
         ->setObjectName("collisionGroups");
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
-    // The viewport's own keys (W, E, F, A) work while it has the focus; these are the same
-    // commands for the menu, which shows the keys after a tab (display only: as window
-    // shortcuts they would take the letters from the fields).
-    view->addAction(tr("&Frame Selection") + "\tF", this, [this] { viewport_->frameSelection(); });
-    view->addAction(tr("Frame &All") + "\tA", this, [this] { viewport_->frameAll(); });
+    // The viewport's keys (F, A, W, E; I in the Edit menu) as window shortcuts: they work
+    // wherever the focus is in the window (after a click in the Scene list, an Add, a
+    // click on a body), except in a text or number field, which takes a letter for its
+    // text first (its ShortcutOverride).
+    view->addAction(tr("&Frame Selection"), QKeySequence(Qt::Key_F), this, [this] { viewport_->frameSelection(); })
+        ->setObjectName("frameSelection");
+    view->addAction(tr("Frame &All"), QKeySequence(Qt::Key_A), this, [this] { viewport_->frameAll(); })
+        ->setObjectName("frameAll");
+    addStandardViews(view);  // Front, Right, Top and their opposites (main_window_build.cpp)
     view->addSeparator();
     auto* modes = new QActionGroup(this);
-    QAction* move = view->addAction(tr("&Move Handles") + "\tW", this,
+    QAction* move = view->addAction(tr("&Move Handles"), QKeySequence(Qt::Key_W), this,
                                     [this] { viewport_->setTransformMode(Viewport::TransformMode::Move); });
-    QAction* rotate = view->addAction(tr("&Rotate Handles") + "\tE", this, [this] {
+    move->setObjectName("moveHandles");
+    QAction* rotate = view->addAction(tr("&Rotate Handles"), QKeySequence(Qt::Key_E), this, [this] {
         viewport_->setTransformMode(Viewport::TransformMode::Rotate);
     });
+    rotate->setObjectName("rotateHandles");
     for (QAction* a : {move, rotate}) a->setCheckable(true), modes->addAction(a);
     move->setChecked(viewport_->transformMode() == Viewport::TransformMode::Move);
     rotate->setChecked(!move->isChecked());

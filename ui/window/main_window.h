@@ -146,6 +146,10 @@ private:
     void insertKey();
     // Building (ui/window/main_window_build.cpp): the Scene menu, Copy and Paste.
     void buildSceneMenu(QMenu* edit);
+    /// View > Front / Back / Right / Left / Top / Bottom: the camera turned to look along an
+    /// axis at the same target and distance (numpad 1, 3, 7 and with Ctrl the opposite, as
+    /// in Blender; the plain digits too, for keyboards without a numpad).
+    void addStandardViews(QMenu* view);
     /// Where the view looks on the scene's surfaces: the first hit of the ray through the
     /// view's centre, else the camera's target; the body hit (-1: none or a plane).
     Vec3 viewPoint(int* hitBody = nullptr) const;

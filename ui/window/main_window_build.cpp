@@ -71,6 +71,31 @@ void MainWindow::buildSceneMenu(QMenu* edit) {
     tree_->setPlacement([this](const BodyDesc& b) { return setDownUnderView(b); });
 }
 
+void MainWindow::addStandardViews(QMenu* view) {
+    QMenu* views = view->addMenu(tr("&Standard Views"));
+    struct Side {
+        const char* name;
+        QString text;
+        int key;
+        bool opposite;
+        float yaw, pitch;  // the camera's place about its target (viewport_camera.h)
+    };
+    const Side sides[] = {{"viewFront", tr("&Front"), Qt::Key_1, false, 0, 0},
+                          {"viewBack", tr("&Back"), Qt::Key_1, true, 180, 0},
+                          {"viewRight", tr("&Right"), Qt::Key_3, false, 90, 0},
+                          {"viewLeft", tr("&Left"), Qt::Key_3, true, -90, 0},
+                          {"viewTop", tr("&Top"), Qt::Key_7, false, 0, 90},
+                          {"viewBottom", tr("Botto&m"), Qt::Key_7, true, 0, -90}};
+    for (const Side& side : sides) {
+        QAction* a = views->addAction(side.text, this, [this, yaw = side.yaw, pitch = side.pitch] {
+            viewport_->setCamera(viewport_->cameraTarget(), viewport_->cameraDistance(), yaw, pitch);
+        });
+        a->setObjectName(side.name);
+        const Qt::KeyboardModifiers ctrl = side.opposite ? Qt::ControlModifier : Qt::NoModifier;
+        a->setShortcuts({QKeySequence(ctrl | Qt::KeypadModifier | side.key), QKeySequence(ctrl | side.key)});
+    }
+}
+
 Vec3 MainWindow::viewPoint(int* hitBody) const {
     const Vec3 eye = vec(viewport_->cameraPosition()), target = vec(viewport_->cameraTarget());
     if (hitBody) *hitBody = -1;

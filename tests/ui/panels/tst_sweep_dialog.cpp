@@ -71,6 +71,8 @@ private slots:
         QAction* sweep = menu->findChild<QAction*>("sweepThisValue");
         QVERIFY(sweep);
         QVERIFY(sweep->isEnabled());
+        QCOMPARE(menu->actions().value(0), sweep);  // first, not under the text editing entries
+        QVERIFY(!sweep->icon().isNull());
         menu->close();
         sweep->trigger();
         auto* dialog = dock.findChild<SweepDialog*>();

@@ -2,10 +2,13 @@
 // surface under the view's centre and adds in a row stack up; End drops the selection along
 // gravity onto what is below (not while a text field has the focus; Ctrl+End is the
 // timeline's); Copy and Paste put the copies beside the originals; Array and Make Stack /
-// Pyramid / Wall fill their dialogs and add their bodies; each is one undo step.
+// Pyramid / Wall fill their dialogs and add their bodies; each is one undo step. The
+// viewport's keys (F, A, W, E, the standard views) work from every dock, but not in a text
+// field; Frame Selection frames a selected joint's bodies.
 #include "document/document.h"
 #include "panels/scene_tree_dock.h"
 #include "timeline/timeline.h"
+#include "timeline/timeline_dock.h"
 #include "viewport/viewport.h"
 #include "window/main_window.h"
 
@@ -18,6 +21,8 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTreeView>
+#include <QAbstractSlider>
 #include <QTimer>
 #include <QUndoStack>
 #include <QtTest>
@@ -217,6 +222,80 @@ private slots:
         QCOMPARE(domino.shape.halfExtents, Vec3(0.025, 0.25, 0.25));
         QVERIFY(std::abs(domino.position.y() - 0.25) < kRest);
         QVERIFY(std::abs(domino.position.z() - 5.0) < 1e-9);
+    }
+
+    void viewportKeysWorkFromEveryDock() {
+        Window win;
+        const int a = win.addBox();
+        win.w.viewport()->setCamera(QVector3D(6, 0, 0), 12.0f, 30.0f, 35.0f);
+        win.addBox();
+        // Focus in the Scene list (a click there), then in the properties, then the timeline.
+        QWidget* list = win.w.findChild<SceneTreeDock*>()->view();
+        auto* field = win.w.findChild<QLineEdit*>("name");
+        QVERIFY(field);
+        QWidget* slider = win.w.timelineDock()->findChild<QAbstractSlider*>();
+        QVERIFY(slider);
+        for (QWidget* focus : {list, static_cast<QWidget*>(win.w.viewport()), slider}) {
+            win.doc()->setSelection({a});
+            focus->setFocus();
+            QTest::keyClick(focus, Qt::Key_F);
+            QVERIFY(win.w.viewport()->cameraTarget().distanceToPoint(QVector3D(0, 0.5f, 0)) < 1e-4f);
+            QTest::keyClick(focus, Qt::Key_E);
+            QCOMPARE(win.w.viewport()->transformMode(), Viewport::TransformMode::Rotate);
+            QTest::keyClick(focus, Qt::Key_W);
+            QCOMPARE(win.w.viewport()->transformMode(), Viewport::TransformMode::Move);
+            QTest::keyClick(focus, Qt::Key_A);
+            QVERIFY(win.w.viewport()->cameraTarget().distanceToPoint(QVector3D(0, 0.5f, 0)) > 1.0f);  // both boxes
+        }
+        // A text field keeps its letters: F typed into the name renames, the camera stays.
+        win.doc()->setSelection({a});
+        field->setFocus();
+        QTRY_VERIFY(field->hasFocus());
+        const QVector3D before = win.w.viewport()->cameraTarget();
+        QTest::keyClick(field, Qt::Key_End);
+        QTest::keyClick(field, Qt::Key_F);
+        QVERIFY(field->text().endsWith('f'));
+        QCOMPARE(win.w.viewport()->cameraTarget(), before);
+    }
+
+    void standardViewsLookAlongTheAxes() {
+        Window win;
+        win.w.viewport()->setCamera(QVector3D(1, 2, 3), 10.0f, 30.0f, 35.0f);
+        QWidget* list = win.w.findChild<SceneTreeDock*>()->view();
+        list->setFocus();
+        struct Case {
+            int key;
+            Qt::KeyboardModifiers mods;
+            QVector3D from;  // where the camera sits, from the target
+        };
+        const Case cases[] = {{Qt::Key_1, Qt::KeypadModifier, {0, 0, 10}},
+                              {Qt::Key_1, Qt::KeypadModifier | Qt::ControlModifier, {0, 0, -10}},
+                              {Qt::Key_3, Qt::KeypadModifier, {10, 0, 0}},
+                              {Qt::Key_3, Qt::ControlModifier, {-10, 0, 0}},
+                              {Qt::Key_7, Qt::NoModifier, {0, 10, 0}},
+                              {Qt::Key_7, Qt::KeypadModifier | Qt::ControlModifier, {0, -10, 0}}};
+        for (const Case& c : cases) {
+            QTest::keyClick(list, Qt::Key(c.key), c.mods);
+            const QVector3D from = win.w.viewport()->cameraPosition() - win.w.viewport()->cameraTarget();
+            QVERIFY2((from - c.from).length() < 1e-4f, qPrintable(QStringLiteral("%1 %2 %3").arg(from.x()).arg(from.y()).arg(from.z())));
+            QCOMPARE(win.w.viewport()->cameraTarget(), QVector3D(1, 2, 3));
+        }
+    }
+
+    void frameSelectionFramesAJoint() {
+        Window win;
+        const int a = win.addBox();
+        win.w.viewport()->setCamera(QVector3D(10, 0, 0), 12.0f, 30.0f, 35.0f);
+        const int b = win.addBox();
+        JointDesc j;
+        j.name = "pin";
+        j.bodyA = win.doc()->body(a).name;
+        j.bodyB = win.doc()->body(b).name;
+        win.doc()->addJoint(j);
+        QVERIFY(win.doc()->selection().isEmpty() && win.doc()->selectedJoint() == 0);
+        win.w.viewport()->setCamera(QVector3D(-30, 0, 40), 3.0f, 30.0f, 35.0f);
+        QTest::keyClick(&win.w, Qt::Key_F);
+        QVERIFY(win.w.viewport()->cameraTarget().distanceToPoint(QVector3D(5, 0.5f, 0)) < 1e-4f);  // between them
     }
 
     void ctrlEndIsTheTimelines() {
