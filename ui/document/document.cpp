@@ -348,8 +348,21 @@ BodyDesc withConvexParts(BodyDesc body) {
 
 }  // namespace
 
-void Document::setBody(int index, const BodyDesc& given, const QString& text, int mergeId) {
+namespace {
+
+// An undo entry that says what it changed: "Set mass" on box-3 is "Set mass of box-3"
+// (a text that names it already, "Rename box-3 to lid", is kept).
+QString naming(const QString& text, const std::string& name) {
+    const QString n = QString::fromStdString(name);
+    if (n.isEmpty() || text.contains(n)) return text;
+    return Document::tr("%1 of %2").arg(text, n);
+}
+
+}  // namespace
+
+void Document::setBody(int index, const BodyDesc& given, const QString& plainText, int mergeId) {
     if (index < 0 || index >= bodyCount() || given == scene_.bodies[static_cast<size_t>(index)]) return;
+    const QString text = naming(plainText, scene_.bodies[static_cast<size_t>(index)].name);
     BodyDesc body = withConvexParts(given);
     followKeys(scene_.bodies[static_cast<size_t>(index)],
                body);  // an animated body's pose is its path's at 0
@@ -482,8 +495,9 @@ void Document::addJoint(const JointDesc& joint) {
     selectJoint(jointCount() - 1);
 }
 
-void Document::setJoint(int index, const JointDesc& joint, const QString& text, int mergeId) {
+void Document::setJoint(int index, const JointDesc& joint, const QString& plainText, int mergeId) {
     if (index < 0 || index >= jointCount() || joint == scene_.joints[static_cast<size_t>(index)]) return;
+    const QString text = naming(plainText, scene_.joints[static_cast<size_t>(index)].name);
     std::vector<JointDesc> joints = scene_.joints;
     joints[static_cast<size_t>(index)] = joint;
     undo_->push(new SetJointsCommand(this, scene_.joints, joints, text, mergeId));

@@ -76,7 +76,8 @@ public:
 
     /// Replaces body `index`. Consecutive calls with the same nonzero `mergeId` on the same
     /// body merge into one undo step (a drag, a scrub). A new name is carried into the
-    /// joints that name the body (the same undo step).
+    /// joints that name the body (the same undo step). The undo entry is `text` of the body
+    /// ("Set mass of box-3") unless `text` names it already; setJoint's the same.
     void setBody(int index, const BodyDesc& body, const QString& text, int mergeId = 0);
     void setSettings(const Settings& settings, const QString& text, int mergeId = 0);
     /// Inserts `body` at `index` (-1: at the end) with a name made unique; returns its index.

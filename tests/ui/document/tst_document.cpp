@@ -77,7 +77,7 @@ private slots:
         doc.setBody(1, b, "Set restitution");
         QCOMPARE(changed.count(), 1);
         QCOMPARE(doc.body(1).restitution, 0.9);
-        QCOMPARE(doc.undoStack()->undoText(), QString("Set restitution"));
+        QCOMPARE(doc.undoStack()->undoText(), QString("Set restitution of ball"));  // the body named
         QVERIFY(doc.isModified());
         doc.undoStack()->undo();
         QCOMPARE(doc.body(1).restitution, 0.5);
