@@ -2,6 +2,7 @@
 
 #include <QContextMenuEvent>
 #include <QFontMetrics>
+#include <QFocusEvent>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QLocale>
@@ -117,10 +118,38 @@ QString PropertySpinBox::mixedText() {
 }
 
 QString PropertySpinBox::textFromValue(double value) const {
-    if (value == 0.0) value = 0.0;  // no "-0"
-    QString text = locale().toString(value, 'g', 10);
-    text.remove(locale().groupSeparator());
-    return text;
+    if (!editing_ && std::abs(value) < 1e-9) value = 0.0;  // rounding's noise (-1.1e-11°) shows as 0
+    if (value == 0.0) value = 0.0;                          // no "-0"
+    auto text = [&](int digits) {
+        QString t = locale().toString(value, 'g', digits);
+        t.remove(locale().groupSeparator());
+        return t;
+    };
+    if (!editing_) return text(kShownDigits);
+    for (int digits = kShownDigits;; ++digits) {  // the shortest that reads back exactly
+        const QString t = text(digits);
+        bool ok = false;
+        if (digits >= 17 || (locale().toDouble(t, &ok) == value && ok)) return t;
+    }
+}
+
+void PropertySpinBox::render() {
+    if (mixed_ || (!specialValueText().isEmpty() && value() == minimum())) return;
+    const QSignalBlocker block(this);
+    lineEdit()->setText(textFromValue(value()) + suffix());
+}
+
+void PropertySpinBox::focusInEvent(QFocusEvent* event) {
+    editing_ = true;
+    render();  // every digit, to edit
+    QDoubleSpinBox::focusInEvent(event);
+}
+
+void PropertySpinBox::focusOutEvent(QFocusEvent* event) {
+    QDoubleSpinBox::focusOutEvent(event);  // (reads what was typed, at full precision)
+    editing_ = false;
+    render();
+    lineEdit()->setCursorPosition(0);
 }
 
 QString PropertySpinBox::stripped(const QString& text) const {

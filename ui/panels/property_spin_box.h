@@ -32,7 +32,11 @@ public:
     /// The arrows and the wheel do not step below `min`; typing may (see above).
     void setSoftMinimum(double min);
 
+    /// Six significant digits (a value below 1e-9 of its unit, rounding's noise, as 0) with the
+    /// unit always seen; while the field has the focus, the shortest text that reads back as
+    /// exactly the value it holds, so that leaving it unedited changes nothing.
     QString textFromValue(double value) const override;
+    static constexpr int kShownDigits = 6;
     void stepBy(int steps) override;
     StepEnabled stepEnabled() const override;
     double valueFromText(const QString& text) const override;
@@ -58,8 +62,14 @@ signals:
 protected:
     void contextMenuEvent(QContextMenuEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
+    void focusInEvent(QFocusEvent* event) override;
+    void focusOutEvent(QFocusEvent* event) override;
 
 private:
+    /// The text for the value now: rounded to kShownDigits significant digits while the
+    /// field is not being edited, every digit it holds while it is (editing_).
+    void render();
+    bool editing_ = false;
     std::function<void()> sweep_;
     std::function<bool()> sweepEnabled_;
     QString stripped(const QString& text) const;
