@@ -23,6 +23,7 @@
 #include <QStatusBar>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 
 namespace tumble::ui {
@@ -62,6 +63,34 @@ void MainWindow::buildSceneMenu(QMenu* edit) {
     int k = 0;
     for (const auto& [kind, text] : layouts)
         scene->addAction(text, this, [this, kind = kind] { layoutDialog(kind); })->setObjectName(names[k++]);
+    // Edit > Select All of Kind: every body of a shape, or of a motion.
+    QMenu* kinds = edit->addMenu(tr("Select All of &Kind"));
+    kinds->setObjectName("selectKind");
+    const std::pair<ShapeType, QString> shapes[] = {
+        {ShapeType::Box, tr("Boxes")},         {ShapeType::Sphere, tr("Spheres")},
+        {ShapeType::Capsule, tr("Capsules")},  {ShapeType::Cylinder, tr("Cylinders")},
+        {ShapeType::Mesh, tr("Meshes")},       {ShapeType::Compound, tr("Compounds")},
+        {ShapeType::Plane, tr("Planes")}};
+    auto selectWhere = [this](const std::function<bool(const BodyDesc&)>& kind) {
+        QList<int> found;
+        for (int i = 0; i < doc_->bodyCount(); ++i)
+            if (kind(doc_->body(i))) found.append(i);
+        doc_->setSelection(found);
+        statusBar()->showMessage(tr("%n bodies selected", nullptr, int(found.size())), 3000);
+    };
+    for (const auto& [type, text] : shapes)
+        kinds->addAction(text, this, [selectWhere, type = type] {
+                 selectWhere([type](const BodyDesc& b) { return b.shape.type == type; });
+             })->setObjectName(QStringLiteral("select%1").arg(QString::fromUtf8(toString(type))));
+    kinds->addSeparator();
+    const std::pair<Motion, QString> motions[] = {{Motion::Dynamic, tr("Dynamic Bodies")},
+                                                  {Motion::Static, tr("Static Bodies")},
+                                                  {Motion::Kinematic, tr("Kinematic Bodies")},
+                                                  {Motion::Animated, tr("Animated Bodies")}};
+    for (const auto& [motion, text] : motions)
+        kinds->addAction(text, this, [selectWhere, motion = motion] {
+                 selectWhere([motion](const BodyDesc& b) { return b.motion == motion; });
+             })->setObjectName(QStringLiteral("select%1").arg(QString::fromUtf8(toString(motion))));
     auto enable = [this, copy, drop, array] {
         const bool any = !doc_->selection().isEmpty();
         for (QAction* a : {copy, drop, array}) a->setEnabled(any);

@@ -298,6 +298,23 @@ private slots:
         QVERIFY(win.w.viewport()->cameraTarget().distanceToPoint(QVector3D(5, 0.5f, 0)) < 1e-4f);  // between them
     }
 
+    void selectAllOfAKind() {
+        Window win;
+        withDialog(win.w, [&] { action(win.w, "makeStack")->trigger(); }, [](QDialog* d) {
+            d->findChild<QSpinBox*>("count")->setValue(4);
+        });
+        win.w.viewport()->setCamera(QVector3D(5, 0, 0), 12.0f, 30.0f, 35.0f);
+        win.w.findChild<SceneTreeDock*>()->addBodyAction(ShapeType::Sphere)->trigger();
+        const QString box = QString::fromUtf8(toString(ShapeType::Box));
+        action(win.w, qPrintable("select" + box))->trigger();
+        QCOMPARE(win.doc()->selection().size(), 4);
+        for (int i : win.doc()->selection()) QCOMPARE(win.doc()->body(i).shape.type, ShapeType::Box);
+        action(win.w, qPrintable("select" + QString::fromUtf8(toString(Motion::Static))))->trigger();
+        QCOMPARE(win.doc()->selection(), QList<int>{0});  // the ground
+        action(win.w, qPrintable("select" + QString::fromUtf8(toString(Motion::Dynamic))))->trigger();
+        QCOMPARE(win.doc()->selection().size(), 5);
+    }
+
     void ctrlEndIsTheTimelines() {
         Window win;
         QString error;
