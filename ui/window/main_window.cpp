@@ -16,6 +16,7 @@
 #include "timeline/timeline_dock.h"
 #include "viewport/viewport.h"
 #include "window/autosave.h"
+#include "window/manual_dialog.h"
 #include "window/shortcuts_dialog.h"
 #include "window/sticky_menu.h"
 
@@ -356,6 +357,7 @@ void MainWindow::buildMenus() {
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&Keyboard Shortcuts"), QKeySequence::HelpContents, this, &MainWindow::showShortcuts)
         ->setObjectName(QStringLiteral("helpShortcuts"));
+    help->addAction(tr("&Manual"), this, [this] { (new ManualDialog(this))->show(); })->setObjectName("manual");
     help->addAction(tr("&About Tumble"), this, [this] {
         QMessageBox::about(this, tr("About Tumble"),
                            tr("<b>Tumble %1</b><p>A rigid-body dynamics editor: place bodies, tune them, "

@@ -21,6 +21,7 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTextBrowser>
 #include <QTreeView>
 #include <QAbstractSlider>
 #include <QTimer>
@@ -313,6 +314,23 @@ private slots:
         QCOMPARE(win.doc()->selection(), QList<int>{0});  // the ground
         action(win.w, qPrintable("select" + QString::fromUtf8(toString(Motion::Dynamic))))->trigger();
         QCOMPARE(win.doc()->selection().size(), 5);
+    }
+
+    void helpOpensTheManual() {
+        Window win;
+        action(win.w, "manual")->trigger();
+        QTextBrowser* page = nullptr;
+        QTRY_VERIFY((page = win.w.findChild<QTextBrowser*>("manual")) != nullptr && page->isVisible());
+        QVERIFY(page->toPlainText().contains("Building a scene"));
+        QVERIFY(page->toPlainText().contains("Drop to Surface"));
+        // Its picture is built in too.
+        const QVariant picture =
+            page->document()->resource(QTextDocument::ImageResource, QUrl("qrc:/docs/images/editor-make-pyramid.png"));
+        QVERIFY(!picture.isNull());
+        // A link to another built-in page follows it.
+        page->setSource(QUrl("qrc:/docs/scene-format.md"), QTextDocument::MarkdownResource);
+        QVERIFY(page->toPlainText().contains("bodies"));
+        page->window()->close();
     }
 
     void ctrlEndIsTheTimelines() {
