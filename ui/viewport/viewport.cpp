@@ -487,6 +487,11 @@ bool Viewport::handleKey(QKeyEvent* event) {
     const bool shift = event->modifiers() & Qt::ShiftModifier;
     switch (event->key()) {
         case Qt::Key_Escape:
+            if (d_->boxArmed && !d_->boxing) {  // box select given up before its drag
+                d_->boxArmed = false;
+                d_->container->unsetCursor();
+                return true;
+            }
             if (d_->dragAxis < 0) return false;
             cancelHandleDrag();
             return true;
@@ -520,6 +525,10 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
         case QEvent::MouseButtonPress: {
             auto* e = static_cast<QMouseEvent*>(event);
             const QPoint p = e->position().toPoint();
+            if (d_->dragButton == Qt::NoButton && e->button() == Qt::LeftButton && boxPress(p)) {
+                d_->container->setFocus(Qt::MouseFocusReason);
+                return true;
+            }
             if (d_->dragButton == Qt::NoButton && e->button() == Qt::LeftButton &&
                 !(e->modifiers() & Qt::ShiftModifier) && beginHandleDrag(handleAt(p), p)) {
                 d_->dragButton = Qt::LeftButton;
@@ -547,6 +556,7 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
         case QEvent::MouseMove: {
             auto* e = static_cast<QMouseEvent*>(event);
             const QPoint p = e->position().toPoint();
+            if (boxMove(p)) return true;
             if (d_->dragAxis >= 0) {
                 dragHandle(p, e->modifiers());
                 return true;
@@ -576,6 +586,7 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
         case QEvent::MouseButtonRelease: {
             auto* e = static_cast<QMouseEvent*>(event);
             if (e->button() != d_->dragButton) return true;
+            if (boxRelease(e->position().toPoint(), e->modifiers())) return true;
             if (d_->dragAxis >= 0) {
                 dragHandle(e->position().toPoint(), e->modifiers());  // where and how it ends
                 endHandleDrag();

@@ -149,6 +149,10 @@ public slots:
     void frameSelection();
     /// Looks at every body (planes excluded: they are infinite).
     void frameAll();
+    /// Box select: the next left drag in the view selects the bodies whose centres it
+    /// encloses (with Ctrl held at the release, adds them); Esc gives it up.
+    void armBoxSelect();
+    bool boxSelectArmed() const;
     void setTransformMode(tumble::ui::Viewport::TransformMode mode);
     void setSnapping(bool on);
     void setTranslationSnap(double metres);
@@ -171,6 +175,10 @@ protected:
 
 private:
     bool handleKey(QKeyEvent* event);
+    // Box select (viewport_box_select.cpp): the press, move and release of its drag.
+    bool boxPress(const QPoint& pos);
+    bool boxMove(const QPoint& pos);
+    bool boxRelease(const QPoint& pos, Qt::KeyboardModifiers modifiers);
     void frameBodies(const QList<int>& indices);
     void syncCamera();
     void updateHandles();

@@ -18,6 +18,7 @@
 #include <QPointF>
 #include <QPointer>
 #include <QQuaternion>
+#include <QRubberBand>
 #include <QUndoCommand>
 #include <QVector3D>
 
@@ -144,6 +145,11 @@ struct Viewport::Impl {
     // A poke (Ctrl+drag on a body at the playhead): the body and the world point pressed.
     int pokeBody = -1;
     Vec3 pokePoint = Vec3::Zero();
+    // Box select (viewport_box_select.cpp): armed by Edit > Box Select, the next left drag
+    // draws `band` (a top-level rubber band: it shows over the 3D window) and selects.
+    bool boxArmed = false;
+    bool boxing = false;
+    std::unique_ptr<QRubberBand> band;
 
     // Handles.
     std::unique_ptr<ViewportGizmo> gizmo;

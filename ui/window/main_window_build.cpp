@@ -63,6 +63,12 @@ void MainWindow::buildSceneMenu(QMenu* edit) {
     int k = 0;
     for (const auto& [kind, text] : layouts)
         scene->addAction(text, this, [this, kind = kind] { layoutDialog(kind); })->setObjectName(names[k++]);
+    // Edit > Box Select: the next drag in the view selects what it encloses.
+    QAction* box = edit->addAction(tr("&Box Select"), QKeySequence(Qt::Key_B), this, [this] {
+        viewport_->armBoxSelect();
+        statusBar()->showMessage(tr("Drag a box in the view to select what it holds (Ctrl adds; Esc gives up)"), 5000);
+    });
+    box->setObjectName("boxSelect");
     // Edit > Select All of Kind: every body of a shape, or of a motion.
     QMenu* kinds = edit->addMenu(tr("Select All of &Kind"));
     kinds->setObjectName("selectKind");

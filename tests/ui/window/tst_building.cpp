@@ -316,6 +316,51 @@ private slots:
         QCOMPARE(win.doc()->selection().size(), 5);
     }
 
+    void boxSelectTakesWhatItEncloses() {
+        Window win;
+        const int a = win.addBox();
+        win.w.viewport()->setCamera(QVector3D(3, 0, 0), 12.0f, 30.0f, 35.0f);
+        const int b = win.addBox();
+        win.w.viewport()->setCamera(QVector3D(-6, 0, 0), 12.0f, 30.0f, 35.0f);
+        const int c = win.addBox();
+        win.w.viewport()->setCamera(QVector3D(1.5f, 0.5f, 0), 14.0f, 0.0f, 10.0f);  // from the front
+        Viewport* v = win.w.viewport();
+        auto at = [v](const Vec3& p) {
+            const QVector3D w = v->projectToWidget(QVector3D(float(p.x()), float(p.y()), float(p.z())));
+            return QPoint(qRound(w.x()), qRound(w.y()));
+        };
+        auto drag = [v](const QPoint& from, const QPoint& to, Qt::KeyboardModifiers release = {}) {
+            QWindow* w = v->renderWindow();
+            QTest::mousePress(w, Qt::LeftButton, Qt::NoModifier, from);
+            for (int i = 1; i <= 4; ++i) QTest::mouseMove(w, from + (to - from) * i / 4);
+            QTest::mouseRelease(w, Qt::LeftButton, release, to);
+        };
+        const QPoint from = at(Vec3(-1, 1.5, 0)), to = at(Vec3(4, -0.5, 0));  // around a and b
+        win.doc()->setSelection({c});
+        QTest::keyClick(&win.w, Qt::Key_B);
+        QVERIFY(v->boxSelectArmed());
+        drag(from, to);
+        QCOMPARE(win.doc()->selection(), (QList<int>{a, b}));
+        QVERIFY(!v->boxSelectArmed());  // one drag
+        // Ctrl at the release adds; an unarmed drag orbits and selects nothing new.
+        win.doc()->setSelection({c});
+        QTest::keyClick(&win.w, Qt::Key_B);
+        drag(at(Vec3(2, 1.5, 0)), at(Vec3(4, -0.5, 0)), Qt::ControlModifier);
+        auto selected = [&] {
+            QList<int> s = win.doc()->selection();
+            std::sort(s.begin(), s.end());
+            return s;
+        };
+        QCOMPARE(selected(), (QList<int>{b, c}));
+        drag(from, to);
+        QCOMPARE(selected(), (QList<int>{b, c}));
+        // Esc gives it up.
+        QTest::keyClick(&win.w, Qt::Key_B);
+        v->setFocus();
+        QTest::keyClick(v->renderWindow(), Qt::Key_Escape);
+        QVERIFY(!v->boxSelectArmed());
+    }
+
     void helpOpensTheManual() {
         Window win;
         action(win.w, "manual")->trigger();
