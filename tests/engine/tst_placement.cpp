@@ -7,6 +7,7 @@
 #include <tumble/model.h>
 #include <tumble/placement.h>
 
+#include "scene_builders.h"
 #include "turned_world.h"
 
 #include <QtTest>
@@ -20,34 +21,18 @@ using namespace tumble::test;
 
 namespace {
 
-BodyDesc floorPlane() {
-    BodyDesc b;
-    b.name = "floor";
-    b.motion = Motion::Static;
-    b.shape.type = ShapeType::Plane;
-    b.shape.normal = Vec3::UnitY();
-    b.shape.distance = 0.0;
-    return b;
-}
+BodyDesc floorPlane() { return groundPlane(0.5, 0.5); }
 
 BodyDesc box(const std::string& name, const Vec3& half, const Vec3& at, const Quat& q = Quat::Identity()) {
-    BodyDesc b;
-    b.name = name;
-    b.shape.type = ShapeType::Box;
-    b.shape.halfExtents = half;
+    BodyDesc b = boxBody(name, half, 1.0);
     b.position = at;
     b.orientation = q;
-    b.mass = 1.0;
     return b;
 }
 
 BodyDesc sphere(const std::string& name, double r, const Vec3& at) {
-    BodyDesc b;
-    b.name = name;
-    b.shape.type = ShapeType::Sphere;
-    b.shape.radius = r;
+    BodyDesc b = sphereBody(name, r, 1.0);
     b.position = at;
-    b.mass = 1.0;
     return b;
 }
 

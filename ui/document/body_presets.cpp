@@ -31,21 +31,25 @@ double boundingRadius(const ShapeDesc& s) {
     return 1.0;
 }
 
-double halfHeightAboveOrigin(const BodyDesc& body) {
+Vec3 halfSize(const BodyDesc& body) {
     const ShapeDesc& s = body.shape;
     // Unrotated primitives have a tight answer; anything else falls back to the sphere.
     const bool upright = body.orientation.coeffs().isApprox(Quat::Identity().coeffs()) ||
                          body.orientation.coeffs().isApprox(-Quat::Identity().coeffs());
     if (upright) {
         switch (s.type) {
-            case ShapeType::Sphere: return s.radius;
-            case ShapeType::Box: return s.halfExtents.y();
-            case ShapeType::Capsule: return s.radius + s.halfHeight;
-            case ShapeType::Cylinder: return s.halfHeight;
+            case ShapeType::Sphere: return Vec3::Constant(s.radius);
+            case ShapeType::Box: return s.halfExtents;
+            case ShapeType::Capsule: return Vec3(s.radius, s.radius + s.halfHeight, s.radius);
+            case ShapeType::Cylinder: return Vec3(s.radius, s.halfHeight, s.radius);
             default: break;
         }
     }
-    return boundingRadius(s);
+    return Vec3::Constant(boundingRadius(s));
+}
+
+double halfHeightAboveOrigin(const BodyDesc& body) {
+    return halfSize(body).y();
 }
 
 BodyDesc presetBody(ShapeType type, const SceneDesc& scene) {

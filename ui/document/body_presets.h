@@ -23,6 +23,10 @@ BodyDesc placedAbove(BodyDesc body, double top);
 /// 1 for a mesh not loaded).
 double boundingRadius(const ShapeDesc& shape);
 
+/// Half the size of the body's box along the world axes, about its position: exact for an
+/// unturned sphere, box, capsule and cylinder, its bounding sphere's for anything else.
+Vec3 halfSize(const BodyDesc& body);
+
 /// Half the height of a body's bounding box along the world y axis, about its position
 /// (a bound: the box of a rotated shape is taken from its bounding sphere). 0 for planes.
 double halfHeightAboveOrigin(const BodyDesc& body);

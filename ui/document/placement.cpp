@@ -80,22 +80,6 @@ BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point) {
     return body;
 }
 
-Vec3 halfSize(const BodyDesc& body) {
-    const ShapeDesc& s = body.shape;
-    const bool upright = body.orientation.coeffs().isApprox(Quat::Identity().coeffs()) ||
-                         body.orientation.coeffs().isApprox(-Quat::Identity().coeffs());
-    if (upright) {
-        switch (s.type) {
-            case ShapeType::Sphere: return Vec3::Constant(s.radius);
-            case ShapeType::Box: return s.halfExtents;
-            case ShapeType::Capsule: return Vec3(s.radius, s.radius + s.halfHeight, s.radius);
-            case ShapeType::Cylinder: return Vec3(s.radius, s.halfHeight, s.radius);
-            default: break;
-        }
-    }
-    return Vec3::Constant(boundingRadius(s));
-}
-
 std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices) {
     const Vec3 down = downOf(scene);
     std::stable_sort(indices.begin(), indices.end(), [&](int a, int b) {

@@ -26,10 +26,6 @@ std::optional<double> dropDistance(const SceneDesc& scene, int index);
 /// (empty space, or the scene cannot be compiled) it is centred on `point`.
 BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point);
 
-/// Half the size of the body's box along the world axes, about its position: exact for an
-/// unturned sphere, box, capsule and cylinder, its bounding sphere's for anything else.
-Vec3 halfSize(const BodyDesc& body);
-
 /// The bodies' order from the lowest to the highest along down (by their positions).
 std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices);
 
