@@ -80,6 +80,16 @@ BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point) {
     return body;
 }
 
+BodyDesc settledAt(const SceneDesc& scene, int index, const BodyDesc& moved) {
+    if (index < 0 || index >= static_cast<int>(scene.bodies.size())) return moved;
+    SceneDesc rest = scene;
+    const std::string name = rest.bodies[static_cast<std::size_t>(index)].name;
+    rest.bodies.erase(rest.bodies.begin() + index);
+    std::erase_if(rest.joints, [&](const JointDesc& j) { return j.bodyA == name || j.bodyB == name; });
+    std::erase_if(rest.noCollide, [&](const auto& pair) { return pair[0] == name || pair[1] == name; });
+    return setDownAt(rest, moved, moved.position);
+}
+
 std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices) {
     const Vec3 down = downOf(scene);
     std::stable_sort(indices.begin(), indices.end(), [&](int a, int b) {

@@ -26,6 +26,11 @@ std::optional<double> dropDistance(const SceneDesc& scene, int index);
 /// (empty space, or the scene cannot be compiled) it is centred on `point`.
 BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point);
 
+/// Body `index` of `scene` at `moved`'s place and turn, resting on what is under it there
+/// (setDownAt without the body itself and the joints that hold it): a body dragged across a
+/// table snaps onto it, off its edge down to the floor.
+BodyDesc settledAt(const SceneDesc& scene, int index, const BodyDesc& moved);
+
 /// The bodies' order from the lowest to the highest along down (by their positions).
 std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices);
 

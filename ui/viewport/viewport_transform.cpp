@@ -6,6 +6,7 @@
 #include "document/body_keys.h"
 #include "document/joint_presets.h"
 #include "document/part_edits.h"
+#include "document/placement.h"
 
 #include <Qt3DExtras/Qt3DWindow>
 
@@ -274,8 +275,10 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
         const std::string what =
             part >= 0 ? partLabel(before.shape.parts.at(size_t(part)), part) + " of " + before.name
                       : before.name;
-        doc->setBody(index, apply(before), tr("%1 %2").arg(verb, QString::fromStdString(what)),
-                     d_->dragMergeId);
+        BodyDesc after = apply(before);
+        // Shift held while moving a body: it rests on the surface under it (placement.h).
+        if (move && part < 0 && (modifiers & Qt::ShiftModifier)) after = settledAt(doc->scene(), index, after);
+        doc->setBody(index, after, tr("%1 %2").arg(verb, QString::fromStdString(what)), d_->dragMergeId);
     } else {
         // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
         if (dragCommandOnTop()) stack->undo();

@@ -35,6 +35,8 @@ using namespace tumble::ui;
 
 namespace {
 
+Vec3 toVec(const QVector3D& v) { return Vec3(v.x(), v.y(), v.z()); }
+
 // Within the touch tolerance the drop stops at (1e-5 of the largest body's size).
 constexpr double kRest = 1e-4;
 
@@ -359,6 +361,34 @@ private slots:
         v->setFocus();
         QTest::keyClick(v->renderWindow(), Qt::Key_Escape);
         QVERIFY(!v->boxSelectArmed());
+    }
+
+    void shiftWhileMovingRestsOnTheSurface() {
+        Window win;
+        win.w.viewport()->setCamera(QVector3D(3, 0, 0), 12.0f, 30.0f, 35.0f);
+        win.addBox();
+        win.addBox();  // a tower of two at x = 3
+        win.w.viewport()->setCamera(QVector3D(0, 0, 0), 12.0f, 0.0f, 20.0f);
+        const int a = win.addBox();  // on the floor at the origin
+        win.doc()->setSelection({a});
+        Viewport* v = win.w.viewport();
+        const Vec3 o = toVec(v->handlesOrigin());
+        const double L = v->handlesSize();
+        auto at = [v](const Vec3& p) {
+            const QVector3D w = v->projectToWidget(QVector3D(float(p.x()), float(p.y()), float(p.z())));
+            return QPoint(qRound(w.x()), qRound(w.y()));
+        };
+        const QPoint from = at(o + 0.6 * L * Vec3::UnitX()), to = at(o + (0.6 * L + 3.0) * Vec3::UnitX());
+        QCOMPARE(v->handleAt(from), 0);
+        // Dragged along x with Shift held: onto the tower's top, not into it.
+        QWindow* w = v->renderWindow();
+        QTest::mousePress(w, Qt::LeftButton, Qt::NoModifier, from);
+        for (int i = 1; i <= 4; ++i) QTest::mouseMove(w, from + (to - from) * i / 4);
+        QTest::mouseRelease(w, Qt::LeftButton, Qt::ShiftModifier, to);
+        const Vec3 p = win.doc()->body(a).position;
+        QVERIFY2(std::abs(p.x() - 3.0) < 0.05, qPrintable(QString::number(p.x())));  // a pixel's worth
+        QVERIFY2(std::abs(p.y() - 2.5) < 1e-4, qPrintable(QString::number(p.y(), 'g', 12)));
+        QCOMPARE(win.doc()->undoStack()->undoText(), QString("Move %1").arg(QString::fromStdString(win.doc()->body(a).name)));
     }
 
     void helpOpensTheManual() {
