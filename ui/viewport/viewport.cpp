@@ -37,6 +37,7 @@
 
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QToolTip>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
@@ -392,6 +393,34 @@ void Viewport::clickAt(const QPoint& widgetPos, Qt::KeyboardModifiers modifiers)
     d_->doc->setSelection(selection);
 }
 
+// The drag's end on the plane through the pressed point that faces the camera, from that
+// point; nothing when the view is edge-on to it.
+std::optional<Vec3> Viewport::pokeDrag(const QPoint& pos) const {
+    QVector3D o, dir;
+    rayAt(pos, &o, &dir);
+    const Vec3 facing = toVec(d_->camera.target() - d_->camera.eye()).normalized();
+    const double along = toVec(dir).dot(facing);
+    if (!(std::abs(along) > 1e-9)) return std::nullopt;
+    return toVec(o) + toVec(dir) * ((d_->pokePoint - toVec(o)).dot(facing) / along) - d_->pokePoint;
+}
+
+void Viewport::showPoke(const QPoint& pos, const QPoint& global) {
+    const std::optional<Vec3> drag = pokeDrag(pos);
+    if (!drag) return;
+    d_->overlays->set(ViewportOverlays::Poke, overlays::pokeArrow(d_->pokePoint, *drag));
+    // What the release will give: the pressed point's change of velocity along the drag.
+    QToolTip::showText(global, tr("Poke: Δv %1 m/s").arg(drag->norm() / kPokeSeconds, 0, 'g', 3), d_->container);
+}
+
+void Viewport::hidePoke() {
+    d_->overlays->clear(ViewportOverlays::Poke);
+    QToolTip::hideText();
+}
+
+bool Viewport::pokeArrowShown() const {
+    return d_->overlays->count(ViewportOverlays::Poke) > 0;
+}
+
 bool Viewport::poke(int body, const Vec3& point, const Vec3& drag) {
     const State* state = d_->frameState();
     if (!state || body < 0 || body >= d_->doc->bodyCount() || !(drag.norm() > 0.0)) return false;
@@ -568,7 +597,10 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
             }
             if (!d_->dragged && (p - d_->pressPos).manhattanLength() < kClickSlop) return true;
             d_->dragged = true;
-            if (d_->pokeBody >= 0) return true;  // the poke is made on release
+            if (d_->pokeBody >= 0) {  // the poke is made on release; till then its arrow and size
+                showPoke(p, e->globalPosition().toPoint());
+                return true;
+            }
             const QPoint delta = p - d_->lastPos;
             d_->lastPos = p;
             const bool pan = d_->dragButton == Qt::MiddleButton ||
@@ -591,15 +623,9 @@ bool Viewport::eventFilter(QObject* watched, QEvent* event) {
                 dragHandle(e->position().toPoint(), e->modifiers());  // where and how it ends
                 endHandleDrag();
             } else if (d_->dragged && d_->pokeBody >= 0) {
-                // The drag's end on the plane through the pressed point that faces the camera.
-                QVector3D o, dir;
-                rayAt(e->position().toPoint(), &o, &dir);
-                const Vec3 facing = toVec(d_->camera.target() - d_->camera.eye()).normalized();
-                const double along = toVec(dir).dot(facing);
-                if (std::abs(along) > 1e-9) {
-                    const Vec3 end = toVec(o) + toVec(dir) * ((d_->pokePoint - toVec(o)).dot(facing) / along);
-                    poke(d_->pokeBody, d_->pokePoint, end - d_->pokePoint);
-                }
+                hidePoke();
+                if (const std::optional<Vec3> drag = pokeDrag(e->position().toPoint()))
+                    poke(d_->pokeBody, d_->pokePoint, *drag);
             } else if (!d_->dragged && d_->dragButton == Qt::LeftButton) {
                 clickAt(e->position().toPoint(), e->modifiers());
             }

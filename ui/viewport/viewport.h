@@ -13,6 +13,7 @@
 #include <QWidget>
 
 #include <memory>
+#include <optional>
 
 class QWindow;
 namespace Qt3DRender {
@@ -125,6 +126,8 @@ public:
     /// the playhead); Contacts: contact points; Velocities, AngularVelocities, Forces:
     /// arrows; CentresOfMass: markers; Sleeping: bodies tinted. 0 while off.
     int overlayItemCount(Overlay overlay) const;
+    /// Whether a poke's arrow is drawn (a Ctrl+drag from a body under way).
+    bool pokeArrowShown() const;
     /// The points of body `index`'s trail as drawn (empty without one).
     QList<QVector3D> trailPoints(int index) const;
     /// The menu text of an overlay ("Trails", "Contact Points", ...).
@@ -175,6 +178,10 @@ protected:
 
 private:
     bool handleKey(QKeyEvent* event);
+    // A poke under way (Ctrl+drag from a body): its drag so far, its arrow and size shown.
+    std::optional<Vec3> pokeDrag(const QPoint& pos) const;
+    void showPoke(const QPoint& pos, const QPoint& global);
+    void hidePoke();
     // Box select (viewport_box_select.cpp): the press, move and release of its drag.
     bool boxPress(const QPoint& pos);
     bool boxMove(const QPoint& pos);

@@ -40,6 +40,7 @@ constexpr Rgb kJointAxis{0.95f, 0.55f, 0.1f};
 constexpr Rgb kJointSelected{1.0f, 0.95f, 0.7f};
 constexpr Rgb kPath{0.6f, 0.6f, 0.65f};
 constexpr Rgb kPathSelected{1.0f, 0.63f, 0.0f};
+constexpr Rgb kPoke{1.0f, 0.3f, 0.9f};
 
 void vertex(std::vector<float>& out, const Vec3& p, Rgb c) {
     out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z()), c.r, c.g, c.b});
@@ -344,6 +345,13 @@ Lines paths(const SceneDesc& scene, const std::vector<int>& selected) {
         for (const BodyKey& k : b.keys) cross(lines.xyzrgb, k.position, size, c);
         ++lines.items;
     }
+    return lines;
+}
+
+Lines pokeArrow(const Vec3& from, const Vec3& drag) {
+    Lines lines;
+    arrow(lines.xyzrgb, from, drag, kPoke);
+    lines.items = lines.xyzrgb.empty() ? 0 : 1;
     return lines;
 }
 

@@ -71,6 +71,9 @@ Lines joints(const SceneDesc& scene, int selected = -1);
 /// segment from the first key to the last) and a cross at each key: amber for the bodies in
 /// `selected` (indices in the scene), grey for the others. items: paths.
 Lines paths(const SceneDesc& scene, const std::vector<int>& selected);
+/// The poke being dragged (viewport.cpp): an arrow from the pressed point along the drag.
+/// items: 1.
+Lines pokeArrow(const Vec3& from, const Vec3& drag);
 /// One polyline per track of two points or more. items: polylines.
 Lines trails(const std::vector<std::vector<Vec3>>& tracks);
 
@@ -90,6 +93,7 @@ public:
         CentresOfMass,
         Joints,
         Paths,
+        Poke,
         KindCount
     };
 

@@ -129,7 +129,9 @@ private slots:
         QMouseEvent move(QEvent::MouseMove, QPointF(at + QPoint(40, 0)), f.view->renderWindow()->mapToGlobal(QPointF(at + QPoint(40, 0))),
                          Qt::NoButton, Qt::LeftButton, Qt::ControlModifier);
         QApplication::sendEvent(f.view->renderWindow(), &move);
+        QVERIFY(f.view->pokeArrowShown());  // while dragging: the arrow and its size
         QTest::mouseRelease(f.view->renderWindow(), Qt::LeftButton, Qt::ControlModifier, at + QPoint(80, 0));
+        QVERIFY(!f.view->pokeArrowShown());
         QCOMPARE(f.doc.undoStack()->count(), steps + 1);
         const BodyDesc& b = f.doc.body(ball);
         QCOMPARE(b.forces.size(), size_t(1));
