@@ -20,6 +20,7 @@
 #include <QSignalBlocker>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -27,6 +28,25 @@
 namespace tumble::ui {
 
 namespace {
+
+// A joint still called by its old type's default name ("hinge", "hinge-2") takes the new
+// type's ("slider", unique among the joints): the name said what it was, and no longer
+// would. A name the user gave is kept.
+std::string renamedForType(const SceneDesc& scene, const std::string& name, JointType was, JointType type) {
+    const std::string old = toString(was);
+    const bool numbered = name.size() > old.size() + 1 && name.compare(0, old.size() + 1, old + "-") == 0 &&
+                          std::all_of(name.begin() + long(old.size()) + 1, name.end(),
+                                      [](char c) { return c >= '0' && c <= '9'; });
+    if (was == type || (name != old && !numbered)) return name;
+    const std::string base = toString(type);
+    auto taken = [&](const std::string& candidate) {
+        return std::any_of(scene.joints.begin(), scene.joints.end(),
+                           [&](const JointDesc& other) { return other.name == candidate; });
+    };
+    std::string fresh = base;
+    for (int k = 2; taken(fresh); ++k) fresh = base + "-" + std::to_string(k);
+    return fresh;
+}
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
@@ -93,6 +113,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         apply(
             "type", tr("Set joint type"),
             [&](JointDesc& j) {
+                const JointType was = j.type;
                 j.type = t;
                 if (axial(t) && !j.axisA) {
                     const BodyFrame a = frameOf(doc_->scene(), j.bodyA);
@@ -114,6 +135,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
                 }
                 if (!line(t)) j.length = -1.0;
                 if (t != JointType::SixAxis) j.axes = JointDesc().axes;
+                j.name = renamedForType(doc_->scene(), j.name, was, t);
             },
             false);
     });

@@ -292,6 +292,17 @@ private slots:
         QCOMPARE(f.find<QComboBox>("joint.body_a")->currentText(), QString("door"));
     }
 
+    void typeChangeKeepsANameTheUserGave() {
+        Fixture f;
+        JointDesc named = f.joint();
+        named.name = "door-pin";
+        f.doc.setJoint(0, named, "Rename");
+        f.doc.selectJoint(0);
+        f.choose("joint.type", "slider");
+        QCOMPARE(f.joint().type, JointType::Slider);
+        QCOMPARE(f.joint().name, std::string("door-pin"));
+    }
+
     void typeChangeClearsWhatTheTypeCannotHave() {
         Fixture f;
         f.doc.selectJoint(0);
@@ -300,11 +311,16 @@ private slots:
         f.choose("joint.type", "ball");
         QCOMPARE(f.joint().type, JointType::Ball);
         QVERIFY(!f.joint().axisA && !f.joint().limits && !f.joint().motor);
+        // "hinge", a name that only said its type, follows the type; the undo entry names it.
+        QCOMPARE(f.joint().name, std::string("ball"));
+        QCOMPARE(f.doc.undoStack()->undoText(), QString("Set joint type of hinge"));
         QVERIFY(!f.find<VectorEdit>("joint.axis_a")->isVisibleTo(&f.dock));
         f.choose("joint.type", "slider");  // a slider needs an axis: A's x as it lies
         QVERIFY(f.joint().axisA.has_value());
         QVERIFY((*f.joint().axisA - f.door().orientation.conjugate() * Vec3::UnitX()).norm() < 1e-12);
+        QCOMPARE(f.joint().name, std::string("slider"));
         f.choose("joint.type", "rope");
+        QCOMPARE(f.joint().name, std::string("rope"));
         QCOMPARE(f.joint().length, -1.0);
         QVERIFY(f.find<QCheckBox>("joint.length.as_placed")->isChecked());
         f.find<QCheckBox>("joint.length.as_placed")->setChecked(false);  // the distance now
