@@ -624,7 +624,10 @@ void Document::setSelection(QList<int> indices) {
     std::sort(indices.begin(), indices.end());
     indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
     indices.removeIf([&](int i) { return i < 0 || i >= bodyCount(); });
-    if (indices == selection_ && selectedJoint_ < 0 && selectedPart_ < 0) return;
+    // (Sizes first: Qt 6.4 compares two empty lists by memcmp of null pointers, which UBSan
+    // reports.)
+    const bool same = indices.size() == selection_.size() && (indices.isEmpty() || indices == selection_);
+    if (same && selectedJoint_ < 0 && selectedPart_ < 0) return;
     selection_ = indices;
     selectedJoint_ = -1;
     selectedPart_ = -1;

@@ -155,6 +155,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), doc_(new Document
 
 MainWindow::~MainWindow() {
     delete importJob_;  // stops a read still running before the document goes
+    // A field closed with the window commits its edit (its focus out) while the widgets go:
+    // the document's signals must not reach this half-destroyed window then (UBSan: a
+    // rename typed and not entered, the window closed).
+    doc_->disconnect(this);
+    if (timeline_) timeline_->disconnect(this);
 }
 
 const SceneDesc& MainWindow::scene() const {
