@@ -42,12 +42,19 @@ Quat uprightFor(const Vec3& down) {
     return Quat::FromTwoVectors(-Vec3::UnitY(), down.normalized());
 }
 
-std::optional<double> dropDistance(const SceneDesc& scene, int index) {
-    if (index < 0 || index >= static_cast<int>(scene.bodies.size())) return std::nullopt;
-    if (scene.bodies[index].shape.type == ShapeType::Plane) return std::nullopt;
-    const std::optional<Compiled> c = compiled(scene);
-    if (!c) return std::nullopt;
-    return travelToTouch(c->model, c->state, index, downOf(scene), kFarthestDrop);
+std::vector<std::optional<double>> dropDistances(const SceneDesc& scene, const std::vector<int>& indices) {
+    std::vector<std::optional<double>> falls(indices.size());
+    std::optional<Compiled> c = compiled(scene);  // once for all of them
+    if (!c) return falls;
+    const Vec3 down = downOf(scene);
+    for (std::size_t k = 0; k < indices.size(); ++k) {
+        const int i = indices[k];
+        if (i < 0 || i >= static_cast<int>(scene.bodies.size()) || scene.bodies[i].shape.type == ShapeType::Plane)
+            continue;
+        falls[k] = travelToTouch(c->model, c->state, i, down, kFarthestDrop);
+        if (falls[k]) c->state.bodies[i].x += *falls[k] * down;  // where the next ones meet it
+    }
+    return falls;
 }
 
 BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point) {

@@ -15,10 +15,12 @@ namespace tumble::ui {
 /// Down in `scene`: along its gravity, or -y when it has none.
 Vec3 downOf(const SceneDesc& scene);
 
-/// How far body `index` of `scene` can drop along downOf(scene) before it touches a body it
-/// may collide with (at most 10 km); nothing when nothing is below it, or when the scene
-/// cannot be compiled (a mesh not loaded).
-std::optional<double> dropDistance(const SceneDesc& scene, int index);
+/// How far each of `indices` drops along downOf(scene) before it touches a body it may
+/// collide with (at most 10 km), in that order, each after those before it have dropped (give
+/// them lowest first: a body resting on another follows it down). Nothing for a body with
+/// nothing below it or a plane, or for all when the scene cannot be compiled (a mesh not
+/// loaded). The scene is compiled once.
+std::vector<std::optional<double>> dropDistances(const SceneDesc& scene, const std::vector<int>& indices);
 
 /// `body` (not yet in `scene`) set down on what lies under `point`: raised above the point
 /// by its size, then lowered along down until it rests on the first body it meets. Where it

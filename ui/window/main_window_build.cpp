@@ -171,21 +171,27 @@ void MainWindow::dropSelection() {
     std::vector<std::pair<int, BodyDesc>> moved;
     QStringList stayed;
     // The lowest first: a selected body resting on another selected one follows it down.
+    std::vector<int> order;
     for (int i : lowestFirst(scene, std::vector<int>(selected.begin(), selected.end()))) {
-        BodyDesc& b = scene.bodies[static_cast<std::size_t>(i)];
+        const BodyDesc& b = scene.bodies[static_cast<std::size_t>(i)];
         if (b.shape.type == ShapeType::Plane) continue;
         if (b.motion == Motion::Animated) {  // its keys place it; dropping one pose would not
             stayed << tr("%1 is animated (move its keys)").arg(nameOf(b));
             continue;
         }
-        const std::optional<double> fall = dropDistance(scene, i);
+        order.push_back(i);
+    }
+    const std::vector<std::optional<double>> falls = dropDistances(scene, order);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        BodyDesc& b = scene.bodies[static_cast<std::size_t>(order[k])];
+        const std::optional<double>& fall = falls[k];
         if (!fall) {
             stayed << tr("nothing is under %1").arg(nameOf(b));
             continue;
         }
         if (*fall <= 0.0) continue;  // resting already
         b.position += *fall * down;
-        moved.emplace_back(i, b);
+        moved.emplace_back(order[k], b);
     }
     if (moved.empty()) {
         statusBar()->showMessage(stayed.isEmpty() ? tr("Already resting: nothing to drop")
