@@ -362,7 +362,7 @@ private slots:
         QVERIFY(orangeAt(Vec3(0, 1.5, 0)));
         // A scene opened from a file (File > Open), its meshes loaded then.
         QString error;
-        QVERIFY2(doc.open(QFINDTESTDATA("../../../resources/scenes/mesh-shapes.json"), &error), qPrintable(error));
+        QVERIFY2(doc.open(QStringLiteral(TUMBLE_SCENES_DIR "/mesh-shapes.json"), &error), qPrintable(error));
         int tetra = -1;
         for (int i = 0; i < doc.bodyCount(); ++i)
             if (doc.body(i).motion == Motion::Dynamic && doc.body(i).shape.type == ShapeType::Mesh) tetra = i;
