@@ -108,13 +108,13 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
 
     duplicate_ = new QAction(tr("D&uplicate"), this);
     duplicate_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_D));
-    duplicate_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    duplicate_->setShortcutContext(Qt::WindowShortcut);
     duplicate_->setStatusTip(tr("Copy the selected bodies"));
     connect(duplicate_, &QAction::triggered, this, &SceneTreeDock::duplicateSelection);
 
     delete_ = new QAction(tr("&Delete"), this);
     delete_->setShortcut(QKeySequence::Delete);
-    delete_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    delete_->setShortcutContext(Qt::WindowShortcut);
     delete_->setStatusTip(tr("Remove the selected bodies, or the selected part or joint"));
     connect(delete_, &QAction::triggered, this, [this] {
         QString why;
@@ -138,7 +138,7 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
 
     group_ = new QAction(tr("&Group"), this);
     group_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_G));
-    group_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    group_->setShortcutContext(Qt::WindowShortcut);
     group_->setStatusTip(tr("Make the selected bodies one body of several parts, each where it is"));
     connect(group_, &QAction::triggered, this, [this] {
         QString why;
@@ -146,7 +146,7 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
     });
     ungroup_ = new QAction(tr("U&ngroup"), this);
     ungroup_->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_G));
-    ungroup_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    ungroup_->setShortcutContext(Qt::WindowShortcut);
     ungroup_->setStatusTip(tr("Make the selected compound body a body per part"));
     connect(ungroup_, &QAction::triggered, this, [this] {
         const QList<int> rows = doc_->selection();
@@ -156,13 +156,14 @@ SceneTreeDock::SceneTreeDock(Document* doc, QWidget* parent)
 
     rename_ = new QAction(tr("&Rename"), this);
     rename_->setShortcut(QKeySequence(Qt::Key_F2));
-    rename_->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    rename_->setShortcutContext(Qt::WindowShortcut);
     connect(rename_, &QAction::triggered, this, [this] {
         const QModelIndex current = view_->currentIndex();
         if (current.isValid()) view_->edit(model_->index(current.row(), SceneTreeModel::NameColumn));
     });
-    // The shortcuts work wherever the focus is inside the dock (the line editor of a rename
-    // keeps Delete for itself).
+    // The shortcuts work wherever the focus is in the window (the 3D view, the timeline, any
+    // dock); a text field with the focus (a rename's line editor, a property) takes the keys it
+    // edits with first, by its ShortcutOverride.
     addAction(duplicate_);
     addAction(group_);
     addAction(ungroup_);

@@ -261,6 +261,38 @@ private slots:
         QCOMPARE(win.w.viewport()->cameraTarget(), before);
     }
 
+    // Duplicate (Ctrl+D) and Delete work wherever the focus is, not only in the Scene list; a
+    // text field keeps Delete for its text.
+    void editingKeysWorkFromEveryDock() {
+        Window win;
+        win.addBox();
+        QWidget* list = win.w.findChild<SceneTreeDock*>()->view();
+        QWidget* slider = win.w.timelineDock()->findChild<QAbstractSlider*>();
+        QVERIFY(slider);
+        for (QWidget* focus : {static_cast<QWidget*>(win.w.viewport()), slider, list}) {
+            const int before = win.doc()->bodyCount();
+            win.doc()->setSelection({before - 1});
+            focus->setFocus();
+            QTest::keyClick(focus, Qt::Key_D, Qt::ControlModifier);
+            QCOMPARE(win.doc()->bodyCount(), before + 1);
+            win.doc()->setSelection({before});
+            focus->setFocus();
+            QTest::keyClick(focus, Qt::Key_Delete);
+            QCOMPARE(win.doc()->bodyCount(), before);
+        }
+        auto* field = win.w.findChild<QLineEdit*>("name");
+        QVERIFY(field);
+        const int before = win.doc()->bodyCount();
+        win.doc()->setSelection({before - 1});
+        field->setFocus();
+        QTRY_VERIFY(field->hasFocus());
+        const QString name = field->text();
+        QTest::keyClick(field, Qt::Key_Home);
+        QTest::keyClick(field, Qt::Key_Delete);
+        QCOMPARE(win.doc()->bodyCount(), before);
+        QCOMPARE(field->text(), name.mid(1));
+    }
+
     void standardViewsLookAlongTheAxes() {
         Window win;
         win.w.viewport()->setCamera(QVector3D(1, 2, 3), 10.0f, 30.0f, 35.0f);
