@@ -24,6 +24,7 @@ bool SetBodyCommand::mergeWith(const QUndoCommand* other) {
     const auto* o = static_cast<const SetBodyCommand*>(other);
     if (o->mergeId_ != mergeId_ || o->index_ != index_) return false;
     after_ = o->after_;
+    setText(o->text());  // the last value's words ("... to 25 kg")
     return true;
 }
 
@@ -46,6 +47,7 @@ bool SetSettingsCommand::mergeWith(const QUndoCommand* other) {
     const auto* o = static_cast<const SetSettingsCommand*>(other);
     if (o->mergeId_ != mergeId_) return false;
     after_ = o->after_;
+    setText(o->text());  // the last value's words ("... to 25 kg")
     return true;
 }
 
@@ -82,6 +84,7 @@ bool SetJointsCommand::mergeWith(const QUndoCommand* other) {
     const auto* o = static_cast<const SetJointsCommand*>(other);
     if (o->mergeId_ != mergeId_ || o->before_ != after_ || o->after_.size() != after_.size()) return false;
     after_ = o->after_;
+    setText(o->text());  // the last value's words ("... to 25 kg")
     return true;
 }
 

@@ -360,6 +360,10 @@ QString naming(const QString& text, const std::string& name) {
 
 }  // namespace
 
+QString Document::editText(const QString& what, const QString& who, const QString& value) {
+    return value.isEmpty() ? tr("%1 of %2").arg(what, who) : tr("%1 of %2 to %3").arg(what, who, value);
+}
+
 void Document::setBody(int index, const BodyDesc& given, const QString& plainText, int mergeId) {
     if (index < 0 || index >= bodyCount() || given == scene_.bodies[static_cast<size_t>(index)]) return;
     const QString text = naming(plainText, scene_.bodies[static_cast<size_t>(index)].name);

@@ -79,6 +79,9 @@ public:
     /// joints that name the body (the same undo step). The undo entry is `text` of the body
     /// ("Set mass of box-3") unless `text` names it already; setJoint's the same.
     void setBody(int index, const BodyDesc& body, const QString& text, int mergeId = 0);
+    /// An undo entry's words for a changed value: "Set mass of box-3 to 25 kg" (`what`,
+    /// `who`, `value`); without a value, "Set mass of box-3".
+    static QString editText(const QString& what, const QString& who, const QString& value = QString());
     void setSettings(const Settings& settings, const QString& text, int mergeId = 0);
     /// Inserts `body` at `index` (-1: at the end) with a name made unique; returns its index.
     int addBody(const BodyDesc& body, int index = -1);

@@ -137,7 +137,7 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
                 if (t != JointType::SixAxis) j.axes = JointDesc().axes;
                 j.name = renamedForType(doc_->scene(), j.name, was, t);
             },
-            false);
+            false, type_->itemText(i));
     });
 
     // The bodies: a change keeps the anchor (and the axis) where it is in the world.
@@ -183,10 +183,12 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         };
     };
     connect(bodyA_, &QComboBox::activated, this, [this, rebind](int i) {
-        apply("body_a", tr("Set joint body"), rebind(true, bodyA_->itemData(i).toString().toStdString()), false);
+        apply("body_a", tr("Set joint's moving body"), rebind(true, bodyA_->itemData(i).toString().toStdString()), false,
+              bodyA_->itemText(i));
     });
     connect(bodyB_, &QComboBox::activated, this, [this, rebind](int i) {
-        apply("body_b", tr("Set joint body"), rebind(false, bodyB_->itemData(i).toString().toStdString()), false);
+        apply("body_b", tr("Set joint's base"), rebind(false, bodyB_->itemData(i).toString().toStdString()), false,
+              bodyB_->itemText(i));
     });
 
     // The anchors in their bodies' frames (as the file has them), or as world points (the
@@ -216,12 +218,14 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     anchorA_ = vector("joint.anchor_a", " m");
     addRow(tr("Anchor A"), "anchor_a", anchorA_);
     connect(anchorA_, &VectorEdit::componentEdited, this, [this, shown, stored](int k, double v) {
-        editVector("anchor_a", tr("Move joint anchor"), k, v, shown(true), stored(true));
+        editVector("anchor_a", tr("Move joint anchor A") + ' ' + QChar(u'x' + k), k, v, shown(true), stored(true),
+                   anchorA_->component(k)->shownText(v));
     });
     anchorB_ = vector("joint.anchor_b", " m");
     addRow(tr("Anchor B"), "anchor_b", anchorB_);
     connect(anchorB_, &VectorEdit::componentEdited, this, [this, shown, stored](int k, double v) {
-        editVector("anchor_b", tr("Move joint anchor"), k, v, shown(false), stored(false));
+        editVector("anchor_b", tr("Move joint anchor B") + ' ' + QChar(u'x' + k), k, v, shown(false), stored(false),
+                   anchorB_->component(k)->shownText(v));
     });
 
     axisA_ = vector("joint.axis_a", QString());
@@ -229,8 +233,8 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     addRow(tr("Axis"), "axis_a", axisA_);
     connect(axisA_, &VectorEdit::componentEdited, this, [this](int k, double v) {
         editVector(
-            "axis_a", tr("Turn joint axis"), k, v, [](const JointDesc& j) { return j.axisA; },
-            [](JointDesc& j, const Vec3& a) { j.axisA = a; });
+            "axis_a", tr("Turn joint axis") + ' ' + QChar(u'x' + k), k, v, [](const JointDesc& j) { return j.axisA; },
+            [](JointDesc& j, const Vec3& a) { j.axisA = a; }, axisA_->component(k)->shownText(v));
     });
     hasAxisB_ = new QCheckBox(tr("own"));
     hasAxisB_->setObjectName("joint.axis_b.on");
@@ -253,8 +257,9 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     });
     connect(axisB_, &VectorEdit::componentEdited, this, [this](int k, double v) {
         editVector(
-            "axis_b", tr("Turn joint axis"), k, v, [](const JointDesc& j) { return j.axisB; },
-            [](JointDesc& j, const Vec3& a) { j.axisB = a; });
+            "axis_b", tr("Turn joint axis on B") + ' ' + QChar(u'x' + k), k, v,
+            [](const JointDesc& j) { return j.axisB; }, [](JointDesc& j, const Vec3& a) { j.axisB = a; },
+            axisB_->component(k)->shownText(v));
     });
 
     asPlaced_ = new QCheckBox(tr("as placed"));
@@ -275,7 +280,8 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             false);
     });
     connect(length_, &PropertySpinBox::valueChanged, this, [this](double v) {
-        apply("length", tr("Set joint length"), [&](JointDesc& j) { j.length = v; });
+        apply(
+            "length", tr("Set joint length"), [&](JointDesc& j) { j.length = v; }, true, length_->shownText(v));
     });
 
     buildAxisRows();
@@ -307,13 +313,14 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             const int i = jointIndex();
             if (i < 0) return;
             editVector(
-                "limits", tr("Set joint limits"), k, v * unit(viewed(i)),
+                "limits", k ? tr("Set joint upper limit") : tr("Set joint lower limit"), k, v * unit(viewed(i)),
                 [](const JointDesc& j) {
                     return j.limits ? std::optional(Vec3((*j.limits)[0], (*j.limits)[1], 0.0)) : std::nullopt;
                 },
                 [](JointDesc& j, const Vec3& l) {
                     j.limits = std::array<double, 2>{l[0], l[1]};
-                });
+                },
+                (k ? upper_ : lower_)->shownText(v));
         });
     }
 
@@ -338,14 +345,20 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             false);
     });
     connect(motorSpeed_, &PropertySpinBox::valueChanged, this, [this](double v) {
-        apply("motor", tr("Set motor speed"), [&](JointDesc& j) {
-            if (j.motor) j.motor->speed = v;
-        });
+        apply(
+            "motor", tr("Set motor speed"),
+            [&](JointDesc& j) {
+                if (j.motor) j.motor->speed = v;
+            },
+            true, motorSpeed_->shownText(v));
     });
     connect(motorMax_, &PropertySpinBox::valueChanged, this, [this](double v) {
-        apply("motor", tr("Set motor strength"), [&](JointDesc& j) {
-            if (j.motor) j.motor->maxForce = v;
-        });
+        apply(
+            "motor", tr("Set motor strength"),
+            [&](JointDesc& j) {
+                if (j.motor) j.motor->maxForce = v;
+            },
+            true, motorMax_->shownText(v));
     });
 
     buildDriveRows();
@@ -369,9 +382,12 @@ JointPanel::JointPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
             false);
     });
     connect(breakForce_, &PropertySpinBox::valueChanged, this, [this](double v) {
-        apply("break_force", tr("Set joint breaking force"), [&](JointDesc& j) {
-            if (j.breakForce) j.breakForce = v;
-        });
+        apply(
+            "break_force", tr("Set joint breaking force"),
+            [&](JointDesc& j) {
+                if (j.breakForce) j.breakForce = v;
+            },
+            true, breakForce_->shownText(v));
     });
 
     collide_ = new QCheckBox(tr("its bodies collide"));
@@ -464,7 +480,7 @@ QString JointPanel::fieldError(const QString& field) const {
     return label && !label->isHidden() ? label->text() : QString();
 }
 
-void JointPanel::apply(const QString& key, const QString& text, const Edit& edit, bool merge) {
+void JointPanel::apply(const QString& key, const QString& text, const Edit& edit, bool merge, const QString& value) {
     const int i = jointIndex();
     if (i < 0) return;
     // (A type change is made to the joint itself, every other edit to what the rows show.)
@@ -489,7 +505,8 @@ void JointPanel::apply(const QString& key, const QString& text, const Edit& edit
     }
     clearErrors();
     const int mergeId = merge ? static_cast<int>(qHash(key) % 100000u) + 1 + generation_ * 100003 : 0;
-    doc_->setJoint(i, j, text, mergeId);
+    const QString name = QString::fromStdString(doc_->joint(i).name);
+    doc_->setJoint(i, j, value.isEmpty() ? text : Document::editText(text, name, value), mergeId);
 }
 
 namespace {
@@ -520,7 +537,7 @@ void JointPanel::markHeld(const QString& key, bool held) {
 }
 
 void JointPanel::editVector(const QString& key, const QString& text, int k, double v, const VectorOf& get,
-                            const SetVector& set) {
+                            const SetVector& set, const QString& shown) {
     const int i = jointIndex();
     if (i < 0) return;
     const std::optional<Vec3> current = get(viewed(i));
@@ -545,7 +562,8 @@ void JointPanel::editVector(const QString& key, const QString& text, int k, doub
     }
     held_.remove(key);
     markHeld(key, false);
-    apply(key, text, [&](JointDesc& jj) { set(jj, value); });
+    apply(
+        key, text, [&](JointDesc& jj) { set(jj, value); }, true, shown);
 }
 
 void JointPanel::dropHeld() {

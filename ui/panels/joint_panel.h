@@ -42,7 +42,10 @@ private:
     using Edit = std::function<void(JointDesc&)>;
     /// Applies `edit` to a copy of the selected joint; validates the scene with it; hands it
     /// to the document (merging with the last edit of the same field while it is scrubbed).
-    void apply(const QString& key, const QString& text, const Edit& edit, bool merge = true);
+    /// `value`, the new value as its field shows it, goes into the undo entry ("Set joint
+    /// length of hinge to 1.5 m").
+    void apply(const QString& key, const QString& text, const Edit& edit, bool merge = true,
+               const QString& value = QString());
     /// A vector field edited a component at a time is one value: a component that makes the
     /// joint refused is held (the typed values stay, the field is marked, the panel says why
     /// in plain words) until the vector is valid, or Esc shows the last valid value again;
@@ -50,7 +53,7 @@ private:
     using VectorOf = std::function<std::optional<Vec3>(const JointDesc&)>;
     using SetVector = std::function<void(JointDesc&, const Vec3&)>;
     void editVector(const QString& key, const QString& text, int k, double v, const VectorOf& get,
-                    const SetVector& set);
+                    const SetVector& set, const QString& value = QString());
     /// Frames the fields of a held value (a vector, or the two limits) red, or not.
     void markHeld(const QString& key, bool held);
     void dropHeld();

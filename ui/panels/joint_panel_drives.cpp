@@ -64,10 +64,13 @@ void JointPanel::buildDriveRows() {
     });
     auto springField = [this](PropertySpinBox* field, const QString& text, double JointDesc::Spring::*member,
                                bool angle) {
-        connect(field, &PropertySpinBox::valueChanged, this, [this, text, member, angle](double v) {
-            apply("spring", text, [&](JointDesc& j) {
-                if (j.spring) (*j.spring).*member = angle ? v * unitOf(j) : v;
-            });
+        connect(field, &PropertySpinBox::valueChanged, this, [this, field, text, member, angle](double v) {
+            apply(
+                "spring", text,
+                [&](JointDesc& j) {
+                    if (j.spring) (*j.spring).*member = angle ? v * unitOf(j) : v;
+                },
+                true, field->shownText(v));
         });
     };
     springField(springStiffness_, tr("Set spring stiffness"), &JointDesc::Spring::stiffness, false);
@@ -132,10 +135,13 @@ void JointPanel::buildDriveRows() {
     });
     auto servoField = [this](PropertySpinBox* field, const QString& text,
                               const std::function<void(JointDesc&, double)>& set) {
-        connect(field, &PropertySpinBox::valueChanged, this, [this, text, set](double v) {
-            apply("servo", text, [&](JointDesc& j) {
-                if (j.servo) set(j, v);
-            });
+        connect(field, &PropertySpinBox::valueChanged, this, [this, field, text, set](double v) {
+            apply(
+                "servo", text,
+                [&](JointDesc& j) {
+                    if (j.servo) set(j, v);
+                },
+                true, field->shownText(v));
         });
     };
     connect(servoTarget_, &PropertySpinBox::valueChanged, this, [this](double v) {
@@ -147,9 +153,12 @@ void JointPanel::buildDriveRows() {
             editServoKeys(tr("Set servo key"), [key, target](auto& keys) { keys[size_t(key)].target = target; });
             return;
         }
-        apply("servo", tr("Set servo target"), [&](JointDesc& jj) {
-            if (jj.servo) jj.servo->target = v * unitOf(jj);
-        });
+        apply(
+            "servo", tr("Set servo target"),
+            [&](JointDesc& jj) {
+                if (jj.servo) jj.servo->target = v * unitOf(jj);
+            },
+            true, servoTarget_->shownText(v));
     });
     servoField(servoMax_, tr("Set servo strength"),
                [](JointDesc& j, double v) { j.servo->maxForce = v > 0.0 ? v : HUGE_VAL; });
@@ -290,11 +299,14 @@ void JointPanel::buildBallLimitRows() {
             j.twistLimits.reset();
     });
     auto angleField = [this](PropertySpinBox* field, const QString& key, const QString& text, int k, bool twist) {
-        connect(field, &PropertySpinBox::valueChanged, this, [this, key, text, k, twist](double v) {
-            apply(key, text, [&](JointDesc& j) {
-                std::optional<std::array<double, 2>>& pair = twist ? j.twistLimits : j.swingLimit;
-                if (pair) (*pair)[k] = v * kDegree;
-            });
+        connect(field, &PropertySpinBox::valueChanged, this, [this, field, key, text, k, twist](double v) {
+            apply(
+                key, text,
+                [&](JointDesc& j) {
+                    std::optional<std::array<double, 2>>& pair = twist ? j.twistLimits : j.swingLimit;
+                    if (pair) (*pair)[k] = v * kDegree;
+                },
+                true, field->shownText(v));
         });
     };
     angleField(cone1_, "swing_limit", tr("Set swing cone"), 0, false);

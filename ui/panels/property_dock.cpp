@@ -235,12 +235,12 @@ void PropertyDock::Impl::build() {
     // ---- Initial state
     form = group(layout, QObject::tr("Initial state"));
     addVector(
-        form, QObject::tr("Position"), "position", " m", QObject::tr("Move"),
+        form, QObject::tr("Position"), "position", " m", QObject::tr("Set position"),
         [](const BodyDesc& b) { return std::optional(b.position); },
         [](BodyDesc& b, int k, double v) { b.position[k] = v; })
         ->setSingleStep(0.1);
     auto* orientation = addVector(
-        form, QObject::tr("Orientation"), "orientation", QStringLiteral("°"), QObject::tr("Rotate"),
+        form, QObject::tr("Orientation"), "orientation", QStringLiteral("°"), QObject::tr("Set orientation"),
         [this](const BodyDesc& b) { return std::optional(eulerOf(b)); },
         [this](BodyDesc& b, int k, double v) {
             Vec3 e = eulerOf(b);

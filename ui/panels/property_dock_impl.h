@@ -308,6 +308,17 @@ struct PropertyDock::Impl {
                1;
     }
 
+    // An edit's undo entry: "Set mass of box-3 to 25 kg", "Set mass of 3 bodies to 25 kg".
+    QString editText(const QString& what, const QString& value) const {
+        const QList<int> sel = doc->selection();
+        const QString who = sel.size() == 1 && sel[0] >= 0 && sel[0] < doc->bodyCount()
+                                ? QString::fromStdString(doc->body(sel[0]).name)
+                                : QObject::tr("%n bodies", nullptr, static_cast<int>(sel.size()));
+        return Document::editText(what, who, value);
+    }
+    // A component's words: "x", "y", "z".
+    static QString axisName(int k) { return QString(QChar(u'x' + k)); }
+
     // The selected bodies with `change` made, in selection order.
     std::vector<BodyDesc> changedBodies(const Change& change) const {
         std::vector<BodyDesc> bodies;
@@ -451,8 +462,8 @@ struct PropertyDock::Impl {
         spin->setSingleStep(step);
         QWidget* row = withError(spin, key);
         form->addRow(label, row);
-        QObject::connect(spin, &PropertySpinBox::valueChanged, q, [this, key, text, set](double v) {
-            apply(key, text, [&](BodyDesc& b, int) { set(b, v); });
+        QObject::connect(spin, &PropertySpinBox::valueChanged, q, [this, spin, key, text, set](double v) {
+            apply(key, editText(text, spin->shownText(v)), [&](BodyDesc& b, int) { set(b, v); });
         });
         refreshers.push_back([form, row, spin, get](const std::vector<const BodyDesc*>& bodies) {
             const Shared<double> s = sharedOf<double>(bodies, get);
@@ -474,9 +485,10 @@ struct PropertyDock::Impl {
             for (int k = 0; k < 3; ++k) offerSweep(edit->component(k), [key, k] { return QString("%1[%2]").arg(key).arg(k); });
         QWidget* row = withError(edit, key);
         form->addRow(label, row);
-        QObject::connect(edit, &VectorEdit::componentEdited, q, [this, key, text, set](int k, double v) {
+        QObject::connect(edit, &VectorEdit::componentEdited, q, [this, edit, key, text, set](int k, double v) {
             applyPart(
-                key, k, text, [set, k, v](BodyDesc& b, int) { set(b, k, v); },
+                key, k, editText(text + ' ' + axisName(k), edit->component(k)->shownText(v)),
+                [set, k, v](BodyDesc& b, int) { set(b, k, v); },
                 key + "." + QString::number(k));
         });
         holdable(key, [edit](bool on) { edit->setHeld(on); });
@@ -506,7 +518,8 @@ struct PropertyDock::Impl {
         QObject::connect(combo, &QComboBox::activated, q, [this, combo, key, text, set](int i) {
             const E value = E(combo->itemData(i).toInt());
             apply(
-                key, text, [&](BodyDesc& b, int index) { set(b, index, value); }, false);
+                key, editText(text, combo->itemText(i)), [&](BodyDesc& b, int index) { set(b, index, value); },
+                false);
         });
         refreshers.push_back([form, row, combo, get](const std::vector<const BodyDesc*>& bodies) {
             const auto s = sharedOf<E>(bodies, get);

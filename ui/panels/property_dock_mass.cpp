@@ -60,7 +60,9 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             false);
     });
     QObject::connect(mass, &PropertySpinBox::valueChanged, q, [this](double value) {
-        apply("mass", QObject::tr("Set mass"), [&](BodyDesc& b, int) {
+        const bool density = !selected().empty() && selected().front()->density;
+        apply("mass", editText(density ? QObject::tr("Set density") : QObject::tr("Set mass"), mass->shownText(value)),
+              [&](BodyDesc& b, int) {
             if (b.density)
                 b.density = value;
             else if (b.motion == Motion::Dynamic)
@@ -128,7 +130,7 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
     });
     QObject::connect(com, &VectorEdit::componentEdited, q, [this](int k, double value) {
         applyPart(
-            "center_of_mass", k, QObject::tr("Set centre of mass"),
+            "center_of_mass", k, editText(QObject::tr("Set centre of mass") + ' ' + axisName(k), com->component(k)->shownText(value)),
             [this, k, value](BodyDesc& b, int) {
                 const auto c = computed(b);
                 Vec3 p = b.centerOfMass.value_or(c ? c->centerOfMass : Vec3::Zero());
@@ -161,7 +163,8 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
     QObject::connect(inertia, &InertiaEdit::cellEdited, q, [this, start](int i, int j, double value) {
         const int a = std::min(i, j), c = std::max(i, j);
         applyPart(
-            "inertia", 3 * a + c, QObject::tr("Set inertia"),
+            "inertia", 3 * a + c,
+            editText(QObject::tr("Set inertia") + ' ' + axisName(a) + axisName(c), inertia->cell(a, c)->shownText(value)),
             [start, a, c, value](BodyDesc& b, int) {
                 Mat3 m = start(b);
                 m(a, c) = m(c, a) = value;

@@ -117,15 +117,27 @@ QString PropertySpinBox::mixedText() {
     return QStringLiteral("—");
 }
 
+QString PropertySpinBox::shownText(double value) const {
+    if (!specialValueText().isEmpty() && value == minimum()) return specialValueText();
+    return rounded(value) + suffix();
+}
+
+QString PropertySpinBox::rounded(double value, int digits) const {
+    if (std::abs(value) < 1e-9) value = 0.0;  // rounding's noise (-1.1e-11°) shows as 0
+    if (value == 0.0) value = 0.0;            // no "-0"
+    QString t = locale().toString(value, 'g', digits);
+    t.remove(locale().groupSeparator());
+    return t;
+}
+
 QString PropertySpinBox::textFromValue(double value) const {
-    if (!editing_ && std::abs(value) < 1e-9) value = 0.0;  // rounding's noise (-1.1e-11°) shows as 0
-    if (value == 0.0) value = 0.0;                          // no "-0"
+    if (value == 0.0) value = 0.0;  // no "-0"
     auto text = [&](int digits) {
         QString t = locale().toString(value, 'g', digits);
         t.remove(locale().groupSeparator());
         return t;
     };
-    if (!editing_) return text(kShownDigits);
+    if (!editing_) return rounded(value);
     for (int digits = kShownDigits;; ++digits) {  // the shortest that reads back exactly
         const QString t = text(digits);
         bool ok = false;

@@ -37,6 +37,9 @@ public:
     /// exactly the value it holds, so that leaving it unedited changes nothing.
     QString textFromValue(double value) const override;
     static constexpr int kShownDigits = 6;
+    /// `value` as the field shows it when not focused, with its unit ("25 kg", "85.9437°"):
+    /// the words an undo entry gives the value ("Set mass of box-3 to 25 kg").
+    QString shownText(double value) const;
     void stepBy(int steps) override;
     StepEnabled stepEnabled() const override;
     double valueFromText(const QString& text) const override;
@@ -69,6 +72,8 @@ private:
     /// The text for the value now: rounded to kShownDigits significant digits while the
     /// field is not being edited, every digit it holds while it is (editing_).
     void render();
+    /// `value` to `digits` significant digits, |value| < 1e-9 as 0 (no group separators).
+    QString rounded(double value, int digits = kShownDigits) const;
     bool editing_ = false;
     std::function<void()> sweep_;
     std::function<bool()> sweepEnabled_;

@@ -229,17 +229,18 @@ QString SettingsDock::editText(Field field) const {
     switch (field) {
         case GravityX:
         case GravityY:
-        case GravityZ: return tr("Set gravity");
-        case Step: return tr("Set time step");
-        case Duration: return tr("Set duration");
-        case Integrator: return tr("Set integrator");
-        case FrameRate: return tr("Set frame rate");
+        case GravityZ:
+            return tr("Set gravity %1 to %2").arg(QChar(u'x' + (field - GravityX)), gravity_[field - GravityX]->text());
+        case Step: return tr("Set time step to %1").arg(step_->text());
+        case Duration: return tr("Set duration to %1").arg(duration_->text());
+        case Integrator: return tr("Set integrator to %1").arg(integrator_->currentText());
+        case FrameRate: return tr("Set frame rate to %1").arg(frameRate_->text());
         case Sleeping: return sleeping_->isChecked() ? tr("Turn sleeping on") : tr("Turn sleeping off");
-        case Iterations: return tr("Set solver iterations");
+        case Iterations: return tr("Set solver iterations to %1").arg(iterations_->text());
         case EnergyGuard:
             return energyGuard_->isChecked() ? tr("Turn the energy guard on")
                                              : tr("Turn the energy guard off");
-        case Impacts: return tr("Set impact timing");
+        case Impacts: return tr("Set impact timing to %1").arg(impacts_->currentText());
         case FieldCount: break;
     }
     return {};

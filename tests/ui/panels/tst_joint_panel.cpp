@@ -150,6 +150,11 @@ private slots:
         for (double v : {1.5, 2.0, 2.5}) f.spin("joint.motor.speed")->setValue(v);
         QCOMPARE(f.joint().motor->speed, 2.5);
         QCOMPARE(f.doc.undoStack()->count(), 2);  // the scrub merged
+        // Its entry names the joint and the last value, in the field's unit (issue 52).
+        QCOMPARE(f.doc.undoStack()->undoText(),
+                 QString("Set motor speed of %1 to 2.5 %2")
+                     .arg(QString::fromStdString(f.joint().name), f.spin("joint.motor.speed")->suffix().trimmed()));
+        QVERIFY(!f.spin("joint.motor.speed")->suffix().trimmed().isEmpty());
         emit f.spin("joint.motor.speed")->editingFinished();
         f.spin("joint.motor.max")->setValue(35.0);
         QCOMPARE(f.joint().motor->maxForce, 35.0);
@@ -313,7 +318,7 @@ private slots:
         QVERIFY(!f.joint().axisA && !f.joint().limits && !f.joint().motor);
         // "hinge", a name that only said its type, follows the type; the undo entry names it.
         QCOMPARE(f.joint().name, std::string("ball"));
-        QCOMPARE(f.doc.undoStack()->undoText(), QString("Set joint type of hinge"));
+        QCOMPARE(f.doc.undoStack()->undoText(), QString("Set joint type of hinge to ball"));
         QVERIFY(!f.find<VectorEdit>("joint.axis_a")->isVisibleTo(&f.dock));
         f.choose("joint.type", "slider");  // a slider needs an axis: A's x as it lies
         QVERIFY(f.joint().axisA.has_value());

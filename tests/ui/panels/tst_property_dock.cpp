@@ -558,6 +558,35 @@ private slots:
         QCOMPARE(f.steps(), steps + 2);
     }
 
+    // Issue 52 item 5: an undo entry names the body, what changed and the new value as its
+    // field shows it; a scrub's one entry names the last value.
+    void undoEntriesSayWhatChangedAndTo() {
+        Fixture f;
+        QUndoStack* undo = f.doc.undoStack();
+        f.spin("mass")->setValue(25.0);
+        QCOMPARE(undo->undoText(), QString("Set mass of ball to 25 kg"));
+        f.spin("restitution")->setValue(0.75);
+        QCOMPARE(undo->undoText(), QString("Set restitution of ball to 0.75"));
+        f.spin("position.y")->setValue(1.0 / 3.0);
+        QCOMPARE(undo->undoText(), QString("Set position y of ball to 0.333333 m"));
+        f.spin("orientation.z")->setValue(30.0);
+        QCOMPARE(undo->undoText(), QString("Set orientation z of ball to 30°"));
+        f.choose("motion", "Static");
+        QCOMPARE(undo->undoText(), QString("Set motion of ball to Static"));
+        undo->undo();
+        const int steps = undo->index();
+        auto* radius = f.spin("shape.radius");
+        radius->setSingleStep(0.1);
+        for (int k = 0; k < 3; ++k) radius->stepBy(1);
+        QCOMPARE(undo->index(), steps + 1);
+        QCOMPARE(undo->undoText(), QString("Set radius of ball to 1.3 m"));
+        f.doc.setSelection({f.ballIndex, f.crateIndex});
+        f.spin("friction")->setValue(0.25);
+        QCOMPARE(undo->undoText(), QString("Set friction of 2 bodies to 0.25"));
+        for (double z : {1.0, 2.0}) f.spin("position.z")->setValue(z);
+        QCOMPARE(undo->undoText(), QString("Set position z of 2 bodies to 2 m"));
+    }
+
     void multiSelectionEditsAllInOneStep() {
         Fixture f;
         f.doc.setSelection({f.ballIndex, f.crateIndex});

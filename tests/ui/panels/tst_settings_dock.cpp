@@ -196,6 +196,9 @@ private slots:
         QCOMPARE(doc.scene().settings.gravity.y(), gravityY->value());
         QVERIFY(std::abs(gravityY->value() - (before + 1.0)) < 1e-9);
         QCOMPARE(doc.undoStack()->count(), steps + 1);
+        // The entry says what changed and to what (issue 52).
+        QCOMPARE(doc.undoStack()->undoText(), QString("Set gravity y to %1").arg(gravityY->text()));
+        QVERIFY(gravityY->text().endsWith("m/s²"));
         doc.undoStack()->undo();
         QCOMPARE(doc.scene().settings.gravity.y(), before);
         QCOMPARE(gravityY->value(), before);
