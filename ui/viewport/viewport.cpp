@@ -156,9 +156,16 @@ Viewport::Viewport(Document* document, QWidget* parent) : QWidget(parent), d_(st
     auto* clearAll = new Qt3DRender::QClearBuffers(cameraSelector);
     clearAll->setBuffers(Qt3DRender::QClearBuffers::ColorDepthBuffer);
     clearAll->setClearColor(QColor(48, 50, 56));
+    // The grid after the bodies and the ground: its lines fade, blended over them.
+    auto* gridLayer = new Qt3DRender::QLayer(d_->root);
+    d_->scene->grid()->addComponent(gridLayer);
     auto* sceneFilter = new Qt3DRender::QLayerFilter(clearAll);
     sceneFilter->addLayer(overlay);
+    sceneFilter->addLayer(gridLayer);
     sceneFilter->setFilterMode(Qt3DRender::QLayerFilter::DiscardAnyMatchingLayers);
+    auto* gridFilter = new Qt3DRender::QLayerFilter(cameraSelector);
+    gridFilter->addLayer(gridLayer);
+    gridFilter->setFilterMode(Qt3DRender::QLayerFilter::AcceptAnyMatchingLayers);
     auto* overlayStates = new Qt3DRender::QRenderStateSet(cameraSelector);
     auto* always = new Qt3DRender::QDepthTest(overlayStates);
     always->setDepthFunction(Qt3DRender::QDepthTest::Always);

@@ -1,8 +1,9 @@
 // One entity per shape kind: a QGeometryRenderer over the unit shape's geometry plus a
-// per-instance buffer (attributes with divisor 1), instanceCount = copies. The material has
-// a technique for Qt3D's RHI renderer (GLSL 450, its standard uniform block) and one for
-// its OpenGL renderer (GLSL 150 core), so it draws whichever renderer Qt3D picks.
+// per-instance buffer (attributes with divisor 1), instanceCount = copies. The material is
+// our own shaders for either of Qt3D's renderers (viewport_shaders.h).
 #include "viewport/viewport_instances.h"
+
+#include "viewport/viewport_shaders.h"
 
 #include <Qt3DCore/QAttribute>
 #include <Qt3DCore/QBuffer>
@@ -12,13 +13,10 @@
 #include <Qt3DExtras/QCylinderGeometry>
 #include <Qt3DExtras/QPlaneGeometry>
 #include <Qt3DExtras/QSphereGeometry>
-#include <Qt3DRender/QEffect>
 #include <Qt3DRender/QGeometryRenderer>
-#include <Qt3DRender/QGraphicsApiFilter>
 #include <Qt3DRender/QMaterial>
+#include <Qt3DRender/QPolygonOffset>
 #include <Qt3DRender/QRenderPass>
-#include <Qt3DRender/QShaderProgram>
-#include <Qt3DRender/QTechnique>
 
 #include <algorithm>
 #include <array>
@@ -77,29 +75,6 @@ void main()
 }
 )";
 
-// Qt3D's per-view uniform block under the RHI renderer (its layout is fixed by Qt3D).
-const char* const kViewUniforms = R"(layout(std140, binding = 0) uniform qt3d_render_view_uniforms {
-  mat4 viewMatrix;
-  mat4 projectionMatrix;
-  mat4 uncorrectedProjectionMatrix;
-  mat4 clipCorrectionMatrix;
-  mat4 viewProjectionMatrix;
-  mat4 inverseViewMatrix;
-  mat4 inverseProjectionMatrix;
-  mat4 inverseViewProjectionMatrix;
-  mat4 viewportMatrix;
-  mat4 inverseViewportMatrix;
-  vec4 textureTransformMatrix;
-  vec3 eyePosition;
-  float aspectRatio;
-  float gamma;
-  float exposure;
-  float time;
-  float yUpInNDC;
-  float yUpInFBO;
-};
-)";
-
 QByteArray rhiVertex() {
     return QByteArray(R"(#version 450
 layout(location = 0) in vec3 vertexPosition;
@@ -114,7 +89,7 @@ layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 diffuseColor;
 layout(location = 3) out vec4 ambientColor;
-)") + kViewUniforms +
+)") + kRhiViewUniforms +
            kVertexBody;
 }
 
@@ -125,7 +100,7 @@ layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 diffuseColor;
 layout(location = 3) in vec4 ambientColor;
 layout(location = 0) out vec4 fragColor;
-)") + kViewUniforms +
+)") + kRhiViewUniforms +
            kFragmentBody;
 }
 
@@ -158,31 +133,18 @@ uniform vec3 eyePosition;
 )") + kFragmentBody;
 }
 
-Qt3DRender::QMaterial* makeMaterial(Qt3DCore::QNode* parent) {
-    auto* material = new Qt3DRender::QMaterial(parent);
-    auto* effect = new Qt3DRender::QEffect(material);
-    auto technique = [effect](Qt3DRender::QGraphicsApiFilter::Api api, int major, int minor,
-                              Qt3DRender::QGraphicsApiFilter::OpenGLProfile profile, const QByteArray& vs,
-                              const QByteArray& fs) {
-        auto* t = new Qt3DRender::QTechnique(effect);
-        t->graphicsApiFilter()->setApi(api);
-        t->graphicsApiFilter()->setMajorVersion(major);
-        t->graphicsApiFilter()->setMinorVersion(minor);
-        t->graphicsApiFilter()->setProfile(profile);
-        auto* pass = new Qt3DRender::QRenderPass(t);
-        auto* program = new Qt3DRender::QShaderProgram(pass);
-        program->setVertexShaderCode(vs);
-        program->setFragmentShaderCode(fs);
-        pass->setShaderProgram(program);
-        t->addRenderPass(pass);
-        effect->addTechnique(t);
-    };
-    technique(Qt3DRender::QGraphicsApiFilter::RHI, 1, 0, Qt3DRender::QGraphicsApiFilter::NoProfile,
-              rhiVertex(), rhiFragment());
-    technique(Qt3DRender::QGraphicsApiFilter::OpenGL, 3, 2, Qt3DRender::QGraphicsApiFilter::CoreProfile,
-              glVertex(), glFragment());
-    material->setEffect(effect);
-    return material;
+// `behind`: the planes' material, whose depth is pushed back a little (a polygon offset) so
+// that the grid's lines on the ground plane win the depth test at every distance and angle
+// instead of breaking into dashes where the depth buffer cannot tell them apart.
+Qt3DRender::QMaterial* makeMaterial(Qt3DCore::QNode* parent, bool behind) {
+    const ShaderSources sources{rhiVertex(), rhiFragment(), glVertex(), glFragment()};
+    if (!behind) return makeShaderMaterial(parent, sources);
+    return makeShaderMaterial(parent, sources, [](Qt3DRender::QRenderPass* pass) {
+        auto* offset = new Qt3DRender::QPolygonOffset(pass);
+        offset->setScaleFactor(1.0f);
+        offset->setDepthSteps(4.0f);
+        pass->addRenderState(offset);
+    });
 }
 
 // Level of detail by count. On a software renderer (llvmpipe) a frame of many bodies costs
@@ -247,7 +209,8 @@ struct ViewportInstances::Impl {
 };
 
 ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl>()) {
-    auto* material = makeMaterial(root);
+    auto* material = makeMaterial(root, false);
+    auto* ground = makeMaterial(root, true);
     for (int k = 0; k < KindCount; ++k) {
         Impl::Batch& b = d_->batches[size_t(k)];
         b.entity = new Qt3DCore::QEntity(root);
@@ -310,7 +273,7 @@ ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_uni
         b.renderer->setVertexCount(index ? int(index->count()) : 0);
         b.renderer->setInstanceCount(1);
         b.entity->addComponent(b.renderer);
-        b.entity->addComponent(material);
+        b.entity->addComponent(Kind(k) == Plane ? ground : material);
         b.entity->setEnabled(false);  // nothing to draw yet
     }
 }

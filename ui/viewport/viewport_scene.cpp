@@ -9,6 +9,7 @@
 // shown.
 #include "viewport/viewport_scene.h"
 
+#include "viewport/viewport_grid.h"
 #include "viewport/viewport_instances.h"
 #include "viewport/viewport_overlay.h"
 #include "viewport/viewport_wire.h"
@@ -43,8 +44,8 @@ namespace tumble::ui {
 namespace {
 
 constexpr float kPlaneSize = 40.0f;  // drawn extent of an (infinite) plane, m
-constexpr int kGridHalf = 10;        // grid lines from -10 m to 10 m, every metre
-constexpr float kGridLift = 0.002f;  // above y = 0 so the ground plane does not hide it
+constexpr int kGridHalf = 20;        // grid lines from -20 m to 20 m, every metre (fading out)
+constexpr float kGridLift = 0.002f;  // above y = 0 (the ground's polygon offset does the rest)
 constexpr double kWireLift = 1.004;  // collision wireframes, scaled about the body origin
 
 QVector3D toQt(const Vec3& v) {
@@ -121,6 +122,7 @@ Qt3DRender::QGeometryRenderer* makeRenderer(const std::vector<float>& data,
 
 struct ViewportScene::Impl {
     Qt3DCore::QEntity* root = nullptr;
+    Qt3DCore::QEntity* gridEntity = nullptr;  // the grid and the axes
     // The primitive bodies, drawn by instancing.
     std::unique_ptr<ViewportInstances> instances;
     ViewportInstances::Look dynamicLook, staticLook, kinematicLook, selectedLook, groundLook, selectedGroundLook,
@@ -472,12 +474,12 @@ struct ViewportScene::Impl {
         line(grid, QVector3D(0, kGridLift, -e), QVector3D(0, kGridLift, 0), QColor(50, 60, 110));
         line(grid, QVector3D(0, 0, 0), QVector3D(0, 2, 0), QColor(70, 200, 70));
 
-        auto* entity = new Qt3DCore::QEntity(root);
-        entity->addComponent(makeRenderer(grid,
-                                          {{Qt3DCore::QAttribute::defaultPositionAttributeName(), 3},
-                                           {Qt3DCore::QAttribute::defaultColorAttributeName(), 3}},
-                                          Qt3DRender::QGeometryRenderer::Lines, entity));
-        entity->addComponent(new Qt3DExtras::QPerVertexColorMaterial(entity));
+        gridEntity = new Qt3DCore::QEntity(root);
+        gridEntity->addComponent(makeRenderer(grid,
+                                              {{Qt3DCore::QAttribute::defaultPositionAttributeName(), 3},
+                                               {Qt3DCore::QAttribute::defaultColorAttributeName(), 3}},
+                                              Qt3DRender::QGeometryRenderer::Lines, gridEntity));
+        gridEntity->addComponent(makeGridMaterial(gridEntity, e));
     }
 
     void buildLights() {
@@ -521,6 +523,10 @@ ViewportScene::ViewportScene(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl
 }
 
 ViewportScene::~ViewportScene() = default;  // the entities belong to the root
+
+Qt3DCore::QEntity* ViewportScene::grid() const {
+    return d_->gridEntity;
+}
 
 void ViewportScene::rebuild(const SceneDesc& scene) {
     for (auto& b : d_->bodies) Impl::drop(b);

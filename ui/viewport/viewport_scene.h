@@ -26,6 +26,9 @@ public:
     ViewportScene(const ViewportScene&) = delete;
     ViewportScene& operator=(const ViewportScene&) = delete;
 
+    /// The grid and the axes: blended over the scene, in a pass of their own after it.
+    Qt3DCore::QEntity* grid() const;
+
     /// Drops every body and draws those of `scene`.
     void rebuild(const SceneDesc& scene);
     void insert(int index, const BodyDesc& body);

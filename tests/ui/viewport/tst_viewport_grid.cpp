@@ -1,0 +1,145 @@
+// The ground grid (issue 52 item 6): a line lying on the ground plane is drawn whole far from
+// the eye (the ground's depth no longer fights the line's and breaks it into dashes), and the
+// grid fades out with distance, sooner the lower the eye, and towards its edge, instead of
+// ending hard. Pixels of the real view under Xvfb.
+#include "document/document.h"
+#include "viewport/viewport.h"
+#include "viewport/viewport_grid.h"
+#include "viewport_test_util.h"
+
+#include <QImage>
+#include <QScreen>
+#include <QWindow>
+#include <QtTest>
+
+#include <QtMath>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace tumble;
+using namespace tumble::ui;
+using tumble::test::projected;
+
+namespace {
+
+// The brightest grey in the 3 x 3 pixels around `at` (a one-pixel line may fall beside the
+// rounded projection of a point on it).
+int brightestAround(const QImage& image, QPoint at) {
+    int best = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const QPoint p = at + QPoint(dx, dy);
+            if (!image.rect().contains(p)) continue;
+            const QColor c = image.pixelColor(p);
+            best = std::max(best, (c.red() + c.green() + c.blue()) / 3);
+        }
+    return best;
+}
+
+int greyAt(const QImage& image, QPoint at) {
+    const QColor c = image.pixelColor(at);
+    return (c.red() + c.green() + c.blue()) / 3;
+}
+
+// The view's pixels once two grabs a little apart agree (the frame for the camera is drawn).
+QImage settled(Viewport& view) {
+    QImage last;
+    for (int tries = 0; tries < 100; ++tries) {
+        QTest::qWait(100);
+        QImage shot = view.screen()->grabWindow(view.winId()).toImage();
+        if (!last.isNull() && shot == last) return shot;
+        last = shot;
+    }
+    return last;
+}
+
+}  // namespace
+
+class TestViewportGrid : public QObject {
+    Q_OBJECT
+private slots:
+    void theFadeItsShaderDraws() {
+        const float half = 20.0f;
+        QCOMPARE(gridOpacity(1.0f, 5.0f, 0.0f, half), 1.0f);  // near: whole
+        QCOMPARE(gridOpacity(100.0f, 5.0f, 0.0f, half), 0.0f);
+        QCOMPARE(gridOpacity(3.0f, 5.0f, half, half), 0.0f);  // at the edge: gone
+        // Lower eyes fade sooner (lines crowd together on screen sooner).
+        QVERIFY(gridOpacity(10.0f, 0.5f, 0.0f, half) < gridOpacity(10.0f, 5.0f, 0.0f, half));
+        // No step anywhere: opacity changes smoothly along a line walked away from the eye.
+        float last = 1.0f;
+        for (float d = 0.0f; d < 60.0f; d += 0.05f) {
+            const float a = gridOpacity(d, 3.0f, 0.0f, half);
+            QVERIFY(a <= last + 1e-6f && last - a < 0.01f);
+            last = a;
+        }
+    }
+
+    // The line x = -5 (every fifth line is brighter) running away from the eye, 4.1 m up: where
+    // the fade leaves it at least 60 % opaque (out to about 14 m), every point of it is drawn.
+    // Before the ground's polygon offset it broke into dashes from about 8 m on.
+    void aLineOnTheGroundIsWholeAway() {
+        Document doc;  // the ground alone
+        Viewport view(&doc);
+        view.resize(640, 480);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        const float distance = 12.0f, pitch = 20.0f;
+        view.setCamera(QVector3D(0, 0, 0), distance, 0.0f, pitch);
+        const QVector3D eye(0.0f, distance * std::sin(qDegreesToRadians(pitch)),
+                            distance * std::cos(qDegreesToRadians(pitch)));
+        const QImage shot = settled(view);
+        int samples = 0, gaps = 0;
+        QString where;
+        for (double z = 3.0; z >= -12.0; z -= 0.02) {
+            const QVector3D p(-5.0f, 0.0f, float(z));
+            if (gridOpacity(p.distanceToPoint(eye), eye.y(), 5.0f, 20.0f) < 0.6f) break;
+            const QPoint at = projected(view, Vec3(-5, 0, z));
+            const int ground = greyAt(shot, projected(view, Vec3(-4.5, 0, std::floor(z) + 0.5)));  // inside a cell
+            if (!shot.rect().contains(at) || std::abs(z) < 0.06) continue;  // (the x axis crosses, dark red)
+            ++samples;
+            if (brightestAround(shot, at) <= ground + 12) {
+                ++gaps;
+                if (where.size() < 200) where += QString(" %1").arg(z, 0, 'f', 2);
+            }
+        }
+        QVERIFY2(samples > 300, qPrintable(QString::number(samples)));
+        QVERIFY2(gaps == 0, qPrintable(QString("%1 of %2 points of the line show the ground, at z:%3")
+                                           .arg(gaps)
+                                           .arg(samples)
+                                           .arg(where)));
+    }
+
+    // A line walked away from the eye: clear near it, less clear farther, gone before the
+    // grid ends (no hard end where the lines stop).
+    void theGridFadesAwayFromTheEye() {
+        Document doc;
+        Viewport view(&doc);
+        view.resize(640, 480);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        view.setCamera(QVector3D(0, 0, 0), 10.0f, 0.0f, 12.0f);
+        const QImage shot = settled(view);
+        auto contrast = [&](double z) {
+            const QPoint at = projected(view, Vec3(-1, 0, z));
+            const QPoint cell = projected(view, Vec3(-1.5, 0, z));
+            return brightestAround(shot, at) - greyAt(shot, cell);
+        };
+        // The eye 2.1 m up; cells' middles (z half way between lines) about 6 to 19 m away.
+        int last = 255;
+        QString profile;
+        bool fading = true;
+        for (double z = 3.5; z >= -9.5; z -= 1.0) {
+            const int c = contrast(z);
+            profile += QString(" %1").arg(c);
+            fading = fading && c <= last + 2;  // never brighter farther away (2: rounding)
+            last = c;
+        }
+        const int near = contrast(3.5), middle = contrast(-2.5), far = contrast(-9.5);
+        QVERIFY2(fading && near > 25 && near > middle + 5 && middle > far + 10 && far < 5,
+                 qPrintable("contrast from near to far:" + profile));
+    }
+};
+
+QTEST_MAIN(TestViewportGrid)
+#include "tst_viewport_grid.moc"
