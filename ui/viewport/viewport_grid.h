@@ -2,7 +2,8 @@
 // the eye (sooner the lower the eye: where lines a metre apart would crowd into a few
 // pixels and shimmer) and towards the grid's edge (no hard end). They are blended over what
 // is drawn before them and write no depth, so the grid is drawn in a pass after the scene
-// (Viewport's frame graph: the grid layer).
+// (Viewport's frame graph: the grid layer). The ground under them is drawn a little behind
+// where it is (viewport_instances.cpp), so that they are whole at any distance, not dashed.
 #pragma once
 
 namespace Qt3DCore {

@@ -15,8 +15,6 @@
 #include <Qt3DExtras/QSphereGeometry>
 #include <Qt3DRender/QGeometryRenderer>
 #include <Qt3DRender/QMaterial>
-#include <Qt3DRender/QPolygonOffset>
-#include <Qt3DRender/QRenderPass>
 
 #include <algorithm>
 #include <array>
@@ -46,8 +44,44 @@ void main()
     diffuseColor = instanceDiffuse;
     ambientColor = instanceAmbient;
     gl_Position = viewProjectionMatrix * world;
+    if (instanceDiffuse.w < 0.5) gl_Position.z += behind(world.xyz, normalize(worldNormal), gl_Position);
 }
 )";
+
+// A plane (instanceDiffuse.w = 0) is drawn a little behind where it is, as a polygon offset
+// would: by its own change of depth over kBehindPixels pixels, measured by projecting a point
+// 1 % farther from the eye along the plane, plus a fixed step, at most kMostBehind (seen edge
+// on). The grid's lines lying on the ground 2 mm above it then win the depth test at every
+// pixel, where they broke into dashes far away; bodies on the ground are not touched. (Qt3D's
+// own QPolygonOffset, given to the planes' material, left other bodies drawn with it too under
+// Qt 6.4's RHI renderer: a body in front of the y axis lost to it.) The planes come in 32 x 32
+// pieces, so the offset follows the slope across them.
+const char* const kBehind = R"(
+float behind(vec3 world, vec3 n, vec4 clip)
+{
+    vec3 away = world - eyePosition;
+    away -= n * dot(away, n);
+    vec4 farther = viewProjectionMatrix * vec4(world + 0.01 * away, 1.0);
+    float push = BEHIND_FIXED;
+    if (clip.w > 1e-6 && farther.w > 1e-6) {
+        vec2 a = (viewportMatrix * vec4(clip.xy / clip.w, 0.0, 1.0)).xy;
+        vec2 b = (viewportMatrix * vec4(farther.xy / farther.w, 0.0, 1.0)).xy;
+        float pixels = max(length(b - a), 1e-3);
+        push += min(BEHIND_PIXELS * abs(farther.z / farther.w - clip.z / clip.w) / pixels, MOST_BEHIND);
+    }
+    return push * clip.w;
+}
+)";
+constexpr float kBehindPixels = 1.0f;
+constexpr float kBehindFixed = 2e-6f;
+constexpr float kMostBehind = 1e-3f;
+
+QByteArray behindGlsl() {
+    return QByteArray(kBehind)
+        .replace("BEHIND_FIXED", QByteArray::number(double(kBehindFixed), 'e', 3))
+        .replace("BEHIND_PIXELS", QByteArray::number(double(kBehindPixels), 'f', 3))
+        .replace("MOST_BEHIND", QByteArray::number(double(kMostBehind), 'e', 3));
+}
 
 // Qt3D's Phong (phong.inc.frag) with the scene's two directional lights (viewport_scene.cpp).
 const char* const kFragmentBody = R"(
@@ -89,7 +123,7 @@ layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 diffuseColor;
 layout(location = 3) out vec4 ambientColor;
-)") + kRhiViewUniforms +
+)") + kRhiViewUniforms + behindGlsl() +
            kVertexBody;
 }
 
@@ -119,7 +153,9 @@ out vec3 worldNormal;
 out vec4 diffuseColor;
 out vec4 ambientColor;
 uniform mat4 viewProjectionMatrix;
-)") + kVertexBody;
+uniform mat4 viewportMatrix;
+uniform vec3 eyePosition;
+)") + behindGlsl() + kVertexBody;
 }
 
 QByteArray glFragment() {
@@ -133,18 +169,8 @@ uniform vec3 eyePosition;
 )") + kFragmentBody;
 }
 
-// `behind`: the planes' material, whose depth is pushed back a little (a polygon offset) so
-// that the grid's lines on the ground plane win the depth test at every distance and angle
-// instead of breaking into dashes where the depth buffer cannot tell them apart.
-Qt3DRender::QMaterial* makeMaterial(Qt3DCore::QNode* parent, bool behind) {
-    const ShaderSources sources{rhiVertex(), rhiFragment(), glVertex(), glFragment()};
-    if (!behind) return makeShaderMaterial(parent, sources);
-    return makeShaderMaterial(parent, sources, [](Qt3DRender::QRenderPass* pass) {
-        auto* offset = new Qt3DRender::QPolygonOffset(pass);
-        offset->setScaleFactor(1.0f);
-        offset->setDepthSteps(4.0f);
-        pass->addRenderState(offset);
-    });
+Qt3DRender::QMaterial* makeMaterial(Qt3DCore::QNode* parent) {
+    return makeShaderMaterial(parent, {rhiVertex(), rhiFragment(), glVertex(), glFragment()});
 }
 
 // Level of detail by count. On a software renderer (llvmpipe) a frame of many bodies costs
@@ -186,7 +212,7 @@ int ViewportInstances::trianglesPerCopy(Kind kind, int copies) {
         case Sphere: return int(sphereTriangles(detailFor(kSphereDetail, sphereTriangles, copies)));
         case Cylinder: return int(cylinderTriangles(detailFor(kCylinderDetail, cylinderTriangles, copies)));
         case Box: return 12;
-        case Plane: return 2;
+        case Plane: return 2 * 32 * 32;
         case KindCount: break;
     }
     return 0;
@@ -209,8 +235,7 @@ struct ViewportInstances::Impl {
 };
 
 ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_unique<Impl>()) {
-    auto* material = makeMaterial(root, false);
-    auto* ground = makeMaterial(root, true);
+    auto* material = makeMaterial(root);
     for (int k = 0; k < KindCount; ++k) {
         Impl::Batch& b = d_->batches[size_t(k)];
         b.entity = new Qt3DCore::QEntity(root);
@@ -249,6 +274,7 @@ ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_uni
                 auto* g = new Qt3DExtras::QPlaneGeometry(b.renderer);
                 g->setWidth(1.0f);
                 g->setHeight(1.0f);
+                g->setResolution(QSize(32, 32));  // (its depth offset follows the slope: kBehind)
                 geometry = g;
                 index = g->indexAttribute();
                 break;
@@ -273,7 +299,7 @@ ViewportInstances::ViewportInstances(Qt3DCore::QEntity* root) : d_(std::make_uni
         b.renderer->setVertexCount(index ? int(index->count()) : 0);
         b.renderer->setInstanceCount(1);
         b.entity->addComponent(b.renderer);
-        b.entity->addComponent(Kind(k) == Plane ? ground : material);
+        b.entity->addComponent(material);
         b.entity->setEnabled(false);  // nothing to draw yet
     }
 }
@@ -290,7 +316,8 @@ void ViewportInstances::add(Kind kind, const QMatrix4x4& model, const Look& look
     const float* m = model.constData();  // column-major
     v.insert(v.end(), m, m + 16);
     v.insert(v.end(), {float(look.diffuse.redF()), float(look.diffuse.greenF()), float(look.diffuse.blueF()),
-                       1.0f, float(look.ambient.redF()), float(look.ambient.greenF()),
+                       kind == Plane ? 0.0f : 1.0f,  // (a plane is drawn a little behind: kBehind)
+                       float(look.ambient.redF()), float(look.ambient.greenF()),
                        float(look.ambient.blueF()), look.specular});
 }
 

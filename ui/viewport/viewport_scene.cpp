@@ -45,7 +45,7 @@ namespace {
 
 constexpr float kPlaneSize = 40.0f;  // drawn extent of an (infinite) plane, m
 constexpr int kGridHalf = 20;        // grid lines from -20 m to 20 m, every metre (fading out)
-constexpr float kGridLift = 0.002f;  // above y = 0 (the ground's polygon offset does the rest)
+constexpr float kGridLift = 0.002f;  // above y = 0 (the grid's shader pulls it nearer still)
 constexpr double kWireLift = 1.004;  // collision wireframes, scaled about the body origin
 
 QVector3D toQt(const Vec3& v) {
@@ -454,10 +454,14 @@ struct ViewportScene::Impl {
 
     void buildGridAndAxes() {
         std::vector<float> grid;
+        // In pieces of at most 1 m (the grid's shader sets each vertex's depth by the slope
+        // of the ground there: viewport_grid.cpp).
         auto line = [](std::vector<float>& v, QVector3D a, QVector3D b, QColor c) {
-            for (const QVector3D& p : {a, b}) {
-                v.insert(v.end(),
-                         {p.x(), p.y(), p.z(), float(c.redF()), float(c.greenF()), float(c.blueF())});
+            const int pieces = std::max(1, int(std::ceil((b - a).length())));
+            for (int k = 0; k < pieces; ++k) {
+                for (const QVector3D& p : {a + (b - a) * float(k) / float(pieces), a + (b - a) * float(k + 1) / float(pieces)})
+                    v.insert(v.end(),
+                             {p.x(), p.y(), p.z(), float(c.redF()), float(c.greenF()), float(c.blueF())});
             }
         };
         const float e = float(kGridHalf);

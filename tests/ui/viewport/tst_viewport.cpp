@@ -134,7 +134,7 @@ private slots:
         Fixture f;
         QVERIFY(QTest::qWaitForWindowExposed(f.view.get()));
         f.doc.setSelection({1});
-        const QPoint floor = projected(*f.view, Vec3(-2, 0, 2));  // on the ground, before the bodies
+        const QPoint floor = projected(*f.view, Vec3(-1.5, 0, 2.5));  // on the ground (in a cell), before the bodies
         QCOMPARE(f.view->bodyAt(floor), 0);                       // the ray meets the ground there
         QTest::mouseClick(f.view->renderWindow(), Qt::LeftButton, Qt::NoModifier, floor);
         QVERIFY(f.doc.selection().isEmpty());

@@ -77,7 +77,8 @@ private slots:
 
     // The line x = -5 (every fifth line is brighter) running away from the eye, 4.1 m up: where
     // the fade leaves it at least 60 % opaque (out to about 14 m), every point of it is drawn.
-    // Before the ground's polygon offset it broke into dashes from about 8 m on.
+    // Before the ground was drawn a little behind by its depth slope it broke into dashes
+    // from 8 m on.
     void aLineOnTheGroundIsWholeAway() {
         Document doc;  // the ground alone
         Viewport view(&doc);
@@ -108,6 +109,30 @@ private slots:
                                            .arg(gaps)
                                            .arg(samples)
                                            .arg(where)));
+    }
+
+    // The lines stay behind a body standing on them (the ground's offset moves the ground
+    // alone): the
+    // front face of a box on the line x = -5, from 2.5 cm above the ground up, is the box's
+    // colour (the orange of a dynamic body) at every pixel over the line.
+    void aBodyOnTheGridHidesIt() {
+        Document doc;
+        doc.addBody(test::body("crate", ShapeType::Box, Vec3(-5, 0.5, -2)));  // 1 m cube
+        Viewport view(&doc);
+        view.resize(640, 480);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        view.setCamera(QVector3D(0, 0, 0), 12.0f, 0.0f, 20.0f);
+        const QImage shot = settled(view);
+        for (double y = 0.025; y < 1.0; y += 0.025) {
+            const QPoint at = projected(view, Vec3(-5, y, -1.5));
+            const QColor c = shot.pixelColor(at);
+            QVERIFY2(c.red() > c.blue() + 60, qPrintable(QString("at y = %1 m: rgb(%2, %3, %4)")
+                                                            .arg(y)
+                                                            .arg(c.red())
+                                                            .arg(c.green())
+                                                            .arg(c.blue())));
+        }
     }
 
     // A line walked away from the eye: clear near it, less clear farther, gone before the
