@@ -130,6 +130,28 @@ QString PropertySpinBox::rounded(double value, int digits) const {
     return t;
 }
 
+int PropertySpinBox::fittingDigits(double value) const {
+    // The room the line edit gives its text (its frame and text margins off); before the
+    // field is laid out (no width yet), every shown digit.
+    const QLineEdit* edit = lineEdit();
+    const int room = edit->contentsRect().width() - edit->textMargins().left() - edit->textMargins().right() - 4;
+    if (!edit->isVisible() || room <= 0) return kShownDigits;
+    const QFontMetrics fm(edit->font());
+    for (int digits = kShownDigits; digits > kFewestDigits; --digits)
+        if (fm.horizontalAdvance(rounded(value, digits) + suffix()) <= room) return digits;
+    return kFewestDigits;
+}
+
+void PropertySpinBox::resizeEvent(QResizeEvent* event) {
+    QDoubleSpinBox::resizeEvent(event);
+    render();  // the digits that fit the new width
+}
+
+void PropertySpinBox::showEvent(QShowEvent* event) {
+    QDoubleSpinBox::showEvent(event);
+    render();
+}
+
 QString PropertySpinBox::textFromValue(double value) const {
     if (value == 0.0) value = 0.0;  // no "-0"
     auto text = [&](int digits) {
@@ -137,7 +159,7 @@ QString PropertySpinBox::textFromValue(double value) const {
         t.remove(locale().groupSeparator());
         return t;
     };
-    if (!editing_) return rounded(value);
+    if (!editing_) return rounded(value, fittingDigits(value));
     for (int digits = kShownDigits;; ++digits) {  // the shortest that reads back exactly
         const QString t = text(digits);
         bool ok = false;
@@ -147,6 +169,7 @@ QString PropertySpinBox::textFromValue(double value) const {
 
 void PropertySpinBox::render() {
     if (mixed_ || (!specialValueText().isEmpty() && value() == minimum())) return;
+    if (editing_ && hasFocus() && lineEdit()->isModified()) return;  // (being typed into)
     const QSignalBlocker block(this);
     lineEdit()->setText(textFromValue(value()) + suffix());
 }

@@ -33,10 +33,12 @@ public:
     void setSoftMinimum(double min);
 
     /// Six significant digits (a value below 1e-9 of its unit, rounding's noise, as 0) with the
-    /// unit always seen; while the field has the focus, the shortest text that reads back as
-    /// exactly the value it holds, so that leaving it unedited changes nothing.
+    /// unit always seen: a field too narrow for them shows fewer (down to three), never a
+    /// cut unit; while the field has the focus, the shortest text that reads back as exactly
+    /// the value it holds, so that leaving it unedited changes nothing.
     QString textFromValue(double value) const override;
     static constexpr int kShownDigits = 6;
+    static constexpr int kFewestDigits = 3;
     /// `value` as the field shows it when not focused, with its unit ("25 kg", "85.9437°"):
     /// the words an undo entry gives the value ("Set mass of box-3 to 25 kg").
     QString shownText(double value) const;
@@ -67,6 +69,8 @@ protected:
     void keyPressEvent(QKeyEvent* event) override;
     void focusInEvent(QFocusEvent* event) override;
     void focusOutEvent(QFocusEvent* event) override;
+    void resizeEvent(QResizeEvent* event) override;
+    void showEvent(QShowEvent* event) override;
 
 private:
     /// The text for the value now: rounded to kShownDigits significant digits while the
@@ -74,6 +78,9 @@ private:
     void render();
     /// `value` to `digits` significant digits, |value| < 1e-9 as 0 (no group separators).
     QString rounded(double value, int digits = kShownDigits) const;
+    /// The most significant digits (kShownDigits down to kFewestDigits) whose text and unit
+    /// fit the field's width.
+    int fittingDigits(double value) const;
     bool editing_ = false;
     std::function<void()> sweep_;
     std::function<bool()> sweepEnabled_;

@@ -56,6 +56,38 @@ private slots:
         QCOMPARE(field->text(), QString("85.9437 kg·m²"));
         QCOMPARE(field->value(), 85.94366927);
     }
+
+    // A field too narrow for six digits and its unit (an inertia cell, three to a row) shows
+    // fewer digits, never a cut unit; given room again, all six. What it holds is unchanged.
+    void aNarrowFieldShowsFewerDigitsAndItsUnit() {
+        QWidget window;
+        auto* layout = new QVBoxLayout(&window);
+        auto* field = new PropertySpinBox(&window);
+        layout->addWidget(field);
+        field->setSuffix(QStringLiteral(" kg·m²"));
+        field->setFixedWidth(400);
+        window.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&window));
+        field->showValue(0.0260416666666);
+        const double held = field->value();
+        QCOMPARE(field->text(), QString("0.0260417 kg·m²"));
+        const QLineEdit* edit = field->findChild<QLineEdit*>();
+        const QFontMetrics fm(edit->font());
+        auto fits = [&] {
+            const int room = edit->contentsRect().width() - edit->textMargins().left() - edit->textMargins().right();
+            return fm.horizontalAdvance(field->text()) <= room;
+        };
+        // Narrower by the width of "417" and a little: "0.026 kg·m²" still fits.
+        const int spare = edit->contentsRect().width() - fm.horizontalAdvance("0.0260417 kg·m²");
+        field->setFixedWidth(400 - spare - fm.horizontalAdvance("417") + 12);
+        QTRY_VERIFY2(field->text() != QString("0.0260417 kg·m²"), qPrintable(field->text()));
+        QVERIFY2(fits(), qPrintable(field->text()));
+        QVERIFY2(field->text().endsWith(" kg·m²"), qPrintable(field->text()));
+        QVERIFY2(field->text().startsWith("0.026"), qPrintable(field->text()));
+        QCOMPARE(field->value(), held);
+        field->setFixedWidth(400);
+        QTRY_COMPARE(field->text(), QString("0.0260417 kg·m²"));
+    }
 };
 
 QTEST_MAIN(TestPropertySpinBox)
