@@ -300,6 +300,17 @@ float Viewport::cameraDistance() const {
     return d_->camera.distance();
 }
 
+bool Viewport::isOrthographic() const {
+    return d_->camera.isOrthographic();
+}
+
+void Viewport::setOrthographic(bool on) {
+    if (on == d_->camera.isOrthographic()) return;
+    d_->camera.setOrthographic(on);
+    syncCamera();
+    emit orthographicChanged(on);
+}
+
 void Viewport::setCamera(const QVector3D& target, float distance, float yawDegrees, float pitchDegrees) {
     d_->camera.set(target, distance, yawDegrees, pitchDegrees);
     syncCamera();
@@ -309,8 +320,14 @@ void Viewport::syncCamera() {
     Qt3DRender::QCamera* cam = d_->window->camera();
     const float w = float(std::max(1, width()));
     const float h = float(std::max(1, height()));
-    cam->lens()->setPerspectiveProjection(d_->camera.fieldOfViewDegrees(), w / h, d_->camera.nearPlane(),
-                                          d_->camera.farPlane());
+    if (d_->camera.isOrthographic()) {
+        const float half = d_->camera.orthographicHalfHeight();
+        cam->lens()->setOrthographicProjection(-half * w / h, half * w / h, -half, half, d_->camera.nearPlane(),
+                                               d_->camera.farPlane());
+    } else {
+        cam->lens()->setPerspectiveProjection(d_->camera.fieldOfViewDegrees(), w / h, d_->camera.nearPlane(),
+                                              d_->camera.farPlane());
+    }
     cam->setPosition(d_->camera.eye());
     cam->setViewCenter(d_->camera.target());
     cam->setUpVector(d_->camera.up());

@@ -71,6 +71,11 @@ public:
     QVector3D cameraTarget() const;
     float cameraDistance() const;
     void setCamera(const QVector3D& target, float distance, float yawDegrees, float pitchDegrees);
+    /// A parallel projection (View > Orthographic, 5), showing at every depth what the
+    /// perspective view shows at the camera's target; picking, the handles and projectToWidget
+    /// follow it.
+    bool isOrthographic() const;
+    void setOrthographic(bool on);
 
     /// Samples per pixel the 3D view asks for: 4, or 0 (no multisampling) when the GL
     /// renderer is a software one, where it costs too much.
@@ -167,6 +172,7 @@ public slots:
 signals:
     void transformModeChanged(tumble::ui::Viewport::TransformMode mode);
     void showCollisionShapesChanged(bool show);
+    void orthographicChanged(bool on);
     void overlayChanged(tumble::ui::Viewport::Overlay overlay, bool on);
     /// I: key the selected body's pose at the playhead (the main window does it).
     void insertKeyRequested();

@@ -28,7 +28,16 @@ QVector3D OrbitCamera::eye() const {
 }
 
 float OrbitCamera::nearPlane() const {
+    if (orthographic_) return -(distance_ * 10.0f + 500.0f);
     return std::max(0.01f, distance_ * 0.01f);
+}
+
+float OrbitCamera::orthographicHalfHeight() const {
+    return distance_ * std::tan(qDegreesToRadians(fov_) / 2);
+}
+
+float OrbitCamera::screenScaleAt(const QVector3D& point) const {
+    return orthographic_ ? distance_ : (eye() - point).length();
 }
 
 float OrbitCamera::farPlane() const {
@@ -43,7 +52,12 @@ QMatrix4x4 OrbitCamera::view() const {
 
 QMatrix4x4 OrbitCamera::projection(float aspect) const {
     QMatrix4x4 m;
-    m.perspective(fov_, aspect, nearPlane(), farPlane());
+    if (orthographic_) {
+        const float h = orthographicHalfHeight(), w = h * aspect;
+        m.ortho(-w, w, -h, h, nearPlane(), farPlane());
+    } else {
+        m.perspective(fov_, aspect, nearPlane(), farPlane());
+    }
     return m;
 }
 

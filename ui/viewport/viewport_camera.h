@@ -16,6 +16,10 @@ public:
     float yawDegrees() const { return yaw_; }
     float pitchDegrees() const { return pitch_; }
     float fieldOfViewDegrees() const { return fov_; }
+    /// Orthographic: a parallel projection showing, at every depth, what the perspective one
+    /// shows at the target's (a view 2 d tan(fov / 2) tall); the eye and the orbit stay.
+    bool isOrthographic() const { return orthographic_; }
+    void setOrthographic(bool on) { orthographic_ = on; }
 
     /// Pitch is clamped short of the poles, distance to a small positive minimum.
     void set(const QVector3D& target, float distance, float yawDegrees, float pitchDegrees);
@@ -24,8 +28,15 @@ public:
     /// The screen's up: square to the line of sight, in the vertical plane through it (world
     /// y seen from any side; looking straight down, the way the yaw faces).
     QVector3D up() const;
+    /// The depth range; orthographic, it starts behind the eye (nothing between the eye and
+    /// the far side of the scene is cut).
     float nearPlane() const;
     float farPlane() const;
+    /// Half the height of the orthographic view (m), the perspective one's at the target.
+    float orthographicHalfHeight() const;
+    /// The length that scales things drawn at a constant size on screen at `point` (the
+    /// handles): its distance from the eye, or the camera's distance when orthographic.
+    float screenScaleAt(const QVector3D& point) const;
     QMatrix4x4 view() const;
     QMatrix4x4 projection(float aspect) const;
 
@@ -51,6 +62,7 @@ private:
     float yaw_ = 35.0f;
     float pitch_ = 25.0f;
     float fov_ = 45.0f;
+    bool orthographic_ = false;
 };
 
 }  // namespace tumble::ui

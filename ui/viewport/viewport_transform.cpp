@@ -75,7 +75,7 @@ void Viewport::updateHandles() {
             d_->dragKeying && d_->dragAxis >= 0
                 ? d_->dragOrigin
                 : bodyFramePosition(d_->timeline->model()->bodies[size_t(i)], state->bodies[size_t(i)]);
-        const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
+        const float distance = d_->camera.screenScaleAt(toQt(d_->handlesOrigin));
         d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
         d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
     } else if (d_->handlesShown) {
@@ -86,7 +86,7 @@ void Viewport::updateHandles() {
         d_->handlesOrigin = joint >= 0  ? worldAnchorA(d_->doc->scene(), d_->doc->joint(joint))
                             : part >= 0 ? handles::partOrigin(d_->doc->body(movable.front()), part)
                                         : Vec3(sum / double(movable.size()));
-        const float distance = (d_->camera.eye() - toQt(d_->handlesOrigin)).length();
+        const float distance = d_->camera.screenScaleAt(toQt(d_->handlesOrigin));
         d_->handlesSize = std::max(1e-3f, kHandleScale * distance);
         d_->gizmo->setPose(toQt(d_->handlesOrigin), d_->handlesSize);
     }

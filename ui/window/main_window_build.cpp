@@ -129,6 +129,15 @@ void MainWindow::addStandardViews(QMenu* view) {
         const Qt::KeyboardModifiers ctrl = side.opposite ? Qt::ControlModifier : Qt::NoModifier;
         a->setShortcuts({QKeySequence(ctrl | Qt::KeypadModifier | side.key), QKeySequence(ctrl | side.key)});
     }
+    views->addSeparator();
+    // A parallel projection, toggled (5 on the numpad, as in Blender; or the digit).
+    QAction* ortho = views->addAction(tr("&Orthographic"));
+    ortho->setObjectName("viewOrthographic");
+    ortho->setCheckable(true);
+    ortho->setShortcuts({QKeySequence(Qt::KeypadModifier | Qt::Key_5), QKeySequence(Qt::Key_5)});
+    ortho->setToolTip(tr("Draw without perspective: parallel lines stay parallel, sizes do not shrink with depth"));
+    connect(ortho, &QAction::toggled, viewport_, &Viewport::setOrthographic);
+    connect(viewport_, &Viewport::orthographicChanged, ortho, &QAction::setChecked);
 }
 
 Vec3 MainWindow::viewPoint(int* hitBody) const {

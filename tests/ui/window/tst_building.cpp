@@ -317,6 +317,48 @@ private slots:
         }
     }
 
+    // View > Standard Views > Orthographic (5, from any dock): a parallel projection, as large
+    // at the target as the perspective view; points along the line of sight fall on one
+    // pixel; a click picks the body drawn there; the handles keep their size at any depth;
+    // 5 again goes back.
+    void orthographicViewIsParallelAndPicks() {
+        Window win;
+        Viewport* view = win.w.viewport();
+        const int a = win.addBox();  // a unit box resting on the origin
+        view->setCamera(QVector3D(0, 0.5f, 0), 10.0f, 0.0f, 0.0f);  // the front view
+        const QVector3D side(1.5f, 0.5f, 0.0f);
+        const QVector3D beside = view->projectToWidget(side);
+        QWidget* slider = win.w.timelineDock()->findChild<QAbstractSlider*>();
+        QVERIFY(slider);
+        slider->setFocus();
+        QTest::keyClick(slider, Qt::Key_5, Qt::KeypadModifier);
+        QVERIFY(view->isOrthographic());
+        QVERIFY(action(win.w, "viewOrthographic")->isChecked());
+        // As large at the target's depth as before.
+        QVERIFY((view->projectToWidget(side) - beside).toVector2D().length() < 0.01f);
+        // Parallel: nearer and farther along the line of sight, the same pixel.
+        for (float dz : {-4.0f, 3.0f}) {
+            const QVector3D p = view->projectToWidget(side + QVector3D(0, 0, dz));
+            QVERIFY2((p - beside).toVector2D().length() < 0.01f, qPrintable(QString::number(dz)));
+        }
+        // Picking casts parallel rays: the box's corner region, seen edge on, is the box.
+        win.doc()->setSelection({});
+        const QVector3D corner = view->projectToWidget(QVector3D(0.45f, 0.95f, 0.5f));
+        QTest::mouseClick(view->renderWindow(), Qt::LeftButton, Qt::NoModifier, corner.toPoint());
+        QCOMPARE(win.doc()->selection(), QList<int>{a});
+        // The handles are as large on screen wherever the body stands along the line of sight:
+        // their size in the world does not change with its depth.
+        const float near = view->handlesSize();
+        BodyDesc moved = win.doc()->body(a);
+        moved.position.z() -= 6.0;
+        win.doc()->setBody(a, moved, "Move");
+        QVERIFY(std::abs(view->handlesSize() - near) < 1e-5f);
+        QTest::keyClick(slider, Qt::Key_5);
+        QVERIFY(!view->isOrthographic());
+        QVERIFY(!action(win.w, "viewOrthographic")->isChecked());
+        QVERIFY(view->handlesSize() > near);  // in perspective they grow with depth to look the same
+    }
+
     void frameSelectionFramesAJoint() {
         Window win;
         const int a = win.addBox();
