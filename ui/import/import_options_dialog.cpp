@@ -98,7 +98,7 @@ ImportOptionsDialog::ImportOptionsDialog(const QString& fileName, std::shared_pt
     collision_->setItemData(2, tr("Split into convex hulls in the background, seen before they are applied"),
                             Qt::ToolTipRole);
     form->addRow(tr("Collision"), collision_);
-    auto* note = new QLabel(tr("Placed above the scene's bodies, where the camera looks."), this);
+    auto* note = new QLabel(tr("Set down on the surface under the view's centre."), this);
     note->setWordWrap(true);
     form->addRow(note);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);

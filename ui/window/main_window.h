@@ -154,8 +154,9 @@ private:
     /// view's centre, else the camera's target; the body hit (-1: none or a plane).
     Vec3 viewPoint(int* hitBody = nullptr) const;
     /// `body` set down resting on the surface under the view's centre (placement.h
-    /// setDownAt); on another body, centred on it (adds in a row stack up).
-    BodyDesc setDownUnderView(BodyDesc body) const;
+    /// setDownAt); on another body, centred on it (adds in a row stack up). Set down in
+    /// `scene` when given (the document's and the bodies about to be added with it).
+    BodyDesc setDownUnderView(BodyDesc body, const SceneDesc* scene = nullptr) const;
     void dropSelection();
     void copySelection();
     void pasteBodies();

@@ -152,7 +152,7 @@ Vec3 MainWindow::viewPoint(int* hitBody) const {
     return target;
 }
 
-BodyDesc MainWindow::setDownUnderView(BodyDesc body) const {
+BodyDesc MainWindow::setDownUnderView(BodyDesc body, const SceneDesc* scene) const {
     int on = -1;
     Vec3 point = viewPoint(&on);
     if (on >= 0) {  // over the body hit, centred on it: adds in a row make a stack
@@ -160,7 +160,7 @@ BodyDesc MainWindow::setDownUnderView(BodyDesc body) const {
         const Vec3 centre = doc_->body(on).position;
         point = centre + down * down.dot(point - centre);
     }
-    return setDownAt(doc_->scene(), std::move(body), point);
+    return setDownAt(scene ? *scene : doc_->scene(), std::move(body), point);
 }
 
 void MainWindow::addBodies(const std::vector<BodyDesc>& bodies, const QString& text) {

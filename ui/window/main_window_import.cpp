@@ -55,7 +55,7 @@ void MainWindow::importDone() {
     std::vector<BodyDesc> bodies;
     std::vector<bool> split;             // per body: convex parts asked for
     constexpr double kDensity = 1000.0;  // water's, until the user gives another
-    double top = pileTop(doc_->scene());
+    SceneDesc scratch = doc_->scene();  // and the meshes set down so far
     for (const MeshImportJob::Result& r : job->results()) {
         if (!r.mesh) {
             errors << r.error;
@@ -93,10 +93,10 @@ void MainWindow::importDone() {
         body.name = QFileInfo(r.path).completeBaseName().toStdString();
         body.density = kDensity;
         body.mass.reset();
-        const QVector3D at = viewport_->cameraTarget();
-        body.position = Vec3(at.x(), 0.0, at.z());
-        body = placedAbove(body, top);
-        top = body.position.y() + halfHeightAboveOrigin(body);
+        // Set down on the surface under the view's centre, as Add does; several, one on
+        // another.
+        body = setDownUnderView(std::move(body), &scratch);
+        scratch.bodies.push_back(body);
         bodies.push_back(std::move(body));
     }
     QList<int> added;
