@@ -87,14 +87,60 @@ BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point) {
     return body;
 }
 
+struct Settler::Impl {
+    SceneDesc scene;  // without the body's joints
+    int index = -1;
+    BodyDesc start;   // the body as compiled
+    std::optional<Compiled> compiled;
+    Vec3 startCentre = Vec3::Zero();  // its centre of mass in the compiled state
+};
+
+Settler::Settler(const SceneDesc& scene, int index) : d_(std::make_unique<Impl>()) {
+    if (index < 0 || index >= static_cast<int>(scene.bodies.size())) return;
+    d_->scene = scene;
+    d_->index = index;
+    d_->start = scene.bodies[static_cast<std::size_t>(index)];
+    const std::string& name = d_->start.name;
+    std::erase_if(d_->scene.joints, [&](const JointDesc& j) { return j.bodyA == name || j.bodyB == name; });
+    d_->compiled = compiled(d_->scene);
+    if (d_->compiled) d_->startCentre = d_->compiled->state.bodies[static_cast<std::size_t>(index)].x;
+}
+
+Settler::~Settler() = default;
+
+BodyDesc Settler::settle(const BodyDesc& moved) const {
+    if (d_->index < 0 || moved.shape.type == ShapeType::Plane) return moved;
+    if (!(moved.orientation.coeffs() == d_->start.orientation.coeffs()) || !(moved.shape == d_->start.shape)) {
+        SceneDesc with = d_->scene;
+        with.bodies[static_cast<std::size_t>(d_->index)] = moved;
+        return Settler(with, d_->index).settle(moved);
+    }
+    BodyDesc body = moved;
+    if (!d_->compiled) return body;  // (setDownAt's answer when the scene cannot be compiled)
+    // setDownAt's steps, the body moved in the compiled state instead of compiled again.
+    const Vec3 down = downOf(d_->scene);
+    const double size = std::max(boundingRadius(body.shape), 1e-3);
+    State& state = d_->compiled->state;
+    Vec3& centre = state.bodies[static_cast<std::size_t>(d_->index)].x;
+    const Vec3 fromOrigin = d_->startCentre - d_->start.position;
+    for (double rise = 1.01 * size;; rise *= 2.0) {
+        const Vec3 origin = moved.position - rise * down;
+        centre = origin + fromOrigin;
+        const std::optional<double> fall =
+            travelToTouch(d_->compiled->model, state, d_->index, down, rise + kFarthestDrop);
+        if (!fall) return body;  // nothing below to rest on: where it was dragged
+        if (*fall > 0.0 || rise > kFarthestDrop) {
+            body.position = origin + *fall * down;
+            return body;
+        }
+    }
+}
+
 BodyDesc settledAt(const SceneDesc& scene, int index, const BodyDesc& moved) {
     if (index < 0 || index >= static_cast<int>(scene.bodies.size())) return moved;
-    SceneDesc rest = scene;
-    const std::string name = rest.bodies[static_cast<std::size_t>(index)].name;
-    rest.bodies.erase(rest.bodies.begin() + index);
-    std::erase_if(rest.joints, [&](const JointDesc& j) { return j.bodyA == name || j.bodyB == name; });
-    std::erase_if(rest.noCollide, [&](const auto& pair) { return pair[0] == name || pair[1] == name; });
-    return setDownAt(rest, moved, moved.position);
+    SceneDesc with = scene;
+    with.bodies[static_cast<std::size_t>(index)] = moved;
+    return Settler(with, index).settle(moved);
 }
 
 std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices) {

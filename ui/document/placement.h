@@ -7,6 +7,7 @@
 #include <tumble/scene.h>
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,9 +30,24 @@ std::vector<std::optional<double>> dropDistances(const SceneDesc& scene, const s
 BodyDesc setDownAt(const SceneDesc& scene, BodyDesc body, const Vec3& point);
 
 /// Body `index` of `scene` at `moved`'s place and turn, resting on what is under it there
-/// (setDownAt without the body itself and the joints that hold it): a body dragged across a
-/// table snaps onto it, off its edge down to the floor.
+/// (setDownAt without the joints that hold the body, the pairs kept apart honoured): a body
+/// dragged across a table snaps onto it, off its edge down to the floor.
 BodyDesc settledAt(const SceneDesc& scene, int index, const BodyDesc& moved);
+
+/// settledAt for a drag: the scene is compiled once, when made, and each settle only moves
+/// the body in the compiled state (a scene of thousands of bodies or large meshes stays
+/// smooth under the pointer). A move that changes more than the body's position (its turn,
+/// its shape) is settled by settledAt.
+class Settler {
+public:
+    Settler(const SceneDesc& scene, int index);
+    ~Settler();
+    BodyDesc settle(const BodyDesc& moved) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> d_;
+};
 
 /// The bodies' order from the lowest to the highest along down (by their positions).
 std::vector<int> lowestFirst(const SceneDesc& scene, std::vector<int> indices);

@@ -40,6 +40,8 @@ class QFrameGraphNode;
 
 namespace tumble::ui {
 
+class Settler;  // (document/placement.h)
+
 namespace viewport_detail {
 
 // How far the press may move before it is a drag rather than a click (pixels).
@@ -173,6 +175,10 @@ struct Viewport::Impl {
     BallLimitFrame dragLimits;  // a ball joint's limit grip's drag (dragAxis kLimitGrip + grip)
     int dragMergeId = 0;
     int dragCounter = 0;
+    // Shift while moving: the scene compiled once for the drag (placement.h), for drag
+    // settlerDrag (its merge id).
+    std::shared_ptr<Settler> settler;
+    int settlerDrag = 0;
     const QUndoCommand* dragCommand = nullptr;  // the drag's undo step so far (null: none yet)
     // Keying an animated body at a later frame (its handles show there too): the drag moves
     // its drawn pose only, and its end keys that pose at the frame's time (one undo step).

@@ -277,7 +277,13 @@ void Viewport::dragHandle(const QPoint& pos, Qt::KeyboardModifiers modifiers) {
                       : before.name;
         BodyDesc after = apply(before);
         // Shift held while moving a body: it rests on the surface under it (placement.h).
-        if (move && part < 0 && (modifiers & Qt::ShiftModifier)) after = settledAt(doc->scene(), index, after);
+        if (move && part < 0 && (modifiers & Qt::ShiftModifier)) {
+            if (!d_->settler || d_->settlerDrag != d_->dragMergeId) {
+                d_->settler = std::make_shared<Settler>(doc->scene(), index);
+                d_->settlerDrag = d_->dragMergeId;
+            }
+            after = d_->settler->settle(after);
+        }
         doc->setBody(index, after, tr("%1 %2").arg(verb, QString::fromStdString(what)), d_->dragMergeId);
     } else {
         // Several: a macro cannot merge, so the drag's previous macro is undone and replaced.
