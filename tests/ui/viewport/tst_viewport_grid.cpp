@@ -15,6 +15,7 @@
 #include <QtMath>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 
 using namespace tumble;
@@ -54,6 +55,17 @@ QImage settled(Viewport& view) {
     return last;
 }
 
+// A view of `doc`, 640 x 480, on screen, looking at the origin from `distance` m at `pitch`
+// degrees down, along -z.
+std::unique_ptr<Viewport> shown(Document& doc, float distance, float pitch) {
+    auto view = std::make_unique<Viewport>(&doc);
+    view->resize(640, 480);
+    view->show();
+    if (!QTest::qWaitForWindowExposed(view.get())) qWarning("the view was not exposed");
+    view->setCamera(QVector3D(0, 0, 0), distance, 0.0f, pitch);
+    return view;
+}
+
 }  // namespace
 
 class TestViewportGrid : public QObject {
@@ -81,12 +93,9 @@ private slots:
     // from 8 m on.
     void aLineOnTheGroundIsWholeAway() {
         Document doc;  // the ground alone
-        Viewport view(&doc);
-        view.resize(640, 480);
-        view.show();
-        QVERIFY(QTest::qWaitForWindowExposed(&view));
         const float distance = 12.0f, pitch = 20.0f;
-        view.setCamera(QVector3D(0, 0, 0), distance, 0.0f, pitch);
+        const auto shownView = shown(doc, distance, pitch);
+        Viewport& view = *shownView;
         const QVector3D eye(0.0f, distance * std::sin(qDegreesToRadians(pitch)),
                             distance * std::cos(qDegreesToRadians(pitch)));
         const QImage shot = settled(view);
@@ -112,17 +121,13 @@ private slots:
     }
 
     // The lines stay behind a body standing on them (the ground's offset moves the ground
-    // alone): the
-    // front face of a box on the line x = -5, from 2.5 cm above the ground up, is the box's
-    // colour (the orange of a dynamic body) at every pixel over the line.
+    // alone): the front face of a box on the line x = -5, from 2.5 cm above the ground up, is
+    // the box's colour (the orange of a dynamic body) at every pixel over the line.
     void aBodyOnTheGridHidesIt() {
         Document doc;
         doc.addBody(test::body("crate", ShapeType::Box, Vec3(-5, 0.5, -2)));  // 1 m cube
-        Viewport view(&doc);
-        view.resize(640, 480);
-        view.show();
-        QVERIFY(QTest::qWaitForWindowExposed(&view));
-        view.setCamera(QVector3D(0, 0, 0), 12.0f, 0.0f, 20.0f);
+        const auto shownView = shown(doc, 12.0f, 20.0f);
+        Viewport& view = *shownView;
         const QImage shot = settled(view);
         for (double y = 0.025; y < 1.0; y += 0.025) {
             const QPoint at = projected(view, Vec3(-5, y, -1.5));
@@ -139,11 +144,8 @@ private slots:
     // grid ends (no hard end where the lines stop).
     void theGridFadesAwayFromTheEye() {
         Document doc;
-        Viewport view(&doc);
-        view.resize(640, 480);
-        view.show();
-        QVERIFY(QTest::qWaitForWindowExposed(&view));
-        view.setCamera(QVector3D(0, 0, 0), 10.0f, 0.0f, 12.0f);
+        const auto shownView = shown(doc, 10.0f, 12.0f);
+        Viewport& view = *shownView;
         const QImage shot = settled(view);
         auto contrast = [&](double z) {
             const QPoint at = projected(view, Vec3(-1, 0, z));
