@@ -14,7 +14,7 @@ namespace tumble::bench {
 struct Options {
     bool quick = false;
     std::string scene;  ///< empty: all
-    std::vector<std::string> engines{"tumble", "bullet", "ode", "mujoco"};
+    std::vector<std::string> engines{"tumble", "bullet", "ode", "mujoco", "jolt"};
     std::filesystem::path out = "bench-out";
     int runs = 3;  ///< timed runs of each accuracy point (the minimum is kept)
     /// Runs of each speed row, the fastest kept with its own figures (a single run on a

@@ -27,7 +27,7 @@ class EngineAdapter {
 public:
     virtual ~EngineAdapter() = default;
 
-    /// "tumble", "bullet", "ode", "mujoco".
+    /// "tumble", "bullet", "ode", "mujoco", "jolt".
     virtual std::string name() const = 0;
     /// The settings this engine is measured in, most accurate first ("rk4", "splitting",
     /// "gyroscopic-implicit", "quickstep", "implicit", ...), each documented in
@@ -54,5 +54,6 @@ std::unique_ptr<EngineAdapter> makeTumbleAdapter();
 std::unique_ptr<EngineAdapter> makeBulletAdapter();
 std::unique_ptr<EngineAdapter> makeOdeAdapter();
 std::unique_ptr<EngineAdapter> makeMujocoAdapter();
+std::unique_ptr<EngineAdapter> makeJoltAdapter();
 
 }  // namespace tumble::bench

@@ -8,7 +8,7 @@
 //                                     writers' time against the bodies) or convex-parts (the
 //                                     split of concave meshes, timed); or stacks (the stress tests
 //                                     STACK@1/N, with the stability-against-step plot)
-//   tumble-bench --engines tumble,bullet,ode,mujoco   which engines (default: all built)
+//   tumble-bench --engines tumble,bullet,ode,mujoco,jolt   which engines (default: all built)
 //   tumble-bench --out DIR            where the CSV, plots and summary.md go (bench-out)
 //   tumble-bench --runs N             timed runs per accuracy point, the minimum kept (3)
 //   tumble-bench --speed-runs N       runs of each speed row, the fastest kept (1)
@@ -41,6 +41,7 @@ std::unique_ptr<EngineAdapter> makeEngine(const std::string& name) {
     if (name == "bullet") return makeBulletAdapter();
     if (name == "ode") return makeOdeAdapter();
     if (name == "mujoco") return makeMujocoAdapter();
+    if (name == "jolt") return makeJoltAdapter();
     return nullptr;
 }
 
@@ -78,7 +79,7 @@ void list() {
     std::printf("stress tests:\n");
     for (const auto& n : stressTestNames()) std::printf("  %s\n", n.c_str());
     std::printf("engines:\n");
-    for (const char* n : {"tumble", "bullet", "ode", "mujoco"}) {
+    for (const char* n : {"tumble", "bullet", "ode", "mujoco", "jolt"}) {
         auto e = makeEngine(n);
         std::string modes;
         if (e)
@@ -116,7 +117,7 @@ int main(int argc, char** argv) {
             opt.speedRuns = std::max(1, std::atoi(argv[++i]));
         } else {
             std::fprintf(stderr,
-                         "usage: tumble-bench [--quick] [--scene NAME] [--engines tumble,bullet,ode,mujoco] "
+                         "usage: tumble-bench [--quick] [--scene NAME] [--engines tumble,bullet,ode,mujoco,jolt] "
                          "[--out DIR] [--runs N] [--speed-runs N] [--list]\n");
             return 2;
         }

@@ -14,5 +14,8 @@ __attribute__((weak)) std::unique_ptr<EngineAdapter> makeOdeAdapter() {
 __attribute__((weak)) std::unique_ptr<EngineAdapter> makeMujocoAdapter() {
     return nullptr;
 }
+__attribute__((weak)) std::unique_ptr<EngineAdapter> makeJoltAdapter() {
+    return nullptr;
+}
 
 }  // namespace tumble::bench

@@ -85,7 +85,7 @@ void writeAccuracy(const Options& opt, const std::vector<AccuracyRow>& rows) {
                                      series[i].substr(sp + 1) + ".dat";
             // Tumble solid and thick; each peer its own dash, so engines read apart in print.
             const std::string engine = series[i].substr(0, sp);
-            const int dash = engine == "tumble" ? 1 : engine == "bullet" ? 2 : engine == "ode" ? 3 : 4;
+            const int dash = engine == "tumble" ? 1 : engine == "bullet" ? 2 : engine == "ode" ? 3 : engine == "mujoco" ? 4 : 5;
             gp << (i ? ", \\\n     " : "") << "'" << file << "' using 1:2 with linespoints dashtype " << dash
                << " linewidth " << (dash == 1 ? 2 : 1) << " title '" << series[i] << "'";
         }
@@ -307,7 +307,7 @@ void plotStability(const Options& opt, const std::vector<StressRow>& rows) {
     for (const std::string& stack : stacks) {
         gp << "set title '" << stack << "'\nplot ";
         for (size_t i = 0; i < engines.size(); ++i) {
-            const int dash = engines[i] == "tumble" ? 1 : engines[i] == "bullet" ? 2 : engines[i] == "ode" ? 3 : 4;
+            const int dash = engines[i] == "tumble" ? 1 : engines[i] == "bullet" ? 2 : engines[i] == "ode" ? 3 : engines[i] == "mujoco" ? 4 : 5;
             gp << (i ? ", " : "") << "'data/stability." << stack << "." << engines[i]
                << ".dat' using 1:2 with linespoints dashtype " << dash << " linewidth " << (dash == 1 ? 2 : 1)
                << " title '" << engines[i] << "'";
