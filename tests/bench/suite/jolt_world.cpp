@@ -98,8 +98,8 @@ JPH::ShapeRefC made(const JPH::ShapeSettings& settings, std::string* why) {
     return r.Get();
 }
 
-JPH::ShapeRefC shapeOf(const Shape& s, std::string* why) {
-    const float cvx = JPH::cDefaultConvexRadius;
+JPH::ShapeRefC shapeOf(const Shape& s, bool sharp, std::string* why) {
+    const float cvx = sharp ? 0.0f : JPH::cDefaultConvexRadius;
     switch (s.kind) {
         case ShapeKind::Sphere: return new JPH::SphereShape(float(s.radius));
         case ShapeKind::Box: {
@@ -128,7 +128,7 @@ JPH::ShapeRefC shapeOf(const Shape& s, std::string* why) {
         case ShapeKind::Compound: {
             JPH::StaticCompoundShapeSettings compound;
             for (const Shape::Part& p : s.parts) {
-                JPH::ShapeRefC part = shapeOf(p.shape, why);
+                JPH::ShapeRefC part = shapeOf(p.shape, sharp, why);
                 if (!part) return nullptr;
                 compound.AddShape(jv(p.position), jq(p.orientation), part);
             }
@@ -197,7 +197,7 @@ int World::addBody(const Body& b, std::string* why) {
         d.system.SetContactListener(&d.contacts);
         d.initialised = true;
     }
-    JPH::ShapeRefC shape = shapeOf(b.shape, why);
+    JPH::ShapeRefC shape = shapeOf(b.shape, d.settings.sharpBoxes, why);
     if (!shape) return -1;
     const bool plane = b.shape.kind == ShapeKind::Plane;
     if (b.dynamic) {

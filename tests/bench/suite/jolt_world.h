@@ -75,6 +75,8 @@ struct Settings {
     int velocitySteps = 0, positionSteps = 0;
     /// Bodies to make room for (Jolt's PhysicsSystem is sized once).
     int maxBodies = 1024;
+    /// Boxes and cylinders without Jolt's convex radius (its PerformanceTest's pyramid).
+    bool sharpBoxes = false;
 };
 
 /// One Jolt PhysicsSystem, single-threaded (JobSystemSingleThreaded).

@@ -411,7 +411,7 @@ int main() {
         std::function<std::unique_ptr<EngineAdapter>()> make;
     };
     const std::vector<Peer> peers = {
-        {"bullet", makeBulletAdapter}, {"ode", makeOdeAdapter}, {"mujoco", makeMujocoAdapter}};
+        {"bullet", makeBulletAdapter}, {"ode", makeOdeAdapter}, {"mujoco", makeMujocoAdapter}, {"jolt", makeJoltAdapter}};
     std::vector<Row> rows;
     int built = 0;
     for (const Peer& p : peers) {

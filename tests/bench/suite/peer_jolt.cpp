@@ -6,6 +6,8 @@
 // Modes:
 //   defaults        Jolt's PhysicsSettings as they come (10 velocity, 2 position iterations)
 //   scene-iterations  settings.solverIterations velocity iterations (Tumble's count)
+//   sharp-boxes     defaults, boxes and cylinders without a convex radius (as Jolt's
+//                   PerformanceTest makes its pyramid's boxes)
 // Refused: springs, moving kinematic bodies, sliders, distance, rope and six-axis joints, a
 // ball joint's cone and twist limits, servos, breaking joints.
 #include "engine_adapter.h"
@@ -59,7 +61,7 @@ bool shapeOf(const collision::Shape& c, jolt::Shape* out, std::string* why) {
 class JoltAdapter final : public EngineAdapter {
 public:
     std::string name() const override { return "jolt"; }
-    std::vector<std::string> modes() const override { return {"defaults", "scene-iterations"}; }
+    std::vector<std::string> modes() const override { return {"defaults", "scene-iterations", "sharp-boxes"}; }
 
     bool load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) override;
     void step() override;
@@ -79,7 +81,7 @@ private:
 bool JoltAdapter::load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) {
     world_.reset();
     still_.clear();
-    if (mode != "defaults" && mode != "scene-iterations") {
+    if (mode != "defaults" && mode != "scene-iterations" && mode != "sharp-boxes") {
         if (why) *why = "unknown Jolt mode '" + mode + "'";
         return false;
     }
@@ -103,6 +105,7 @@ bool JoltAdapter::load(const SceneDesc& scene, const std::string& mode, double d
     settings.sleeping = scene.settings.sleeping;
     settings.maxBodies = int(ps_.model.bodies.size());
     if (mode == "scene-iterations") settings.velocitySteps = std::max(1, scene.settings.solverIterations);
+    settings.sharpBoxes = mode == "sharp-boxes";
     world_ = std::make_unique<jolt::World>(settings);
 
     const Model& m = ps_.model;

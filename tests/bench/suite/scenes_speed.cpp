@@ -219,6 +219,35 @@ SceneDesc chairPile(int count) {
 }
 
 // Body names must be unique: the builders above name by kind, this numbers them.
+// Jolt's PerformanceTest "Pyramid" scene (PyramidScene.h) as Tumble describes it: 1 240 boxes
+// of 2 m (density 1 000 kg/m³, Jolt's default friction 0.2 and restitution 0) in 15 square
+// layers, each layer 0.5 m above the last and odd layers shifted by half a box, on a static
+// 100 x 2 x 100 m box whose top is at y = 0; sleeping off. For checking the Jolt peer's times
+// against Jolt's own program on the same scene.
+SceneDesc joltPyramid() {
+    SceneDesc s;
+    s.settings.sleeping = false;
+    BodyDesc floor = box("floor", Vec3(50, 1, 50), 1.0, Vec3(0, -1, 0));
+    floor.motion = Motion::Static;
+    floor.mass.reset();
+    s.bodies.push_back(floor);
+    const int height = 15;
+    for (int i = 0; i < height; ++i)
+        for (int j = i / 2; j < height - (i + 1) / 2; ++j)
+            for (int k = i / 2; k < height - (i + 1) / 2; ++k) {
+                const double shift = (i & 1) ? 1.0 : 0.0;
+                BodyDesc b = box("b", Vec3(1, 1, 1), 1.0,
+                                 Vec3(-height + 2.0 * j + shift, 1.0 + 2.5 * i, -height + 2.0 * k + shift));
+                b.mass.reset();
+                b.density = 1000.0;
+                b.friction = 0.2;
+                b.restitution = 0.0;
+                s.bodies.push_back(b);
+            }
+    for (BodyDesc& b : s.bodies) b.friction = 0.2, b.restitution = 0.0;
+    return s;
+}
+
 SceneDesc named(SceneDesc s) {
     for (size_t i = 0; i < s.bodies.size(); ++i)
         if (s.bodies[i].motion != Motion::Static || s.bodies[i].shape.type != ShapeType::Plane)
@@ -256,6 +285,10 @@ std::vector<SpeedScene> speedScenes() {
                        return named(pyr);
                    },
                    1.0 / 60.0, 120, 2});
+    out.push_back({"jolt-pyramid",
+                   "Jolt's PerformanceTest pyramid: 1 240 boxes of 2 m in 15 layers dropped 0.5 m apart, "
+                   "sleeping off (to check the Jolt peer against Jolt's own program)",
+                   [] { return named(joltPyramid()); }, 1.0 / 60.0, 500, 1});
     out.push_back({"free-10000", "10 000 boxes tumbling, no gravity, no contacts, nothing static",
                    [] { return named(freeBodies(10000, false)); }, 1.0 / 60.0, 120, 5});
     out.push_back({"free-10000-far-ground",
