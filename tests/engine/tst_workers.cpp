@@ -97,6 +97,7 @@ struct Run {
     QByteArray end;
     long contactPoints = 0;
     long impactMoments = 0;
+    long pooledRuns = 0;
     double lowest = 0.0;  // the lowest body centre at the end
 };
 
@@ -109,6 +110,7 @@ Run runHeap(ImpactTiming timing, int threads, int steps) {
     r.end = fingerprint(w);
     r.contactPoints = w.profile().contactPoints;
     r.impactMoments = w.profile().impactMoments;
+    r.pooledRuns = w.profile().pooledRuns;
     r.lowest = 1e9;
     for (int i : w.model().dynamicBodies) r.lowest = std::min(r.lowest, w.state().bodies[i].x.y());
     return r;
@@ -169,6 +171,34 @@ private slots:
         }
     }
 
+    // PoolGate (issue 53): a stage not yet timed stays on this thread; once timed at a per-item
+    // cost a, n items go to the pool when a n (1 - 1/threads) exceeds 1.5 times its overhead d,
+    // the pool's measured dispatch until pooled runs show theirs; every 16th run stays on this
+    // thread to keep a current.
+    void poolGateHandsThePoolOnlyWhatPays() {
+        Workers pool(2);
+        const double d = pool.dispatchSeconds();
+        QVERIFY(d > 0.0);
+        PoolGate gate;
+        QVERIFY(!gate.worthIt(&pool, 1000000));  // not timed yet
+        const double a = d / 100.0;              // an item costs a hundredth of a dispatch
+        gate.record(&pool, 1000, 1000 * a, false);
+        // The break-even: a n / 2 = 1.5 d, n = 300.
+        int pooled = 0, calls = 0;
+        for (int k = 0; k < 14; ++k, ++calls) pooled += gate.worthIt(&pool, 290) ? 1 : 0;
+        QCOMPARE(pooled, 0);
+        pooled = 0;
+        for (int k = 0; k < 16; ++k) pooled += gate.worthIt(&pool, 320) ? 1 : 0;
+        QCOMPARE(pooled, 15);  // one of the 16 timed on this thread
+        // Pooled runs that cost 10 d beyond their share raise the bar to n = 3 000.
+        for (int k = 0; k < 40; ++k) gate.record(&pool, 1000, 1000 * a / 2 + 10.0 * d, true);
+        int more = 0;
+        for (int k = 0; k < 16; ++k) more += gate.worthIt(&pool, 2500) ? 1 : 0;
+        QCOMPARE(more, 0);
+        for (int k = 0; k < 16; ++k) more += gate.worthIt(&pool, 3500) ? 1 : 0;
+        QCOMPARE(more, 15);
+    }
+
     void threadCountMustBePositive() {
         World w(heapInBowl(ImpactTiming::Exact));
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, w.setThreads(0));
@@ -205,6 +235,8 @@ private slots:
             const Run many = runHeap(timing, threads, steps);
             QCOMPARE(many.contactPoints, one.contactPoints);
             QCOMPARE(many.impactMoments, one.impactMoments);
+            // The pool took some of the stages (else the comparison would prove nothing).
+            QVERIFY2(many.pooledRuns > 0, qPrintable(QString("%1 threads: no stage went to the pool").arg(threads)));
             QVERIFY2(many.end == one.end, qPrintable(QString("%1 threads differ").arg(threads)));
         }
     }

@@ -34,6 +34,9 @@ struct Profile {
     long settledBodies =
         0;  ///< bodies pushed out of overlap deeper than the margin after the solve (settle_overlap.h)
     long jointSplits = 0;  ///< steps taken again in two halves: their joints did not hold (World::step)
+    /// Stages handed to the worker threads (World::setThreads): a stage goes to them only when
+    /// its items are worth it (common/pool_gate.h); 0 on one thread.
+    long pooledRuns = 0;
 };
 
 /// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no

@@ -83,12 +83,18 @@ constexpr int kPairGrain = 8;  // pairs per chunk on the worker threads
 // s.impacts) in the pairs' order: on the worker threads each chunk of pairs fills a list of
 // its own, and the lists are joined in chunk order, so the result does not depend on the
 // threads.
+// `gate` says whether this many pairs are worth the pool (workers.h PoolGate).
 template <class List, class Pair>
-void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, Pair&& pair) {
+void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, PoolGate& gate, Pair&& pair) {
     const auto& pairs = s.broadphase.pairs();
     const int n = static_cast<int>(pairs.size());
-    if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain) {
+    const auto start = std::chrono::steady_clock::now();
+    auto booked = [&](bool pooled) {
+        gate.record(s.pool, n, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), pooled);
+    };
+    if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain || !gate.worthIt(s.pool, n)) {
         for (int k = 0; k < n; ++k) pair(k, pairs[k].first, pairs[k].second, out);
+        if (s.pool) booked(false);
         return;
     }
     const int chunks = (n + kPairGrain - 1) / kPairGrain;
@@ -100,6 +106,7 @@ void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, Pair&& 
         for (int k = c * kPairGrain; k < end; ++k) pair(k, pairs[k].first, pairs[k].second, mine);
     });
     for (int c = 0; c < chunks; ++c) out.insert(out.end(), chunkOut[c].begin(), chunkOut[c].end());
+    booked(true);
 }
 
 }  // namespace
@@ -210,7 +217,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
     s.apart.assign(s.broadphase.pairs().size(), Vec3::Zero());
     placeCompounds(model, s, margin);
     std::atomic<long> reused{0}, provedApart{0};
-    overPairs(s, s.contacts, s.chunkContacts, [&](int k, int a, int b, ManifoldList& out) {
+    overPairs(s, s.contacts, s.chunkContacts, s.contactsGate, [&](int k, int a, int b, ManifoldList& out) {
         if (const auto* range = lastOf(a, b)) {
             out.insert(out.end(), last.manifolds.begin() + range->first,
                        last.manifolds.begin() + range->second);
@@ -347,7 +354,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
                approachSpeed(model, before, after, m.bodyA, m.bodyB, 1.0, m.points[deepest].position,
                              m.normal) <= 0.0;
     };
-    overPairs(s, s.impacts, s.chunkImpacts, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
+    overPairs(s, s.impacts, s.chunkImpacts, s.impactsGate, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
         if (joined(s, a, b)) return;
         // In contact already: no new impact.
         if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;

@@ -9,6 +9,7 @@
 
 #include "collision/broadphase.h"
 #include "collision/compound_pairs.h"
+#include "common/pool_gate.h"
 
 #include <cstdint>
 #include <limits>
@@ -57,6 +58,7 @@ struct DetectScratch {
     Workers* pool = nullptr;                  // the world's worker threads; null: this thread only
     std::vector<collision::ManifoldList> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
+    PoolGate contactsGate, impactsGate;  // whether the pairs are worth the pool (workers.h)
     // The parts of the compound bodies in this narrowphase's pairs, placed at the end of the
     // step once for all their pairs: body i's from placed[placedAt[i]] (-1: none).
     std::vector<collision::PlacedPart> placed;

@@ -37,6 +37,34 @@ bool spinFor(Ready&& ready) {
 
 Workers::Workers(int threads) {
     for (int i = 1; i < std::max(threads, 1); ++i) helpers_.emplace_back([this] { helperLoop(); });
+    if (helpers_.empty()) return;
+    // The dispatch cost: the median of 15 runs of one empty chunk a thread.
+    std::vector<double> times;
+    const std::function<void(int)> nothing = [](int) {};
+    for (int k = 0; k < 15; ++k) {
+        const auto t = std::chrono::steady_clock::now();
+        run(this->threads(), nothing);
+        times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count());
+    }
+    std::nth_element(times.begin(), times.begin() + 7, times.end());
+    dispatch_ = times[7];
+    runs_ = 0;
+}
+
+bool PoolGate::worthIt(const Workers* pool, int n) {
+    if (perItem_ < 0.0 || calls_++ % 16 == 15) return false;  // (timed on one thread)
+    const double d = overhead_ < 0.0 ? pool->dispatchSeconds() : overhead_;
+    return perItem_ * n * (1.0 - 1.0 / pool->threads()) > 1.5 * d;
+}
+
+void PoolGate::record(const Workers* pool, int n, double seconds, bool pooled) {
+    if (n <= 0) return;
+    // Averages that follow a scene as it settles (a fifth of each new run).
+    auto follow = [](double& average, double x) { average = average < 0.0 ? x : 0.8 * average + 0.2 * x; };
+    if (pooled)
+        follow(overhead_, std::max(0.0, seconds - perItem_ * n / pool->threads()));
+    else
+        follow(perItem_, seconds / n);
 }
 
 Workers::~Workers() {
@@ -86,6 +114,7 @@ void Workers::run(int chunks, const std::function<void(int)>& job) {
     if (static_cast<std::uint64_t>(chunks) > kIndexMask / 2)
         throw std::invalid_argument("Workers::run: too many chunks");
     std::lock_guard turn(callers_);
+    ++runs_;
     job_ = &job;
     finished_.store(0);
     const std::uint32_t generation = generation_.load() + 1;

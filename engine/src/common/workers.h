@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -15,6 +16,8 @@
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "common/pool_gate.h"
 
 namespace tumble {
 
@@ -34,6 +37,13 @@ public:
     /// fixed; the others are dropped). Calls from several threads at once take turns.
     void run(int chunks, const std::function<void(int)>& job);
 
+    /// What a run costs beyond its work (handing out the tickets, waking the helpers,
+    /// waiting for the last chunk), in seconds: the median of a few empty runs timed when the
+    /// pool was made.
+    double dispatchSeconds() const { return dispatch_; }
+    /// Runs taken since the pool was made (its own timing runs not counted).
+    long runs() const { return runs_; }
+
 private:
     void helperLoop();
     void takeChunks();
@@ -51,23 +61,31 @@ private:
     std::atomic<int> finished_{0};              // chunks of the current run done
     std::atomic<bool> stop_{false};
     std::exception_ptr error_;  // under m_
+    double dispatch_ = 0.0;
+    long runs_ = 0;
 };
 
 /// Splits [0, n) into chunks of about `grain` items (at least one chunk when n > 0) and calls
-/// body(begin, end) for each, on the pool when there is one and more than one chunk.
+/// body(begin, end) for each, on the pool when there is one and more than one chunk (and,
+/// given a gate, when the gate finds the run worth it).
 template <class Body>
-void forEachChunk(Workers* pool, int n, int grain, Body&& body) {
+void forEachChunk(Workers* pool, int n, int grain, Body&& body, PoolGate* gate = nullptr) {
     if (n <= 0) return;
     const int chunks = (n + grain - 1) / grain;
-    if (!pool || pool->threads() == 1 || chunks == 1) {
+    const bool pooled = pool && pool->threads() > 1 && chunks > 1 && (!gate || gate->worthIt(pool, n));
+    const auto start = std::chrono::steady_clock::now();
+    if (!pooled) {
         body(0, n);
-        return;
+    } else {
+        pool->run(chunks, [&](int c) {
+            const int begin = static_cast<int>(static_cast<long>(n) * c / chunks);
+            const int end = static_cast<int>(static_cast<long>(n) * (c + 1) / chunks);
+            body(begin, end);
+        });
     }
-    pool->run(chunks, [&](int c) {
-        const int begin = static_cast<int>(static_cast<long>(n) * c / chunks);
-        const int end = static_cast<int>(static_cast<long>(n) * (c + 1) / chunks);
-        body(begin, end);
-    });
+    if (gate)
+        gate->record(pool, n, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                     pooled);
 }
 
 }  // namespace tumble

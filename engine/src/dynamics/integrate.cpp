@@ -270,7 +270,8 @@ void splitting(const Model& model, State& state, double h, IntegrateScratch& scr
     const std::vector<Wrench>& w0 = evaluateForces(model, state.bodies, state.time + 0.5 * h, scr, prof);
     // Each body's kick and drift is its own: spread over the worker threads.
     const std::vector<int>& bodies = awake(model, scr);
-    forEachChunk(scr.pool, static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end) {
+    forEachChunk(
+        scr.pool, static_cast<int>(bodies.size()), kBodyGrain, [&](int begin, int end) {
         for (int k = begin; k < end; ++k) {
             const int i = bodies[k];
             const BodyModel& b = model.bodies[i];
@@ -280,7 +281,7 @@ void splitting(const Model& model, State& state, double h, IntegrateScratch& scr
             s.x += h * b.invMass * s.P;
             freeRotation(b, s, h, fourthOrderRotation);
         }
-    });
+    }, &scr.drift);
     const std::vector<Wrench>& w1 = evaluateForces(model, state.bodies, state.time + 0.5 * h, scr, prof);
     for (int i : awake(model, scr)) {
         BodyState& s = state.bodies[i];

@@ -7,6 +7,8 @@
 #include <tumble/model.h>
 #include <tumble/profile.h>
 
+#include "common/pool_gate.h"
+
 #include <vector>
 
 namespace tumble {
@@ -25,6 +27,7 @@ struct IntegrateScratch {
     const std::vector<int>* awake = nullptr;
     /// The world's worker threads for the drift of the splitting integrators; null: this thread.
     Workers* pool = nullptr;
+    PoolGate drift;  // whether the bodies are worth the pool (workers.h)
 };
 
 void integrate(const Model& model, State& state, double h, IntegrateScratch& scratch, Profile& profile);

@@ -277,6 +277,7 @@ void World::impactAt(double t0) {
 Profile World::profile() const {
     Profile p = profile_;
     p.pairsReused = scratch_->detect.reusedPairs;
+    p.pooledRuns = scratch_->workers ? scratch_->workers->runs() : 0;
     p.pairsApart = scratch_->detect.apartPairs;
     const double k = scratch_->clockRate.secondsPerTick();
     for (double* t : {&p.forces, &p.integrate, &p.broadphase, &p.narrowphase, &p.timeOfImpact, &p.impactSolve,
