@@ -11,7 +11,8 @@
 //   ConvexHullShape (Tumble's hull vertices, Jolt's default largest convex radius),
 //   PlaneShape (static), MeshShape (static), StaticCompoundShape.
 // - No damping of Jolt's own (its default is 0.05 1/s): Tumble's damping comes as forces.
-//   Jolt's other defaults stay: discrete collision (no continuous), 10 velocity and 2
+//   Jolt's other defaults stay (mode careful: continuous collision and no speed limit,
+//   Settings::careful): discrete collision (no continuous), 10 velocity and 2
 //   position iterations, speculative contacts within 2 cm, its angular speed limit
 //   (15 pi rad/s), its sleeping thresholds. Friction combines as sqrt(f1 f2), restitution
 //   as the larger: Tumble's rules, and Jolt's own defaults.
@@ -216,6 +217,10 @@ int World::addBody(const Body& b, std::string* why) {
     c.mLinearDamping = 0.0f;
     c.mAngularDamping = 0.0f;
     c.mAllowSleeping = d.settings.sleeping;
+    if (b.dynamic && d.settings.careful) {
+        c.mMotionQuality = JPH::EMotionQuality::LinearCast;
+        c.mMaxAngularVelocity = 1.0e4f;
+    }
     if (b.dynamic) {
         c.mOverrideMassProperties = JPH::EOverrideMassProperties::MassAndInertiaProvided;
         c.mMassPropertiesOverride.mMass = float(b.mass);

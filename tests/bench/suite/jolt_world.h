@@ -77,6 +77,9 @@ struct Settings {
     int maxBodies = 1024;
     /// Boxes and cylinders without Jolt's convex radius (its PerformanceTest's pyramid).
     bool sharpBoxes = false;
+    /// Jolt at its most careful: continuous collision (EMotionQuality::LinearCast) on every
+    /// dynamic body, and no angular speed limit to speak of (1e4 rad/s).
+    bool careful = false;
 };
 
 /// One Jolt PhysicsSystem, single-threaded (JobSystemSingleThreaded).

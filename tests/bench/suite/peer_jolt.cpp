@@ -8,6 +8,8 @@
 //   scene-iterations  settings.solverIterations velocity iterations (Tumble's count)
 //   sharp-boxes     defaults, boxes and cylinders without a convex radius (as Jolt's
 //                   PerformanceTest makes its pyramid's boxes)
+//   careful         defaults with continuous collision (LinearCast) on every dynamic body and
+//                   the angular speed limit raised to 1e4 rad/s
 // Refused: springs, moving kinematic bodies, sliders, distance, rope and six-axis joints, a
 // ball joint's cone and twist limits, servos, breaking joints.
 #include "engine_adapter.h"
@@ -61,7 +63,9 @@ bool shapeOf(const collision::Shape& c, jolt::Shape* out, std::string* why) {
 class JoltAdapter final : public EngineAdapter {
 public:
     std::string name() const override { return "jolt"; }
-    std::vector<std::string> modes() const override { return {"defaults", "scene-iterations", "sharp-boxes"}; }
+    std::vector<std::string> modes() const override {
+        return {"defaults", "scene-iterations", "sharp-boxes", "careful"};
+    }
 
     bool load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) override;
     void step() override;
@@ -81,7 +85,7 @@ private:
 bool JoltAdapter::load(const SceneDesc& scene, const std::string& mode, double dt, std::string* why) {
     world_.reset();
     still_.clear();
-    if (mode != "defaults" && mode != "scene-iterations" && mode != "sharp-boxes") {
+    if (mode != "defaults" && mode != "scene-iterations" && mode != "sharp-boxes" && mode != "careful") {
         if (why) *why = "unknown Jolt mode '" + mode + "'";
         return false;
     }
@@ -106,6 +110,7 @@ bool JoltAdapter::load(const SceneDesc& scene, const std::string& mode, double d
     settings.maxBodies = int(ps_.model.bodies.size());
     if (mode == "scene-iterations") settings.velocitySteps = std::max(1, scene.settings.solverIterations);
     settings.sharpBoxes = mode == "sharp-boxes";
+    settings.careful = mode == "careful";
     world_ = std::make_unique<jolt::World>(settings);
 
     const Model& m = ps_.model;
