@@ -60,7 +60,8 @@ void PropertyDock::Impl::buildMass(QVBoxLayout* layout) {
             false);
     });
     QObject::connect(mass, &PropertySpinBox::valueChanged, q, [this](double value) {
-        const bool density = !selected().empty() && selected().front()->density;
+        const auto bodies = selected();
+        const bool density = !bodies.empty() && bodies.front()->density;
         apply("mass", editText(density ? QObject::tr("Set density") : QObject::tr("Set mass"), mass->shownText(value)),
               [&](BodyDesc& b, int) {
             if (b.density)

@@ -88,13 +88,17 @@ template <class List, class Pair>
 void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, PoolGate& gate, Pair&& pair) {
     const auto& pairs = s.broadphase.pairs();
     const int n = static_cast<int>(pairs.size());
+    if (!s.pool || s.pool->threads() == 1) {  // (one thread: nothing to time or gate)
+        for (int k = 0; k < n; ++k) pair(k, pairs[k].first, pairs[k].second, out);
+        return;
+    }
     const auto start = std::chrono::steady_clock::now();
     auto booked = [&](bool pooled) {
         gate.record(s.pool, n, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), pooled);
     };
-    if (!s.pool || s.pool->threads() == 1 || n <= kPairGrain || !gate.worthIt(s.pool, n)) {
+    if (n <= kPairGrain || !gate.worthIt(s.pool, n)) {
         for (int k = 0; k < n; ++k) pair(k, pairs[k].first, pairs[k].second, out);
-        if (s.pool) booked(false);
+        booked(false);
         return;
     }
     const int chunks = (n + kPairGrain - 1) / kPairGrain;

@@ -72,8 +72,9 @@ template <class Body>
 void forEachChunk(Workers* pool, int n, int grain, Body&& body, PoolGate* gate = nullptr) {
     if (n <= 0) return;
     const int chunks = (n + grain - 1) / grain;
+    const bool timed = gate && pool && pool->threads() > 1;  // (one thread: nothing to gate)
     const bool pooled = pool && pool->threads() > 1 && chunks > 1 && (!gate || gate->worthIt(pool, n));
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
     if (!pooled) {
         body(0, n);
     } else {
@@ -83,7 +84,7 @@ void forEachChunk(Workers* pool, int n, int grain, Body&& body, PoolGate* gate =
             body(begin, end);
         });
     }
-    if (gate)
+    if (timed)
         gate->record(pool, n, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                      pooled);
 }
