@@ -322,6 +322,9 @@ class TestWriteFaults : public QObject {
                 if (!temporariesAllowed) wrong << rel + " (a temporary left)";
                 continue;
             }
+            // A killed glTF export may leave the bridge: the new .gltf naming the .bin's
+            // temporary. It is judged as a pair below, not byte for byte.
+            if (name == "gltf" && rel == "run.gltf") continue;
             const auto o = olds.find(rel), n = news.find(rel);
             const bool keptAsItWas = kept && kept->count(rel) && kept->at(rel) == bytes;
             const bool whole = keptAsItWas || (w.exact ? (o != olds.end() && o->second == bytes) ||
