@@ -8,6 +8,7 @@
 
 #include <QtTest>
 #include "response_checks.h"
+#include "turned_world.h"
 
 #include <algorithm>
 #include <array>
@@ -272,6 +273,64 @@ private slots:
         const BodyState& top = world.state().bodies[3];
         QVERIFY2(std::abs(top.x.x()) > 0.01, "precondition: the first tower's top slid");
         QVERIFY2(worst == 0.0, qPrintable(QString("a tower moved %1 away from its run alone").arg(worst)));
+    }
+
+    // A pair searched without an impact keeps that answer over the rest of the step while
+    // neither body's path changed (DetectScratch::noImpact): three balls falling side by side
+    // in one island, bouncing in different steps; at each bounce's cut the other two fly on
+    // untouched, and their pair is not searched again. Each ball moves as it does alone, to
+    // rounding (the cut integrates the others' step in two pieces), in the world and in three
+    // turned and shifted ones.
+    void aSearchWithoutImpactHoldsWhileThePathsDoNot() {
+        const double r = 0.1, e = 0.8, dt = 1.0 / 60.0;
+        const double heights[3] = {1.2, 1.3, 1.4};
+        auto ballAt = [&](int k) {
+            BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, 1.0), e, 0.5);
+            // 4 cm apart on a diagonal, their boxes overlapping: one island, never touching.
+            b.position = Vec3(0.17 * k, heights[k] + r, 0.17 * k);
+            return b;
+        };
+        // The turned worlds keep the balls' offsets diagonal to the world's axes, so that
+        // their boxes still overlap (one island): a quarter turn about gravity, a half turn
+        // about the diagonal (gravity up), a third of a turn about (1, 1, 1) (x to y to z).
+        const WorldPose poses[4] = {
+            {},
+            {Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY())), Vec3(5, -3, 2)},
+            {Quat(Eigen::AngleAxisd(std::numbers::pi, Vec3(1, 0, 1).normalized())), Vec3(-7, 4, 1)},
+            {Quat(Eigen::AngleAxisd(2 * std::numbers::pi / 3, Vec3(1, 1, 1).normalized())), Vec3(3, 8, -6)}};
+        for (int seed = 0; seed < 4; ++seed) {
+            const WorldPose& pose = poses[seed];
+            auto scene = [&](std::vector<BodyDesc> bodies) {
+                SceneDesc s = sceneOf(std::move(bodies));
+                s.settings.sleeping = false;
+                return turnedScene(s, pose);
+            };
+            World together(scene({groundPlane(e, 0.5), ballAt(0), ballAt(1), ballAt(2)}));
+            std::vector<World> alone;
+            for (int k = 0; k < 3; ++k) alone.emplace_back(scene({groundPlane(e, 0.5), ballAt(k)}));
+            double worst = 0.0;
+            int shared = 0;
+            for (int n = 0; n < 90; ++n) {
+                together.step(dt);
+                int bouncing = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const long cuts = alone[k].profile().impactMoments;
+                    alone[k].step(dt);
+                    bouncing += alone[k].profile().impactMoments > cuts;
+                    const BodyState& a = together.state().bodies[1 + k];
+                    const BodyState& b = alone[k].state().bodies[1];
+                    worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm()});
+                }
+                shared += bouncing > 1;
+            }
+            QVERIFY2(shared == 0, "precondition: the balls bounce in different steps");
+            for (const World& w : alone) QVERIFY2(w.profile().impactMoments >= 2, "precondition: the balls bounce");
+            const Profile& p = together.profile();
+            QVERIFY2(p.impactSearchesKept > 0, qPrintable(QString("pose %1: no search was kept across a cut (%2 searched)").arg(seed).arg(p.impactSearches)));
+            QVERIFY2(worst < 1e-12, qPrintable(QString("pose %1: a ball moved %2 (m or kg m/s) away from its run alone")
+                                                   .arg(seed)
+                                                   .arg(worst)));
+        }
     }
 
     void aCutBodyMeetingAParkedOneRedoesTheStep() {

@@ -24,6 +24,10 @@ struct Profile {
     long pairsApart = 0;     ///< convex pairs shown apart by their last direction apart, without GJK
     long contactPoints = 0;  ///< narrowphase contact points, summed over steps
     long impacts = 0;        ///< pairs that came into contact within a step
+    long impactSearches = 0;  ///< pairs searched for a moment of impact (collision::timeOfImpact), summed
+    /// ... and pairs whose search was not needed: found without an impact earlier in the same
+    /// step, neither body's path changed by a cut since (findImpacts)
+    long impactSearchesKept = 0;
     long impactMoments = 0;  ///< moments of impact the step was cut at
     long impactSweepLimits = 0;  ///< impact loops stopped by their bound (see docs/architecture.md)
     long awakeBodySteps = 0;     ///< dynamic bodies integrated, summed over steps (sleeping ones are not)

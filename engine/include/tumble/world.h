@@ -82,6 +82,7 @@ private:
     void impactsAtStart();             // touching bodies that approach as a run starts
     void settle();                     // overlap beyond the margin left by the solve
     void impactAt(double t0);          // cut the step at the first impact and resolve it
+    void forgetSearches();             // the searches for impacts kept within a step
     void finishStep(const State& before, const collision::ManifoldList& contacts);
     void park();                       // the islands without an impact keep their free step
     bool leaveParked();

@@ -358,10 +358,8 @@ void findImpacts(const Model& model, const State& before, const State& after, do
                approachSpeed(model, before, after, m.bodyA, m.bodyB, 1.0, m.points[deepest].position,
                              m.normal) <= 0.0;
     };
-    overPairs(s, s.impacts, s.chunkImpacts, s.impactsGate, [&](int, int a, int b, std::vector<ImpactEvent>& out) {
-        if (joined(s, a, b)) return;
-        // In contact already: no new impact.
-        if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
+    // The search of one pair not touching at the start: its impact, if any, into `out`.
+    auto search = [&](int a, int b, std::vector<ImpactEvent>& out) {
         const BodyModel& A = model.bodies[a];
         const BodyModel& B = model.bodies[b];
         const Sweep sa = sweepOf(A, before.bodies[a], after.bodies[a], h, after.time);
@@ -420,7 +418,42 @@ void findImpacts(const Model& model, const State& before, const State& after, do
             minApproach * restingShare(model.settings.gravity, hit->normal))
             return;
         out.push_back({a, b, t0 + hit->s * h, hit->normal, hit->point});
+    };
+    // A pair found without an impact earlier in the step keeps that answer while neither
+    // body's path changed (DetectScratch::noImpact). A sleeping or parked body stands still
+    // in the search, unlike its path: such pairs are searched every time.
+    auto awake = [&](int i) { return after.asleep.empty() || !after.asleep[i]; };
+    auto keptFrom = [&](int a, int b) {
+        const auto it = std::lower_bound(s.noImpact.begin(), s.noImpact.end(), std::make_pair(pairKey(a, b), -1));
+        if (it == s.noImpact.end() || it->first != pairKey(a, b)) return -1;
+        return it->second >= s.pathFrom[a] && it->second >= s.pathFrom[b] ? it->second : -1;
+    };
+    s.pathFrom.resize(model.bodies.size(), -1);
+    s.noImpactFrom.assign(s.broadphase.pairs().size(), -1);
+    std::atomic<long> searches{0}, kept{0};
+    overPairs(s, s.impacts, s.chunkImpacts, s.impactsGate, [&](int k, int a, int b, std::vector<ImpactEvent>& out) {
+        if (joined(s, a, b)) return;
+        // In contact already: no new impact.
+        if (std::binary_search(s.touching.begin(), s.touching.end(), pairKey(a, b))) return;
+        const bool bothAwake = awake(a) && awake(b);
+        if (const int from = bothAwake && !s.noImpact.empty() ? keptFrom(a, b) : -1; from >= 0) {
+            s.noImpactFrom[k] = from;
+            kept.fetch_add(1, std::memory_order_relaxed);
+            return;
+        }
+        searches.fetch_add(1, std::memory_order_relaxed);
+        const size_t found = out.size();
+        search(a, b, out);
+        // (End-of-step's judgement that the end is right is no search of the whole path.)
+        if (!thickness && bothAwake && out.size() == found) s.noImpactFrom[k] = s.subStep;
     });
+    s.impactSearches += searches;
+    s.impactSearchesKept += kept;
+    s.noImpact.clear();
+    const auto& pairs = s.broadphase.pairs();
+    for (size_t k = 0; k < pairs.size(); ++k)
+        if (s.noImpactFrom[k] >= 0) s.noImpact.emplace_back(pairKey(pairs[k].first, pairs[k].second), s.noImpactFrom[k]);
+    std::sort(s.noImpact.begin(), s.noImpact.end());
 }
 
 }  // namespace tumble

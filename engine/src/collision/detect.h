@@ -58,6 +58,17 @@ struct DetectScratch {
     Workers* pool = nullptr;                  // the world's worker threads; null: this thread only
     std::vector<collision::ManifoldList> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
+    // Within one step: the pairs an exact search found without an impact (none, or only a
+    // settling touch) from the start of sub-step `second` (the cuts before it) to the end
+    // of the step, sorted by key. Such a pair still has none over a later sub-step while
+    // neither body's path changed: a cut that leaves a body's pose and momenta as its own
+    // motion brought them (no impulse, no contact solved) leaves its path as it was, the
+    // forces being the body's own (findImpacts). Cleared at the step's start.
+    std::vector<std::pair<std::uint64_t, int>> noImpact;
+    std::vector<int> pathFrom;  // per body: the sub-step from which its path is new (-1: the step's)
+    int subStep = 0;            // the sub-step being searched (the cuts taken so far)
+    std::vector<int> noImpactFrom;  // per broadphase pair of this search: as noImpact's second, or -1
+    long impactSearches = 0, impactSearchesKept = 0;
     PoolGate contactsGate, impactsGate;  // whether the pairs are worth the pool (workers.h)
     // The parts of the compound bodies in this narrowphase's pairs, placed at the end of the
     // step once for all their pairs: body i's from placed[placedAt[i]] (-1: none).

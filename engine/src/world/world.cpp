@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -225,6 +226,7 @@ void World::impactAt(double t0) {
     state_.bodies = s.before.bodies;
     if (first > t0) advance(first - t0);
     state_.time = first;
+    s.atMoment = state_.bodies;  // (to tell whose path the cut changes)
 
     const auto t2 = stage_clock::now();
     bodyPoses(model_, state_, d.end);
@@ -271,11 +273,26 @@ void World::impactAt(double t0) {
     ++profile_.impactMoments;
     if (r.limited) ++profile_.impactSweepLimits;
     touchingPairs(d.contacts, s.touchTolerance, d.touching);  // at the start of the rest of the step
+    // A body the cut left as its own motion brought it to the moment (no impulse, nothing
+    // solved) goes on along the path it had: the searches of its pairs still hold.
+    d.pathFrom.resize(model_.bodies.size(), -1);
+    for (int i : model_.dynamicBodies)
+        if (std::memcmp(&s.atMoment[i], &state_.bodies[i], sizeof(BodyState)) != 0) d.pathFrom[i] = d.subStep + 1;
     profile_.impactSolve += since(t2);
+}
+
+// The searches for moments of impact kept from earlier sub-steps (DetectScratch::noImpact)
+// are of this step's paths only.
+void World::forgetSearches() {
+    DetectScratch& d = scratch_->detect;
+    d.noImpact.clear();
+    if (d.subStep > 0) d.pathFrom.assign(model_.bodies.size(), -1);  // (only a cut sets them)
 }
 
 Profile World::profile() const {
     Profile p = profile_;
+    p.impactSearches = scratch_->detect.impactSearches;
+    p.impactSearchesKept = scratch_->detect.impactSearchesKept;
     p.pairsReused = scratch_->detect.reusedPairs;
     p.pooledRuns = scratch_->workers ? scratch_->workers->runs() : 0;
     p.pairsApart = scratch_->detect.apartPairs;
@@ -326,17 +343,20 @@ void World::stepWhole(double h) {
     s.impacts.clear();
     s.parkedCount = 0;
     s.parked.clear();
+    forgetSearches();
     bool mayPark = true;
     for (int cut = 0;; ++cut) {
         copyMotion(state_, s.before);
         const double t0 = state_.time;
         advance(t0 == s.stepStart0 ? h : tEnd - t0);  // (h itself for the whole step: see finishStep)
         state_.time = tEnd;
+        d.subStep = cut;
         detect(t0, tEnd - t0, cut >= kMaxCuts);
         if (cut == 0 && mayPark && !d.impacts.empty()) park();
         if (s.parkedCount > 0 && cut > 0 && !leaveParked()) {
             // A cut body's new path meets a parked one: the whole step again, every body cut.
             unpark(true);
+            forgetSearches();
             ++profile_.islandRestarts;
             mayPark = false;
             cut = -1;

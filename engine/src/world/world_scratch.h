@@ -40,6 +40,7 @@ struct World::Scratch {
     std::vector<double> thickness;  // narrowest width per body (collision::thickness)
     std::vector<int> awake;         // awake dynamic bodies, when sleeping is on
     std::vector<int> seeds;
+    std::vector<BodyState> atMoment;  // at a cut, the bodies brought to its moment (impactAt)
     std::vector<collision::ImpactEvent> impacts;  // of the whole step
     double touchTolerance = 0.0;
     bool contacts = false;  // needsContacts(model): can two bodies ever touch (the model never changes)

@@ -197,6 +197,8 @@ int childMain(int argc, char** argv) {
             // were shows it here (the parent reads numbers only and skips it).
             if (!jointed.joints.empty()) std::printf(" splits=%.6g", double(p.jointSplits) / steps);
             std::printf(" deep=%.6g settled=%.6g", deepest, double(p.settledBodies) / steps);
+            std::printf(" searches=%.6g kept=%.6g", double(p.impactSearches) / steps,
+                        double(p.impactSearchesKept) / steps);
             std::printf(" state=%016llx", static_cast<unsigned long long>(hashState(t->world().state())));
         }
         std::printf("\n");
