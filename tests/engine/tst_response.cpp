@@ -275,6 +275,98 @@ private slots:
         QVERIFY2(worst == 0.0, qPrintable(QString("a tower moved %1 away from its run alone").arg(worst)));
     }
 
+    // Islands bouncing in the same step are each cut at their own moments only (group mode,
+    // World::startGroups): two balls far apart whose bounces fall in the same steps move bit
+    // for bit as each alone, in the world and in three turned and shifted ones.
+    void islandsBouncingInOneStepMoveAsIfAlone() {
+        const double r = 0.1, e = 0.8, dt = 1.0 / 60.0;
+        const double heights[3] = {1.2, 1.21, 1.23};
+        auto ballAt = [&](int k) {
+            BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, 1.0), e, 0.5);
+            b.position = Vec3(3.0 * k, heights[k] + r, 0);
+            return b;
+        };
+        for (std::uint64_t seed : {0, 1, 2, 3}) {
+            const WorldPose pose = seed == 0 ? WorldPose{} : randomWorldPose(seed);
+            auto scene = [&](std::vector<BodyDesc> bodies) {
+                SceneDesc s = sceneOf(std::move(bodies));
+                s.settings.sleeping = false;
+                return turnedScene(s, pose);
+            };
+            World together(scene({groundPlane(e, 0.5), ballAt(0), ballAt(1), ballAt(2)}));
+            std::vector<World> alone;
+            for (int k = 0; k < 3; ++k) alone.emplace_back(scene({groundPlane(e, 0.5), ballAt(k)}));
+            double worst = 0.0;
+            int shared = 0;
+            for (int n = 0; n < 90; ++n) {
+                together.step(dt);
+                int bouncing = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const long cuts = alone[k].profile().impactMoments;
+                    alone[k].step(dt);
+                    bouncing += alone[k].profile().impactMoments > cuts;
+                    const BodyState& a = together.state().bodies[1 + k];
+                    const BodyState& b = alone[k].state().bodies[1];
+                    worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm()});
+                }
+                shared += bouncing > 1;
+            }
+            QVERIFY2(shared >= 2, "precondition: balls bounce in the same steps");
+            QCOMPARE(together.profile().islandRestarts, 0L);
+            QVERIFY2(worst == 0.0, qPrintable(QString("seed %1: a ball moved %2 (m or kg m/s) away from its run alone")
+                                                  .arg(seed)
+                                                  .arg(worst)));
+        }
+    }
+
+    // The same with resting contacts: two stacks of three boxes far apart, a box dropped on
+    // each, landing in the same step; each stack moves bit for bit as alone.
+    void stacksHitInOneStepMoveAsIfAlone() {
+        const double dt = 1.0 / 60.0;
+        const double drops[2] = {0.8, 0.81};
+        auto stack = [&](int k, std::vector<BodyDesc>& out) {
+            for (int j = 0; j < 4; ++j) {
+                BodyDesc b = material(boxBody("s" + std::to_string(k) + "-" + std::to_string(j), Vec3(0.2, 0.1, 0.2), 1.0),
+                                      0.3, 0.6);
+                b.position = Vec3(4.0 * k + 0.03 * j, 0.1 + 0.2 * j + (j == 3 ? drops[k] : 0.0), 0.01 * j);
+                out.push_back(b);
+            }
+        };
+        for (std::uint64_t seed : {0, 1, 2, 3}) {
+            const WorldPose pose = seed == 0 ? WorldPose{} : randomWorldPose(seed);
+            auto scene = [&](std::vector<int> stacks) {
+                SceneDesc s = sceneOf({groundPlane(0.3, 0.6)});
+                for (int k : stacks) stack(k, s.bodies);
+                s.settings.sleeping = false;
+                return turnedScene(s, pose);
+            };
+            World both(scene({0, 1}));
+            std::vector<World> alone;
+            for (int k = 0; k < 2; ++k) alone.emplace_back(scene({k}));
+            double worst = 0.0;
+            int shared = 0;
+            for (int n = 0; n < 60; ++n) {
+                both.step(dt);
+                int hit = 0;
+                for (int k = 0; k < 2; ++k) {
+                    const long cuts = alone[k].profile().impactMoments;
+                    alone[k].step(dt);
+                    hit += alone[k].profile().impactMoments > cuts;
+                    for (int j = 0; j < 4; ++j) {
+                        const BodyState& a = both.state().bodies[1 + 4 * k + j];
+                        const BodyState& b = alone[k].state().bodies[1 + j];
+                        worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm(), (a.L - b.L).norm()});
+                    }
+                }
+                shared += hit > 1;
+            }
+            QVERIFY2(shared >= 1, "precondition: both stacks are hit in one step");
+            QVERIFY2(worst == 0.0, qPrintable(QString("seed %1: a stack moved %2 away from its run alone")
+                                                  .arg(seed)
+                                                  .arg(worst)));
+        }
+    }
+
     // A pair searched without an impact keeps that answer over the rest of the step while
     // neither body's path changed (DetectScratch::noImpact): three balls falling side by side
     // in one island, bouncing in different steps; at each bounce's cut the other two fly on

@@ -88,6 +88,10 @@ private:
     bool leaveParked();
     void dropParked();
     void unpark(bool unwind);
+    bool startGroups();             // several islands with an impact: each cut on its own
+    bool nextGroup();
+    void setUpGroup(int g);
+    void endGroups(bool unwind);
     void saveStepStart();
     void restoreStepStart();
     bool parkedOrStill(int body) const;

@@ -1,6 +1,8 @@
 // Dynamic AABB tree: top-down rebuild, insertion by least surface-area cost, removal.
 #include "collision/aabb_tree.h"
 
+#include "common/workers.h"
+
 #include <algorithm>
 #include <bit>
 #include <cassert>
@@ -8,6 +10,10 @@
 namespace tumble::collision {
 
 namespace {
+
+// A rebuild of this many leaves or more builds its two halves on two threads (a pool's run
+// costs some 10 us; the build of 4 096 leaves some 0.3 ms).
+constexpr int kParallelBuild = 4096;
 
 // Half the surface area: the expected cost of visiting a box is proportional to it.
 double area(const Aabb& b) {
@@ -178,7 +184,7 @@ void AabbTree::refitUpwards(int node) {
     }
 }
 
-void AabbTree::rebuild() {
+void AabbTree::rebuild(Workers* pool) {
     // Built over the old nodes, which the list of leaves has copied: a second array of
     // nodes to build into and swap with kept the tree's memory twice (and more) over
     // between rebuilds. The list lives for the rebuild only (one allocation of its exact
@@ -190,23 +196,27 @@ void AabbTree::rebuild() {
         if (n.height == 0) leaves.push_back({n.box, n.body()});  // in id order
     nodes_.clear();
     nodes_.reserve(2 * leaves.size() + 64);
-    root_ = leaves.empty() ? kNull : buildRange(leaves, 0, static_cast<int>(leaves.size()));
+    root_ = leaves.empty() ? kNull : 0;
+    if (!leaves.empty()) {
+        nodes_.resize(2 * leaves.size() - 1);  // a tree of n leaves has 2 n - 1 nodes
+        buildRange(leaves, 0, static_cast<int>(leaves.size()), 0, pool);
+    }
     free_ = kNull;
     unlinked_ = 0;
     changes_ = 0;
 }
 
-// Builds, into nodes_ and in depth-first order, the subtree over leaves[begin, end);
-// returns its root.
-int AabbTree::buildRange(std::vector<Leaf>& leaves, int begin, int end) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
+// Builds the subtree over leaves[begin, end) into nodes_[index, index + 2 (end - begin) - 1),
+// its root at index, then its left subtree, then its right (depth-first order). Each
+// subtree's place is known before it is built, so that the two halves of a large tree can
+// be built at once (`pool`, at the top only: the pool takes one run at a time).
+void AabbTree::buildRange(std::vector<Leaf>& leaves, int begin, int end, int index, Workers* pool) {
     if (end - begin == 1) {
         const Leaf& leaf = leaves[begin];
         nodes_[index].box = leaf.box;
         nodes_[index].child2 = leaf.body;
         leafOf_[leaf.body] = index;
-        return index;
+        return;
     }
     Aabb centres;  // of the doubled centres min + max: the same order, one operation less
     for (int k = begin; k < end; ++k) centres.add(leaves[k].box.min + leaves[k].box.max);
@@ -220,8 +230,18 @@ int AabbTree::buildRange(std::vector<Leaf>& leaves, int begin, int end) {
                          const double cb = b.box.min[axis] + b.box.max[axis];
                          return ca < cb || (ca == cb && a.body < b.body);
                      });
-    const int left = buildRange(leaves, begin, mid);
-    const int right = buildRange(leaves, mid, end);
+    const int left = index + 1, right = index + 2 * (mid - begin);
+    if (pool && pool->threads() > 1 && end - begin >= kParallelBuild) {
+        pool->run(2, [&](int half) {
+            if (half == 0)
+                buildRange(leaves, begin, mid, left, nullptr);
+            else
+                buildRange(leaves, mid, end, right, nullptr);
+        });
+    } else {
+        buildRange(leaves, begin, mid, left, nullptr);
+        buildRange(leaves, mid, end, right, nullptr);
+    }
     Node& n = nodes_[index];
     n.child1 = left;
     n.child2 = right;
@@ -229,7 +249,6 @@ int AabbTree::buildRange(std::vector<Leaf>& leaves, int begin, int end) {
     n.height = 1 + std::max(nodes_[left].height, nodes_[right].height);
     nodes_[left].parent = index;
     nodes_[right].parent = index;
-    return index;
 }
 
 bool AabbTree::valid() const {

@@ -20,6 +20,10 @@
 #include <utility>
 #include <vector>
 
+namespace tumble {
+class Workers;
+}
+
 namespace tumble::collision {
 
 class AabbTree {
@@ -38,7 +42,9 @@ public:
     const Aabb& box(int body) const { return nodes_[leafOf_[body]].box; }
 
     /// Remakes the tree top-down over every leaf (linked or added).
-    void rebuild();
+    /// With `pool`, a large tree's two halves are built on two threads: the same nodes in
+    /// the same places as on one.
+    void rebuild(Workers* pool = nullptr);
     /// True when leaves wait unlinked, or the insertions and removals since the last
     /// rebuild pass a quarter of the leaves, or the height passes twice the balanced one.
     bool needsRebuild() const;
@@ -87,7 +93,7 @@ private:
         Aabb box;
         int body = kNull;
     };
-    int buildRange(std::vector<Leaf>& leaves, int begin, int end);
+    void buildRange(std::vector<Leaf>& leaves, int begin, int end, int index, Workers* pool);
     bool validSubtree(int node, int parent, int& leaves) const;
     // Which of a and b to open next in a pair descent: the taller, a on ties.
     static bool openFirst(const Node& a, const Node& b) {

@@ -134,7 +134,7 @@ void Broadphase::update(const std::vector<Aabb>& bounds, const std::vector<std::
     rebuilt_ = false;
     for (AabbTree* tree : {&movingTree_, &staticTree_}) {
         if (tree->needsRebuild()) {
-            tree->rebuild();
+            tree->rebuild(pool_);
             rebuilt_ = true;
         }
     }

@@ -57,6 +57,10 @@ public:
     /// Throws std::invalid_argument if the two vectors differ in size.
     void update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving);
 
+    /// Worker threads for the trees' rebuilds (null: this thread only); the pairs are the
+    /// same either way.
+    void setPool(Workers* pool) { pool_ = pool; }
+
     /// The same, where an unbounded body i with halfSpaces[i].valid pairs only with boxes
     /// that reach its half-space (halfSpaces empty: none has one).
     void update(const std::vector<Aabb>& bounds, const std::vector<std::uint8_t>& moving,
@@ -88,6 +92,7 @@ public:
     const AabbTree& staticTree() const { return staticTree_; }
 
 private:
+    Workers* pool_ = nullptr;
     enum class Set : std::uint8_t { None, Moving, Static, Unbounded };
 
     void reset(int count, const std::vector<Aabb>& bounds);

@@ -21,6 +21,10 @@ namespace tumble {
 
 using namespace collision;
 
+namespace {
+constexpr int kBodyGrain = 256;  // bodies per chunk on the worker threads (as the integrator's)
+}  // namespace
+
 bool needsContacts(const Model& model) {
     int moving = 0;
     for (const BodyModel& b : model.bodies) moving += b.motion != Motion::Static;
@@ -34,7 +38,7 @@ Pose bodyPose(const BodyModel& body, const BodyState& s) {
     return p;
 }
 
-void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
+void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out, Workers* pool, PoolGate* gate) {
     auto place = [&](size_t i) { out[i] = bodyPose(model.bodies[i], state.bodies[i]); };
     if (out.size() != model.bodies.size()) {
         out.resize(model.bodies.size());
@@ -42,7 +46,10 @@ void bodyPoses(const Model& model, const State& state, std::vector<Pose>& out) {
         return;
     }
     // Static bodies never move: their poses are the ones already there.
-    for (int i : model.dynamicBodies) place(static_cast<size_t>(i));
+    const std::vector<int>& dynamic = model.dynamicBodies;
+    forEachChunk(pool, static_cast<int>(dynamic.size()), kBodyGrain, [&](int begin, int end) {
+        for (int k = begin; k < end; ++k) place(static_cast<size_t>(dynamic[k]));
+    }, gate);
     for (int i : model.kinematicBodies) place(static_cast<size_t>(i));
 }
 
@@ -54,21 +61,28 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
     s.swept.resize(n);
     s.moving.resize(n);
     s.halfSpaces.clear();
+    // Each body's box is its own: spread over the worker threads.
+    forEachChunk(s.pool, static_cast<int>(n), kBodyGrain, [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const BodyModel& b = model.bodies[i];
+            if (keepStatic && b.motion == Motion::Static && b.collider.kind != Kind::Plane) continue;
+            s.moving[i] = !b.standsStill() && !state.isAsleep(i);
+            s.swept[i] = bounds(b.collider, s.end[i]);
+            if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
+            else if (s.standing && (*s.standing)[i]) s.swept[i].add(bounds(b.collider, s.standFrom[i]));
+            s.swept[i].min.array() -= margin;
+            s.swept[i].max.array() += margin;
+        }
+    }, &s.boxesGate);
+    // A plane that stands still is a half-space: it pairs only with the boxes reaching it.
     for (size_t i = 0; i < n; ++i) {
         const BodyModel& b = model.bodies[i];
-        if (keepStatic && b.motion == Motion::Static && b.collider.kind != Kind::Plane) continue;
-        s.moving[i] = !b.standsStill() && !state.isAsleep(static_cast<int>(i));
-        s.swept[i] = bounds(b.collider, s.end[i]);
-        if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
-        s.swept[i].min.array() -= margin;
-        s.swept[i].max.array() += margin;
-        // A plane that stands still is a half-space: it pairs only with the boxes reaching it.
-        if (b.collider.kind == Kind::Plane && b.standsStill()) {
-            s.halfSpaces.resize(n);
-            const Vec3 normal = s.end[i].R * b.collider.normal;
-            s.halfSpaces[i] = {normal, normal.dot(s.end[i].p) + b.collider.distance, true};
-        }
+        if (b.collider.kind != Kind::Plane || !b.standsStill()) continue;
+        s.halfSpaces.resize(n);
+        const Vec3 normal = s.end[i].R * b.collider.normal;
+        s.halfSpaces[i] = {normal, normal.dot(s.end[i].p) + b.collider.distance, true};
     }
+    s.broadphase.setPool(s.pool);
     s.broadphase.update(s.swept, s.moving, s.halfSpaces);
     // Pairs that collision groups or the scene's no_collide keep apart go before any
     // narrowphase work.

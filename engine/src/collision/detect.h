@@ -26,6 +26,12 @@ struct DetectScratch {
     int jointPairsBroken = -1;           // the broken joints they were made with; -1: to be made
     std::vector<collision::Pose> start;  // body poses at the start of the step
     std::vector<collision::Pose> end;    // ... and at its end
+    // Bodies that stand while others are cut (World::park: parked islands, and the islands
+    // not being cut in group mode; null: none): their boxes cover their whole step, from
+    // their poses at its start (standFrom), so that a cut body whose new path crosses one
+    // pairs with it (and the step is taken again: World::leaveParked).
+    const std::vector<std::uint8_t>* standing = nullptr;
+    std::vector<collision::Pose> standFrom;
     std::vector<collision::Aabb> swept;  // world boxes covering the whole step
     double sweptMargin = 0.0;            // the margin they were grown by
     std::vector<std::uint8_t> moving;
@@ -69,7 +75,7 @@ struct DetectScratch {
     int subStep = 0;            // the sub-step being searched (the cuts taken so far)
     std::vector<int> noImpactFrom;  // per broadphase pair of this search: as noImpact's second, or -1
     long impactSearches = 0, impactSearchesKept = 0;
-    PoolGate contactsGate, impactsGate;  // whether the pairs are worth the pool (workers.h)
+    PoolGate contactsGate, impactsGate, boxesGate, startGate, endGate;  // whether the pairs are worth the pool (workers.h)
     // The parts of the compound bodies in this narrowphase's pairs, placed at the end of the
     // step once for all their pairs: body i's from placed[placedAt[i]] (-1: none).
     std::vector<collision::PlacedPart> placed;
@@ -84,7 +90,9 @@ bool needsContacts(const Model& model);
 /// bodies' are kept: a World clears it when a state is set (World::setState).
 /// The pose of body `body` in state `s`: its frame (not its centre of mass) in the world.
 collision::Pose bodyPose(const BodyModel& body, const BodyState& s);
-void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out);
+/// With `pool`, the bodies are spread over its threads (when `gate` says they are worth it).
+void bodyPoses(const Model& model, const State& state, std::vector<collision::Pose>& out,
+               Workers* pool = nullptr, PoolGate* gate = nullptr);
 
 /// Broadphase: pairs whose boxes, swept over the step and grown by `margin`, overlap. A
 /// static body's box is computed again only when the margin changed or `s.swept` was

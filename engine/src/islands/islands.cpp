@@ -30,4 +30,32 @@ int parkIslandsWithoutImpact(const Model& model, const State& state,
     return count;
 }
 
+int impactIslands(const Model& model, const State& state, const IslandScratch& s, std::vector<int>& groupOfRoot,
+                  std::vector<int>& bodies, std::vector<int>& begin) {
+    auto links = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
+    auto root = [&](int i) {  // (without halving: the forest is read only)
+        while (s.parent[i] != i) i = s.parent[i];
+        return i;
+    };
+    groupOfRoot.assign(model.bodies.size(), -1);
+    begin.assign(1, 0);
+    for (int i : model.dynamicBodies) {
+        if (!links(i) || !s.impacted[root(i)]) continue;
+        int& g = groupOfRoot[root(i)];
+        if (g < 0) {
+            g = static_cast<int>(begin.size()) - 1;
+            begin.push_back(0);
+        }
+        ++begin[g + 1];
+    }
+    const int groups = static_cast<int>(begin.size()) - 1;
+    for (int g = 0; g < groups; ++g) begin[g + 1] += begin[g];
+    bodies.resize(begin.back());
+    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    for (int i : model.dynamicBodies)
+        if (links(i) && s.impacted[root(i)]) bodies[fill[groupOfRoot[root(i)]]++] = i;
+    if (groups == 0) begin.clear();
+    return groups;
+}
+
 }  // namespace tumble

@@ -34,4 +34,10 @@ int parkIslandsWithoutImpact(const Model& model, const State& state,
                              const std::vector<collision::ImpactEvent>& impacts, IslandScratch& scratch,
                              std::vector<std::uint8_t>& parked);
 
+/// The islands of the last parkIslandsWithoutImpact that have an impact, ordered by their
+/// lowest body: island g's awake dynamic bodies are bodies[begin[g], begin[g + 1]). Returns
+/// how many there are (begin is empty when none).
+int impactIslands(const Model& model, const State& state, const IslandScratch& scratch,
+                  std::vector<int>& groupOfRoot, std::vector<int>& bodies, std::vector<int>& begin);
+
 }  // namespace tumble

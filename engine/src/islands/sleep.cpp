@@ -2,7 +2,10 @@
 
 #include "islands/islands.h"
 
+#include "common/workers.h"
+
 #include <algorithm>
+#include <atomic>
 
 namespace tumble {
 
@@ -10,6 +13,8 @@ using collision::Manifold;
 using collision::ManifoldList;
 
 namespace {
+
+constexpr int kBodyGrain = 256;  // bodies per chunk on the worker threads
 
 bool touches(const Manifold& m, double tol) {
     for (int i = 0; i < m.count; ++i)
@@ -46,19 +51,26 @@ bool updateSleep(const Model& model, State& state, const ManifoldList& contacts,
     state.restTime.resize(n, 0.0);
     state.asleep.resize(n, 0);
 
-    bool restedLongEnough = false;
-    for (int i : model.dynamicBodies) {
-        if (state.asleep[i]) continue;
-        const BodyModel& b = model.bodies[i];
-        const BodyState& bs = state.bodies[i];
-        const Vec3 v = b.invMass * bs.P;  // derive()'s
-        const Vec3 omega = angularVelocity(b, bs);
-        const bool resting = v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
-                             omega.squaredNorm() < kSleepSpin * kSleepSpin &&
-                             !forceActs(model, i, state.time);
-        state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
-        restedLongEnough = restedLongEnough || state.restTime[i] >= kTimeToSleep;
-    }
+    // Each body's rest time is its own: spread over the worker threads.
+    std::atomic<bool> restedLongEnough{false};
+    const std::vector<int>& dynamic = model.dynamicBodies;
+    forEachChunk(s.pool, static_cast<int>(dynamic.size()), kBodyGrain, [&](int begin, int end) {
+        bool rested = false;
+        for (int k = begin; k < end; ++k) {
+            const int i = dynamic[k];
+            if (state.asleep[i]) continue;
+            const BodyModel& b = model.bodies[i];
+            const BodyState& bs = state.bodies[i];
+            const Vec3 v = b.invMass * bs.P;  // derive()'s
+            const Vec3 omega = angularVelocity(b, bs);
+            const bool resting = v.squaredNorm() < kSleepSpeed * kSleepSpeed &&
+                                 omega.squaredNorm() < kSleepSpin * kSleepSpin &&
+                                 !forceActs(model, i, state.time);
+            state.restTime[i] = resting ? state.restTime[i] + h : 0.0;
+            rested = rested || state.restTime[i] >= kTimeToSleep;
+        }
+        if (rested) restedLongEnough.store(true, std::memory_order_relaxed);
+    }, &s.restGate);
     // An island falls asleep when all its bodies rested long enough: none did, none sleeps.
     if (!restedLongEnough) return false;
     s.parent.resize(n);

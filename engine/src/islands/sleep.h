@@ -7,6 +7,8 @@
 // it, when an awake body touches it or when one of its applied forces switches on.
 #pragma once
 
+#include "common/pool_gate.h"
+
 #include <tumble/collision.h>
 #include <tumble/model.h>
 #include <tumble/profile.h>
@@ -20,6 +22,8 @@ constexpr double kSleepSpin = 0.035;  // rad/s (2 degrees a second)
 constexpr double kTimeToSleep = 0.5;  // s
 
 struct SleepScratch {
+    Workers* pool = nullptr;  // the world's worker threads; null: this thread only
+    PoolGate restGate;        // whether the rest times are worth the pool
     std::vector<int> parent;
     std::vector<double> islandRest;
     std::vector<std::uint8_t> blocked;

@@ -46,6 +46,14 @@ double since(std::uint64_t t) {
     return stage_clock::since(t);
 }
 
+// The same bits in every field (not memcmp of the whole: the quaternion's alignment leaves
+// padding bytes in BodyState, whose contents are whatever the memory held).
+bool sameBits(const BodyState& a, const BodyState& b) {
+    auto same = [](const double* x, const double* y, size_t n) { return std::memcmp(x, y, n * sizeof(double)) == 0; };
+    return same(a.x.data(), b.x.data(), 3) && same(a.q.coeffs().data(), b.q.coeffs().data(), 4) &&
+           same(a.P.data(), b.P.data(), 3) && same(a.L.data(), b.L.data(), 3);
+}
+
 // Back-to-back stages timed with one clock reading between them.
 struct Lap {
     std::uint64_t t = stage_clock::now();
@@ -123,6 +131,7 @@ void World::setThreads(int n) {
     s.workers = n > 1 ? std::make_unique<Workers>(n) : nullptr;
     s.detect.pool = s.workers.get();
     s.integrate.pool = s.workers.get();
+    s.sleep.pool = s.workers.get();
 }
 
 void World::skipStillIslands(bool on) {
@@ -180,8 +189,8 @@ void World::detect(double t0, double h, bool onlyUnsafe) {
     Scratch& s = *scratch_;
     DetectScratch& d = s.detect;
     Lap lap;
-    bodyPoses(model_, s.before, d.start);
-    bodyPoses(model_, state_, d.end);
+    bodyPoses(model_, s.before, d.start, d.pool, &d.startGate);
+    bodyPoses(model_, state_, d.end, d.pool, &d.endGate);
     findPairs(model_, state_, s.margin, d);
     profile_.pairs += static_cast<long>(d.broadphase.pairs().size());
     profile_.broadphase += lap.next();
@@ -277,7 +286,7 @@ void World::impactAt(double t0) {
     // solved) goes on along the path it had: the searches of its pairs still hold.
     d.pathFrom.resize(model_.bodies.size(), -1);
     for (int i : model_.dynamicBodies)
-        if (std::memcmp(&s.atMoment[i], &state_.bodies[i], sizeof(BodyState)) != 0) d.pathFrom[i] = d.subStep + 1;
+        if (!sameBits(s.atMoment[i], state_.bodies[i])) d.pathFrom[i] = d.subStep + 1;
     profile_.impactSolve += since(t2);
 }
 
@@ -343,6 +352,8 @@ void World::stepWhole(double h) {
     s.impacts.clear();
     s.parkedCount = 0;
     s.parked.clear();
+    s.detect.standing = nullptr;
+    s.group = -1;
     forgetSearches();
     bool mayPark = true;
     for (int cut = 0;; ++cut) {
@@ -352,9 +363,16 @@ void World::stepWhole(double h) {
         state_.time = tEnd;
         d.subStep = cut;
         detect(t0, tEnd - t0, cut >= kMaxCuts);
-        if (cut == 0 && mayPark && !d.impacts.empty()) park();
-        if (s.parkedCount > 0 && cut > 0 && !leaveParked()) {
+        if (cut == 0 && mayPark && s.group < 0 && !d.impacts.empty()) {
+            park();
+            if (startGroups()) {  // several islands with an impact: each cut on its own
+                cut = -1;
+                continue;
+            }
+        }
+        if (s.parkedCount > 0 && (cut > 0 || s.group > 0) && !leaveParked()) {
             // A cut body's new path meets a parked one: the whole step again, every body cut.
+            endGroups(true);
             unpark(true);
             forgetSearches();
             ++profile_.islandRestarts;
@@ -363,13 +381,23 @@ void World::stepWhole(double h) {
             continue;
         }
         if (cut == kMaxUnsafeCuts) s.impacts.insert(s.impacts.end(), d.impacts.begin(), d.impacts.end());
-        if (d.impacts.empty() || cut == kMaxUnsafeCuts) break;
-        impactAt(t0);
+        if (d.impacts.empty() || cut == kMaxUnsafeCuts) {
+            if (s.group < 0) break;
+            finishStep(s.before, d.contacts);  // this island's end, the others standing
+            if (!nextGroup()) break;
+            cut = -1;
+        } else {
+            impactAt(t0);
+        }
     }
 
-    // The end of the step: the cut islands from their last cut, then the parked ones from
-    // the start of the step, each with the other set standing still.
-    finishStep(s.before, d.contacts);
+    // The end of the step: the cut islands from their last cut (each island's own, in group
+    // mode), then the parked ones from the start of the step, each with the other set
+    // standing still.
+    if (s.group >= 0)
+        endGroups(false);
+    else
+        finishStep(s.before, d.contacts);
     if (s.parkedCount > 0) {
         for (int i : model_.dynamicBodies) {
             if (!s.parked[i]) s.realAsleep[i] = state_.asleep[i];  // woken by a cut body, maybe

@@ -61,6 +61,16 @@ struct World::Scratch {
     EnergyLedger ledgerAtStart;
     std::vector<std::uint8_t> realAsleep;    // the sleep flags without the parked ones
     collision::ManifoldList parkedContacts;  // at the end of their free step
+    // Several islands with an impact (World::startGroups): each is cut on its own while the
+    // others stand as parked ones do; island g's bodies are groupBodies[groupBegin[g],
+    // groupBegin[g + 1]). group: the one being cut (-1: not so).
+    std::vector<int> groupBodies, groupBegin, groupOfRoot;
+    int group = -1;
+    std::vector<std::uint8_t> parkedIslands;  // park()'s flags, while s.parked holds the standing
+    int parkedIslandCount = 0;
+    collision::ManifoldList groupContacts;  // of the islands done, at their ends: a run each
+    std::vector<collision::Pose> groupEnd;  // ... and their bodies' poses where those were found
+    std::vector<std::size_t> groupRuns;     // where each run begins in groupContacts
     std::unique_ptr<Workers> workers;        // setThreads(n > 1)
     // A step whose joints stayed open is taken again in halves (World::stepJointed): what
     // it starts from, per depth of splitting.
