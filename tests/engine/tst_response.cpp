@@ -86,6 +86,34 @@ Drift driftFrom(const World& w, const State& start, int first) {
 }
 
 
+// Runs `together` (the ground, then island k's `each` bodies at 1 + k each) and each island
+// alone (the ground, then its bodies) for `steps` steps of dt, side by side: the largest
+// distance of an island's bodies (position, momentum, angular momentum) from their run
+// alone, and the steps in which two of the lone runs were cut.
+struct AloneRuns {
+    double worst = 0.0;
+    int shared = 0;
+};
+AloneRuns asIfAlone(World& together, std::vector<World>& alone, int each, int steps, double dt) {
+    AloneRuns r;
+    for (int n = 0; n < steps; ++n) {
+        together.step(dt);
+        int cut = 0;
+        for (size_t k = 0; k < alone.size(); ++k) {
+            const long cuts = alone[k].profile().impactMoments;
+            alone[k].step(dt);
+            cut += alone[k].profile().impactMoments > cuts;
+            for (int j = 0; j < each; ++j) {
+                const BodyState& a = together.state().bodies[1 + static_cast<int>(k) * each + j];
+                const BodyState& b = alone[k].state().bodies[1 + j];
+                r.worst = std::max({r.worst, (a.x - b.x).norm(), (a.P - b.P).norm(), (a.L - b.L).norm()});
+            }
+        }
+        r.shared += cut > 1;
+    }
+    return r;
+}
+
 }  // namespace
 
 class TestResponse : public QObject {
@@ -166,21 +194,7 @@ private slots:
             alone.emplace_back(one);
         }
         const int steps = 90;  // 1.5 s: each ball bounces 1 to 3 times
-        double worst = 0.0;
-        int shared = 0;  // steps in which two balls bounce
-        for (int n = 0; n < steps; ++n) {
-            together.step(dt);
-            int bouncing = 0;
-            for (int k = 0; k < 3; ++k) {
-                const long cuts = alone[k].profile().impactMoments;
-                alone[k].step(dt);
-                bouncing += alone[k].profile().impactMoments > cuts;
-                const BodyState& a = together.state().bodies[1 + k];
-                const BodyState& b = alone[k].state().bodies[1];
-                worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm()});
-            }
-            shared += bouncing > 1;
-        }
+        const auto [worst, shared] = asIfAlone(together, alone, 1, steps, dt);
         QVERIFY2(shared == 0, "precondition: no two balls bounce in the same step");
         QVERIFY2(worst == 0.0, qPrintable(QString("a ball moved %1 (m or kg m/s) away from its run alone").arg(worst)));
         long aloneCuts = 0, aloneIntegrations = 0;
@@ -296,21 +310,7 @@ private slots:
             World together(scene({groundPlane(e, 0.5), ballAt(0), ballAt(1), ballAt(2)}));
             std::vector<World> alone;
             for (int k = 0; k < 3; ++k) alone.emplace_back(scene({groundPlane(e, 0.5), ballAt(k)}));
-            double worst = 0.0;
-            int shared = 0;
-            for (int n = 0; n < 90; ++n) {
-                together.step(dt);
-                int bouncing = 0;
-                for (int k = 0; k < 3; ++k) {
-                    const long cuts = alone[k].profile().impactMoments;
-                    alone[k].step(dt);
-                    bouncing += alone[k].profile().impactMoments > cuts;
-                    const BodyState& a = together.state().bodies[1 + k];
-                    const BodyState& b = alone[k].state().bodies[1];
-                    worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm()});
-                }
-                shared += bouncing > 1;
-            }
+            const auto [worst, shared] = asIfAlone(together, alone, 1, 90, dt);
             QVERIFY2(shared >= 2, "precondition: balls bounce in the same steps");
             QCOMPARE(together.profile().islandRestarts, 0L);
             QVERIFY2(worst == 0.0, qPrintable(QString("seed %1: a ball moved %2 (m or kg m/s) away from its run alone")
@@ -343,23 +343,7 @@ private slots:
             World both(scene({0, 1}));
             std::vector<World> alone;
             for (int k = 0; k < 2; ++k) alone.emplace_back(scene({k}));
-            double worst = 0.0;
-            int shared = 0;
-            for (int n = 0; n < 60; ++n) {
-                both.step(dt);
-                int hit = 0;
-                for (int k = 0; k < 2; ++k) {
-                    const long cuts = alone[k].profile().impactMoments;
-                    alone[k].step(dt);
-                    hit += alone[k].profile().impactMoments > cuts;
-                    for (int j = 0; j < 4; ++j) {
-                        const BodyState& a = both.state().bodies[1 + 4 * k + j];
-                        const BodyState& b = alone[k].state().bodies[1 + j];
-                        worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm(), (a.L - b.L).norm()});
-                    }
-                }
-                shared += hit > 1;
-            }
+            const auto [worst, shared] = asIfAlone(both, alone, 4, 60, dt);
             QVERIFY2(shared >= 1, "precondition: both stacks are hit in one step");
             QVERIFY2(worst == 0.0, qPrintable(QString("seed %1: a stack moved %2 away from its run alone")
                                                   .arg(seed)
@@ -400,21 +384,7 @@ private slots:
             World together(scene({groundPlane(e, 0.5), ballAt(0), ballAt(1), ballAt(2)}));
             std::vector<World> alone;
             for (int k = 0; k < 3; ++k) alone.emplace_back(scene({groundPlane(e, 0.5), ballAt(k)}));
-            double worst = 0.0;
-            int shared = 0;
-            for (int n = 0; n < 90; ++n) {
-                together.step(dt);
-                int bouncing = 0;
-                for (int k = 0; k < 3; ++k) {
-                    const long cuts = alone[k].profile().impactMoments;
-                    alone[k].step(dt);
-                    bouncing += alone[k].profile().impactMoments > cuts;
-                    const BodyState& a = together.state().bodies[1 + k];
-                    const BodyState& b = alone[k].state().bodies[1];
-                    worst = std::max({worst, (a.x - b.x).norm(), (a.P - b.P).norm()});
-                }
-                shared += bouncing > 1;
-            }
+            const auto [worst, shared] = asIfAlone(together, alone, 1, 90, dt);
             QVERIFY2(shared == 0, "precondition: the balls bounce in different steps");
             for (const World& w : alone) QVERIFY2(w.profile().impactMoments >= 2, "precondition: the balls bounce");
             const Profile& p = together.profile();

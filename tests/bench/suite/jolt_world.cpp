@@ -144,7 +144,9 @@ JPH::ShapeRefC shapeOf(const Shape& s, bool sharp, std::string* why) {
 
 struct World::Impl {
     Settings settings;
-    JPH::TempAllocatorImpl temp{64 * 1024 * 1024};
+    // Made with the system, sized by its most bodies: its contact constraints take their room
+    // here each step (64 MB alone ran out on free-10000, sized for 160 000 of them).
+    std::unique_ptr<JPH::TempAllocatorImpl> temp;
     JPH::JobSystemSingleThreaded jobs{JPH::cMaxPhysicsJobs};
     JPH::ObjectLayerPairFilterTable layers{2};
     JPH::BroadPhaseLayerInterfaceTable broadphase{2, 2};
@@ -190,6 +192,7 @@ int World::addBody(const Body& b, std::string* why) {
         const unsigned most = unsigned(std::max(1024, d.settings.maxBodies));
         d.system.Init(most, 0, std::max(65536u, 16 * most), std::max(65536u, 16 * most), d.broadphase,
                       *d.layerFilter, d.layers);
+        d.temp = std::make_unique<JPH::TempAllocatorImpl>((64u << 20) + (16u << 10) * most);
         d.system.SetGravity(jv(d.settings.gravity));
         JPH::PhysicsSettings ps = d.system.GetPhysicsSettings();
         if (d.settings.velocitySteps > 0) ps.mNumVelocitySteps = unsigned(d.settings.velocitySteps);
@@ -314,7 +317,7 @@ void World::push(int body, const V3& force, const V3& torque) {
 
 void World::step() {
     d_->contacts.points = 0;
-    d_->system.Update(float(d_->settings.dt), 1, &d_->temp, &d_->jobs);
+    d_->system.Update(float(d_->settings.dt), 1, d_->temp.get(), &d_->jobs);
     d_->lastContacts = d_->contacts.points;
 }
 
