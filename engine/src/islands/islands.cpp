@@ -30,7 +30,7 @@ int parkIslandsWithoutImpact(const Model& model, const State& state,
     return count;
 }
 
-int impactIslands(const Model& model, const State& state, const IslandScratch& s, std::vector<int>& groupOfRoot,
+int impactIslands(const Model& model, const State& state, IslandScratch& s, std::vector<int>& groupOfRoot,
                   std::vector<int>& bodies, std::vector<int>& begin) {
     auto links = [&](int b) { return model.bodies[b].motion == Motion::Dynamic && !state.isAsleep(b); };
     auto root = [&](int i) {  // (without halving: the forest is read only)
@@ -51,9 +51,9 @@ int impactIslands(const Model& model, const State& state, const IslandScratch& s
     const int groups = static_cast<int>(begin.size()) - 1;
     for (int g = 0; g < groups; ++g) begin[g + 1] += begin[g];
     bodies.resize(begin.back());
-    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    s.cursor.assign(begin.begin(), begin.end() - 1);
     for (int i : model.dynamicBodies)
-        if (links(i) && s.impacted[root(i)]) bodies[fill[groupOfRoot[root(i)]]++] = i;
+        if (links(i) && s.impacted[root(i)]) bodies[s.cursor[groupOfRoot[root(i)]]++] = i;
     if (groups == 0) begin.clear();
     return groups;
 }

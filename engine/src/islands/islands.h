@@ -25,6 +25,7 @@ inline int islandRoot(std::vector<int>& parent, int i) {
 struct IslandScratch {
     std::vector<int> parent;
     std::vector<std::uint8_t> impacted;  // per island root
+    std::vector<int> cursor;             // impactIslands' filling, per island
 };
 
 /// parked[i] = 1 for the awake dynamic bodies whose island has none of `impacts`; returns
@@ -37,7 +38,7 @@ int parkIslandsWithoutImpact(const Model& model, const State& state,
 /// The islands of the last parkIslandsWithoutImpact that have an impact, ordered by their
 /// lowest body: island g's awake dynamic bodies are bodies[begin[g], begin[g + 1]). Returns
 /// how many there are (begin is empty when none).
-int impactIslands(const Model& model, const State& state, const IslandScratch& scratch,
+int impactIslands(const Model& model, const State& state, IslandScratch& scratch,
                   std::vector<int>& groupOfRoot, std::vector<int>& bodies, std::vector<int>& begin);
 
 }  // namespace tumble

@@ -150,7 +150,8 @@ void World::endGroups(bool unwind) {
         std::vector<std::size_t>& at = s.groupRuns;  // each run's next manifold
         const size_t runs = at.size();
         at.push_back(s.groupContacts.size());
-        std::vector<std::size_t> ends(at.begin() + 1, at.end());
+        std::vector<std::size_t>& ends = s.groupRunEnds;
+        ends.assign(at.begin() + 1, at.end());
         for (;;) {
             int best = -1;
             for (size_t r = 0; r < runs; ++r) {

@@ -71,6 +71,7 @@ struct World::Scratch {
     collision::ManifoldList groupContacts;  // of the islands done, at their ends: a run each
     std::vector<collision::Pose> groupEnd;  // ... and their bodies' poses where those were found
     std::vector<std::size_t> groupRuns;     // where each run begins in groupContacts
+    std::vector<std::size_t> groupRunEnds;  // ... and ends (World::endGroups' merge)
     std::unique_ptr<Workers> workers;        // setThreads(n > 1)
     // A step whose joints stayed open is taken again in halves (World::stepJointed): what
     // it starts from, per depth of splitting.
