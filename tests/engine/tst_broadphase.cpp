@@ -4,6 +4,7 @@
 // brute force itself is checked on a hand-made scene, and the dynamic tree's invariants
 // under random insertions and removals.
 #include "collision/broadphase.h"
+#include "common/workers.h"
 
 #include <QtTest>
 
@@ -354,6 +355,42 @@ private slots:
         QCOMPARE(culled.pairs(), expected);
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
                                  culled.update(s.bounds, s.moving, std::vector<HalfSpace>(3)));
+    }
+
+    // A tree large enough to be rebuilt on two threads (4 096 leaves or more) is the same tree
+    // as on one: every query visits the same leaves in the same order, and its own pairs come
+    // in the same order (the broadphase's pairs, and so the whole step, bit for bit).
+    void aPoolRebuildsTheSameTree() {
+        constexpr int kBodies = 6000;
+        Generator gen(23);
+        const SceneKind kind{kBodies, true, false, 0.0, 0};
+        const std::vector<Vec3> clusters = {Vec3(5, 5, 5), Vec3(30, 8, 12), Vec3(12, 40, 3)};
+        Workers pool(2);
+        AabbTree one, two;
+        one.reset(kBodies);
+        two.reset(kBodies);
+        for (int i = 0; i < kBodies; ++i) {
+            const Aabb b = gen.randomBox(kind, 45.0, clusters);
+            one.add(i, b);
+            two.add(i, b);
+        }
+        const long runs = pool.runs();
+        one.rebuild();
+        two.rebuild(&pool);
+        QVERIFY2(pool.runs() > runs, "precondition: the rebuild used the pool");
+        QVERIFY(one.valid() && two.valid());
+        for (int q = 0; q < 50; ++q) {
+            const Aabb probe = gen.randomBox(kind, 45.0, clusters);
+            std::vector<int> a, b;
+            one.query(probe, [&](int body) { a.push_back(body); });
+            two.query(probe, [&](int body) { b.push_back(body); });
+            QCOMPARE(a, b);
+        }
+        Pairs a, b;
+        one.selfPairs([&](int x, int y) { a.emplace_back(x, y); });
+        two.selfPairs([&](int x, int y) { b.emplace_back(x, y); });
+        QVERIFY(!a.empty());
+        QCOMPARE(a, b);
     }
 
     void treeQueriesMatchBruteForceUnderChurn() {
