@@ -41,6 +41,9 @@ struct Profile {
     /// Stages handed to the worker threads (World::setThreads): a stage goes to them only when
     /// its items are worth it (common/pool_gate.h); 0 on one thread.
     long pooledRuns = 0;
+    /// Contact solves whose islands went to the worker threads, one island per thread at a
+    /// time (solver/contact_islands.h); 0 on one thread.
+    long pooledIslandSolves = 0;
 };
 
 /// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no

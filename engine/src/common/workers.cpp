@@ -52,9 +52,16 @@ Workers::Workers(int threads) {
 }
 
 bool PoolGate::worthIt(const Workers* pool, int n) {
-    if (perItem_ < 0.0 || calls_++ % 16 == 15) return false;  // (timed on one thread)
+    if (perItem_ < 0.0) return false;
+    const unsigned call = calls_++ % 16;
+    if (call == 15) return false;  // (timed on one thread)
+    const double gain = perItem_ * n * (1.0 - 1.0 / pool->threads());
+    // The overhead is timed again now and then, when the pool's own measure finds the run
+    // worth it: a pooled run that was slow once (the first, which sizes what the stage keeps
+    // per thread; the helpers woken from sleep) had kept the stage on one thread for good.
+    if (call == 7 && gain > 1.5 * pool->dispatchSeconds()) return true;
     const double d = overhead_ < 0.0 ? pool->dispatchSeconds() : overhead_;
-    return perItem_ * n * (1.0 - 1.0 / pool->threads()) > 1.5 * d;
+    return gain > 1.5 * d;
 }
 
 void PoolGate::record(const Workers* pool, int n, double seconds, bool pooled) {

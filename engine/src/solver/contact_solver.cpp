@@ -5,6 +5,7 @@
 #include "common/resting.h"
 #include "islands/islands.h"
 #include "solver/contact_energy.h"
+#include "solver/contact_islands.h"
 #include "solver/contact_rows.h"
 #include "solver/joint_general.h"
 #include "solver/joint_math.h"
@@ -483,52 +484,6 @@ double solvedEnergy(const Model& model, const State& state, const ContactSolverS
 
 }  // namespace
 
-// The contacts' islands: manifolds linked through the bodies that can move (dynamic and
-// awake; a static, kinematic or sleeping body moves the same whatever its partners do, so
-// it links nothing). Islands are solved one after another, each to its own fixed point,
-// with its own warm-start check and energy limit, and only one island's rows are in
-// memory at a time. Returns how many there are; with two or more, island k's manifolds
-// are s.islandManifolds[s.islandBegin[k] .. s.islandBegin[k + 1]), in the contacts' order,
-// the islands numbered as the contacts first name them. A manifold none of whose bodies
-// can move is in none (the solve passes over it).
-int contactIslands(const Model& model, const State& state, const ManifoldList& contacts,
-                   ContactSolverScratch& s) {
-    const size_t n = model.bodies.size();
-    if (s.parent.size() != n) s.parent.assign(n, 0), s.islandOfRoot.assign(n, -1);
-    auto movable = [&](int b) { return joint::movable(model, state, b); };  // (as loadBody gives a mass)
-    for (const Manifold& m : contacts) s.parent[m.bodyA] = m.bodyA, s.parent[m.bodyB] = m.bodyB;
-    for (const Manifold& m : contacts) {
-        if (!movable(m.bodyA) || !movable(m.bodyB)) continue;
-        const int ra = islandRoot(s.parent, m.bodyA), rb = islandRoot(s.parent, m.bodyB);
-        if (ra != rb) s.parent[std::max(ra, rb)] = std::min(ra, rb);
-    }
-    s.islandOf.resize(contacts.size());
-    s.roots.clear();
-    for (size_t k = 0; k < contacts.size(); ++k) {
-        const Manifold& m = contacts[k];
-        const int body = movable(m.bodyA) ? m.bodyA : movable(m.bodyB) ? m.bodyB : -1;
-        if (body < 0) {
-            s.islandOf[k] = -1;
-            continue;
-        }
-        const int r = islandRoot(s.parent, body);
-        if (s.islandOfRoot[r] < 0) s.islandOfRoot[r] = static_cast<int>(s.roots.size()), s.roots.push_back(r);
-        s.islandOf[k] = s.islandOfRoot[r];
-    }
-    const int islands = static_cast<int>(s.roots.size());
-    for (int r : s.roots) s.islandOfRoot[r] = -1;
-    if (islands <= 1) return islands;
-    s.islandBegin.assign(islands + 1, 0);
-    for (int i : s.islandOf)
-        if (i >= 0) ++s.islandBegin[i + 1];
-    for (int k = 0; k < islands; ++k) s.islandBegin[k + 1] += s.islandBegin[k];
-    s.islandFill.assign(s.islandBegin.begin(), s.islandBegin.end() - 1);
-    s.islandManifolds.resize(s.islandBegin[islands]);
-    for (size_t k = 0; k < contacts.size(); ++k)
-        if (s.islandOf[k] >= 0) s.islandManifolds[s.islandFill[s.islandOf[k]]++] = static_cast<int>(k);
-    return islands;
-}
-
 // The solve of one island (contactIslands): of all the contacts and joints when the model
 // has joints.
 void solveIsland(const Model& model, State& state, const State& before, const ManifoldList& contacts,
@@ -658,12 +613,7 @@ void solveContacts(const Model& model, State& state, const State& before, const 
     for (const Manifold& m : contacts) points += static_cast<size_t>(m.count);
     s.toFresh = state.contacts.capacity() < remembered + points;
     s.fresh.clear();
-    for (int k = 0; k < islands; ++k) {
-        s.islandContacts.clear();
-        for (int m = s.islandBegin[k]; m < s.islandBegin[k + 1]; ++m)
-            s.islandContacts.push_back(contacts[s.islandManifolds[m]]);
-        solveIsland(model, state, before, s.islandContacts, sizes, cfg, s, ledger, false);
-    }
+    solveIslands(model, state, before, contacts, sizes, cfg, s, ledger, islands, points);
     dropSolvedMemory(model, state, s, true, remembered);
     if (s.toFresh) {
         makeRoom(state.contacts, state.contacts.size() + s.fresh.size());
@@ -674,6 +624,7 @@ void solveContacts(const Model& model, State& state, const State& before, const 
 
 void sizeContactSolver(const Model& model, ContactSolverScratch& s) {
     const size_t n = model.bodies.size();
+    s.lanes.clear();  // (sized for this model when first used)
     sizeSolverBodies(model, s.bodies);
     s.start.assign(n, BodyVelocity{});
     s.entry.assign(n, BodyVelocity{});

@@ -19,6 +19,7 @@
 #pragma once
 
 #include "common/make_room.h"
+#include "common/pool_gate.h"
 #include "solver/solver_body.h"
 
 #include <tumble/collision.h>
@@ -28,9 +29,12 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace tumble {
+
+class Workers;
 
 /// Overlap the contact solver leaves alone at a point, × the smaller body's size (its
 /// bounding radius).
@@ -263,6 +267,24 @@ struct ContactSolverScratch {
     std::vector<int> parent, islandOfRoot, roots, islandOf, islandBegin, islandFill, islandManifolds;
     collision::ManifoldList islandContacts;
     std::vector<int> springs;  // Model::forces' springs, by index (sizeContactSolver)
+    // Islands solved on the worker threads (solveContacts, issue 53): the pool (World sets it;
+    // null: one thread), whether a solve's islands are worth it (timed by their points), and a
+    // scratch of its own for each thread (a lane: each island's solve reads nothing a lane
+    // kept from an earlier one but the memory index, copied in, so any lane gives the same
+    // answer). Per island, in island order: where its memory went in its lane's `fresh`, and
+    // what it booked in the ledger (added up in island order on any number of threads).
+    Workers* pool = nullptr;
+    PoolGate islandsGate;
+    std::vector<std::unique_ptr<ContactSolverScratch>> lanes;
+    struct IslandOut {
+        int lane = 0;
+        size_t begin = 0, end = 0;
+        EnergyLedger ledger;
+    };
+    std::vector<IslandOut> islandOut;
+    std::vector<int> islandOrder;  // the islands largest first, as the lanes take them
+    std::vector<std::uint8_t> laneChanged;  // a lane's own memoryChanged flags (merged after)
+    long pooledSolves = 0;                  // solves whose islands went to the pool (Profile)
 };
 
 /// A body whose contacts this solve takes as last solved (still_islands.h).

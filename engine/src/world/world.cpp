@@ -132,6 +132,7 @@ void World::setThreads(int n) {
     s.detect.pool = s.workers.get();
     s.integrate.pool = s.workers.get();
     s.sleep.pool = s.workers.get();
+    s.solver.pool = s.workers.get();
 }
 
 void World::skipStillIslands(bool on) {
@@ -304,6 +305,7 @@ Profile World::profile() const {
     p.impactSearchesKept = scratch_->detect.impactSearchesKept;
     p.pairsReused = scratch_->detect.reusedPairs;
     p.pooledRuns = scratch_->workers ? scratch_->workers->runs() : 0;
+    p.pooledIslandSolves = scratch_->solver.pooledSolves;
     p.pairsApart = scratch_->detect.apartPairs;
     const double k = scratch_->clockRate.secondsPerTick();
     for (double* t : {&p.forces, &p.integrate, &p.broadphase, &p.narrowphase, &p.timeOfImpact, &p.impactSolve,
