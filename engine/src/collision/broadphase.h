@@ -106,6 +106,8 @@ private:
     std::vector<Aabb> stored_;          // the box in the body's tree, read in body order
     std::vector<Vec3> lastCentre_;      // a moving body's box centre at the last update
     std::vector<std::uint8_t> stillFor_;  // updates a body has stood still in the moving tree
+    std::vector<Vec3> insertedExtent_;    // a moving body's box extent when it was last inserted
+    std::vector<double> turnReach_;       // > 0: its fat box holds this cube about its centre (turning)
     std::vector<int> movingBodies_;     // bounded moving bodies, ascending
     std::vector<int> unbounded_;        // ascending
     std::vector<std::pair<int, int>> pairs_;
