@@ -205,7 +205,8 @@ private slots:
     // PoolGate (issue 53): a stage not yet timed stays on this thread; once timed at a per-item
     // cost a, n items go to the pool when a n (1 - 1/threads) exceeds 1.5 times its overhead d,
     // the pool's measured dispatch until pooled runs show theirs; every 16th run stays on this
-    // thread to keep a current.
+    // thread to keep a current, and one in 64 goes to the pool to time d again when the saving
+    // is over d / 4.
     void poolGateHandsThePoolOnlyWhatPays() {
         Workers pool(2);
         const double d = pool.dispatchSeconds();
@@ -224,14 +225,15 @@ private slots:
         // Pooled runs that cost 10 d beyond their share raise the bar to n = 3 000.
         for (int k = 0; k < 40; ++k) gate.record(&pool, 1000, 1000 * a / 2 + 10.0 * d, true);
         int more = 0;
-        for (int k = 0; k < 16; ++k) more += gate.worthIt(&pool, 2500) ? 1 : 0;
-        QCOMPARE(more, 1);  // one of the 16 goes to time the overhead again
+        for (int k = 0; k < 64; ++k) more += gate.worthIt(&pool, 2500) ? 1 : 0;
+        QCOMPARE(more, 1);  // one of 64 goes to time the overhead again
         more = 0;
         for (int k = 0; k < 16; ++k) more += gate.worthIt(&pool, 3500) ? 1 : 0;
         QCOMPARE(more, 15);
-        // That probe is only made for runs the pool's own measure finds worth it: not for 290.
+        // That probe is only made for runs whose saving is over a quarter of the overhead as
+        // timed (and over the pool's own measure): not for 400 (2 d against 10 d).
         more = 0;
-        for (int k = 0; k < 16; ++k) more += gate.worthIt(&pool, 290) ? 1 : 0;
+        for (int k = 0; k < 64; ++k) more += gate.worthIt(&pool, 400) ? 1 : 0;
         QCOMPARE(more, 0);
         // Pooled runs as cheap as the pool's measure bring the bar back down (a slow first
         // pooled run does not keep a stage on one thread for good).

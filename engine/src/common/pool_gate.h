@@ -11,9 +11,9 @@ class Workers;
 /// a run costs beyond a n / threads, its overhead d (handing out the chunks, waking a helper
 /// that went to sleep, the threads' share of the caches), first the pool's own measure. A run
 /// goes to the pool when a n (1 - 1/threads) is over 1.5 d; a stage not yet timed, and every
-/// 16th run, go on this thread (a stays current as the scene changes); another of every 16
-/// goes to the pool when a n (1 - 1/threads) is over 1.5 times the pool's own measure, so that
-/// d is timed again (one slow pooled run kept a stage on one thread for good). Either way the result
+/// 16th run, go on this thread (a stays current as the scene changes); one run in 64 goes to
+/// the pool when a n (1 - 1/threads) is over d / 4 and over 1.5 times the pool's own measure,
+/// so that d is timed again (one slow pooled run kept a stage on one thread for good). Either way the result
 /// is the same bit for bit (the chunks' outputs are joined in order); only the time differs.
 class PoolGate {
 public:
