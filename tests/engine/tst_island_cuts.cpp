@@ -66,6 +66,14 @@ AloneRuns islandsAsIfAlone(const std::vector<std::vector<BodyDesc>>& islands, co
     return r;
 }
 
+// Ball k of a row 3 m apart along x (radius r, 1 kg, restitution e), its bottom `height`
+// above the ground: far enough from the others never to share an island.
+BodyDesc rowBall(int k, double height, double r, double e) {
+    BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, 1.0), e, 0.5);
+    b.position = Vec3(3.0 * k, height + r, 0);
+    return b;
+}
+
 }  // namespace
 
 class TestIslandCuts : public QObject {
@@ -79,11 +87,7 @@ private slots:
     void islandsBounceAsIfAlone() {
         const double r = 0.1, e = 0.8, dt = 1.0 / 60.0;
         const double heights[3] = {1.2, 2.1, 2.9};
-        auto ballAt = [&](int k) {
-            BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, 1.0), e, 0.5);
-            b.position = Vec3(3.0 * k, heights[k] + r, 0);
-            return b;
-        };
+        auto ballAt = [&](int k) { return rowBall(k, heights[k], r, e); };
         SceneDesc all = sceneOf({groundPlane(e, 0.5), ballAt(0), ballAt(1), ballAt(2)});
         all.settings.sleeping = false;
         World together(all);
@@ -120,11 +124,7 @@ private slots:
     void islandsBouncingInOneStepMoveAsIfAlone() {
         const double r = 0.1, e = 0.8, dt = 1.0 / 60.0;
         const double heights[3] = {1.2, 1.21, 1.23};
-        auto ballAt = [&](int k) {
-            BodyDesc b = material(sphereBody("ball" + std::to_string(k), r, 1.0), e, 0.5);
-            b.position = Vec3(3.0 * k, heights[k] + r, 0);
-            return b;
-        };
+        auto ballAt = [&](int k) { return rowBall(k, heights[k], r, e); };
         for (std::uint64_t seed : {0, 1, 2, 3}) {
             const WorldPose pose = seed == 0 ? WorldPose{} : randomWorldPose(seed);
             Profile p;

@@ -83,11 +83,9 @@ void islandContactsOf(const ManifoldList& contacts, const ContactSolverScratch& 
     for (int m = s.islandBegin[k]; m < s.islandBegin[k + 1]; ++m) out.push_back(contacts[s.islandManifolds[m]]);
 }
 
-// The lanes made ready for a solve: as many as threads, sized for the model, each with the
-// memory index as s has it and nothing taken yet. Their new memory goes to their own
-// `fresh` (never to State::contacts, which the other lanes read while they solve).
-// Made and sized once per model and number of threads (outside the gate's timing: the first
-// pooled run would otherwise book their allocation as the pool's overhead).
+// The lanes, one per thread, made and sized once per model and number of threads (outside
+// the gate's timing: the first pooled run would otherwise book their allocation as the
+// pool's overhead).
 void sizeLanes(const Model& model, ContactSolverScratch& s) {
     const int threads = s.pool->threads();
     while (static_cast<int>(s.lanes.size()) < threads) s.lanes.push_back(std::make_unique<ContactSolverScratch>());
@@ -95,6 +93,9 @@ void sizeLanes(const Model& model, ContactSolverScratch& s) {
         if (s.lanes[c]->bodies.size() != model.bodies.size()) sizeContactSolver(model, *s.lanes[c]);
 }
 
+// The lanes made ready for a solve: each with the memory index as s has it and nothing taken
+// yet. Their new memory goes to their own `fresh` (never to State::contacts, which the other
+// lanes read while they solve).
 void prepareLanes(const Model& model, ContactSolverScratch& s) {
     for (int c = 0; c < s.pool->threads(); ++c) {
         ContactSolverScratch& lane = *s.lanes[c];
