@@ -116,6 +116,32 @@ SceneDesc separateStacks() {
     return s;
 }
 
+// A square pyramid of 8 layers of 0.3 m boxes (204) on the ground, a ball rolled into its
+// side: one island of some 1 200 blocks, which the solver splits in two regions solved side
+// by side on the pool, then their boundary (block_regions.h).
+SceneDesc ballIntoPyramid() {
+    std::vector<BodyDesc> bodies{groundPlane(0.1, 0.6)};
+    const int layers = 8;
+    const double h = 0.15;
+    for (int l = 0; l < layers; ++l) {
+        const int n = layers - l;
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < n; ++k) {
+                BodyDesc box = boxBody("box" + std::to_string(bodies.size()), Vec3(h, h, h),
+                                       1.0 + 0.1 * ((i + k + l) % 3));
+                box.position = Vec3((2 * i - n + 1) * h, h + 2 * h * l, (2 * k - n + 1) * h);
+                bodies.push_back(box);
+            }
+    }
+    BodyDesc ball = sphereBody("ball", 0.2, 5.0);
+    ball.position = Vec3(-2.0, 0.2, 0.1);
+    ball.velocity = Vec3(4.0, 0.0, 0.0);
+    bodies.push_back(ball);
+    SceneDesc s = sceneOf(std::move(bodies));
+    s.settings.sleeping = false;
+    return s;
+}
+
 // The ledger's sums as raw bytes (the islands' shares are added in island order).
 QByteArray ledgerBytes(const EnergyLedger& l) {
     QByteArray out;
@@ -310,6 +336,29 @@ private slots:
             const auto [endMany, ledgerMany, pooled, pointsMany] = run(threads);
             QVERIFY2(pooled > 0, qPrintable(QString("%1 threads: no solve went to the pool").arg(threads)));
             QCOMPARE(pointsMany, points);
+            QVERIFY2(endMany == end, qPrintable(QString("%1 threads: the state differs").arg(threads)));
+            QVERIFY2(ledgerMany == ledger, qPrintable(QString("%1 threads: the ledger differs").arg(threads)));
+        }
+    }
+
+    // A large island's two regions solved side by side on the pool: the same bits on one, two
+    // and four threads, in the world as built and turned.
+    void regionsOfAnIslandSolveAsOnOneThread_data() { islandsOnThePoolSolveAsOnOneThread_data(); }
+    void regionsOfAnIslandSolveAsOnOneThread() {
+        QFETCH(bool, turned);
+        const WorldPose pose = turned ? randomWorldPose(9) : WorldPose{};
+        const SceneDesc scene = turnedScene(ballIntoPyramid(), pose);
+        auto run = [&](int threads) {
+            World w(scene);
+            w.setThreads(threads);
+            stepN(w, 40, 1.0 / 60.0);
+            return std::make_tuple(fingerprint(w), ledgerBytes(w.ledger()), w.profile().pooledRegions);
+        };
+        const auto [end, ledger, pooledOne] = run(1);
+        QCOMPARE(pooledOne, 0L);
+        for (int threads : {2, 4}) {
+            const auto [endMany, ledgerMany, pooled] = run(threads);
+            QVERIFY2(pooled > 0, qPrintable(QString("%1 threads: no pass went to the pool").arg(threads)));
             QVERIFY2(endMany == end, qPrintable(QString("%1 threads: the state differs").arg(threads)));
             QVERIFY2(ledgerMany == ledger, qPrintable(QString("%1 threads: the ledger differs").arg(threads)));
         }

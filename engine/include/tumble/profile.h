@@ -44,6 +44,9 @@ struct Profile {
     /// Contact solves whose islands went to the worker threads, one island per thread at a
     /// time (solver/contact_islands.h); 0 on one thread.
     long pooledIslandSolves = 0;
+    /// Velocity passes of a large island whose two regions went to the worker threads
+    /// (solver/block_regions.h); 0 on one thread.
+    long pooledRegions = 0;
 };
 
 /// Where kinetic and potential energy went, accumulated over steps (J). In a scene with no

@@ -18,12 +18,19 @@ double normalVelocity(const SolverBody& A, const SolverBody& B, const Point& p) 
 }
 
 // The normal impulse d at the point: on A along n, on B against it.
+// A body that cannot move (invMass 0, its spins 0) is not written: the blocks of two regions
+// run side by side (block_regions.h) and share the ground.
 void pushPoint(SolverBody& A, SolverBody& B, const Point& p, double d) {
-    A.v += (A.invMass * d) * p.n;
-    A.w += d * p.spinA;
-    B.v -= (B.invMass * d) * p.n;
-    B.w -= d * p.spinB;
-    A.touched = B.touched = true;
+    if (A.invMass > 0.0) {
+        A.v += (A.invMass * d) * p.n;
+        A.w += d * p.spinA;
+        A.touched = true;
+    }
+    if (B.invMass > 0.0) {
+        B.v -= (B.invMass * d) * p.n;
+        B.w -= d * p.spinB;
+        B.touched = true;
+    }
 }
 
 double normalPoint(ContactSolverScratch& s, Point& p) {
@@ -128,11 +135,16 @@ inline Eigen::Vector2d slipOf(const ContactSolverScratch::Block& block, const So
                                                 SolverBody& B, const Eigen::Vector2d& dT, double dTwist) {
     if (dT.isZero(0.0) && dTwist == 0.0) return;
     const Vec3 J = dT[0] * block.t1 + dT[1] * block.t2;
-    A.v += A.invMass * J;
-    A.w += dT[0] * block.spinA[0] + dT[1] * block.spinA[1] + dTwist * block.twistA;
-    B.v -= B.invMass * J;
-    B.w -= dT[0] * block.spinB[0] + dT[1] * block.spinB[1] + dTwist * block.twistB;
-    A.touched = B.touched = true;
+    if (A.invMass > 0.0) {  // (as pushPoint)
+        A.v += A.invMass * J;
+        A.w += dT[0] * block.spinA[0] + dT[1] * block.spinA[1] + dTwist * block.twistA;
+        A.touched = true;
+    }
+    if (B.invMass > 0.0) {
+        B.v -= B.invMass * J;
+        B.w -= dT[0] * block.spinB[0] + dT[1] * block.spinB[1] + dTwist * block.twistB;
+        B.touched = true;
+    }
 }
 
 }  // namespace
@@ -150,7 +162,7 @@ namespace {
 // case; else pushingImpulses lets the pulling points go (it starts from the same product).
 template <int K>
 double normalBlockOf(ContactSolverScratch& s, ContactSolverScratch::Block& block,
-                     std::vector<SubsetInverses>& pool) {
+                     std::vector<SubsetInverses>& pool, bool* wantsEntry) {
     using VecK = Eigen::Matrix<double, K, 1>;
     Point* q = &s.points[block.begin];
     SolverBody& A = s.bodies[q[0].a];
@@ -173,11 +185,17 @@ double normalBlockOf(ContactSolverScratch& s, ContactSolverScratch::Block& block
     if ((wanted.array() < 0.0).any()) {
         Eigen::Vector4d g = Eigen::Vector4d::Zero();
         g.template head<K>() = rhs;
-        if (block.subsets < 0) {
+        if (block.subsets < 0 && !wantsEntry) {
             block.subsets = static_cast<int>(pool.size());
             pool.emplace_back();
         }
-        wanted = pushingImpulses(block.K, block.Kinv, g, K, &pool[block.subsets]).template head<K>();
+        if (block.subsets >= 0) {
+            wanted = pushingImpulses(block.K, block.Kinv, g, K, &pool[block.subsets]).template head<K>();
+        } else {  // (the answer is the same with the pool's entry or without)
+            *wantsEntry = true;
+            SubsetInverses once;
+            wanted = pushingImpulses(block.K, block.Kinv, g, K, &once).template head<K>();
+        }
     }
     // The changes summed per body: one impulse along n and one change of spin each.
     const VecK d = wanted - lambda;
@@ -191,11 +209,16 @@ double normalBlockOf(ContactSolverScratch& s, ContactSolverScratch::Block& block
     const double changed = d.cwiseAbs().maxCoeff();
     if (total == 0.0 && spinA.isZero(0.0) && spinB.isZero(0.0)) return changed;
     const Vec3& n = q[0].n;
-    A.v += (A.invMass * total) * n;
-    A.w += spinA;
-    B.v -= (B.invMass * total) * n;
-    B.w -= spinB;
-    A.touched = B.touched = true;
+    if (A.invMass > 0.0) {  // (as pushPoint)
+        A.v += (A.invMass * total) * n;
+        A.w += spinA;
+        A.touched = true;
+    }
+    if (B.invMass > 0.0) {
+        B.v -= (B.invMass * total) * n;
+        B.w -= spinB;
+        B.touched = true;
+    }
     return changed;
 }
 
@@ -204,12 +227,12 @@ double normalBlockOf(ContactSolverScratch& s, ContactSolverScratch::Block& block
 // The normal impulses of one manifold together: the least-norm impulses that give every
 // point its target velocity, none pulling (pushingImpulses).
 double normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block,
-                   std::vector<SubsetInverses>& pool) {
+                   std::vector<SubsetInverses>& pool, bool* wantsEntry) {
     switch (block.count) {
         case 1: return normalPoint(s, s.points[block.begin]);
-        case 2: return normalBlockOf<2>(s, block, pool);
-        case 3: return normalBlockOf<3>(s, block, pool);
-        default: return normalBlockOf<4>(s, block, pool);
+        case 2: return normalBlockOf<2>(s, block, pool, wantsEntry);
+        case 3: return normalBlockOf<3>(s, block, pool, wantsEntry);
+        default: return normalBlockOf<4>(s, block, pool, wantsEntry);
     }
 }
 
@@ -256,14 +279,23 @@ double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block
     return std::max(std::max(std::abs(dT[0]), std::abs(dT[1])), twistChange);
 }
 
+bool blockQuiet(const ContactSolverScratch& s, int k) {
+    const Point& p = s.points[s.blocks[k].begin];
+    const long quiet = s.quietSince[k];
+    return quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet;
+}
+
 bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed) {
+    return !blockQuiet(s, k) && updateBlockAt(s, k, quietSpeed, ++s.tick, nullptr);
+}
+
+bool updateBlockAt(ContactSolverScratch& s, int k, double quietSpeed, long tick, std::vector<int>* wants) {
     ContactSolverScratch::Block& block = s.blocks[k];
     const Point& p = s.points[block.begin];
-    const long quiet = s.quietSince[k];
-    if (quiet >= 0 && s.changedAt[p.a] < quiet && s.changedAt[p.b] < quiet) return false;
-    const long tick = ++s.tick;
     const double friction = frictionBlock(s, block);  // friction first, then the normals
-    const double change = std::max(friction, normalBlock(s, block, s.subsets));
+    bool wantsEntry = false;
+    const double change = std::max(friction, normalBlock(s, block, s.subsets, wants ? &wantsEntry : nullptr));
+    if (wantsEntry) wants->push_back(k);
     // Quiet: a change below `quietSpeed`, or below kQuietShare of how fast the two bodies
     // move (their speeds and their spins at the patch, summed as 1-norms: a bound within a
     // factor of three). A body at rest is held to `quietSpeed` alone (the stacks stand to

@@ -22,11 +22,13 @@ void applyFriction(ContactSolverScratch& s, ContactSolverScratch::Block& block, 
 /// The normal impulses of one manifold together: the least-norm impulses that give every
 /// point its target velocity, none pulling.
 /// `pool`: where the block keeps the cache of its K's sub-inverses (Block::subsets, taken on
-/// first need; clear the pool and the indices when K changes).
+/// first need; clear the pool and the indices when K changes). With `wantsEntry`, no entry is
+/// added: a block without one takes its sub-inverses afresh and sets *wantsEntry (a pass on a
+/// worker thread, while other threads read the pool; the caller adds the entry after).
 /// Returns the largest change of any of its impulses (0: none changed; this one and
 /// frictionBlock, whose twist counts as the impulse at the patch radius).
 double normalBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block,
-                   std::vector<SubsetInverses>& pool);
+                   std::vector<SubsetInverses>& pool, bool* wantsEntry = nullptr);
 /// The block's normal impulse, summed over its points.
 double normalImpulse(const ContactSolverScratch& s, const ContactSolverScratch::Block& block);
 /// How fast the bodies' surfaces slide over each other at the block's centroid, along t1 and t2.
@@ -40,5 +42,11 @@ double frictionBlock(ContactSolverScratch& s, ContactSolverScratch::Block& block
 /// (ContactSolverScratch::quietSince, changedAt). Returns whether it changed more than that
 /// (and then stamps its bodies).
 bool updateBlock(ContactSolverScratch& s, int k, double quietSpeed);
+/// Whether block k is quiet and none of its bodies changed since (updateBlock skips it).
+bool blockQuiet(const ContactSolverScratch& s, int k);
+/// updateBlock's update of a block that is not quiet, stamped `tick` (block_regions.h stamps
+/// two regions' blocks from the same count: they share no body that can move). With `wants`, a
+/// block that needs an entry in s.subsets is listed there instead (normalBlock's wantsEntry).
+bool updateBlockAt(ContactSolverScratch& s, int k, double quietSpeed, long tick, std::vector<int>* wants);
 
 }  // namespace tumble

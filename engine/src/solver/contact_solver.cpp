@@ -2,10 +2,11 @@
 
 #include "common/make_room.h"
 #include "common/pair_key.h"
-#include "common/resting.h"
 #include "islands/islands.h"
+#include "solver/block_regions.h"
 #include "solver/contact_energy.h"
 #include "solver/contact_islands.h"
+#include "solver/contact_prepare.h"
 #include "solver/contact_rows.h"
 #include "solver/joint_general.h"
 #include "solver/joint_math.h"
@@ -79,114 +80,6 @@ const ContactMemory* remembered(const State& state, ContactSolverScratch& s, con
     if (k < 0) return nullptr;
     s.used[k] = 1;
     return &state.contacts[k];
-}
-
-void prepare(const Model& model, const State& state, const State& before, const ManifoldList& contacts,
-             const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s) {
-    s.points.clear();
-    s.geometry.clear();
-    s.blocks.clear();
-    s.subsets.clear();
-    size_t points = 0;
-    for (const Manifold& m : contacts) points += m.count;
-    makeRoom(s.points, points);
-    makeRoom(s.geometry, points);
-    makeRoom(s.blocks, contacts.size());
-    loadVelocities(model, before, s.start, s.involved);
-    chordVelocities(model, state, before, s.start, s.involved);
-    s.stillMoving.clear();
-    for (const Manifold& m : contacts) {
-        SolverBody& A = s.bodies[m.bodyA];
-        SolverBody& B = s.bodies[m.bodyB];
-        if (A.invMass == 0.0 && B.invMass == 0.0) continue;  // nothing here can move
-        if (isStill(s, m.bodyA) || isStill(s, m.bodyB)) {
-            // Taken as last solved. Its bodies are among those the solve moves, as they
-            // would be with a point to solve (s.moving: the energy balance's sums).
-            for (int i = 0; i < m.count; ++i) {
-                if (m.points[i].depth < -cfg.margin) continue;
-                for (int b : {m.bodyA, m.bodyB})
-                    if (s.bodies[b].invMass > 0.0) s.stillMoving.push_back(b);
-                break;
-            }
-            continue;
-        }
-        const BodyModel& ma = model.bodies[m.bodyA];
-        const BodyModel& mb = model.bodies[m.bodyB];
-        const double e = std::max(ma.restitutionOf(m.partA), mb.restitutionOf(m.partB));
-        const Mat3 RA = state.bodies[m.bodyA].q.toRotationMatrix();
-        const Mat3 RB = state.bodies[m.bodyB].q.toRotationMatrix();
-        // Each body's orientation at the start: its surface points where they were then
-        // (a point's body coordinates turned by it).
-        const Mat3 RA0 = before.bodies[m.bodyA].q.toRotationMatrix();
-        const Mat3 RB0 = before.bodies[m.bodyB].q.toRotationMatrix();
-        ContactSolverScratch::Block block;
-        block.begin = static_cast<int>(s.points.size());
-        block.mu = std::sqrt(ma.frictionOf(m.partA) * mb.frictionOf(m.partB));
-        for (int i = 0; i < m.count; ++i) {
-            const collision::ContactPoint& c = m.points[i];
-            if (c.depth < -cfg.margin) continue;
-            Point p;
-            ContactSolverScratch::PointGeometry g;
-            p.a = m.bodyA;
-            p.b = m.bodyB;
-            p.n = m.normal;
-            const Vec3 rA = c.position - A.x, rB = c.position - B.x;
-            preparePoint(A, B, rA, rB, p);
-            const double vn = p.n.dot(relativeVelocity(A, rA, B, rB));
-            const double vn0 = p.n.dot(relativeVelocity(s.start[m.bodyA], rA, s.start[m.bodyB], rB));
-            // Apart at the end of the free step and closing fast: an impact of a later step,
-            // which its time of impact finds at its moment. As a row here it was a landing
-            // placed a step early: gap0 + h vn >= 0 with the end's velocity closes ½ g h² more
-            // than the fall does, and a ball 3.8 mm above a stair at the end of a 1/30 s step
-            // had its approach cut to what closed the gap, its bounce lost (issue 45).
-            if (c.depth < -cfg.touchTolerance &&
-                vn < -cfg.restingSpeed * restingShare(model.settings.gravity, p.n))
-                continue;
-            // A's deepest point is half the depth below the midpoint, B's half above.
-            const Vec3 sA = rA - 0.5 * c.depth * p.n, sB = rB + 0.5 * c.depth * p.n;
-            g.localA = RA.transpose() * sA;
-            g.localB = RB.transpose() * sB;
-            g.localN = RB.transpose() * p.n;
-            const double roundA = roundness(partShape(ma.collider, m.partA)),
-                         roundB = roundness(partShape(mb.collider, m.partB));
-            // A round body's friction arm reaches its surface point (see prepareBlock).
-            g.depth = c.depth;
-            g.roundA = roundA > 0.0;
-            g.roundB = roundB > 0.0;
-            // The gap between those two surface points at the start of the step. The bodies
-            // are placed again from there with the solved velocities (redoPoses), so the gap
-            // at the end is gap0 + h vn: a gap may close within the step and no more, and an
-            // overlap is never pushed apart with velocity (the position pass removes it
-            // without kinetic energy). A contact is thus the same constraint whatever the
-            // step, resting or landing slowly, and never a source of energy.
-            // A round surface (a sphere, a capsule) is its core points grown by a radius:
-            // the contact point slides over it as it rolls, so the gap is taken from the core
-            // point, which moves with the body, less the radius. (From the surface point
-            // turned back, a rolling ball's gap0 was R(1 - cos ωh) and the ball sank by it
-            // every step: 0.9 mm at 1/240 s, 7.7 mm at 1/60, and never stopped slipping.)
-            const Vec3 coreA = roundA > 0.0 ? Vec3(g.localA + roundA * (RA.transpose() * p.n)) : g.localA;
-            const Vec3 coreB = roundB > 0.0 ? Vec3(g.localB - roundB * g.localN) : g.localB;
-            const double gap0 = p.n.dot((before.bodies[m.bodyA].x + RA0 * coreA - roundA * p.n) -
-                                        (before.bodies[m.bodyB].x + RB0 * coreB + roundB * p.n));
-            if (vn < -cfg.restingSpeed && vn0 < -cfg.restingSpeed && gap0 <= cfg.touchTolerance)
-                p.target = -e * vn;  // touching and approaching fast: a bounce
-            else
-                p.target = gap0 > 0.0 ? -gap0 / cfg.h : 0.0;
-            // Apart at the start, or meeting fast: the step's velocity change here is a
-            // landing's, not that of forces acting all through it (redoPoses).
-            block.arriving = block.arriving || gap0 > cfg.touchTolerance || vn0 < -cfg.restingSpeed;
-            g.size = std::min(sizes[m.bodyA], sizes[m.bodyB]);
-            g.slop = kContactSlop * g.size;
-            g.feature = c.feature;
-            g.position = c.position;
-            s.points.push_back(p);
-            s.geometry.push_back(g);
-        }
-        block.count = static_cast<int>(s.points.size()) - block.begin;
-        if (block.count == 0) continue;
-        prepareBlock(A, B, block, s);
-        s.blocks.push_back(block);
-    }
 }
 
 // Starts from the remembered impulses, scaled to this step's length (a short step to land
@@ -505,7 +398,7 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
         projectJoints(model, state, s, cfg.h, &before);
         ledger.lostInJoints += energy - solvedEnergy(model, state, s);
     }
-    prepare(model, state, before, contacts, sizes, cfg, s);
+    prepareContacts(model, state, before, contacts, sizes, cfg, s);
     s.entry.resize(s.bodies.size());  // only the solved bodies' entries are read
     for (int i : s.involved) s.entry[i] = s.bodies[i];
     warmStartChecked(model, state, cfg.h, s);  // and the joints' rows
@@ -514,7 +407,9 @@ void solveIsland(const Model& model, State& state, const State& before, const Ma
     s.changedAt.resize(s.bodies.size());
     for (int i : s.involved) s.changedAt[i] = 0;
     bool converged = false;
-    for (int k = 0; k < cfg.iterations && !converged; ++k) converged = !iterate(s, k, cfg.quietSpeed);
+    // A large island's two regions side by side (block_regions.h).
+    for (int k = 0; k < cfg.iterations && !converged; ++k)
+        converged = !(s.split ? iterateRegions(s, k, cfg.quietSpeed) : iterate(s, k, cfg.quietSpeed));
     // (Not with joints yet: the shock pass holds bodies still that a joint may have to move.)
     if (!s.blocks.empty() && s.jointRows.empty())
         shockPass(s, kShockPasses, converged, cfg.quietSpeed, kStillSpeed * cfg.restingSpeed);

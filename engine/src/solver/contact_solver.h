@@ -239,6 +239,24 @@ struct ContactSolverScratch {
     std::vector<long> quietSince;
     std::vector<long> changedAt;
     long tick = 0;
+    // A large island's blocks in two regions and their boundary (block_regions.h): region r's
+    // are blocks[regionBegin[r] .. regionBegin[r + 1]), the boundary's from regionBegin[2];
+    // `split` false: not split. While they are made: the movable bodies and their centres
+    // along the cut, each body's region, each block's group, and the blocks in group order
+    // (by their index in blockManifold as chosen); per region on the pool, the blocks that
+    // want an entry in `subsets`.
+    bool split = false;
+    std::array<int, 4> regionBegin{};
+    std::vector<int> cut, regionBlocks;
+    std::vector<double> cutAlong;
+    std::vector<std::int8_t> bodyRegion, blockRegion;
+    std::array<std::vector<int>, 2> wants;
+    long pooledRegions = 0;  // passes whose regions went to the pool (Profile)
+    // Per block, its manifold in the island's list and which of its points are solved (bits);
+    // whether making the blocks pays on the pool (contact_prepare.h).
+    std::vector<int> blockManifold, spareManifold;
+    std::vector<std::uint8_t> blockPoints, sparePoints;
+    PoolGate prepareGate;
     // Per body: how many directions it slides across (-1: held), and those normals (redoPoses).
     std::vector<int> slideCount;
     std::vector<std::array<Vec3, 3>> slideNormals;

@@ -306,6 +306,7 @@ Profile World::profile() const {
     p.pairsReused = scratch_->detect.reusedPairs;
     p.pooledRuns = scratch_->workers ? scratch_->workers->runs() : 0;
     p.pooledIslandSolves = scratch_->solver.pooledSolves;
+    p.pooledRegions = scratch_->solver.pooledRegions;
     p.pairsApart = scratch_->detect.apartPairs;
     const double k = scratch_->clockRate.secondsPerTick();
     for (double* t : {&p.forces, &p.integrate, &p.broadphase, &p.narrowphase, &p.timeOfImpact, &p.impactSolve,
