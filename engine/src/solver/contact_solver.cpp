@@ -4,6 +4,7 @@
 #include "common/pair_key.h"
 #include "islands/islands.h"
 #include "solver/block_regions.h"
+#include "common/workers.h"
 #include "solver/contact_energy.h"
 #include "solver/contact_islands.h"
 #include "solver/contact_prepare.h"
@@ -82,12 +83,13 @@ const ContactMemory* remembered(const State& state, ContactSolverScratch& s, con
     return &state.contacts[k];
 }
 
-// Starts from the remembered impulses, scaled to this step's length (a short step to land
-// on a frame needs proportionally less), at most `growth` times (warmScale). Whether any
-// was scaled up.
-bool warmStart(const State& state, double h, double growth, ContactSolverScratch& s) {
+// Starts blocks [begin, end) from the remembered impulses, scaled to this step's length (a
+// short step to land on a frame needs proportionally less), at most `growth` times
+// (warmScale). Whether any was scaled up.
+bool warmStartBlocks(const State& state, double h, double growth, ContactSolverScratch& s, int begin, int end) {
     bool grew = false;
-    for (auto& block : s.blocks) {
+    for (int k = begin; k < end; ++k) {
+        ContactSolverScratch::Block& block = s.blocks[k];
         Vec3 tangent = Vec3::Zero();
         double twist = 0.0;
         block.warmWhole = true;
@@ -111,8 +113,9 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
             twist += scale * c->twistImpulse;
             const Vec3 J = p.lambdaN * p.n;  // (applyPairImpulse without the energy it would return)
             const Vec3& at = s.geometry[block.begin + i].position;
-            applyImpulse(s.bodies[p.a], at - s.bodies[p.a].x, J);
-            applyImpulse(s.bodies[p.b], at - s.bodies[p.b].x, -J);
+            // (A body that cannot move is not written: two regions start side by side.)
+            if (s.bodies[p.a].invMass > 0.0) applyImpulse(s.bodies[p.a], at - s.bodies[p.a].x, J);
+            if (s.bodies[p.b].invMass > 0.0) applyImpulse(s.bodies[p.b], at - s.bodies[p.b].x, -J);
         }
         block.lambdaT = Eigen::Vector2d(block.t1.dot(tangent), block.t2.dot(tangent));
         block.lambdaTwist = twist;
@@ -121,6 +124,22 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
         applyFriction(s, block, block.lambdaT, twist);
     }
     return grew;
+}
+
+// All the blocks; a split island's two regions side by side, then the boundary: the same as
+// one run over the blocks in their order, since the regions share no movable body and no
+// pair (remembered() takes points of the block's own pair only). Whether any was scaled up.
+bool warmStart(const State& state, double h, double growth, ContactSolverScratch& s) {
+    const int nb = static_cast<int>(s.blocks.size());
+    if (!s.split) return warmStartBlocks(state, h, growth, s, 0, nb);
+    const auto& at = s.regionBegin;
+    bool grew[2] = {false, false};
+    auto region = [&](int r) { grew[r] = warmStartBlocks(state, h, growth, s, at[r], at[r + 1]); };
+    if (s.pool && s.pool->threads() > 1)
+        s.pool->run(2, region);
+    else
+        region(0), region(1);
+    return warmStartBlocks(state, h, growth, s, at[2], at[3]) || grew[0] || grew[1];
 }
 
 // One pass over the blocks, forwards on even passes and backwards on odd ones so that

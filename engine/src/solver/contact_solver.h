@@ -241,14 +241,13 @@ struct ContactSolverScratch {
     long tick = 0;
     // A large island's blocks in two regions and their boundary (block_regions.h): region r's
     // are blocks[regionBegin[r] .. regionBegin[r + 1]), the boundary's from regionBegin[2];
-    // `split` false: not split. While they are made: the movable bodies and their centres
-    // along the cut, each body's region, each block's group, and the blocks in group order
+    // `split` false: not split. While they are made: the movable bodies in order along the
+    // cut, each body's blocks, each body's region, each block's group, and the blocks in group order
     // (by their index in blockManifold as chosen); per region on the pool, the blocks that
     // want an entry in `subsets`.
     bool split = false;
     std::array<int, 4> regionBegin{};
-    std::vector<int> cut, regionBlocks;
-    std::vector<double> cutAlong;
+    std::vector<int> cut, regionBlocks, bodyBlocks;
     std::vector<std::int8_t> bodyRegion, blockRegion;
     std::array<std::vector<int>, 2> wants;
     long pooledRegions = 0;  // passes whose regions went to the pool (Profile)
