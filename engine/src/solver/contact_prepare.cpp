@@ -6,6 +6,7 @@
 #include "solver/block_regions.h"
 #include "solver/contact_rows.h"
 
+#include <bit>
 #include <chrono>
 
 namespace tumble {
@@ -64,11 +65,12 @@ void choosePoints(const Model& model, const ManifoldList& contacts, const Contac
     }
 }
 
-// Then the blocks and their points in the order they are solved: the manifolds' order, or
-// region by region when splitBlocks split them (each region's blocks side by side in
-// memory, as its thread reads them). The points get what choosing them took (bodies,
-// normal, position, depth, feature); s.blockManifold is made the blocks' order too.
-void placeBlocks(const ManifoldList& contacts, ContactSolverScratch& s) {
+// Then the blocks' order: the manifolds', or region by region when splitBlocks split them
+// (each region's blocks side by side in memory, as its thread reads them); s.blockManifold and
+// s.blockPoints are put in that order, and s.blockFirst gives each block's first point. The
+// lists are sized for them without writing what they hold: each block writes its own entries
+// (placeBlock, on the pool); only a list that must grow is made again.
+void orderBlocks(ContactSolverScratch& s) {
     const int n = static_cast<int>(s.blockManifold.size());
     if (s.split) {
         auto inRegionOrder = [&](auto& list, auto& spare) {
@@ -79,28 +81,45 @@ void placeBlocks(const ManifoldList& contacts, ContactSolverScratch& s) {
         inRegionOrder(s.blockManifold, s.spareManifold);
         inRegionOrder(s.blockPoints, s.sparePoints);
     }
-    for (int j = 0; j < n; ++j) {
-        const Manifold& m = contacts[s.blockManifold[j]];
-        ContactSolverScratch::Block block;
-        block.begin = static_cast<int>(s.points.size());
-        for (int i = 0; i < m.count; ++i) {
-            if (!(s.blockPoints[j] >> i & 1u)) continue;
-            const collision::ContactPoint& c = m.points[i];
-            Point p;
-            p.a = m.bodyA;
-            p.b = m.bodyB;
-            p.n = m.normal;
-            p.armA = p.armB = p.spinA = p.spinB = Vec3::Zero();  // (makeBlock sets them)
-            ContactSolverScratch::PointGeometry g;
-            g.localA = g.localB = g.localN = Vec3::Zero();
-            g.position = c.position;
-            g.depth = c.depth;
-            g.feature = c.feature;
-            s.points.push_back(p);
-            s.geometry.push_back(g);
+    s.blockFirst.resize(n + 1);
+    s.blockFirst[0] = 0;
+    for (int j = 0; j < n; ++j) s.blockFirst[j + 1] = s.blockFirst[j] + std::popcount(s.blockPoints[j]);
+    auto sizeFor = [](auto& list, size_t size) {
+        if (list.capacity() < size) {
+            list.clear();
+            makeRoom(list, size);
         }
-        block.count = static_cast<int>(s.points.size()) - block.begin;
-        s.blocks.push_back(block);
+        list.resize(size);
+    };
+    sizeFor(s.blocks, static_cast<size_t>(n));
+    sizeFor(s.points, static_cast<size_t>(s.blockFirst[n]));
+    sizeFor(s.geometry, static_cast<size_t>(s.blockFirst[n]));
+}
+
+// Block k and its points as chosen: bodies, normal, position, depth, feature.
+void placeBlock(const ManifoldList& contacts, ContactSolverScratch& s, int k) {
+    const Manifold& m = contacts[s.blockManifold[k]];
+    ContactSolverScratch::Block& block = s.blocks[k];
+    block = ContactSolverScratch::Block{};
+    block.begin = s.blockFirst[k];
+    block.count = s.blockFirst[k + 1] - block.begin;
+    int at = block.begin;
+    for (int i = 0; i < m.count; ++i) {
+        if (!(s.blockPoints[k] >> i & 1u)) continue;
+        const collision::ContactPoint& c = m.points[i];
+        Point p;
+        p.a = m.bodyA;
+        p.b = m.bodyB;
+        p.n = m.normal;
+        p.armA = p.armB = p.spinA = p.spinB = Vec3::Zero();  // (makeBlock sets them)
+        ContactSolverScratch::PointGeometry g;
+        g.localA = g.localB = g.localN = Vec3::Zero();
+        g.position = c.position;
+        g.depth = c.depth;
+        g.feature = c.feature;
+        s.points[at] = p;
+        s.geometry[at] = g;
+        ++at;
     }
 }
 
@@ -110,6 +129,7 @@ void makeBlock(const Model& model, const State& state, const State& before, cons
                const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s,
                int k) {
     const Manifold& m = contacts[s.blockManifold[k]];
+    placeBlock(contacts, s, k);
     ContactSolverScratch::Block& block = s.blocks[k];
     const SolverBody& A = s.bodies[m.bodyA];
     const SolverBody& B = s.bodies[m.bodyB];
@@ -172,20 +192,12 @@ void makeBlock(const Model& model, const State& state, const State& before, cons
 
 void prepareContacts(const Model& model, const State& state, const State& before, const ManifoldList& contacts,
                      const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s) {
-    s.points.clear();
-    s.geometry.clear();
-    s.blocks.clear();
     s.subsets.clear();
-    size_t points = 0;
-    for (const Manifold& m : contacts) points += m.count;
-    makeRoom(s.points, points);
-    makeRoom(s.geometry, points);
-    makeRoom(s.blocks, contacts.size());
     loadVelocities(model, before, s.start, s.involved);
     chordVelocities(model, state, before, s.start, s.involved);
     choosePoints(model, contacts, cfg, s);
     splitBlocks(model, contacts, s);
-    placeBlocks(contacts, s);
+    orderBlocks(s);
     const int n = static_cast<int>(s.blocks.size());
     auto make = [&](int k) { makeBlock(model, state, before, contacts, sizes, cfg, s, k); };
     if (!s.pool || s.pool->threads() == 1 || n <= kBlockGrain) {  // (nothing to time or gate)

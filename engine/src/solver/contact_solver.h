@@ -251,9 +251,9 @@ struct ContactSolverScratch {
     std::vector<std::int8_t> bodyRegion, blockRegion;
     std::array<std::vector<int>, 2> wants;
     long pooledRegions = 0;  // passes whose regions went to the pool (Profile)
-    // Per block, its manifold in the island's list and which of its points are solved (bits);
-    // whether making the blocks pays on the pool (contact_prepare.h).
-    std::vector<int> blockManifold, spareManifold;
+    // Per block, its manifold in the island's list, which of its points are solved (bits) and
+    // where its points begin; whether making the blocks pays on the pool (contact_prepare.h).
+    std::vector<int> blockManifold, spareManifold, blockFirst;
     std::vector<std::uint8_t> blockPoints, sparePoints;
     PoolGate prepareGate;
     // Per body: how many directions it slides across (-1: held), and those normals (redoPoses).
