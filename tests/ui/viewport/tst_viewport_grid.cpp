@@ -43,13 +43,17 @@ int greyAt(const QImage& image, QPoint at) {
     return (c.red() + c.green() + c.blue()) / 3;
 }
 
-// The view's pixels once two grabs a little apart agree (the frame for the camera is drawn).
-QImage settled(Viewport& view) {
+// The view's pixels once two grabs a little apart agree (the frame for the camera is drawn)
+// and `ready` finds in them what the test looks at (else the last grab after 10 s). Qt3D may
+// draw the scene a few frames before a pass it adds (the grid, blended after the scene): under
+// load two grabs without the grid once agreed, and a test found no line drawn at all.
+template <class Ready>
+QImage settled(Viewport& view, Ready&& ready) {
     QImage last;
     for (int tries = 0; tries < 100; ++tries) {
         QTest::qWait(100);
         QImage shot = view.screen()->grabWindow(view.winId()).toImage();
-        if (!last.isNull() && shot == last) return shot;
+        if (!last.isNull() && shot == last && ready(shot)) return shot;
         last = shot;
     }
     return last;
@@ -98,7 +102,11 @@ private slots:
         Viewport& view = *shownView;
         const QVector3D eye(0.0f, distance * std::sin(qDegreesToRadians(pitch)),
                             distance * std::cos(qDegreesToRadians(pitch)));
-        const QImage shot = settled(view);
+        // (Ready: the line is drawn near the eye.)
+        const QImage shot = settled(view, [&](const QImage& image) {
+            return brightestAround(image, projected(view, Vec3(-5, 0, 2.5))) >
+                   greyAt(image, projected(view, Vec3(-4.5, 0, 2.5))) + 12;
+        });
         int samples = 0, gaps = 0;
         QString where;
         for (double z = 3.0; z >= -12.0; z -= 0.02) {
@@ -128,7 +136,15 @@ private slots:
         doc.addBody(test::body("crate", ShapeType::Box, Vec3(-5, 0.5, -2)));  // 1 m cube
         const auto shownView = shown(doc, 12.0f, 20.0f);
         Viewport& view = *shownView;
-        const QImage shot = settled(view);
+        auto boxColoured = [&](const QImage& image, double y) {
+            const QColor c = image.pixelColor(projected(view, Vec3(-5, y, -1.5)));
+            return c.red() > c.blue() + 60;
+        };
+        // (Ready: the box and the grid are drawn.)
+        const QImage shot = settled(view, [&](const QImage& image) {
+            return boxColoured(image, 0.5) && brightestAround(image, projected(view, Vec3(-5, 0, 2.5))) >
+                                                  greyAt(image, projected(view, Vec3(-4.5, 0, 2.5))) + 12;
+        });
         for (double y = 0.025; y < 1.0; y += 0.025) {
             const QPoint at = projected(view, Vec3(-5, y, -1.5));
             const QColor c = shot.pixelColor(at);
@@ -146,12 +162,14 @@ private slots:
         Document doc;
         const auto shownView = shown(doc, 10.0f, 12.0f);
         Viewport& view = *shownView;
-        const QImage shot = settled(view);
-        auto contrast = [&](double z) {
+        auto contrastIn = [&](const QImage& image, double z) {
             const QPoint at = projected(view, Vec3(-1, 0, z));
             const QPoint cell = projected(view, Vec3(-1.5, 0, z));
-            return brightestAround(shot, at) - greyAt(shot, cell);
+            return brightestAround(image, at) - greyAt(image, cell);
         };
+        // (Ready: the grid is drawn near the eye.)
+        const QImage shot = settled(view, [&](const QImage& image) { return contrastIn(image, 3.5) > 12; });
+        auto contrast = [&](double z) { return contrastIn(shot, z); };
         // The eye 2.1 m up; cells' middles (z half way between lines) about 6 to 19 m away.
         int last = 255;
         QString profile;
