@@ -118,10 +118,16 @@ void overPairs(DetectScratch& s, List& out, std::vector<List>& chunkOut, PoolGat
     const int chunks = (n + kPairGrain - 1) / kPairGrain;
     if (static_cast<int>(chunkOut.size()) < chunks) chunkOut.resize(chunks);
     s.pool->run(chunks, [&](int c) {
-        List& mine = chunkOut[c];
+        // Filled as a list of the thread's own, its room taken from chunkOut[c] and given back
+        // at the end: the chunks' lists lie side by side in chunkOut, and appending to them in
+        // place had two threads writing the same cache lines at every manifold (pyramid-1240's
+        // narrowphase on two threads 3.6 -> 3.0 ms a step; 3.9-4.1 on one).
+        List mine;
+        mine.swap(chunkOut[c]);
         mine.clear();
         const int end = std::min(n, (c + 1) * kPairGrain);
         for (int k = c * kPairGrain; k < end; ++k) pair(k, pairs[k].first, pairs[k].second, mine);
+        chunkOut[c].swap(mine);
     });
     for (int c = 0; c < chunks; ++c) out.insert(out.end(), chunkOut[c].begin(), chunkOut[c].end());
     booked(true);
