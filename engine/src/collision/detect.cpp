@@ -12,7 +12,6 @@
 #include "common/pair_key.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -240,13 +239,15 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
     };
     s.apart.assign(s.broadphase.pairs().size(), Vec3::Zero());
     placeCompounds(model, s, margin);
-    std::atomic<long> reused{0}, provedApart{0};
+    // Counted per chunk (pair k is in chunk k / kPairGrain on the pool or not): one counter for
+    // both threads was a cache line they wrote at every pair taken again.
+    s.chunkTally.assign((s.broadphase.pairs().size() + kPairGrain - 1) / kPairGrain, {});
     overPairs(s, s.contacts, s.chunkContacts, s.contactsGate, [&](int k, int a, int b, ManifoldList& out) {
         if (const auto* range = lastOf(a, b)) {
             out.insert(out.end(), last.manifolds.begin() + range->first,
                        last.manifolds.begin() + range->second);
             s.apart[k] = last.apart[range - last.ranges.data()];
-            reused.fetch_add(1, std::memory_order_relaxed);
+            ++s.chunkTally[k / kPairGrain].n[0];
             return;
         }
         if (joined(s, a, b)) return;  // a joint's bodies do not collide
@@ -259,7 +260,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
             const Vec3 axis = lastApart(a, b);
             if (!axis.isZero(0.0) && apartAlong(A, s.end[a], B, s.end[b], axis, margin)) {
                 s.apart[k] = axis;
-                provedApart.fetch_add(1, std::memory_order_relaxed);
+                ++s.chunkTally[k / kPairGrain].n[1];
                 return;
             }
             collide(A, s.end[a], B, s.end[b], margin, out, s.apart[k]);
@@ -274,8 +275,7 @@ void findContacts(const Model& model, DetectScratch& s, double margin) {
             out[k].bodyB = b;
         }
     });
-    s.reusedPairs += reused.load();
-    s.apartPairs += provedApart.load();
+    for (const DetectScratch::ChunkTally& c : s.chunkTally) s.reusedPairs += c.n[0], s.apartPairs += c.n[1];
     rememberPairs(model, s, margin);
 }
 
@@ -450,7 +450,7 @@ void findImpacts(const Model& model, const State& before, const State& after, do
     };
     s.pathFrom.resize(model.bodies.size(), -1);
     s.noImpactFrom.assign(s.broadphase.pairs().size(), -1);
-    std::atomic<long> searches{0}, kept{0};
+    s.chunkTally.assign((s.broadphase.pairs().size() + kPairGrain - 1) / kPairGrain, {});  // (see findContacts)
     overPairs(s, s.impacts, s.chunkImpacts, s.impactsGate, [&](int k, int a, int b, std::vector<ImpactEvent>& out) {
         if (joined(s, a, b)) return;
         // In contact already: no new impact.
@@ -458,17 +458,16 @@ void findImpacts(const Model& model, const State& before, const State& after, do
         const bool bothAwake = awake(a) && awake(b);
         if (const int from = bothAwake && !s.noImpact.empty() ? keptFrom(a, b) : -1; from >= 0) {
             s.noImpactFrom[k] = from;
-            kept.fetch_add(1, std::memory_order_relaxed);
+            ++s.chunkTally[k / kPairGrain].n[1];  // a search kept
             return;
         }
-        searches.fetch_add(1, std::memory_order_relaxed);
+        ++s.chunkTally[k / kPairGrain].n[0];  // a search
         const size_t found = out.size();
         search(a, b, out);
         // (End-of-step's judgement that the end is right is no search of the whole path.)
         if (!thickness && bothAwake && out.size() == found) s.noImpactFrom[k] = s.subStep;
     });
-    s.impactSearches += searches;
-    s.impactSearchesKept += kept;
+    for (const DetectScratch::ChunkTally& c : s.chunkTally) s.impactSearches += c.n[0], s.impactSearchesKept += c.n[1];
     s.noImpact.clear();
     const auto& pairs = s.broadphase.pairs();
     for (size_t k = 0; k < pairs.size(); ++k)

@@ -61,6 +61,12 @@ struct DetectScratch {
     std::vector<collision::Pose> pairedPose;  // each body's pose when it was last in a pair
     long reusedPairs = 0;                     // pairs taken from lastPairs, summed
     long apartPairs = 0;                      // pairs shown apart by their last direction, summed
+    // Two tallies per chunk of pairs, a cache line each (the threads count apart): findContacts
+    // counts the pairs taken again and those shown apart, findImpacts its searches and those kept.
+    struct alignas(64) ChunkTally {
+        long n[2] = {0, 0};
+    };
+    std::vector<ChunkTally> chunkTally;
     Workers* pool = nullptr;                  // the world's worker threads; null: this thread only
     std::vector<collision::ManifoldList> chunkContacts;  // per chunk of pairs (with a pool)
     std::vector<std::vector<collision::ImpactEvent>> chunkImpacts;
