@@ -4,7 +4,6 @@
 #include "solver/contact_rows.h"
 
 #include <algorithm>
-#include <atomic>
 
 namespace tumble {
 
@@ -17,8 +16,8 @@ constexpr size_t kSplitBlocks = 1024;
 // The blocks [begin, end) of a region, forwards or backwards, stamped from `tick` + 1 on.
 // With `wants`, a block that needs an entry in s.subsets is listed there (the pool does not
 // grow while two regions read it). Returns how many it updated; `changed`: whether any
-// changed.
-// (`changed` is written once, at the end: the two regions' flags lie side by side.)
+// changed, written once at the end (the two regions' flags lie side by side, and written at
+// every block they had the two threads fighting over one cache line).
 long regionPass(ContactSolverScratch& s, int begin, int end, bool back, double quietSpeed, long tick,
                 std::vector<int>* wants, bool& changed) {
     long updates = 0;
