@@ -123,8 +123,9 @@ void placeBlock(const ManifoldList& contacts, ContactSolverScratch& s, int k) {
     }
 }
 
-// Then block k's rows from its manifold: each point's effective mass, target and surface
-// points, the block's K and friction frame. Reads the bodies, writes block k and its points.
+// Then block k, placed (placeBlock) and its rows made from its manifold: each point's effective
+// mass, target and surface points, the block's K and friction frame. Reads the bodies, writes
+// block k and its points only.
 void makeBlock(const Model& model, const State& state, const State& before, const ManifoldList& contacts,
                const std::vector<double>& sizes, const ContactSolverSettings& cfg, ContactSolverScratch& s,
                int k) {
