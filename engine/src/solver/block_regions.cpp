@@ -14,8 +14,8 @@ namespace {
 constexpr size_t kSplitBlocks = 1024;
 
 // The blocks [begin, end) of a region, forwards or backwards, stamped from `tick` + 1 on.
-// With `wants`, a block that needs an entry in s.subsets is listed there (the pool does not
-// grow while two regions read it). Returns how many it updated; `changed`: whether any
+// With `wants` (the two regions, on the pool or not), a block that needs an entry in s.subsets
+// is listed there and given it after both (the pool does not grow while two regions read it). Returns how many it updated; `changed`: whether any
 // changed, written once at the end (the two regions' flags lie side by side, and written at
 // every block they had the two threads fighting over one cache line).
 long regionPass(ContactSolverScratch& s, int begin, int end, bool back, double quietSpeed, long tick,
@@ -86,6 +86,16 @@ bool splitBlocks(const Model& model, const collision::ManifoldList& contacts, Co
     return true;
 }
 
+bool onRegions(ContactSolverScratch& s, const std::function<void(int)>& work) {
+    if (s.pool && s.pool->threads() > 1) {
+        s.pool->run(2, work);
+        return true;
+    }
+    work(0);
+    work(1);
+    return false;
+}
+
 bool iterateRegions(ContactSolverScratch& s, int pass, double quietSpeed) {
     const bool back = pass % 2;
     bool changed = false;
@@ -97,23 +107,18 @@ bool iterateRegions(ContactSolverScratch& s, int pass, double quietSpeed) {
     const long tick = s.tick;
     long updates[2] = {0, 0};
     bool regionChanged[2] = {false, false};
-    if (s.pool && s.pool->threads() > 1) {
-        ++s.pooledRegions;
-        s.pool->run(2, [&](int r) {
-            updates[r] = regionPass(s, at[r], at[r + 1], back, quietSpeed, tick, &s.wants[r], regionChanged[r]);
-        });
-        for (std::vector<int>& wants : s.wants) {
-            for (int k : wants) {
-                ContactSolverScratch::Block& block = s.blocks[k];
-                if (block.subsets >= 0) continue;
-                block.subsets = static_cast<int>(s.subsets.size());
-                s.subsets.emplace_back();
-            }
-            wants.clear();
+    const bool pooled = onRegions(s, [&](int r) {
+        updates[r] = regionPass(s, at[r], at[r + 1], back, quietSpeed, tick, &s.wants[r], regionChanged[r]);
+    });
+    s.pooledRegions += pooled;
+    for (std::vector<int>& wants : s.wants) {
+        for (int k : wants) {
+            ContactSolverScratch::Block& block = s.blocks[k];
+            if (block.subsets >= 0) continue;
+            block.subsets = static_cast<int>(s.subsets.size());
+            s.subsets.emplace_back();
         }
-    } else {
-        for (int r = 0; r < 2; ++r)
-            updates[r] = regionPass(s, at[r], at[r + 1], back, quietSpeed, tick, nullptr, regionChanged[r]);
+        wants.clear();
     }
     s.tick = tick + std::max(updates[0], updates[1]);
     changed = changed || regionChanged[0] || regionChanged[1];

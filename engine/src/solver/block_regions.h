@@ -17,6 +17,8 @@
 
 #include "solver/contact_solver.h"
 
+#include <functional>
+
 namespace tumble {
 
 /// Splits the blocks the island is about to have (s.blockManifold's manifolds, before their
@@ -24,6 +26,10 @@ namespace tumble {
 /// no joints: s.split, s.regionBegin, and s.regionBlocks, the blocks in region order. Returns
 /// whether it split them.
 bool splitBlocks(const Model& model, const collision::ManifoldList& contacts, ContactSolverScratch& s);
+
+/// Runs work(0) and work(1), a region each, side by side on s.pool when it has two threads or
+/// more, else one after the other; returns whether the pool took them.
+bool onRegions(ContactSolverScratch& s, const std::function<void(int)>& work);
 
 /// One pass over the split blocks, placed region by region (as iterate in contact_solver.cpp:
 /// forwards on even passes, backwards on odd ones, the regions and the boundary in that

@@ -17,20 +17,20 @@ double normalVelocity(const SolverBody& A, const SolverBody& B, const Point& p) 
     return p.n.dot(A.v - B.v) + p.armA.dot(A.w) - p.armB.dot(B.w);
 }
 
+// Changes a body's velocities by dv, dw. A body that cannot move (invMass 0, its spins 0)
+// is not written: the blocks of two regions run side by side (block_regions.h) and share
+// the ground.
+[[gnu::always_inline]] inline void kick(SolverBody& b, const Vec3& dv, const Vec3& dw) {
+    if (!(b.invMass > 0.0)) return;
+    b.v += dv;
+    b.w += dw;
+    b.touched = true;
+}
+
 // The normal impulse d at the point: on A along n, on B against it.
-// A body that cannot move (invMass 0, its spins 0) is not written: the blocks of two regions
-// run side by side (block_regions.h) and share the ground.
 void pushPoint(SolverBody& A, SolverBody& B, const Point& p, double d) {
-    if (A.invMass > 0.0) {
-        A.v += (A.invMass * d) * p.n;
-        A.w += d * p.spinA;
-        A.touched = true;
-    }
-    if (B.invMass > 0.0) {
-        B.v -= (B.invMass * d) * p.n;
-        B.w -= d * p.spinB;
-        B.touched = true;
-    }
+    kick(A, (A.invMass * d) * p.n, d * p.spinA);
+    kick(B, -((B.invMass * d) * p.n), -(d * p.spinB));
 }
 
 double normalPoint(ContactSolverScratch& s, Point& p) {
@@ -135,16 +135,8 @@ inline Eigen::Vector2d slipOf(const ContactSolverScratch::Block& block, const So
                                                 SolverBody& B, const Eigen::Vector2d& dT, double dTwist) {
     if (dT.isZero(0.0) && dTwist == 0.0) return;
     const Vec3 J = dT[0] * block.t1 + dT[1] * block.t2;
-    if (A.invMass > 0.0) {  // (as pushPoint)
-        A.v += A.invMass * J;
-        A.w += dT[0] * block.spinA[0] + dT[1] * block.spinA[1] + dTwist * block.twistA;
-        A.touched = true;
-    }
-    if (B.invMass > 0.0) {
-        B.v -= B.invMass * J;
-        B.w -= dT[0] * block.spinB[0] + dT[1] * block.spinB[1] + dTwist * block.twistB;
-        B.touched = true;
-    }
+    kick(A, A.invMass * J, dT[0] * block.spinA[0] + dT[1] * block.spinA[1] + dTwist * block.twistA);
+    kick(B, -(B.invMass * J), -(dT[0] * block.spinB[0] + dT[1] * block.spinB[1] + dTwist * block.twistB));
 }
 
 }  // namespace
@@ -209,16 +201,8 @@ double normalBlockOf(ContactSolverScratch& s, ContactSolverScratch::Block& block
     const double changed = d.cwiseAbs().maxCoeff();
     if (total == 0.0 && spinA.isZero(0.0) && spinB.isZero(0.0)) return changed;
     const Vec3& n = q[0].n;
-    if (A.invMass > 0.0) {  // (as pushPoint)
-        A.v += (A.invMass * total) * n;
-        A.w += spinA;
-        A.touched = true;
-    }
-    if (B.invMass > 0.0) {
-        B.v -= (B.invMass * total) * n;
-        B.w -= spinB;
-        B.touched = true;
-    }
+    kick(A, (A.invMass * total) * n, spinA);
+    kick(B, -((B.invMass * total) * n), -spinB);
     return changed;
 }
 

@@ -4,7 +4,6 @@
 #include "common/pair_key.h"
 #include "islands/islands.h"
 #include "solver/block_regions.h"
-#include "common/workers.h"
 #include "solver/contact_energy.h"
 #include "solver/contact_islands.h"
 #include "solver/contact_prepare.h"
@@ -134,11 +133,7 @@ bool warmStart(const State& state, double h, double growth, ContactSolverScratch
     if (!s.split) return warmStartBlocks(state, h, growth, s, 0, nb);
     const auto& at = s.regionBegin;
     bool grew[2] = {false, false};
-    auto region = [&](int r) { grew[r] = warmStartBlocks(state, h, growth, s, at[r], at[r + 1]); };
-    if (s.pool && s.pool->threads() > 1)
-        s.pool->run(2, region);
-    else
-        region(0), region(1);
+    onRegions(s, [&](int r) { grew[r] = warmStartBlocks(state, h, growth, s, at[r], at[r + 1]); });
     return warmStartBlocks(state, h, growth, s, at[2], at[3]) || grew[0] || grew[1];
 }
 
