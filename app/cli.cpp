@@ -5,6 +5,7 @@
 #include "stop_signals.h"
 #include "sweep/run_metrics.h"
 #include "sweep/sweep_cli.h"
+#include "version.h"
 
 #include <tumble/convex_parts.h>
 #include <tumble/errors.h>
@@ -27,10 +28,6 @@
 #include <ostream>
 
 #include <unistd.h>
-
-#ifndef TUMBLE_VERSION
-#define TUMBLE_VERSION "unknown"
-#endif
 
 namespace tumble::cli {
 
@@ -629,7 +626,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
             return kOk;
         }
         if (a == "--version") {
-            out << "tumble " << TUMBLE_VERSION << "\n";
+            out << versionLine() << "\n";
             return kOk;
         }
         if (a == "--list-integrators") {

@@ -41,6 +41,11 @@ std::string meshReaderProgram() {
         if (!ec) {
             const auto beside = self.parent_path() / "tumble-mesh-reader";
             if (runnable(beside)) return beside.string();
+#ifdef TUMBLE_MESH_READER_FROM_BIN
+            // Installed: bin/tumble and libexec/tumble/tumble-mesh-reader under one prefix.
+            const auto installed = (self.parent_path() / TUMBLE_MESH_READER_FROM_BIN).lexically_normal();
+            if (runnable(installed)) return installed.string();
+#endif
         }
 #ifdef TUMBLE_MESH_READER_BUILT
         if (runnable(TUMBLE_MESH_READER_BUILT)) return std::string(TUMBLE_MESH_READER_BUILT);

@@ -48,7 +48,8 @@ TriangleMesh importMesh(const std::filesystem::path& file, const Vec3& scale = V
 
 /// The reader program importMesh starts for each file, or "" when there is none: the
 /// environment's TUMBLE_MESH_READER when set (taken as it is), else tumble-mesh-reader
-/// beside the running program, else the one in the build tree it was built in.
+/// beside the running program, else the installed one (libexec/tumble under the running
+/// program's prefix), else the one in the build tree it was built in.
 std::string meshReaderProgram();
 
 /// The reader program's main (app/mesh_reader_main.cpp):
