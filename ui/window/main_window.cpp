@@ -17,6 +17,7 @@
 #include "viewport/viewport.h"
 #include "window/autosave.h"
 #include "window/manual_dialog.h"
+#include "window/sample_scenes.h"
 #include "window/shortcuts_dialog.h"
 #include "window/sticky_menu.h"
 
@@ -55,38 +56,6 @@
 namespace tumble::ui {
 
 namespace {
-
-const char* const kSamples[] = {"tumbling-box",
-                                "spring-pendulum",
-                                "projectile",
-                                "bouncing-ball",
-                                "head-on",
-                                "tilted-box-impact",
-                                "newtons-cradle",
-                                "newtons-cradle-strings",
-                                "chain",
-                                "hinged-door",
-                                "ragdoll",
-                                "sliding-block",
-                                "incline",
-                                "rolling-sphere",
-                                "tower-20",
-                                "pyramid-15",
-                                "mass-ratio-stack",
-                                "sleeping-wake",
-                                "table",
-                                "chair",
-                                "hammer",
-                                "cart",
-                                "chair-pile",
-                                "sieve",
-                                "paddle-dominoes",
-                                "lift",
-                                "turntable",
-                                "ragdoll-stairs",
-                                "robot-arm",
-                                "suspension-cart",
-                                "tilt-platform"};
 
 bool isSceneFile(const QString& path) {
     return path.endsWith(".json", Qt::CaseInsensitive);
@@ -177,9 +146,13 @@ void MainWindow::buildMenus() {
     recentMenu_ = file->addMenu(tr("Open &Recent"));
     connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
     QMenu* samples = file->addMenu(tr("&Samples"));
-    for (const char* name : kSamples) {
-        const QString path = QStringLiteral(":/scenes/%1.json").arg(name);
-        samples->addAction(QString(name), this, [this, path] { openPath(path); });
+    // The compiled-in samples, then the installed ones with meshes beside them (sample_scenes.h).
+    samples->setObjectName("samplesMenu");
+    bool compiled = true;
+    for (const SampleScene& sample : sampleScenes()) {
+        if (compiled && !sample.path.startsWith(':')) samples->addSeparator();
+        compiled = sample.path.startsWith(':');
+        samples->addAction(sample.name, this, [this, path = sample.path] { openPath(path); })->setData(sample.path);
     }
     file->addSeparator();
     file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save)->setObjectName("fileSave");

@@ -159,6 +159,33 @@ private slots:
         }
     }
 
+    // File > Samples: the compiled-in samples, then the sample files with meshes beside them
+    // (from the installed folder; here, built, the source tree's), which open from their
+    // folder with their meshes; a convex parts file is not offered as a scene.
+    void theSamplesMenuOpensTheSampleFilesWithMeshes() {
+        MainWindow w;
+        auto* menu = w.findChild<QMenu*>("samplesMenu");
+        QVERIFY(menu);
+        QStringList names;
+        QAction* meshShapes = nullptr;
+        for (QAction* a : menu->actions()) {
+            if (a->isSeparator()) continue;
+            names << a->text();
+            if (a->text() == "mesh-shapes") meshShapes = a;
+        }
+        for (const char* name : {"tumbling-box", "newtons-cradle", "tilt-platform", "mesh-shapes", "mug-on-board"})
+            QVERIFY2(names.contains(name), qPrintable(names.join(' ')));
+        QCOMPARE(names.count("tumbling-box"), 1);
+        QVERIFY2(!names.contains("mug-on-board.convex-parts"), qPrintable(names.join(' ')));
+        QVERIFY2(names.indexOf("mesh-shapes") > names.indexOf("tilt-platform"), qPrintable(names.join(' ')));
+        QVERIFY(meshShapes);
+        QCOMPARE(meshShapes->data().toString(), QDir(TUMBLE_SCENES_DIR).canonicalPath() + "/mesh-shapes.json");
+        meshShapes->trigger();
+        QVERIFY2(w.windowTitle().startsWith("mesh-shapes.json"), qPrintable(w.windowTitle()));
+        QVERIFY(w.document()->openWarnings().isEmpty());  // its meshes were found
+        QCOMPARE(w.viewport()->entityCount(), int(w.scene().bodies.size()));
+    }
+
     void badSceneKeepsTheOpenOne() {
         QTemporaryDir dir;
         const QString bad = dir.filePath("bad.json");
