@@ -4,6 +4,9 @@
 #   ./dev.sh run [SCENE]   install what is missing, build, start the editor
 #   ./dev.sh test          install what is missing, build, run every test (under Xvfb)
 #   ./dev.sh build         install what is missing and build
+#   ./dev.sh package       ... and make the Debian package, $BUILD_DIR/package/tumble_VERSION_ARCH.deb
+#                          (lintian's report after it); install it with
+#                          apt-get install ./$BUILD_DIR/package/tumble_*.deb
 #   ./dev.sh sanitize      the engine, io, cli and fuzz tests built with clang, ASan and UBSan
 #                          (part of `test`; a folder of its own, $BUILD_DIR-san), then the
 #                          editor's (sanitize-ui)
@@ -32,6 +35,7 @@ PACKAGES=(
   slurm-wlm munge
   clang-14 libfuzzer-14-dev
   liblsan0
+  help2man librsvg2-bin shared-mime-info lintian desktop-file-utils xdg-utils libfile-mimeinfo-perl strace
 )
 # ffmpeg is optional for users (the editor's MP4 export detects it at run time); the tests
 # install it so that the video path is tested, not skipped. gnuplot draws tumble-bench's
@@ -39,6 +43,10 @@ PACKAGES=(
 # reads the glTF exports in the blender/roundtrip test (its importer needs numpy). slurm-wlm
 # and munge: cli/sweep_slurm starts a one-node Slurm cluster for `tumble sweep --slurm`.
 # xdotool answers the real editor's recovery prompt in ui/recovery_e2e.
+# help2man (the man page) and librsvg2-bin (the PNG icons) make the installed files
+# (packaging/CMakeLists.txt); lintian, desktop-file-utils, xdg-utils with
+# libfile-mimeinfo-perl, shared-mime-info and strace check the installed package
+# (install/package: tests/install/install_test.py).
 
 # The Khronos glTF validator for the export tests (tests/io/gltf_validator.h), from npm into
 # the build folder; its 2.x releases are all "2.0.0-dev.3.N", which npm's "@2" does not match.
@@ -194,8 +202,17 @@ case "$cmd" in
     install_missing
     build
     ;;
+  package)
+    install_missing
+    build
+    (cd "$BUILD_DIR" && cpack --config CPackConfig.cmake)
+    deb=$(ls "$BUILD_DIR"/package/tumble_*.deb)
+    echo "dev.sh: $deb; lintian says:"
+    # (lintian fails on an error; its warnings and notes are shown.)
+    lintian --tag-display-limit 0 --display-info "$deb" || { echo "dev.sh: lintian found errors in $deb" >&2; exit 1; }
+    ;;
   *)
-    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build | sanitize [CTEST ARGS] | sanitize-ui [CTEST ARGS] | fuzz TARGET [SECONDS] | faults [KILLS]" >&2
+    echo "usage: $0 run [SCENE] | test [CTEST ARGS] | build | package | sanitize [CTEST ARGS] | sanitize-ui [CTEST ARGS] | fuzz TARGET [SECONDS] | faults [KILLS]" >&2
     exit 2
     ;;
 esac
