@@ -2,6 +2,7 @@
 """Tumble installed as a user installs it (issue 54): the Debian package built, installed with
 apt-get, used from another folder, then removed.
 
+  0. cmake --install into a prefix of the test's own: its tumble uses that prefix's mesh reader.
   1. cpack makes tumble_VERSION_ARCH.deb from the build (into a folder of the test's own);
      lintian finds no error in it; its Depends name Qt and its Suggests blender, slurm-wlm
      and ffmpeg.
@@ -103,6 +104,7 @@ def main():
         fail("no DISPLAY: the install test opens the installed editor (./dev.sh test runs it under Xvfb)")
     out = tempfile.mkdtemp(prefix="tumble-install-")
     try:
+        check_prefix(out)
         package = build_package(out)
         apt("install", package)
         try:
@@ -114,6 +116,28 @@ def main():
     finally:
         shutil.rmtree(out, ignore_errors=True)
     print("PASS")
+
+
+def check_prefix(out):
+    """`cmake --install` into a prefix of its own: the program there finds its mesh reader in
+    that prefix's libexec/tumble, not the build tree's."""
+    prefix = os.path.join(out, "prefix")
+    run(["cmake", "--install", BUILD, "--prefix", prefix])
+    tumble = os.path.join(prefix, "bin", "tumble")
+    trace = os.path.join(out, "prefix-trace")
+    work = os.path.join(out, "prefix-work")
+    os.makedirs(work)
+    env = dict(os.environ)
+    env.pop("TUMBLE_MESH_READER", None)
+    run(["strace", "-f", "-e", "trace=execve", "-o", trace, tumble, "--headless",
+         os.path.join(prefix, "share", "tumble", "scenes", "mesh-shapes.json"), "--duration", "0.05", "--out", "m.csv",
+         "--quiet"], cwd=work, env=env)
+    with open(trace) as f:
+        started = re.findall(r'execve\("([^"]+)"', f.read())
+    reader = os.path.join(prefix, "libexec", "tumble", "tumble-mesh-reader")
+    if reader not in started:
+        fail("%s did not start %s; programs started: %s" % (tumble, reader, started))
+    shutil.rmtree(prefix)
 
 
 def build_package(out):
