@@ -22,6 +22,11 @@ using namespace collision;
 
 namespace {
 constexpr int kBodyGrain = 256;  // bodies per chunk on the worker threads (as the integrator's)
+
+// The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
+bool samePose(const Pose& x, const Pose& y) {
+    return std::memcmp(&x, &y, sizeof(Pose)) == 0;
+}
 }  // namespace
 
 bool needsContacts(const Model& model) {
@@ -56,6 +61,8 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
     const size_t n = model.bodies.size();
     // A static body's box is the last one while the margin is the same.
     const bool keepStatic = s.swept.size() == n && s.sweptMargin == margin;
+    // (A new margin: every box made again.)
+    if (!keepStatic) s.boxFrom.assign(n, {});
     s.sweptMargin = margin;
     s.swept.resize(n);
     s.moving.resize(n);
@@ -66,11 +73,22 @@ void findPairs(const Model& model, const State& state, double margin, DetectScra
             const BodyModel& b = model.bodies[i];
             if (keepStatic && b.motion == Motion::Static && b.collider.kind != Kind::Plane) continue;
             s.moving[i] = !b.standsStill() && !state.isAsleep(i);
+            const Pose* other = s.moving[i]                          ? &s.start[i]
+                                : s.standing && (*s.standing)[i] ? &s.standFrom[i]
+                                                                    : nullptr;
+            // The same poses as the box was made from: the same box (a box or a sphere is
+            // made faster than its poses are compared).
+            const bool costly = b.collider.kind == Kind::Hull || b.collider.kind == Kind::Mesh ||
+                                b.collider.kind == Kind::Compound;
+            DetectScratch::BoxFrom& from = s.boxFrom[i];
+            if (costly && from.with == (other ? 1 : 0) && samePose(from.end, s.end[i]) &&
+                (!other || samePose(from.other, *other)))
+                continue;
             s.swept[i] = bounds(b.collider, s.end[i]);
-            if (s.moving[i]) s.swept[i].add(bounds(b.collider, s.start[i]));
-            else if (s.standing && (*s.standing)[i]) s.swept[i].add(bounds(b.collider, s.standFrom[i]));
+            if (other) s.swept[i].add(bounds(b.collider, *other));
             s.swept[i].min.array() -= margin;
             s.swept[i].max.array() += margin;
+            if (costly) from = {s.end[i], other ? *other : Pose{}, other ? 1 : 0};
         }
     }, &s.boxesGate);
     // A plane that stands still is a half-space: it pairs only with the boxes reaching it.
@@ -144,10 +162,6 @@ bool joined(const DetectScratch& s, int a, int b) {
            std::binary_search(s.jointPairs.begin(), s.jointPairs.end(), pairKey(a, b));
 }
 
-// The same bits: -0.0 and 0.0 differ here, as they may in what is computed from them.
-bool samePose(const Pose& x, const Pose& y) {
-    return std::memcmp(&x, &y, sizeof(Pose)) == 0;
-}
 
 // The pairs of this narrowphase and their manifolds, for the next one; each paired body's
 // pose. Written over the last ones, which this narrowphase has done reading (a second

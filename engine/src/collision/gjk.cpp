@@ -290,6 +290,11 @@ Vec3 ConvexProxy::center() const {
     }
 }
 
+void ConvexProxy::moveTo(const Pose& to) {
+    pose = to;
+    for (int i = 0; i < turnedCount; ++i) turned[i] = to.R * hull->vertices[i];
+}
+
 ConvexProxy proxyOf(const Shape& s, const Pose& pose) {
     ConvexProxy p;
     p.pose = pose;

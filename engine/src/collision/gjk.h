@@ -32,6 +32,10 @@ struct ConvexProxy {
     std::array<Vec3, kTurned> turned;  // (not initialised: only the first turnedCount are set)
     int turnedCount = 0;
 
+    /// Places the proxy at `to` (its turned vertices turned again): then it is what proxyOf
+    /// gives for `to`, made without going over the hull's vertices for its extent (the time
+    /// of impact asks for one shape at many poses).
+    void moveTo(const Pose& to);
     /// The farthest point of the core along `dir` (world); any unit or non-unit direction.
     Vec3 support(const Vec3& dir) const;
     /// A point strictly inside the core (or on it for point/segment/triangle).

@@ -188,10 +188,17 @@ void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& ce
     }
 }
 
-std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, const Shape& b, const Sweep& sb,
-                                   double tol, Window window) {
-    return advance([&](double s) { return probe(proxyOf(a, sa.at(s)), proxyOf(b, sb.at(s))); },
-                   boundFor(sa, reach(a, sa), sb, reach(b, sb)), tol, 1.0, window);
+// rA, rB: reach(a, sa), reach(b, sb).
+std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, double rA, const Shape& b, const Sweep& sb,
+                                   double rB, double tol, Window window) {
+    ConvexProxy A = proxyOf(a, Pose{}), B = proxyOf(b, Pose{});
+    return advance(
+        [&](double s) {
+            A.moveTo(sa.at(s));
+            B.moveTo(sb.at(s));
+            return probe(A, B);
+        },
+                   boundFor(sa, rA, sb, rB), tol, 1.0, window);
 }
 
 // A (convex or mesh) against the plane B.
@@ -234,12 +241,12 @@ std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape&
     return advance(distanceAt, bound, tol, 1.0, window);
 }
 
-// A (convex) against the mesh B, triangle by triangle.
-std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, const Shape& mesh, const Sweep& sm,
+// A (convex) against the mesh B, triangle by triangle; rA: reach(a, sa).
+std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, double rA, const Shape& mesh, const Sweep& sm,
                                  double tol) {
     const MeshShape& m = *mesh.mesh;
     const auto bvh = bvhOf(m);
-    const double rA = reach(a, sa);
+    ConvexProxy A = proxyOf(a, Pose{});
     const Aabb box = sweptBoxInMesh(sa, Vec3::Zero(), rA + tol, sm);
     std::optional<Impact> best;
     bvh->query(box, [&](int tri) {
@@ -248,7 +255,11 @@ std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, const Shape& m
         triangleBall(m, tri, sm.localCenter, centre, radius, rT);
         const double sEnd = best ? best->s : 1.0;
         auto hit =
-            advance([&](double s) { return probe(proxyOf(a, sa.at(s)), triangleAt(m, tri, sm.at(s))); },
+            advance(
+                [&](double s) {
+                    A.moveTo(sa.at(s));
+                    return probe(A, triangleAt(m, tri, sm.at(s)));
+                },
                     boundFor(sa, rA, sm, rT), tol, sEnd);
         if (hit && (!best || hit->s < best->s)) best = hit;
     });
@@ -292,23 +303,23 @@ std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape&
                                    double tolerance, Window window) {
     if (a.kind == Kind::Plane && b.kind == Kind::Plane) return std::nullopt;
     // A tolerance of zero would only be reached in the limit; keep a rounding-level floor.
-    double scale = 0.0;
-    if (a.kind != Kind::Plane) scale += boundingRadius(a);
-    if (b.kind != Kind::Plane) scale += boundingRadius(b);
-    const double tol = std::max(tolerance, 1e-12 * scale);
+    // (Each bound once: a mesh's goes over all its vertices.)
+    const double boundA = a.kind != Kind::Plane ? boundingRadius(a) : 0.0;
+    const double boundB = b.kind != Kind::Plane ? boundingRadius(b) : 0.0;
+    const double tol = std::max(tolerance, 1e-12 * (boundA + boundB));
+    const double rA = boundA + sa.localCenter.norm(), rB = boundB + sb.localCenter.norm();  // (reach)
     if (a.kind == Kind::Compound || b.kind == Kind::Compound) {
         // The whole bodies' balls first: most pairs end there, before any pair of parts.
-        if (a.kind != Kind::Plane && b.kind != Kind::Plane &&
-            spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol))
+        if (a.kind != Kind::Plane && b.kind != Kind::Plane && spheresMiss(sa, rA, sb, rB, tol))
             return std::nullopt;
         return compoundImpact(a, sa, b, sb, tolerance, window);
     }
     if (b.kind == Kind::Plane) return againstPlane(a, sa, b, sb, tol, window);
     if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, a, sa, tol, window));
-    if (spheresMiss(sa, reach(a, sa), sb, reach(b, sb), tol)) return std::nullopt;
-    if (isConvex(a.kind) && isConvex(b.kind)) return convexConvex(a, sa, b, sb, tol, window);
-    if (isConvex(a.kind)) return convexMesh(a, sa, b, sb, tol);
-    if (isConvex(b.kind)) return flipped(convexMesh(b, sb, a, sa, tol));
+    if (spheresMiss(sa, rA, sb, rB, tol)) return std::nullopt;
+    if (isConvex(a.kind) && isConvex(b.kind)) return convexConvex(a, sa, rA, b, sb, rB, tol, window);
+    if (isConvex(a.kind)) return convexMesh(a, sa, rA, b, sb, tol);
+    if (isConvex(b.kind)) return flipped(convexMesh(b, sb, rB, a, sa, tol));
     return meshMesh(a, sa, b, sb, tol);
 }
 
