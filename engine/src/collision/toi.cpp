@@ -101,9 +101,10 @@ bool isConvex(Kind k) {
     return k != Kind::Plane && k != Kind::Mesh;
 }
 
-// Bound on the distance of any point of the shape from the centre of mass.
-double reach(const Shape& shape, const Sweep& sw) {
-    return boundingRadius(shape) + sw.localCenter.norm();
+// Bound on the distance of any point of a shape from the centre of mass, from its bound
+// about its own origin (boundingRadius).
+double reach(double bound, const Sweep& sw) {
+    return bound + sw.localCenter.norm();
 }
 
 Probe probe(const ConvexProxy& a, const ConvexProxy& b) {
@@ -188,7 +189,7 @@ void triangleBall(const MeshShape& m, int tri, const Vec3& localCenter, Vec3& ce
     }
 }
 
-// rA, rB: reach(a, sa), reach(b, sb).
+// rA, rB: their reaches.
 std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, double rA, const Shape& b, const Sweep& sb,
                                    double rB, double tol, Window window) {
     ConvexProxy A = proxyOf(a, Pose{}), B = proxyOf(b, Pose{});
@@ -201,10 +202,9 @@ std::optional<Impact> convexConvex(const Shape& a, const Sweep& sa, double rA, c
                    boundFor(sa, rA, sb, rB), tol, 1.0, window);
 }
 
-// A (convex or mesh) against the plane B.
-std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape& plane, const Sweep& sp,
+// A (convex or mesh) against the plane B; rA: A's reach.
+std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, double rA, const Shape& plane, const Sweep& sp,
                                    double tol, Window window) {
-    const double rA = reach(a, sa);
     const double thetaP = turn(sp);
     auto distanceAt = [&](double s) {
         const Pose pa = sa.at(s), pp = sp.at(s);
@@ -241,7 +241,7 @@ std::optional<Impact> againstPlane(const Shape& a, const Sweep& sa, const Shape&
     return advance(distanceAt, bound, tol, 1.0, window);
 }
 
-// A (convex) against the mesh B, triangle by triangle; rA: reach(a, sa).
+// A (convex) against the mesh B, triangle by triangle; rA: A's reach.
 std::optional<Impact> convexMesh(const Shape& a, const Sweep& sa, double rA, const Shape& mesh, const Sweep& sm,
                                  double tol) {
     const MeshShape& m = *mesh.mesh;
@@ -307,15 +307,15 @@ std::optional<Impact> timeOfImpact(const Shape& a, const Sweep& sa, const Shape&
     const double boundA = a.kind != Kind::Plane ? boundingRadius(a) : 0.0;
     const double boundB = b.kind != Kind::Plane ? boundingRadius(b) : 0.0;
     const double tol = std::max(tolerance, 1e-12 * (boundA + boundB));
-    const double rA = boundA + sa.localCenter.norm(), rB = boundB + sb.localCenter.norm();  // (reach)
+    const double rA = reach(boundA, sa), rB = reach(boundB, sb);
     if (a.kind == Kind::Compound || b.kind == Kind::Compound) {
         // The whole bodies' balls first: most pairs end there, before any pair of parts.
         if (a.kind != Kind::Plane && b.kind != Kind::Plane && spheresMiss(sa, rA, sb, rB, tol))
             return std::nullopt;
         return compoundImpact(a, sa, b, sb, tolerance, window);
     }
-    if (b.kind == Kind::Plane) return againstPlane(a, sa, b, sb, tol, window);
-    if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, a, sa, tol, window));
+    if (b.kind == Kind::Plane) return againstPlane(a, sa, rA, b, sb, tol, window);
+    if (a.kind == Kind::Plane) return flipped(againstPlane(b, sb, rB, a, sa, tol, window));
     if (spheresMiss(sa, rA, sb, rB, tol)) return std::nullopt;
     if (isConvex(a.kind) && isConvex(b.kind)) return convexConvex(a, sa, rA, b, sb, rB, tol, window);
     if (isConvex(a.kind)) return convexMesh(a, sa, rA, b, sb, tol);
